@@ -1,0 +1,70 @@
+#pragma once
+
+#include "devices/expected.h"
+#include "devices/frame.h"
+
+#include <chrono>
+#include <string>
+
+namespace dc::devices {
+
+// What a source can deliver (ARKit's frame semantics, plus what a live camera may lack).
+struct Capabilities {
+    bool sceneDepth = false;
+    bool smoothedSceneDepth = false;
+    bool confidence = false;
+    bool color = false;
+    bool pose = false;
+};
+
+// Closed -> Open -> Streaming -> Stopped (-> Streaming again, or -> Closed). Disconnected and Stalled are
+// entered from Streaming by live devices when the hardware goes away or stops delivering.
+enum class DeviceState { Closed, Open, Streaming, Stopped, Disconnected, Stalled };
+
+const char* toString(DeviceState state);
+
+// The outcome of one capture attempt on the capture thread.
+struct CaptureResult {
+    enum class Kind { Frame, Timeout, EndOfStream, Disconnected, Error };
+    Kind kind = Kind::Timeout;
+    FramePtr frame;      // set when kind == Frame
+    std::string message; // set for Disconnected and Error
+};
+
+// A depth source. The public methods check the state machine and call the do*() hooks that a device
+// implements, so every device gets the same transitions and the same error for a misuse. Not
+// thread-safe by itself: a Session serialises access (open/start/stop on the caller's thread while the
+// capture thread is not running; capture() on the capture thread only).
+class Device {
+public:
+    virtual ~Device() = default;
+    Device(const Device&) = delete;
+    Device& operator=(const Device&) = delete;
+
+    virtual std::string description() const = 0;
+    virtual Capabilities capabilities() const = 0;
+
+    Status open();
+    Status start();
+    Status stop();
+    void close();
+    DeviceState state() const { return state_; }
+
+    // Waits at most `timeout` for the next frame. Only valid while Streaming.
+    CaptureResult capture(std::chrono::milliseconds timeout);
+
+protected:
+    Device() = default;
+    virtual Status doOpen() = 0;
+    virtual Status doStart() = 0;
+    virtual void doStop() = 0;
+    virtual void doClose() {}
+    virtual CaptureResult doCapture(std::chrono::milliseconds timeout) = 0;
+
+private:
+    Status transitionError(const char* action) const;
+
+    DeviceState state_ = DeviceState::Closed;
+};
+
+} // namespace dc::devices

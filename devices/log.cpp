@@ -1,0 +1,43 @@
+#include "devices/log.h"
+
+#include <cstdio>
+#include <mutex>
+
+namespace dc {
+
+namespace {
+std::mutex gMutex;
+std::function<void(LogLevel, const std::string&)> gSink;
+bool gQuiet = false;
+} // namespace
+
+const char* toString(LogLevel level) {
+    switch (level) {
+    case LogLevel::Debug: return "debug";
+    case LogLevel::Info: return "info";
+    case LogLevel::Warning: return "warning";
+    case LogLevel::Error: return "error";
+    }
+    return "?";
+}
+
+void log(LogLevel level, const std::string& message) {
+    std::lock_guard lock(gMutex);
+    const bool toStderr = level >= LogLevel::Warning || (level == LogLevel::Info && !gQuiet);
+    if (toStderr)
+        std::fprintf(stderr, "depthcloud: %s: %s\n", toString(level), message.c_str());
+    if (gSink)
+        gSink(level, message);
+}
+
+void setLogSink(std::function<void(LogLevel, const std::string&)> sink) {
+    std::lock_guard lock(gMutex);
+    gSink = std::move(sink);
+}
+
+void setLogQuiet(bool quiet) {
+    std::lock_guard lock(gMutex);
+    gQuiet = quiet;
+}
+
+} // namespace dc

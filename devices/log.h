@@ -1,0 +1,23 @@
+#pragma once
+
+#include <functional>
+#include <string>
+
+namespace dc {
+
+enum class LogLevel { Debug, Info, Warning, Error };
+
+const char* toString(LogLevel level);
+
+// Process-wide logging: every message goes to stderr (Info and above) and to an optional sink that the
+// UI installs to show messages in its status line. Thread-safe; the sink is called with the lock held, so
+// it must only copy the message.
+void log(LogLevel level, const std::string& message);
+void setLogSink(std::function<void(LogLevel, const std::string&)> sink);
+void setLogQuiet(bool quiet); // keep stderr for warnings and errors only (headless runs, tests)
+
+inline void logInfo(const std::string& m) { log(LogLevel::Info, m); }
+inline void logWarning(const std::string& m) { log(LogLevel::Warning, m); }
+inline void logError(const std::string& m) { log(LogLevel::Error, m); }
+
+} // namespace dc

@@ -1,0 +1,98 @@
+#include "devices/session.h"
+
+#include "devices/log.h"
+
+namespace dc::devices {
+
+namespace {
+// Short enough that stop() returns promptly, long enough not to spin.
+constexpr std::chrono::milliseconds kCaptureTimeout{50};
+} // namespace
+
+Session::Session(std::unique_ptr<Device> device)
+    : device_(std::move(device)), description_(device_->description()),
+      capabilities_(device_->capabilities()) {}
+
+Session::~Session() { stop(); }
+
+Status Session::start() {
+    if (thread_.joinable())
+        return Error{"session for " + description_ + " is already running"};
+    if (!capabilities_.sceneDepth)
+        return Error{kNoDepthMessage};
+    if (device_->state() == DeviceState::Closed) {
+        if (Status s = device_->open(); !s)
+            return s;
+    }
+    if (Status s = device_->start(); !s)
+        return s;
+    state_ = device_->state();
+    push({SessionEvent::Kind::StateChanged, state_.load(), {}});
+    stopRequested_ = false;
+    deliveries_ = {};
+    thread_ = std::thread([this] { run(); });
+    return {};
+}
+
+void Session::stop() {
+    stopRequested_ = true;
+    if (thread_.joinable())
+        thread_.join();
+    if (device_->state() != DeviceState::Closed) {
+        (void)device_->stop();
+        device_->close();
+        state_ = device_->state();
+    }
+}
+
+void Session::run() {
+    // Nothing may escape a thread: an unexpected exception becomes an Error event and ends capture.
+    try {
+        while (!stopRequested_) {
+            CaptureResult result = device_->capture(kCaptureTimeout);
+            switch (result.kind) {
+            case CaptureResult::Kind::Frame: onFrame(std::move(result.frame)); break;
+            case CaptureResult::Kind::Timeout: break;
+            case CaptureResult::Kind::EndOfStream:
+                push({SessionEvent::Kind::EndOfStream, device_->state(), "end of stream"});
+                return;
+            case CaptureResult::Kind::Disconnected:
+                state_ = DeviceState::Disconnected;
+                push({SessionEvent::Kind::StateChanged, DeviceState::Disconnected, result.message});
+                return;
+            case CaptureResult::Kind::Error:
+                push({SessionEvent::Kind::Error, device_->state(), result.message});
+                std::this_thread::sleep_for(kCaptureTimeout);
+                break;
+            }
+        }
+    } catch (const std::exception& e) {
+        push({SessionEvent::Kind::Error, device_->state(), std::string("capture thread failed: ") + e.what()});
+    } catch (...) {
+        push({SessionEvent::Kind::Error, device_->state(), "capture thread failed"});
+    }
+}
+
+void Session::onFrame(FramePtr frame) {
+    mailbox_.post(std::move(frame));
+    deliveries_.tick();
+    deviceFps_ = deliveries_.perSecond();
+}
+
+void Session::push(SessionEvent event) {
+    if (event.kind == SessionEvent::Kind::Error)
+        logError(description_ + ": " + event.message);
+    std::lock_guard lock(eventsMutex_);
+    events_.push_back(std::move(event));
+}
+
+std::vector<SessionEvent> Session::drainEvents() {
+    std::lock_guard lock(eventsMutex_);
+    return std::exchange(events_, {});
+}
+
+SessionStats Session::stats() const {
+    return {mailbox_.posted(), mailbox_.dropped(), deviceFps_.load()};
+}
+
+} // namespace dc::devices

@@ -1,0 +1,74 @@
+#pragma once
+
+#include "devices/device.h"
+#include "devices/mailbox.h"
+#include "devices/rate_meter.h"
+
+#include <atomic>
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+namespace dc::devices {
+
+// Something the UI should know about, queued by the capture thread and drained once per UI frame.
+struct SessionEvent {
+    enum class Kind { StateChanged, Error, EndOfStream };
+    Kind kind = Kind::StateChanged;
+    DeviceState state = DeviceState::Closed;
+    std::string message;
+};
+
+struct SessionStats {
+    std::uint64_t framesCaptured = 0;
+    std::uint64_t framesDropped = 0; // replaced in the mailbox before any consumer took them
+    double deviceFps = 0.0;          // delivery rate measured on the capture thread
+};
+
+// Runs one device on its own capture thread. The thread only captures and posts: frames reach consumers
+// through a latest-wins mailbox, state changes and errors through an event queue.
+class Session {
+public:
+    static constexpr const char* kNoDepthMessage = "Unsupported device: this source provides no depth";
+
+    explicit Session(std::unique_ptr<Device> device);
+    ~Session();
+    Session(const Session&) = delete;
+    Session& operator=(const Session&) = delete;
+
+    // Opens and starts the device and the capture thread. A device without scene depth is refused with
+    // kNoDepthMessage (the sample's "Unsupported device").
+    Status start();
+    void stop();
+
+    std::optional<FramePtr> takeLatest() { return mailbox_.take(); }
+    std::optional<FramePtr> waitForFrame(std::chrono::milliseconds timeout) { return mailbox_.waitTake(timeout); }
+    std::vector<SessionEvent> drainEvents();
+
+    SessionStats stats() const;
+    DeviceState state() const { return state_.load(); }
+    const std::string& description() const { return description_; }
+    const Capabilities& capabilities() const { return capabilities_; }
+
+private:
+    void run();
+    void onFrame(FramePtr frame);
+    void push(SessionEvent event);
+
+    std::unique_ptr<Device> device_;
+    std::string description_;
+    Capabilities capabilities_;
+    Mailbox<FramePtr> mailbox_;
+    std::thread thread_;
+    std::atomic<bool> stopRequested_{false};
+    std::atomic<DeviceState> state_{DeviceState::Closed};
+    std::atomic<double> deviceFps_{0.0};
+    RateMeter deliveries_; // capture thread only; published through deviceFps_
+    mutable std::mutex eventsMutex_;
+    std::vector<SessionEvent> events_;
+};
+
+} // namespace dc::devices

@@ -1,0 +1,69 @@
+#include "devices/source_spec.h"
+
+#include "devices/synthetic_device.h"
+
+#include <charconv>
+#include <sstream>
+#include <vector>
+
+namespace dc::devices {
+
+namespace {
+
+std::vector<std::string> split(const std::string& text, char sep) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, sep);)
+        parts.push_back(part);
+    return parts;
+}
+
+template <class T>
+bool parseNumber(const std::string& text, T& out) {
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(text.data(), end, out);
+    return ec == std::errc() && ptr == end && !text.empty();
+}
+
+// "WxH" or "WxH@FPS".
+Status parseMode(const std::string& mode, SyntheticConfig& config) {
+    const Error bad{"malformed mode '" + mode + "' in --source (expected WxH or WxH@FPS, e.g. 640x480@30)"};
+    const auto at = mode.find('@');
+    const std::string size = mode.substr(0, at);
+    const auto x = size.find('x');
+    if (x == std::string::npos || !parseNumber(size.substr(0, x), config.depthWidth) ||
+        !parseNumber(size.substr(x + 1), config.depthHeight) || config.depthWidth <= 0 || config.depthHeight <= 0)
+        return bad;
+    if (at != std::string::npos && (!parseNumber(mode.substr(at + 1), config.fps) || !(config.fps > 0.0)))
+        return bad;
+    return {};
+}
+
+Expected<std::unique_ptr<Device>> openSynthetic(const std::vector<std::string>& parts) {
+    SyntheticConfig config;
+    for (std::size_t i = 1; i < parts.size(); ++i) {
+        const std::string& p = parts[i];
+        if (p == "motion") {
+            config.motion = true;
+            // A moving camera re-renders its image every frame; VGA keeps that off the critical path.
+            config.cameraWidth = 640;
+            config.cameraHeight = 480;
+        } else if (p == "exact") {
+            config.noise = false;
+        } else if (Status s = parseMode(p, config); !s) {
+            return s.error();
+        }
+    }
+    return std::unique_ptr<Device>(std::make_unique<SyntheticDevice>(config));
+}
+
+} // namespace
+
+Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec) {
+    const std::vector<std::string> parts = split(spec, ':');
+    if (!parts.empty() && parts[0] == "synthetic")
+        return openSynthetic(parts);
+    return Error{"unknown source '" + spec + "' (expected " + kSourceSpecHelp + ")"};
+}
+
+} // namespace dc::devices

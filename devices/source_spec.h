@@ -1,0 +1,17 @@
+#pragma once
+
+#include "devices/device.h"
+#include "devices/expected.h"
+
+#include <memory>
+#include <string>
+
+namespace dc::devices {
+
+// The grammar of --source, shown in errors and --help.
+inline constexpr const char* kSourceSpecHelp = "synthetic[:WxH[@FPS]][:motion][:exact]";
+
+// Parses a --source value and builds the device it names. Errors name the offending part.
+Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec);
+
+} // namespace dc::devices

@@ -1,0 +1,45 @@
+#include "processing/pipeline.h"
+
+#include <chrono>
+
+namespace dc::processing {
+
+void Pipeline::add(std::unique_ptr<Stage> stage) { stages_.push_back(std::move(stage)); }
+
+void Pipeline::reset() {
+    for (auto& stage : stages_)
+        stage->reset();
+}
+
+bool Pipeline::hasStage(std::string_view name) const {
+    for (const auto& stage : stages_)
+        if (stage->name() == name)
+            return true;
+    return false;
+}
+
+devices::FramePtr Pipeline::run(devices::FramePtr frame, const ProcessingSettings& settings, const Needs& needs) {
+    timings_.clear();
+    if (!frame)
+        return frame;
+    const int w = frame->sceneDepth ? frame->sceneDepth->depthMeters.width : 0;
+    const int h = frame->sceneDepth ? frame->sceneDepth->depthMeters.height : 0;
+    if (w != lastWidth_ || h != lastHeight_) {
+        reset();
+        lastWidth_ = w;
+        lastHeight_ = h;
+    }
+    for (auto& stage : stages_) {
+        if (!stage->wanted(settings, needs))
+            continue;
+        const auto start = std::chrono::steady_clock::now();
+        frame = stage->process(std::move(frame), settings);
+        const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
+        timings_.push_back({std::string(stage->name()), took.count()});
+    }
+    return frame;
+}
+
+Pipeline makeDefaultPipeline() { return Pipeline{}; }
+
+} // namespace dc::processing

@@ -1,0 +1,71 @@
+#pragma once
+
+#include "devices/frame.h"
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace dc::processing {
+
+// Stage names, as the UI and the status line show them.
+inline constexpr std::string_view kSmoothingStage = "smoothing";
+inline constexpr std::string_view kUpsamplingStage = "upsampling";
+
+struct ProcessingSettings {
+    bool smoothing = false;  // temporal smoothing into smoothedSceneDepth
+    bool upsampling = false; // guided upsampling of depth and confidence to the camera image
+};
+
+// What the visible panels and running exports need from a frame. A stage whose output nobody needs is
+// not run ("leave out what the scene does not need").
+struct Needs {
+    bool cloud = true;
+    bool depthPanel = true;
+    bool confidencePanel = true;
+    bool cameraPanel = true;
+
+    bool anyDepth() const { return cloud || depthPanel || confidencePanel; }
+};
+
+// One processing step: takes a frame and returns a new one (frames are immutable; a stage that changes
+// nothing returns its input).
+class Stage {
+public:
+    virtual ~Stage() = default;
+    virtual std::string_view name() const = 0;
+    // Whether the settings switch this stage on and a visible consumer needs its output.
+    virtual bool wanted(const ProcessingSettings& settings, const Needs& needs) const = 0;
+    virtual devices::FramePtr process(devices::FramePtr frame, const ProcessingSettings& settings) = 0;
+    // Drops temporal state (resolution change, seek, new source).
+    virtual void reset() {}
+};
+
+struct StageTiming {
+    std::string name;
+    double milliseconds = 0.0;
+};
+
+class Pipeline {
+public:
+    void add(std::unique_ptr<Stage> stage);
+    // Runs the wanted stages in order; the frame's resolution changing resets every stage first.
+    devices::FramePtr run(devices::FramePtr frame, const ProcessingSettings& settings, const Needs& needs);
+    void reset();
+    bool hasStage(std::string_view name) const;
+    // Timings of the stages that ran in the last run() (stages skipped are absent).
+    const std::vector<StageTiming>& lastTimings() const { return timings_; }
+
+private:
+    std::vector<std::unique_ptr<Stage>> stages_;
+    std::vector<StageTiming> timings_;
+    int lastWidth_ = -1;
+    int lastHeight_ = -1;
+};
+
+// The pipeline with every stage this build implements. Smoothing and upsampling are not implemented yet,
+// so hasStage() reports them missing and the UI keeps their toggles disabled.
+Pipeline makeDefaultPipeline();
+
+} // namespace dc::processing

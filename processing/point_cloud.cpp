@@ -1,0 +1,35 @@
+#include "processing/point_cloud.h"
+
+#include "devices/color.h"
+#include "processing/confidence_filter.h"
+
+namespace dc::processing {
+
+std::vector<CloudPoint> buildPointCloud(const devices::Frame& frame, devices::Confidence minLevel,
+                                        float nearMeters) {
+    std::vector<CloudPoint> points;
+    if (!frame.sceneDepth || !frame.cameraIntrinsics.valid())
+        return points;
+    const devices::DepthData& depth = *frame.sceneDepth;
+    const devices::Intrinsics k = frame.depthIntrinsics();
+    const int w = depth.depthMeters.width, h = depth.depthMeters.height;
+    const auto& image = frame.capturedImage;
+    points.reserve(depth.depthMeters.pixels.size());
+    for (int v = 0; v < h; ++v) {
+        for (int u = 0; u < w; ++u) {
+            const float z = depth.depthMeters.at(u, v);
+            const std::uint8_t c = depth.confidence.empty() ? 2 : depth.confidence.at(u, v);
+            if (!keepSample(z, c, minLevel, nearMeters))
+                continue;
+            const auto [x, y, zz] = unproject(u, v, z, k);
+            // The camera pixel whose area matches this depth pixel's centre, as the shader samples it.
+            const int cx = static_cast<int>((u + 0.5f) * static_cast<float>(image.width) / static_cast<float>(w));
+            const int cy = static_cast<int>((v + 0.5f) * static_cast<float>(image.height) / static_cast<float>(h));
+            const devices::Rgb rgb = devices::pixelRgb(image, cx, cy);
+            points.push_back({x, y, zz, devices::toByte(rgb.r), devices::toByte(rgb.g), devices::toByte(rgb.b), c});
+        }
+    }
+    return points;
+}
+
+} // namespace dc::processing

@@ -1,0 +1,30 @@
+#pragma once
+
+#include "devices/frame.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace dc::processing {
+
+// A point of the cloud in the depth camera's frame (OpenCV axes, meters) with its color and confidence.
+struct CloudPoint {
+    float x = 0, y = 0, z = 0;
+    std::uint8_t r = 0, g = 0, b = 0;
+    std::uint8_t confidence = 0;
+};
+
+// Pixel (u, v) at depth z through intrinsics k, in float as the vertex shader computes it.
+inline std::array<float, 3> unproject(int u, int v, float depthMeters, const devices::Intrinsics& k) {
+    return {(static_cast<float>(u) - static_cast<float>(k.cx)) * depthMeters / static_cast<float>(k.fx),
+            (static_cast<float>(v) - static_cast<float>(k.cy)) * depthMeters / static_cast<float>(k.fy),
+            depthMeters};
+}
+
+// The CPU twin of the rendered cloud: one point per kept depth sample (processing::keepSample), colored by
+// the camera image at the matching pixel. Empty when the frame has no depth or invalid intrinsics.
+std::vector<CloudPoint> buildPointCloud(const devices::Frame& frame, devices::Confidence minLevel,
+                                        float nearMeters);
+
+} // namespace dc::processing

@@ -1,0 +1,142 @@
+#include "render/panel_renderer.h"
+
+#include "render/colormap.h"
+#include "render/render_pass.h"
+
+#include <glm/glm.hpp>
+
+#include <string>
+#include <utility>
+
+namespace dc::render {
+
+namespace {
+
+constexpr const char* kFullscreenVertexShader = R"glsl(#version 330 core
+void main() {
+    // Corners (-1, -1), (3, -1), (-1, 3): one triangle covers the viewport, with no diagonal seam.
+    vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));
+    gl_Position = vec4(corner, 0.0, 1.0);
+}
+)glsl";
+
+// Maps the fragment to the image, top row first: GL's window origin is bottom-left, while row 0 of the
+// data (and of RenderTarget::readRgba()) is the top of the image.
+constexpr const char* kPanelCommon = R"glsl(
+uniform vec2 viewportSize;
+out vec4 fragColor;
+
+vec2 imageCoord() {
+    return vec2(gl_FragCoord.x, viewportSize.y - gl_FragCoord.y) / viewportSize;
+}
+
+ivec2 texelUnder(ivec2 size) {
+    return clamp(ivec2(imageCoord() * vec2(size)), ivec2(0), size - 1);
+}
+)glsl";
+
+constexpr const char* kDepthMain = R"glsl(
+uniform float minMeters;
+uniform float inverseRangeMeters;
+
+void main() {
+    float d = texelFetch(depthMap, texelUnder(textureSize(depthMap, 0)), 0).r;
+    vec3 color = validDepth(d) ? jetColor((d - minMeters) * inverseRangeMeters) : vec3(0.0);
+    fragColor = vec4(color, 1.0);
+}
+)glsl";
+
+constexpr const char* kConfidenceMain = R"glsl(
+void main() {
+    uint level = texelFetch(confidenceMap, texelUnder(textureSize(confidenceMap, 0)), 0).r;
+    vec3 color = level == 0u ? vec3(1.0, 0.0, 0.0)
+               : level == 1u ? vec3(0.0, 1.0, 0.0)
+               : level == 2u ? vec3(0.0, 0.0, 1.0)
+                             : vec3(0.0);
+    fragColor = vec4(color, 1.0);
+}
+)glsl";
+
+constexpr const char* kCameraMain = R"glsl(
+void main() {
+    fragColor = vec4(cameraColor(imageCoord()), 1.0);
+}
+)glsl";
+
+// Thinner than any depth range worth showing; keeps a collapsed range from dividing by zero.
+constexpr float kMinRangeMeters = 1e-6f;
+
+Expected<gl::Program> linkPanel(const char* name, const char* main) {
+    const std::string fragment =
+        std::string("#version 330 core\n") + kFrameTexturesGlsl + kJetColorGlsl + kPanelCommon + main;
+    Expected<gl::Program> program = gl::Program::link(kFullscreenVertexShader, fragment);
+    if (!program)
+        return Error{std::string(name) + " panel shaders: " + program.error().message};
+    FrameTextures::connectSamplers(*program);
+    return program;
+}
+
+} // namespace
+
+Status PanelRenderer::init() {
+    std::pair<Panel*, Expected<gl::Program>> panels[] = {
+        {&depth_, linkPanel("depth", kDepthMain)},
+        {&confidence_, linkPanel("confidence", kConfidenceMain)},
+        {&camera_, linkPanel("camera", kCameraMain)}};
+    for (auto& [panel, program] : panels) {
+        if (!program)
+            return program.error();
+        panel->program = std::move(program).value();
+        panel->viewportSize = panel->program.uniformLocation("viewportSize");
+    }
+    depthMinMeters_ = depth_.program.uniformLocation("minMeters");
+    depthInverseRange_ = depth_.program.uniformLocation("inverseRangeMeters");
+    emptyVertexArray_ = gl::VertexArray::create();
+    glUseProgram(0);
+    return Status::success();
+}
+
+void PanelRenderer::renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters,
+                                float maxMeters) {
+    if (!begin(target, textures, depth_, textures.hasDepth()))
+        return;
+    glUniform1f(depthMinMeters_, minMeters);
+    glUniform1f(depthInverseRange_, 1.0f / glm::max(maxMeters - minMeters, kMinRangeMeters));
+    draw();
+}
+
+void PanelRenderer::renderConfidence(RenderTarget& target, const FrameTextures& textures) {
+    if (begin(target, textures, confidence_, textures.hasDepth()))
+        draw();
+}
+
+void PanelRenderer::renderCamera(RenderTarget& target, const FrameTextures& textures) {
+    // Any upload creates the camera textures (mid-gray without an image), with or without depth.
+    if (begin(target, textures, camera_, textures.lumaTexture() != 0))
+        draw();
+}
+
+// Clears the target to black and readies `panel` to draw; false (with the pass already ended) when there
+// is nothing to draw.
+bool PanelRenderer::begin(RenderTarget& target, const FrameTextures& textures, const Panel& panel,
+                          bool hasData) const {
+    if (target.empty())
+        return false;
+    beginPass(target, glm::vec3(0.0f), false);
+    if (!panel.program || !hasData) {
+        endPass();
+        return false;
+    }
+    glUseProgram(panel.program.id());
+    glUniform2f(panel.viewportSize, static_cast<float>(target.width()), static_cast<float>(target.height()));
+    textures.bind();
+    return true;
+}
+
+void PanelRenderer::draw() const {
+    glBindVertexArray(emptyVertexArray_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    endPass();
+}
+
+} // namespace dc::render

@@ -1,0 +1,42 @@
+#pragma once
+
+#include "devices/expected.h"
+#include "render/frame_textures.h"
+#include "render/gl_objects.h"
+#include "render/render_target.h"
+
+namespace dc::render {
+
+// The 2D panels beside the cloud: depth as a jet colormap, confidence as red/green/blue, and the camera
+// image. Each fills its whole target with one fullscreen triangle; the caller sizes the target, usually to
+// the data's own resolution. Depth and confidence show the sample under each pixel without filtering, so
+// a panel at native size is pixel-exact. All leave framebuffer 0 bound.
+class PanelRenderer {
+public:
+    // Compiles the shaders; needs a current context.
+    Status init();
+    // jetColor((d - minMeters) / (maxMeters - minMeters)), black where there is no measurement.
+    void renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters, float maxMeters);
+    // Low red, medium green, high blue (the sample's colors); black without depth.
+    void renderConfidence(RenderTarget& target, const FrameTextures& textures);
+    // The camera image converted to RGB; mid-gray without one.
+    void renderCamera(RenderTarget& target, const FrameTextures& textures);
+
+private:
+    struct Panel {
+        gl::Program program;
+        GLint viewportSize = -1;
+    };
+
+    bool begin(RenderTarget& target, const FrameTextures& textures, const Panel& panel, bool hasData) const;
+    void draw() const;
+
+    gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
+    Panel depth_;
+    Panel confidence_;
+    Panel camera_;
+    GLint depthMinMeters_ = -1;
+    GLint depthInverseRange_ = -1;
+};
+
+} // namespace dc::render

@@ -1,0 +1,96 @@
+#include "render/point_cloud_renderer.h"
+
+#include "render/render_pass.h"
+
+#include <glm/gtc/type_ptr.hpp>
+
+#include <string>
+
+namespace dc::render {
+
+namespace {
+
+constexpr const char* kVertexMain = R"glsl(
+uniform mat4 viewProjection;
+uniform vec4 depthIntrinsics; // fx, fy, cx, cy in depth-map pixels
+uniform uint minConfidence;
+uniform float nearMeters;
+uniform float pointSizePixels;
+
+out vec3 pointColor;
+
+void main() {
+    ivec2 size = textureSize(depthMap, 0);
+    ivec2 pixel = ivec2(gl_VertexID % size.x, gl_VertexID / size.x);
+    float z = texelFetch(depthMap, pixel, 0).r;
+    uint confidence = texelFetch(confidenceMap, pixel, 0).r;
+    gl_PointSize = pointSizePixels;
+    pointColor = vec3(0.0);
+    if (!validDepth(z) || z < nearMeters || confidence < minConfidence) {
+        // Outside the clip volume, so the point is clipped before rasterisation.
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        return;
+    }
+    vec2 xy = (vec2(pixel) - depthIntrinsics.zw) * z / depthIntrinsics.xy;
+    gl_Position = viewProjection * vec4(xy, z, 1.0);
+    // The camera image covers the same field of view at its own resolution: sample at the centre of the
+    // area this depth pixel covers.
+    pointColor = cameraColor((vec2(pixel) + 0.5) / vec2(size));
+}
+)glsl";
+
+constexpr const char* kFragmentShader = R"glsl(#version 330 core
+in vec3 pointColor;
+out vec4 fragColor;
+
+void main() {
+    fragColor = vec4(pointColor, 1.0);
+}
+)glsl";
+
+} // namespace
+
+Status PointCloudRenderer::init() {
+    const std::string vertexShader = std::string("#version 330 core\n") + kFrameTexturesGlsl + kVertexMain;
+    Expected<gl::Program> program = gl::Program::link(vertexShader, kFragmentShader);
+    if (!program)
+        return Error{"point cloud shaders: " + program.error().message};
+    program_ = std::move(program).value();
+    emptyVertexArray_ = gl::VertexArray::create();
+    FrameTextures::connectSamplers(program_);
+    uniforms_ = {program_.uniformLocation("viewProjection"), program_.uniformLocation("depthIntrinsics"),
+                 program_.uniformLocation("minConfidence"), program_.uniformLocation("nearMeters"),
+                 program_.uniformLocation("pointSizePixels")};
+    glUseProgram(0);
+    return Status::success();
+}
+
+void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textures, const CloudParams& params) {
+    lastPointCount_ = 0;
+    if (target.empty())
+        return;
+    beginPass(target, params.background, true);
+    if (program_ && textures.hasDepth() && textures.depthIntrinsics().valid()) {
+        glEnable(GL_PROGRAM_POINT_SIZE);
+        glUseProgram(program_.id());
+        setUniforms(textures, params);
+        textures.bind();
+        glBindVertexArray(emptyVertexArray_.id());
+        const GLsizei count = textures.depthWidth() * textures.depthHeight();
+        glDrawArrays(GL_POINTS, 0, count);
+        lastPointCount_ = static_cast<std::size_t>(count);
+    }
+    endPass();
+}
+
+void PointCloudRenderer::setUniforms(const FrameTextures& textures, const CloudParams& params) const {
+    const devices::Intrinsics& k = textures.depthIntrinsics();
+    glUniformMatrix4fv(uniforms_.viewProjection, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
+    glUniform4f(uniforms_.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy),
+                static_cast<float>(k.cx), static_cast<float>(k.cy));
+    glUniform1ui(uniforms_.minConfidence, static_cast<GLuint>(params.minConfidence));
+    glUniform1f(uniforms_.nearMeters, params.nearMeters);
+    glUniform1f(uniforms_.pointSizePixels, params.pointSizePixels);
+}
+
+} // namespace dc::render

@@ -1,0 +1,57 @@
+#pragma once
+
+#include "devices/expected.h"
+#include "devices/frame.h"
+#include "render/frame_textures.h"
+#include "render/gl_objects.h"
+#include "render/render_target.h"
+
+#include <glm/glm.hpp>
+
+#include <cstddef>
+
+namespace dc::render {
+
+struct CloudParams {
+    // Maps a point of the depth camera's frame (OpenCV axes: x right, y down, z forward; meters) to clip
+    // space, e.g. cloudViewProjection() of orbit_camera.h.
+    glm::mat4 viewProjection{1.0f};
+    // Samples below this level are not drawn (the sample's confidence selection).
+    devices::Confidence minConfidence = devices::Confidence::Low;
+    // Samples closer than this are not drawn, like the sample's fragment shader does below 1 m.
+    float nearMeters = 0.1f;
+    float pointSizePixels = 2.0f;
+    glm::vec3 background{0.0f, 0.0f, 0.0f}; // linear RGB in [0, 1]
+};
+
+// Draws one point per depth sample, placed by unprojecting it through the depth intrinsics and colored
+// by the camera image, the Depth Cloud sample's pointCloudVertexShader. All the work happens in the
+// vertex shader: no vertex buffer, one vertex per depth pixel addressed by gl_VertexID.
+class PointCloudRenderer {
+public:
+    // Compiles the shaders; needs a current context.
+    Status init();
+    // Clears `target` to the background and draws the cloud; draws nothing without depth or with invalid
+    // intrinsics. Leaves framebuffer 0 bound.
+    void render(RenderTarget& target, const FrameTextures& textures, const CloudParams& params);
+    // Vertices submitted by the last render(): every depth sample, culled ones included.
+    std::size_t lastPointCount() const { return lastPointCount_; }
+
+private:
+    struct Uniforms {
+        GLint viewProjection = -1;
+        GLint depthIntrinsics = -1;
+        GLint minConfidence = -1;
+        GLint nearMeters = -1;
+        GLint pointSizePixels = -1;
+    };
+
+    void setUniforms(const FrameTextures& textures, const CloudParams& params) const;
+
+    gl::Program program_;
+    gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
+    Uniforms uniforms_;
+    std::size_t lastPointCount_ = 0;
+};
+
+} // namespace dc::render

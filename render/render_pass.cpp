@@ -1,0 +1,28 @@
+#include "render/render_pass.h"
+
+namespace dc::render {
+
+void beginPass(const RenderTarget& target, const glm::vec3& clearColor, bool depthTest) {
+    target.bind();
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_CULL_FACE);
+    if (depthTest) {
+        glEnable(GL_DEPTH_TEST);
+        glDepthFunc(GL_LESS);
+    } else {
+        glDisable(GL_DEPTH_TEST);
+    }
+    glDepthMask(GL_TRUE); // glClear leaves the depth buffer alone while writes are masked
+    glClearColor(clearColor.r, clearColor.g, clearColor.b, 1.0f);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
+void endPass() {
+    glBindVertexArray(0);
+    glUseProgram(0);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+} // namespace dc::render

@@ -1,0 +1,51 @@
+#pragma once
+
+#include "devices/expected.h"
+#include "render/gl_objects.h"
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace dc::render {
+
+// How the color texture is filtered when the UI scales it: Linear suits the cloud, Nearest keeps the
+// pixels of a data panel visible when zoomed in.
+enum class Sampling { Linear, Nearest };
+
+// An offscreen framebuffer: an RGBA8 color texture (what the UI shows) and a depth renderbuffer (for the
+// cloud's depth test). Holds no GL object until the first resize(), so it can be built before a context.
+//
+// GL stores the color texture bottom row first: show it with ImGui::Image(id, size, {0, 1}, {1, 0}).
+// readRgba() and savePng() already return the image top row first.
+class RenderTarget {
+public:
+    explicit RenderTarget(Sampling sampling = Sampling::Linear) : sampling_(sampling) {}
+
+    // Reallocates the attachments for a new size; a no-op when the size is unchanged.
+    Status resize(int width, int height);
+    // Binds the framebuffer for drawing and sets the viewport to cover it.
+    void bind() const;
+    void setSampling(Sampling sampling);
+
+    int width() const { return width_; }
+    int height() const { return height_; }
+    bool empty() const { return width_ == 0 || height_ == 0; }
+    GLuint colorTexture() const { return color_.id(); }
+
+    // Tightly packed RGBA rows, top row first; empty before the first resize().
+    std::vector<std::uint8_t> readRgba() const;
+    Status savePng(const std::string& path) const;
+
+private:
+    void applySampling() const;
+
+    gl::Framebuffer framebuffer_;
+    gl::Texture color_;
+    gl::Renderbuffer depth_;
+    Sampling sampling_;
+    int width_ = 0;
+    int height_ = 0;
+};
+
+} // namespace dc::render

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs, with apt-get, exactly the Debian 12 packages depthcloud needs that this machine lacks.
+# Idempotent: a second run installs nothing. Must run as root (or with sudo available).
+set -euo pipefail
+
+packages=(
+    build-essential cmake pkg-config git
+    libglfw3-dev libglm-dev libimgui-dev libepoxy-dev
+    libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libglx-mesa0
+    libopencv-dev libusb-1.0-0-dev libv4l-dev
+    libgtest-dev libgmock-dev libbenchmark-dev
+    libcli11-dev nlohmann-json3-dev
+    xvfb xauth
+)
+
+missing=()
+for p in "${packages[@]}"; do
+    if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+        missing+=("$p")
+    fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+    echo "setup: all ${#packages[@]} packages already installed"
+    exit 0
+fi
+
+echo "setup: installing ${#missing[@]} missing package(s): ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+    command -v sudo >/dev/null || { echo "setup: not root and no sudo; install: ${missing[*]}" >&2; exit 1; }
+    sudo_cmd=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}"
+echo "setup: done"

@@ -1,0 +1,157 @@
+// The real binary, as a user runs it: headless on Mesa through EGL, and as a window under Xvfb.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exitCode = -1;
+    std::string output;
+};
+
+// Runs a shell command line, capturing stdout and stderr together.
+RunResult run(const std::string& commandLine) {
+    const fs::path log = fs::temp_directory_path() / ("depthcloud-app-test-" + std::to_string(::getpid()) + ".log");
+    const int status = std::system((commandLine + " > " + log.string() + " 2>&1").c_str());
+    std::ifstream in(log);
+    std::stringstream text;
+    text << in.rdbuf();
+    fs::remove(log);
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
+}
+
+std::string binary() { return DEPTHCLOUD_BINARY; }
+
+class TempDir {
+public:
+    TempDir() {
+        path_ = fs::temp_directory_path() / ("depthcloud-test-" + std::to_string(::getpid()) + "-" +
+                                             std::to_string(counter_++));
+        fs::remove_all(path_);
+        fs::create_directories(path_);
+    }
+    ~TempDir() { fs::remove_all(path_); }
+    std::string str() const { return path_.string(); }
+
+private:
+    static inline int counter_ = 0;
+    fs::path path_;
+};
+
+// Standard deviation over all channels: a blank or uniform image has ~0.
+double contrast(const cv::Mat& image) {
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(image.reshape(1), mean, stddev);
+    return stddev[0];
+}
+
+TEST(AppHeadless, WritesEveryPanelAndASummary) {
+    TempDir out;
+    const RunResult r = run(binary() + " --headless --frames 20 --out " + out.str());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    for (const char* name : {"cloud.png", "depth.png", "confidence.png", "camera.png"}) {
+        const cv::Mat image = cv::imread(out.str() + "/" + name, cv::IMREAD_COLOR);
+        ASSERT_FALSE(image.empty()) << name;
+        EXPECT_GT(contrast(image), 10.0) << name << " is not a uniform image";
+    }
+    const cv::Mat depth = cv::imread(out.str() + "/depth.png");
+    EXPECT_EQ(depth.cols, 256);
+    EXPECT_EQ(depth.rows, 192);
+    std::ifstream in(out.str() + "/summary.json");
+    const auto summary = nlohmann::json::parse(in);
+    EXPECT_EQ(summary["frames"], 20);
+    EXPECT_GT(summary["pointsDrawn"].get<int>(), 20000);
+    EXPECT_GT(summary["deviceFps"].get<double>(), 1.0);
+    EXPECT_TRUE(summary["stageMedianMs"].contains("cloud"));
+    EXPECT_EQ(summary["depthWidth"], 256);
+}
+
+TEST(AppHeadless, ConfidenceFlagRemovesPoints) {
+    TempDir all, high;
+    ASSERT_EQ(run(binary() + " --headless --frames 3 --out " + all.str()).exitCode, 0);
+    ASSERT_EQ(run(binary() + " --headless --frames 3 --confidence high --out " + high.str()).exitCode, 0);
+    const auto count = [](const std::string& dir) {
+        std::ifstream in(dir + "/summary.json");
+        return nlohmann::json::parse(in)["pointsDrawn"].get<int>();
+    };
+    EXPECT_LT(count(high.str()), count(all.str()));
+}
+
+TEST(AppArguments, BadInputGetsAOneLineErrorNamingTheArgumentAndExitCode2) {
+    struct Case {
+        const char* args;
+        const char* mentions;
+    };
+    TempDir out;
+    const Case cases[] = {
+        {"--source kinect", "--source"},
+        {"--source synthetic:640x", "malformed mode"},
+        {"--frames 0", "--frames"},
+        {"--frames many", "--frames"},
+        {"--confidence extreme", "--confidence"},
+        {"--out /proc/depthcloud-nope", "--out"},
+        {"--no-such-flag", "--no-such-flag"},
+    };
+    for (const Case& c : cases) {
+        const RunResult r = run(binary() + " --headless " + c.args);
+        EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.output;
+        EXPECT_NE(r.output.find(c.mentions), std::string::npos) << c.args << "\n" << r.output;
+        EXPECT_EQ(r.output.find("terminate"), std::string::npos) << "no abort: " << c.args;
+    }
+}
+
+TEST(AppArguments, HelpAndVersion) {
+    const RunResult help = run(binary() + " --help");
+    EXPECT_EQ(help.exitCode, 0);
+    EXPECT_NE(help.output.find("--source"), std::string::npos);
+    EXPECT_NE(help.output.find("--headless"), std::string::npos);
+    const RunResult version = run(binary() + " --version");
+    EXPECT_EQ(version.exitCode, 0);
+    EXPECT_NE(version.output.find("depthcloud "), std::string::npos);
+}
+
+TEST(AppHeadless, NoGlContextIsAClearRuntimeError) {
+    TempDir out;
+    // Point EGL at a vendor that does not exist: no context can be made.
+    const RunResult r = run("__EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json " + binary() +
+                            " --headless --frames 2 --out " + out.str());
+    EXPECT_EQ(r.exitCode, 1) << r.output;
+    EXPECT_NE(r.output.find("OpenGL"), std::string::npos) << r.output;
+    EXPECT_FALSE(fs::exists(out.str() + "/summary.json")) << "nothing half-written";
+}
+
+// Mean of the pixels in a rectangle given as fractions of the image.
+cv::Mat region(const cv::Mat& image, double x0, double y0, double x1, double y1) {
+    return image(cv::Rect(static_cast<int>(x0 * image.cols), static_cast<int>(y0 * image.rows),
+                          static_cast<int>((x1 - x0) * image.cols), static_cast<int>((y1 - y0) * image.rows)));
+}
+
+TEST(AppWindow, RunsUnderXvfbAndShowsCloudDepthAndConfidence) {
+    TempDir out, home;
+    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1280x800x24' " +
+                            binary() + " --frames 90 --out " + out.str());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    ASSERT_EQ(shot.cols, 1280);
+    ASSERT_EQ(shot.rows, 720);
+    // Default layout: controls at the left, the cloud in the middle, depth / confidence / camera on the right.
+    EXPECT_GT(contrast(region(shot, 0.35, 0.2, 0.65, 0.8)), 15.0) << "the cloud panel shows points";
+    EXPECT_GT(contrast(region(shot, 0.76, 0.08, 0.98, 0.25)), 15.0) << "the depth panel shows depth";
+    const cv::Mat confidence = region(shot, 0.76, 0.4, 0.98, 0.58);
+    EXPECT_GT(contrast(confidence), 15.0) << "the confidence panel shows levels";
+    EXPECT_TRUE(fs::exists(home.str() + "/depthcloud/settings.json")) << "settings are saved on exit";
+}
+
+} // namespace

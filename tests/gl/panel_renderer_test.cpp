@@ -1,0 +1,162 @@
+#include "gl_test_support.h"
+
+#include "render/colormap.h"
+#include "render/frame_textures.h"
+#include "render/panel_renderer.h"
+#include "render/render_target.h"
+
+#include <limits>
+
+namespace dc::render::test {
+namespace {
+
+constexpr int kWidth = 32;
+constexpr int kHeight = 8;
+constexpr float kMinMeters = 1.0f;
+constexpr float kMaxMeters = 4.0f;
+const devices::Intrinsics kIntrinsics{30.0, 30.0, 16.0, 4.0, kWidth, kHeight};
+const Rgba kBlack{0, 0, 0, 255};
+
+class PanelRendererTest : public GlTest {
+protected:
+    void SetUp() override {
+        GlTest::SetUp();
+        ASSERT_FALSE(HasFatalFailure());
+        const Status status = renderer_.init();
+        ASSERT_TRUE(status.ok()) << status.error().message;
+    }
+
+    PanelRenderer renderer_;
+    FrameTextures textures_;
+    RenderTarget target_;
+};
+
+// Depth rising from 0.5 m to 4.5 m in reading order, so rows differ and an upside-down panel shows.
+devices::DepthData rampDepth() {
+    devices::DepthData depth{devices::Plane<float>(kWidth, kHeight), devices::Plane<std::uint8_t>(kWidth, kHeight, 2)};
+    for (int v = 0; v < kHeight; ++v)
+        for (int u = 0; u < kWidth; ++u)
+            depth.depthMeters.at(u, v) = 0.5f + 4.0f * static_cast<float>(v * kWidth + u) / (kWidth * kHeight);
+    return depth;
+}
+
+Rgba expectedDepthColor(float d) {
+    if (!(d > 0.0f) || std::isinf(d))
+        return kBlack;
+    return toRgba(jetColor((d - kMinMeters) / (kMaxMeters - kMinMeters)));
+}
+
+TEST_F(PanelRendererTest, DepthPanelIsTheJetColormapOfEachSample) {
+    devices::DepthData depth = rampDepth();
+    depth.depthMeters.at(3, 0) = 0.0f;
+    depth.depthMeters.at(4, 2) = std::numeric_limits<float>::quiet_NaN();
+    depth.depthMeters.at(5, 4) = -1.0f;
+    depth.depthMeters.at(6, 7) = std::numeric_limits<float>::infinity();
+    textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
+    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
+    const std::vector<std::uint8_t> rgba = target_.readRgba();
+    ASSERT_TRUE(noGlError());
+    for (int v = 0; v < kHeight; ++v) {
+        for (int u = 0; u < kWidth; ++u) {
+            const Rgba expected = expectedDepthColor(depth.depthMeters.at(u, v));
+            ASSERT_TRUE(near(pixelAt(rgba, kWidth, u, v), expected, 1)) << "at " << u << ", " << v;
+        }
+    }
+    EXPECT_EQ(pixelAt(rgba, kWidth, 4, 2), kBlack); // NaN
+}
+
+TEST_F(PanelRendererTest, LargerDepthPanelRepeatsEachSampleWithoutBlending) {
+    const devices::DepthData depth = rampDepth();
+    textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
+    ASSERT_TRUE(target_.resize(kWidth * 3, kHeight * 3).ok());
+    renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
+    const std::vector<std::uint8_t> rgba = target_.readRgba();
+    ASSERT_TRUE(noGlError());
+    for (int y = 0; y < target_.height(); ++y) {
+        for (int x = 0; x < target_.width(); ++x) {
+            const Rgba expected = expectedDepthColor(depth.depthMeters.at(x / 3, y / 3));
+            ASSERT_TRUE(near(pixelAt(rgba, target_.width(), x, y), expected, 1)) << "at " << x << ", " << y;
+        }
+    }
+}
+
+TEST_F(PanelRendererTest, CollapsedDepthRangeDoesNotBreakTheShader) {
+    textures_.upload(makeFrame(rampDepth(), {}, kIntrinsics), false);
+    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    renderer_.renderDepth(target_, textures_, 2.0f, 2.0f);
+    const std::vector<std::uint8_t> rgba = target_.readRgba();
+    ASSERT_TRUE(noGlError());
+    EXPECT_EQ(pixelAt(rgba, kWidth, 0, 0), toRgba(jetColor(0.0f)));          // 0.5 m, below the range
+    EXPECT_EQ(pixelAt(rgba, kWidth, kWidth - 1, kHeight - 1), toRgba(jetColor(1.0f))); // ~4.5 m, above it
+}
+
+TEST_F(PanelRendererTest, ConfidencePanelIsRedGreenBlue) {
+    devices::DepthData depth = rampDepth();
+    for (int v = 0; v < kHeight; ++v)
+        for (int u = 0; u < kWidth; ++u)
+            depth.confidence.at(u, v) = static_cast<std::uint8_t>((u + 2 * v) % 4); // 3 is out of range
+    textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
+    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    renderer_.renderConfidence(target_, textures_);
+    const std::vector<std::uint8_t> rgba = target_.readRgba();
+    ASSERT_TRUE(noGlError());
+    const Rgba colors[] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, kBlack};
+    for (int v = 0; v < kHeight; ++v)
+        for (int u = 0; u < kWidth; ++u)
+            ASSERT_EQ(pixelAt(rgba, kWidth, u, v), colors[depth.confidence.at(u, v)]) << "at " << u << ", " << v;
+}
+
+// Bilinear chroma blends neighbouring blocks at their borders; block interiors must be exact.
+void expectCameraPanel(const std::vector<std::uint8_t>& rgba, const devices::CapturedImage& image, int block,
+                       int tolerance) {
+    for (int y = 0; y < image.height; ++y) {
+        for (int x = 0; x < image.width; ++x) {
+            if (x % block < 2 || x % block >= block - 2 || y % block < 2 || y % block >= block - 2)
+                continue;
+            const Rgba expected = toRgba(devices::pixelRgb(image, x, y));
+            ASSERT_TRUE(near(pixelAt(rgba, image.width, x, y), expected, tolerance)) << "at " << x << ", " << y;
+        }
+    }
+}
+
+class CameraPanelTest : public PanelRendererTest, public ::testing::WithParamInterface<devices::PixelFormat> {};
+
+TEST_P(CameraPanelTest, CameraPanelShowsTheImage) {
+    constexpr int kImageWidth = 64, kImageHeight = 48, kBlock = 8;
+    const ColorFunction colors = blockColors(kBlock);
+    const devices::CapturedImage image = GetParam() == devices::PixelFormat::Nv12 ? nv12Image(kImageWidth, kImageHeight, colors)
+                                         : GetParam() == devices::PixelFormat::Yuyv ? yuyvImage(kImageWidth, kImageHeight, colors)
+                                                                                     : rgb24Image(kImageWidth, kImageHeight, colors);
+    textures_.upload(makeFrame(rampDepth(), image, kIntrinsics), false);
+    EXPECT_EQ(textures_.cameraWidth(), kImageWidth);
+    EXPECT_EQ(textures_.cameraHeight(), kImageHeight);
+    ASSERT_TRUE(target_.resize(kImageWidth, kImageHeight).ok());
+    renderer_.renderCamera(target_, textures_);
+    const std::vector<std::uint8_t> rgba = target_.readRgba();
+    ASSERT_TRUE(noGlError());
+    // RGB24 takes a round trip through 8-bit YCbCr on upload.
+    expectCameraPanel(rgba, image, kBlock, GetParam() == devices::PixelFormat::Rgb24 ? 3 : 2);
+}
+
+INSTANTIATE_TEST_SUITE_P(Formats, CameraPanelTest,
+                         ::testing::Values(devices::PixelFormat::Nv12, devices::PixelFormat::Yuyv,
+                                           devices::PixelFormat::Rgb24),
+                         [](const auto& info) { return std::string(devices::toString(info.param)); });
+
+TEST_F(PanelRendererTest, PanelsWithoutDepthAreBlackAndTheCameraPanelStillWorks) {
+    devices::Frame frame = makeFrame(rampDepth(), nv12Image(16, 16, blockColors(16)), kIntrinsics);
+    frame.sceneDepth.reset();
+    textures_.upload(frame, false);
+    ASSERT_TRUE(target_.resize(16, 16).ok());
+    renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
+    EXPECT_EQ(pixelAt(target_.readRgba(), 16, 8, 8), kBlack);
+    renderer_.renderConfidence(target_, textures_);
+    EXPECT_EQ(pixelAt(target_.readRgba(), 16, 8, 8), kBlack);
+    renderer_.renderCamera(target_, textures_);
+    EXPECT_TRUE(near(pixelAt(target_.readRgba(), 16, 8, 8), toRgba(devices::pixelRgb(frame.capturedImage, 8, 8)), 2));
+    EXPECT_TRUE(noGlError());
+}
+
+} // namespace
+} // namespace dc::render::test

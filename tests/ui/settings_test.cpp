@@ -1,0 +1,79 @@
+#include "ui/settings.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace dc::ui {
+namespace {
+
+TEST(Settings, RoundTripKeepsEveryChangedValue) {
+    Settings s;
+    s.panels.depth = false;
+    s.panels.controls = false;
+    s.cloud.minConfidence = devices::Confidence::High;
+    s.cloud.pointSizePixels = 4.5f;
+    s.cloud.nearMeters = 0.3f;
+    s.cloud.motion.enabled = false;
+    s.cloud.motion.speed = 2.0f;
+    s.cloud.motion.scaleMovement = 0.25f;
+    s.cloud.orbit.yawRadians = 0.7f;
+    s.cloud.orbit.pitchRadians = -0.2f;
+    s.cloud.orbit.zoom = 1.8f;
+    s.cloud.orbit.panMeters = {0.1f, -0.05f};
+    s.depthRange = {0.5f, 4.0f};
+    s.processing.smoothing = true;
+
+    const auto back = settingsFromJson(settingsToJson(s));
+    ASSERT_TRUE(back.ok()) << back.error().message;
+    const Settings& r = *back;
+    EXPECT_FALSE(r.panels.depth);
+    EXPECT_FALSE(r.panels.controls);
+    EXPECT_TRUE(r.panels.cloud);
+    EXPECT_EQ(r.cloud.minConfidence, devices::Confidence::High);
+    EXPECT_FLOAT_EQ(r.cloud.pointSizePixels, 4.5f);
+    EXPECT_FLOAT_EQ(r.cloud.nearMeters, 0.3f);
+    EXPECT_FALSE(r.cloud.motion.enabled);
+    EXPECT_FLOAT_EQ(r.cloud.motion.speed, 2.0f);
+    EXPECT_FLOAT_EQ(r.cloud.motion.scaleMovement, 0.25f);
+    EXPECT_FLOAT_EQ(r.cloud.orbit.yawRadians, 0.7f);
+    EXPECT_FLOAT_EQ(r.cloud.orbit.pitchRadians, -0.2f);
+    EXPECT_FLOAT_EQ(r.cloud.orbit.zoom, 1.8f);
+    EXPECT_FLOAT_EQ(r.cloud.orbit.panMeters.y, -0.05f);
+    EXPECT_FLOAT_EQ(r.depthRange.minMeters, 0.5f);
+    EXPECT_FLOAT_EQ(r.depthRange.maxMeters, 4.0f);
+    EXPECT_TRUE(r.processing.smoothing);
+}
+
+TEST(Settings, NotJsonIsAnError) {
+    EXPECT_FALSE(settingsFromJson("{ not json").ok());
+    EXPECT_FALSE(settingsFromJson("[1, 2]").ok());
+    EXPECT_FALSE(settingsFromJson("").ok());
+}
+
+TEST(Settings, MistypedAndOutOfRangeValuesFallBackOrClamp) {
+    const auto r = settingsFromJson(R"({"cloud": {"minConfidence": 9, "pointSizePixels": "big", "zoom": -3,
+                                        "nearMeters": 1e30}, "depthRange": {"minMeters": 5, "maxMeters": 1},
+                                        "panels": 7, "unknown": true})");
+    ASSERT_TRUE(r.ok());
+    EXPECT_EQ(r->cloud.minConfidence, devices::Confidence::High) << "9 clamps to the highest level";
+    EXPECT_FLOAT_EQ(r->cloud.pointSizePixels, Settings{}.cloud.pointSizePixels) << "mistyped keeps the default";
+    EXPECT_GT(r->cloud.orbit.zoom, 0.0f);
+    EXPECT_LE(r->cloud.nearMeters, 10.0f);
+    EXPECT_LT(r->depthRange.minMeters, r->depthRange.maxMeters) << "an inverted range is repaired";
+    EXPECT_TRUE(r->panels.cloud);
+}
+
+TEST(Settings, SanitizeRemovesNonFiniteValues) {
+    Settings s;
+    s.cloud.orbit.yawRadians = std::nanf("");
+    s.cloud.pointSizePixels = INFINITY;
+    s.depthRange.maxMeters = -INFINITY;
+    sanitize(s);
+    EXPECT_TRUE(std::isfinite(s.cloud.orbit.yawRadians));
+    EXPECT_TRUE(std::isfinite(s.cloud.pointSizePixels));
+    EXPECT_GT(s.depthRange.maxMeters, s.depthRange.minMeters);
+}
+
+} // namespace
+} // namespace dc::ui

@@ -1,0 +1,50 @@
+#include "devices/frame.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+namespace dc::devices {
+namespace {
+
+TEST(Intrinsics, ScalingToDepthResolutionScalesEachAxis) {
+    const Intrinsics camera{1450.0, 1440.0, 960.0, 720.0, 1920, 1440};
+    const Intrinsics depth = camera.scaledTo(256, 192);
+    EXPECT_DOUBLE_EQ(depth.fx, 1450.0 * 256.0 / 1920.0);
+    EXPECT_DOUBLE_EQ(depth.fy, 1440.0 * 192.0 / 1440.0);
+    EXPECT_DOUBLE_EQ(depth.cx, 128.0);
+    EXPECT_DOUBLE_EQ(depth.cy, 96.0);
+    EXPECT_EQ(depth.width, 256);
+    EXPECT_EQ(depth.height, 192);
+}
+
+TEST(Intrinsics, RejectsDegenerateValues) {
+    EXPECT_TRUE((Intrinsics{500, 500, 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE((Intrinsics{0, 500, 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE((Intrinsics{-1, 500, 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE((Intrinsics{std::numeric_limits<double>::quiet_NaN(), 500, 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE((Intrinsics{500, std::numeric_limits<double>::infinity(), 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE((Intrinsics{500, 500, 320, 240, 0, 480}.valid()));
+}
+
+TEST(Frame, DepthIntrinsicsAreDerivedFromTheImageIntrinsics) {
+    Frame frame;
+    frame.cameraIntrinsics = {1450.0, 1450.0, 960.0, 720.0, 1920, 1440};
+    EXPECT_FALSE(frame.depthIntrinsics().valid()) << "no depth, no depth intrinsics";
+    frame.sceneDepth = DepthData{Plane<float>(640, 480), {}};
+    const Intrinsics k = frame.depthIntrinsics();
+    EXPECT_DOUBLE_EQ(k.fx, 1450.0 / 3.0);
+    EXPECT_DOUBLE_EQ(k.cx, 320.0);
+    EXPECT_EQ(k.width, 640);
+}
+
+TEST(CapturedImage, ByteSizesOfEachFormat) {
+    EXPECT_EQ(CapturedImage::byteSize(PixelFormat::Nv12, 4, 2), 8u + 4u);
+    EXPECT_EQ(CapturedImage::byteSize(PixelFormat::Nv12, 3, 3), 9u + 8u); // odd sizes round chroma up
+    EXPECT_EQ(CapturedImage::byteSize(PixelFormat::Yuyv, 4, 2), 16u);
+    EXPECT_EQ(CapturedImage::byteSize(PixelFormat::Rgb24, 4, 2), 24u);
+}
+
+} // namespace
+} // namespace dc::devices

@@ -1,0 +1,176 @@
+#include "devices/synthetic_device.h"
+#include "devices/synthetic_scene.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <numbers>
+
+namespace dc::devices {
+namespace {
+
+// Analytic ray construction for the fixed camera: independent of the scene's ray caster.
+struct AnalyticCamera {
+    double ox = 0, oy = scene::kCameraHeight, oz = 0;
+    double pitch = scene::kCameraPitchDegrees * std::numbers::pi / 180.0;
+    Intrinsics k;
+
+    // World direction of pixel (u, v), scaled so its camera-z component is 1.
+    std::array<double, 3> dir(int u, int v) const {
+        const double xn = (u - k.cx) / k.fx, yn = (v - k.cy) / k.fy;
+        // right = (1,0,0), down = (0,-cos,-sin), forward = (0,-sin,cos)
+        return {xn, -std::cos(pitch) * yn - std::sin(pitch), -std::sin(pitch) * yn + std::cos(pitch)};
+    }
+    // Depth at which the ray meets the desk plane y = 0.
+    double deskDepth(int u, int v) const { return -oy / dir(u, v)[1]; }
+    // Depth at which the ray first meets the apple, or NaN.
+    double appleDepth(int u, int v) const {
+        const auto d = dir(u, v);
+        const double oc[3] = {ox - scene::kAppleCenter[0], oy - scene::kAppleCenter[1], oz - scene::kAppleCenter[2]};
+        const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
+        const double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
+        const double c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - scene::kAppleRadius * scene::kAppleRadius;
+        const double disc = b * b - a * c;
+        return disc < 0 ? std::nan("") : (-b - std::sqrt(disc)) / a;
+    }
+};
+
+TEST(SyntheticScene, TrueDepthEqualsTheAnalyticDeskAndApple) {
+    const SyntheticScene scene;
+    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
+    const Plane<float> depth = scene.trueDepth(k, SyntheticScene::cameraPose(0.0, false));
+    const AnalyticCamera cam{.k = k};
+
+    int deskPixels = 0, applePixels = 0;
+    for (int v = 0; v < k.height; ++v) {
+        for (int u = 0; u < k.width; ++u) {
+            const double apple = cam.appleDepth(u, v);
+            if (!std::isnan(apple)) {
+                EXPECT_NEAR(depth.at(u, v), apple, 1e-5 * apple) << u << "," << v;
+                ++applePixels;
+                continue;
+            }
+            // Bottom rows look at the open desk (nothing else is in front of it there).
+            if (v > 170 && u > 100 && u < 160) {
+                EXPECT_NEAR(depth.at(u, v), cam.deskDepth(u, v), 1e-5 * cam.deskDepth(u, v)) << u << "," << v;
+                ++deskPixels;
+            }
+        }
+    }
+    EXPECT_GT(applePixels, 100) << "the apple covers a few hundred depth pixels";
+    EXPECT_GT(deskPixels, 500);
+}
+
+TEST(SyntheticScene, WindowOpeningHasNoDepthAndLowConfidenceAtItsBorder) {
+    const SyntheticScene scene;
+    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
+    const Pose pose = SyntheticScene::cameraPose(0.0, false);
+    const Plane<float> truth = scene.trueDepth(k, pose);
+    const DepthData sensed = scene.sensorDepth(k, pose, 0);
+    int holes = 0, borderLow = 0, border = 0;
+    for (int v = 1; v < k.height - 1; ++v) {
+        for (int u = 1; u < k.width - 1; ++u) {
+            if (truth.at(u, v) != 0.0f)
+                continue;
+            ++holes;
+            EXPECT_EQ(sensed.depthMeters.at(u, v), 0.0f) << "no return beyond the window";
+            if (truth.at(u + 1, v) > 0.0f) {
+                ++border;
+                borderLow += sensed.confidence.at(u + 1, v) == 0;
+            }
+        }
+    }
+    EXPECT_GT(holes, 200) << "the window looks out beyond the sensor's range";
+    EXPECT_GT(border, 10);
+    EXPECT_EQ(borderLow, border) << "pixels next to the window's opening are never trusted";
+}
+
+TEST(SyntheticScene, NoiseGrowsWithDistanceAndConfidenceFollowsIt) {
+    const SyntheticScene scene;
+    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
+    const Pose pose = SyntheticScene::cameraPose(0.0, false);
+    const Plane<float> truth = scene.trueDepth(k, pose);
+    double nearErr = 0, farErr = 0;
+    int nearN = 0, farN = 0, nearHigh = 0, farHigh = 0;
+    for (std::uint64_t seq = 0; seq < 4; ++seq) {
+        const DepthData d = scene.sensorDepth(k, pose, seq);
+        for (std::size_t i = 0; i < truth.pixels.size(); ++i) {
+            const float t = truth.pixels[i];
+            if (t <= 0.0f || d.confidence.pixels[i] == 0)
+                continue;
+            const double e = std::abs(d.depthMeters.pixels[i] - t);
+            if (t < 0.8f) {
+                nearErr += e, ++nearN, nearHigh += d.confidence.pixels[i] == 2;
+            } else if (t > 1.8f) {
+                farErr += e, ++farN, farHigh += d.confidence.pixels[i] == 2;
+            }
+        }
+    }
+    ASSERT_GT(nearN, 100);
+    ASSERT_GT(farN, 100);
+    EXPECT_GT(farErr / farN, 2.0 * nearErr / nearN);
+    EXPECT_GT(static_cast<double>(nearHigh) / nearN, 0.5) << "near flat surfaces are mostly high confidence";
+    EXPECT_LT(static_cast<double>(farHigh) / farN, 0.1) << "the far wall is not";
+}
+
+TEST(SyntheticScene, SensorDepthIsDeterministicPerSeedAndSequence) {
+    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(64, 48);
+    const Pose pose = SyntheticScene::cameraPose(0.0, false);
+    const SyntheticScene a(7), b(7), c(8);
+    EXPECT_EQ(a.sensorDepth(k, pose, 3).depthMeters.pixels, b.sensorDepth(k, pose, 3).depthMeters.pixels);
+    EXPECT_NE(a.sensorDepth(k, pose, 3).depthMeters.pixels, a.sensorDepth(k, pose, 4).depthMeters.pixels);
+    EXPECT_NE(a.sensorDepth(k, pose, 3).depthMeters.pixels, c.sensorDepth(k, pose, 3).depthMeters.pixels);
+}
+
+TEST(SyntheticScene, CameraImageHasEdgesWhereDepthHasEdges) {
+    const SyntheticScene scene;
+    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
+    const Pose pose = SyntheticScene::cameraPose(0.0, false);
+    const CapturedImage image = scene.renderImage(k, pose);
+    ASSERT_EQ(image.bytes->size(), CapturedImage::byteSize(PixelFormat::Nv12, 256, 192));
+    // Luma across the apple's silhouette differs clearly from the desk beside it.
+    const Plane<float> depth = scene.trueDepth(k, pose);
+    int strongEdges = 0, edges = 0;
+    for (int v = 0; v < k.height; ++v) {
+        for (int u = 0; u + 1 < k.width; ++u) {
+            const float a = depth.at(u, v), b = depth.at(u + 1, v);
+            if (a > 0 && b > 0 && std::abs(a - b) > 0.05f) {
+                ++edges;
+                const int ya = (*image.bytes)[v * 256 + u], yb = (*image.bytes)[v * 256 + u + 1];
+                strongEdges += std::abs(ya - yb) > 8;
+            }
+        }
+    }
+    ASSERT_GT(edges, 20);
+    EXPECT_GT(static_cast<double>(strongEdges) / edges, 0.5);
+}
+
+TEST(SyntheticDevice, ExactModeDeliversTheGroundTruthWithPose) {
+    SyntheticConfig config;
+    config.noise = false;
+    config.paced = false;
+    config.cameraWidth = 320;
+    config.cameraHeight = 240;
+    SyntheticDevice device(config);
+    ASSERT_TRUE(device.open());
+    ASSERT_TRUE(device.start());
+    const CaptureResult r = device.capture(std::chrono::seconds(1));
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame);
+    ASSERT_TRUE(r.frame->sceneDepth.has_value());
+    ASSERT_TRUE(r.frame->pose.has_value());
+    const Plane<float> truth =
+        device.scene().trueDepth(r.frame->depthIntrinsics(), SyntheticScene::cameraPose(0.0, false));
+    EXPECT_EQ(r.frame->sceneDepth->depthMeters.pixels, truth.pixels);
+    EXPECT_EQ(r.frame->capturedImage.width, 320);
+    EXPECT_EQ(r.frame->capturedImage.format, PixelFormat::Nv12);
+}
+
+TEST(SyntheticDevice, MotionMovesThePoseOverTime) {
+    const Pose a = SyntheticScene::cameraPose(0.0, true), b = SyntheticScene::cameraPose(2.5, true);
+    EXPECT_NE(a.cameraToWorld[12], b.cameraToWorld[12]);
+    const Pose still = SyntheticScene::cameraPose(2.5, false);
+    EXPECT_EQ(still.cameraToWorld, SyntheticScene::cameraPose(0.0, false).cameraToWorld);
+}
+
+} // namespace
+} // namespace dc::devices

@@ -1,0 +1,195 @@
+#include <epoxy/gl.h>
+// GLFW after epoxy: epoxy provides the GL declarations, GLFW must not include its own.
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+
+#include "devices/image_io.h"
+#include "devices/log.h"
+#include "devices/source_spec.h"
+#include "tool/options.h"
+#include "tool/summary.h"
+#include "ui/viewer.h"
+
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+namespace dc::tool {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct GlfwWindowDeleter {
+    void operator()(GLFWwindow* w) const { glfwDestroyWindow(w); }
+};
+using WindowPtr = std::unique_ptr<GLFWwindow, GlfwWindowDeleter>;
+
+// Owns glfwInit/glfwTerminate for the scope of the GUI run.
+struct GlfwLibrary {
+    bool ok = glfwInit() == GLFW_TRUE;
+    ~GlfwLibrary() {
+        if (ok)
+            glfwTerminate();
+    }
+};
+
+// Owns the ImGui context and both backends.
+struct ImGuiScope {
+    explicit ImGuiScope(GLFWwindow* window, const std::string& iniPath) : ini(iniPath) {
+        ImGui::CreateContext();
+        ImGui::GetIO().IniFilename = ini.c_str();
+        glfwReady = ImGui_ImplGlfw_InitForOpenGL(window, true);
+        glReady = ImGui_ImplOpenGL3_Init("#version 330 core");
+    }
+    ~ImGuiScope() {
+        if (glReady)
+            ImGui_ImplOpenGL3_Shutdown();
+        if (glfwReady)
+            ImGui_ImplGlfw_Shutdown();
+        ImGui::DestroyContext();
+    }
+    std::string ini; // ImGui keeps the pointer: the string must outlive the context
+    bool glfwReady = false;
+    bool glReady = false;
+};
+
+WindowPtr openWindow() {
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    return WindowPtr(glfwCreateWindow(1280, 720, "depthcloud", nullptr, nullptr));
+}
+
+ui::Settings loadSettings(const std::string& path, bool reset) {
+    if (reset)
+        return {};
+    std::ifstream in(path);
+    if (!in)
+        return {};
+    std::stringstream text;
+    text << in.rdbuf();
+    auto settings = ui::settingsFromJson(text.str());
+    if (!settings) {
+        logWarning(path + ": " + settings.error().message + "; starting with default settings");
+        return {};
+    }
+    return *settings;
+}
+
+// The window as the user sees it, read from the back buffer just before it is shown.
+Status saveScreenshot(GLFWwindow* window, const std::string& path) {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window, &w, &h);
+    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w) * h * 4);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+    std::vector<std::uint8_t> flipped(pixels.size());
+    const std::size_t row = static_cast<std::size_t>(w) * 4;
+    for (int y = 0; y < h; ++y)
+        std::copy_n(pixels.data() + static_cast<std::size_t>(h - 1 - y) * row, row, flipped.data() + y * row);
+    return devices::writeRgbaPng(path, w, h, flipped.data());
+}
+
+void drawFrame(GLFWwindow* window, ui::Viewer& viewer, double t) {
+    glfwPollEvents();
+    viewer.update(t);
+    const auto uiStart = Clock::now();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    viewer.drawUi();
+    ImGui::Render();
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window, &w, &h);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, w, h);
+    glClearColor(0.08f, 0.08f, 0.1f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    viewer.recordUiMilliseconds(std::chrono::duration<double, std::milli>(Clock::now() - uiStart).count());
+}
+
+int writeOutputs(GLFWwindow* window, const ui::Viewer& viewer, const std::string& dir) {
+    Status s = saveScreenshot(window, dir + "/screenshot.png");
+    if (s)
+        s = viewer.savePanels(dir);
+    if (s) {
+        const auto renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        s = devices::writeTextFile(dir + "/summary.json",
+                                   summaryJson(viewer.summary(), renderer ? renderer : "unknown", "gui"));
+    }
+    if (!s) {
+        std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
+        return kExitFailure;
+    }
+    return kExitOk;
+}
+
+} // namespace
+
+int runGui(const ViewerOptions& options) {
+    GlfwLibrary glfw;
+    if (!glfw.ok) {
+        std::fprintf(stderr, "depthcloud: error: cannot open a window (GLFW failed to initialise); "
+                             "use --headless\n");
+        return kExitFailure;
+    }
+    WindowPtr window = openWindow();
+    if (!window) {
+        std::fprintf(stderr, "depthcloud: error: no OpenGL 3.3 context available for a window; use --headless\n");
+        return kExitFailure;
+    }
+    glfwMakeContextCurrent(window.get());
+    glfwSwapInterval(1);
+
+    const std::string configDir = ui::configDirectory();
+    std::error_code ec;
+    std::filesystem::create_directories(configDir, ec);
+    const std::string settingsPath = configDir + "/settings.json";
+    const std::string iniPath = configDir + "/layout.ini";
+    if (options.reset)
+        std::filesystem::remove(iniPath, ec);
+    ui::Settings settings = loadSettings(settingsPath, options.reset);
+    if (options.confidence)
+        settings.cloud.minConfidence = *options.confidence;
+
+    auto device = devices::openSourceSpec(options.source);
+    if (!device) {
+        std::fprintf(stderr, "depthcloud: error: %s\n", device.error().message.c_str());
+        return kExitFailure;
+    }
+    int status = kExitOk;
+    {
+        ImGuiScope imgui(window.get(), iniPath);
+        ui::Viewer viewer(std::move(*device), settings);
+        if (Status s = viewer.init(); !s) {
+            std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
+            return kExitFailure;
+        }
+        const auto start = Clock::now();
+        for (int frame = 0; !glfwWindowShouldClose(window.get()); ++frame) {
+            drawFrame(window.get(), viewer, std::chrono::duration<double>(Clock::now() - start).count());
+            const bool last = options.frames && frame + 1 >= *options.frames;
+            if (last && !options.outDirectory.empty())
+                status = writeOutputs(window.get(), viewer, options.outDirectory);
+            glfwSwapBuffers(window.get());
+            if (last)
+                break;
+        }
+        if (Status s = devices::writeTextFile(settingsPath, ui::settingsToJson(viewer.settings())); !s)
+            logWarning("settings not saved: " + s.error().message);
+    }
+    return status;
+}
+
+} // namespace dc::tool

@@ -1,0 +1,70 @@
+#include "devices/image_io.h"
+#include "devices/log.h"
+#include "devices/source_spec.h"
+#include "render/gl_context.h"
+#include "tool/options.h"
+#include "tool/summary.h"
+#include "ui/viewer.h"
+
+#include <cstdio>
+
+namespace dc::tool {
+
+namespace {
+
+// The cloud snapshot's size: the sample's landscape 4:3.
+constexpr int kCloudWidth = 960;
+constexpr int kCloudHeight = 720;
+// A source that delivers nothing for this long is reported instead of waited on forever.
+constexpr std::chrono::seconds kFrameTimeout{5};
+// Headless runs animate on a fixed clock so that the same command writes the same cloud.png.
+constexpr double kHeadlessFrameSeconds = 1.0 / 60.0;
+
+int fail(const std::string& message) {
+    std::fprintf(stderr, "depthcloud: error: %s\n", message.c_str());
+    return kExitFailure;
+}
+
+} // namespace
+
+int runHeadless(const ViewerOptions& options) {
+    setLogQuiet(true);
+    auto context = render::EglContext::createHeadless();
+    if (!context)
+        return fail(context.error().message);
+    auto device = devices::openSourceSpec(options.source);
+    if (!device)
+        return fail(device.error().message);
+    ui::Settings settings; // headless snapshots use defaults, never a user's saved view
+    if (options.confidence)
+        settings.cloud.minConfidence = *options.confidence;
+    ui::Viewer viewer(std::move(*device), settings);
+    if (Status s = viewer.init(); !s)
+        return fail(s.error().message);
+    if (!viewer.sourceRunning())
+        return fail(viewer.sourceMessage());
+    viewer.resizeCloud(kCloudWidth, kCloudHeight);
+
+    const int frames = options.frames.value_or(60);
+    int shown = 0;
+    while (shown < frames) {
+        const double t = shown * kHeadlessFrameSeconds;
+        if (viewer.update(t, std::chrono::duration_cast<std::chrono::milliseconds>(kFrameTimeout))) {
+            ++shown;
+            continue;
+        }
+        return fail("no frame from " + viewer.statusLine().source + " within " +
+                    std::to_string(kFrameTimeout.count()) + " s" +
+                    (viewer.sourceMessage().empty() ? "" : ": " + viewer.sourceMessage()));
+    }
+    if (Status s = viewer.savePanels(options.outDirectory); !s)
+        return fail(s.error().message);
+    const std::string summary = summaryJson(viewer.summary(), context->rendererName(), "headless");
+    if (Status s = devices::writeTextFile(options.outDirectory + "/summary.json", summary); !s)
+        return fail(s.error().message);
+    std::printf("depthcloud: wrote cloud.png depth.png confidence.png camera.png summary.json to %s\n",
+                options.outDirectory.c_str());
+    return kExitOk;
+}
+
+} // namespace dc::tool

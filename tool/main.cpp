@@ -1,0 +1,106 @@
+// depthcloud: see a depth camera's data as a live point cloud with depth and confidence panels.
+
+#include "devices/log.h"
+#include "devices/source_spec.h"
+#include "tool/options.h"
+
+#include <CLI/CLI.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+
+namespace {
+
+using namespace dc::tool;
+
+bool hasDisplay() {
+    const char* x = std::getenv("DISPLAY");
+    const char* wayland = std::getenv("WAYLAND_DISPLAY");
+    return (x && *x) || (wayland && *wayland);
+}
+
+int badArgument(const std::string& message) {
+    std::fprintf(stderr, "depthcloud: error: %s\n", message.c_str());
+    return kExitBadArguments;
+}
+
+// Creates `dir` if needed and proves it is writable, so a long run does not fail at its very end.
+std::string checkOutDirectory(const std::string& dir) {
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+        return "--out " + dir + ": cannot create directory: " + ec.message();
+    const std::string probe = dir + "/.depthcloud-write-test";
+    FILE* f = std::fopen(probe.c_str(), "w");
+    if (!f)
+        return "--out " + dir + ": directory is not writable";
+    std::fclose(f);
+    std::remove(probe.c_str());
+    return {};
+}
+
+void addViewerOptions(CLI::App& app, ViewerOptions& o) {
+    app.add_option("--source", o.source, std::string("depth source: ") + dc::devices::kSourceSpecHelp)
+        ->capture_default_str();
+    app.add_flag("--headless", o.headless, "no window: render offscreen and write PNGs + summary.json to --out");
+    app.add_option("--frames", o.frames, "stop after N frames (headless default 60)");
+    app.add_option("--out", o.outDirectory, "output directory (headless default: depthcloud-snapshots)");
+    const std::map<std::string, dc::devices::Confidence> levels{
+        {"low", dc::devices::Confidence::Low},
+        {"medium", dc::devices::Confidence::Medium},
+        {"high", dc::devices::Confidence::High}};
+    app.add_option("--confidence", o.confidence, "lowest confidence drawn in the cloud: low|medium|high")
+        ->transform(CLI::CheckedTransformer(levels, CLI::ignore_case));
+    app.add_flag("--reset", o.reset, "start with default settings and layout");
+}
+
+int runViewer(ViewerOptions o) {
+    if (o.frames && *o.frames < 1)
+        return badArgument("--frames must be at least 1 (got " + std::to_string(*o.frames) + ")");
+    if (auto device = dc::devices::openSourceSpec(o.source); !device)
+        return badArgument("--source: " + device.error().message);
+    if (!o.headless && !hasDisplay()) {
+        dc::logInfo("no display found (DISPLAY and WAYLAND_DISPLAY are unset): running headless");
+        o.headless = true;
+    }
+    if (o.headless && o.outDirectory.empty())
+        o.outDirectory = "depthcloud-snapshots";
+    if (!o.outDirectory.empty()) {
+        if (const std::string problem = checkOutDirectory(o.outDirectory); !problem.empty())
+            return badArgument(problem);
+    }
+    return o.headless ? runHeadless(o) : runGui(o);
+}
+
+} // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"depthcloud: a live, colored point cloud of what a depth camera measures, with depth and "
+                 "confidence panels",
+                 "depthcloud"};
+    app.set_version_flag("--version", std::string("depthcloud ") + DEPTHCLOUD_VERSION);
+    ViewerOptions viewer;
+    addViewerOptions(app, viewer);
+
+    BenchOptions bench;
+    CLI::App* benchCmd = app.add_subcommand("bench", "measure performance");
+    benchCmd->require_subcommand(1);
+    CLI::App* benchRender = benchCmd->add_subcommand("render", "viewer frame time on this machine's GL");
+    benchRender->add_option("--frames", bench.frames, "measured frames per case (at least 100)")
+        ->check(CLI::Range(10, 100000))
+        ->capture_default_str();
+    benchRender->add_option("--json", bench.jsonPath, "also write the results as JSON to this file");
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::Success& e) { // --help, --version
+        return app.exit(e);
+    } catch (const CLI::ParseError& e) {
+        return badArgument(e.what());
+    }
+    if (benchRender->parsed())
+        return runBenchRender(bench);
+    return runViewer(viewer);
+}

@@ -1,0 +1,36 @@
+#pragma once
+
+#include "devices/frame.h"
+
+#include <optional>
+#include <string>
+
+namespace dc::tool {
+
+// Exit codes of every depthcloud command.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;   // something went wrong while running
+inline constexpr int kExitBadArguments = 2;
+
+struct ViewerOptions {
+    std::string source = "synthetic";
+    bool headless = false;
+    std::optional<int> frames; // stop after this many frames (headless default: 60)
+    std::string outDirectory;  // where headless runs (and GUI runs given --out) write their files
+    std::optional<devices::Confidence> confidence;
+    bool reset = false; // ignore saved settings and layout
+};
+
+struct BenchOptions {
+    int frames = 120;
+    int width = 1280;
+    int height = 720;
+    std::string jsonPath; // also write the results as JSON here
+};
+
+int runHeadless(const ViewerOptions& options);
+// Returns kExitFailure with a message when no window can be opened.
+int runGui(const ViewerOptions& options);
+int runBenchRender(const BenchOptions& options);
+
+} // namespace dc::tool

@@ -1,0 +1,25 @@
+#include "tool/summary.h"
+
+#include <nlohmann/json.hpp>
+
+namespace dc::tool {
+
+std::string summaryJson(const ui::ViewerSummary& s, const std::string& renderer, const std::string& mode) {
+    nlohmann::json stages = nlohmann::json::object();
+    for (const auto& t : s.stageMedians)
+        stages[t.name] = t.milliseconds;
+    const nlohmann::json j{{"mode", mode},
+                           {"source", s.source},
+                           {"renderer", renderer},
+                           {"frames", s.framesShown},
+                           {"framesDropped", s.framesDropped},
+                           {"deviceFps", s.deviceFps},
+                           {"viewerFps", s.viewerFps},
+                           {"pointsDrawn", s.pointsDrawn},
+                           {"depthWidth", s.depthWidth},
+                           {"depthHeight", s.depthHeight},
+                           {"stageMedianMs", stages}};
+    return j.dump(2) + "\n";
+}
+
+} // namespace dc::tool

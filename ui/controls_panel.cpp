@@ -1,0 +1,104 @@
+#include "ui/panels.h"
+
+namespace dc::ui {
+
+namespace {
+
+bool confidenceSection(CloudSettings& cloud) {
+    ImGui::TextUnformatted("Cloud confidence");
+    int level = static_cast<int>(cloud.minConfidence);
+    bool changed = ImGui::RadioButton("All [1]", &level, 0);
+    changed |= ImGui::RadioButton("Medium and high [2]", &level, 1);
+    changed |= ImGui::RadioButton("High only [3]", &level, 2);
+    cloud.minConfidence = static_cast<devices::Confidence>(level);
+    return changed;
+}
+
+bool viewSection(CloudSettings& cloud) {
+    bool changed = ImGui::Checkbox("Auto-rotate [R]", &cloud.motion.enabled);
+    changed |= ImGui::SliderFloat("Speed", &cloud.motion.speed, 0.0f, 4.0f, "%.2fx");
+    changed |= ImGui::SliderFloat("Scale movement", &cloud.motion.scaleMovement, 0.0f, 2.0f, "%.2f");
+    if (ImGui::Button("Reset view [V]")) {
+        cloud.orbit = {};
+        changed = true;
+    }
+    ImGui::SameLine();
+    ImGui::TextDisabled("drag: orbit, right-drag: pan, wheel: zoom");
+    changed |= ImGui::SliderFloat("Point size", &cloud.pointSizePixels, 1.0f, 8.0f, "%.1f px");
+    changed |= ImGui::SliderFloat("Near limit", &cloud.nearMeters, 0.0f, 2.0f, "%.2f m");
+    return changed;
+}
+
+// A toggle for a processing stage; disabled, with the reason as its tooltip, while this build lacks it.
+bool stageToggle(const char* label, bool* value, bool available) {
+    ImGui::BeginDisabled(!available);
+    const bool changed = ImGui::Checkbox(label, value);
+    ImGui::EndDisabled();
+    if (!available && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("Not available yet: this build has no %s stage.", label);
+    return changed && available;
+}
+
+bool panelsSection(PanelVisibility& panels) {
+    bool changed = ImGui::Checkbox(kCloudTitle, &panels.cloud);
+    changed |= ImGui::Checkbox(kDepthTitle, &panels.depth);
+    changed |= ImGui::Checkbox(kConfidenceTitle, &panels.confidence);
+    changed |= ImGui::Checkbox(kCameraTitle, &panels.camera);
+    return changed;
+}
+
+} // namespace
+
+bool drawControlsPanel(Settings& settings, const ControlsContext& context, bool* open) {
+    if (!ImGui::Begin(kControlsTitle, open)) {
+        ImGui::End();
+        return false;
+    }
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 7.0f);
+    bool changed = confidenceSection(settings.cloud);
+    ImGui::Separator();
+    changed |= viewSection(settings.cloud);
+    ImGui::Separator();
+    changed |= ImGui::DragFloatRange2("Depth range", &settings.depthRange.minMeters, &settings.depthRange.maxMeters,
+                                      0.01f, 0.0f, 100.0f, "%.2f m", "%.2f m", ImGuiSliderFlags_AlwaysClamp);
+    ImGui::Separator();
+    changed |= stageToggle("upsampling", &settings.processing.upsampling, context.upsamplingAvailable);
+    changed |= stageToggle("smoothing", &settings.processing.smoothing, context.smoothingAvailable);
+    ImGui::Separator();
+    changed |= panelsSection(settings.panels);
+    ImGui::PopItemWidth();
+    ImGui::End();
+    if (changed)
+        sanitize(settings);
+    return changed;
+}
+
+bool handleShortcuts(Settings& settings) {
+    const ImGuiIO& io = ImGui::GetIO();
+    if (io.WantTextInput)
+        return false;
+    // Debian's ImGui 1.86 indexes keys by the platform's key codes; GLFW's codes for letters and digits
+    // are their ASCII values.
+    bool fired = false;
+    if (ImGui::IsKeyPressed('R', false)) {
+        settings.cloud.motion.enabled = !settings.cloud.motion.enabled;
+        fired = true;
+    }
+    for (int level = 0; level < 3; ++level) {
+        if (ImGui::IsKeyPressed('1' + level, false)) {
+            settings.cloud.minConfidence = static_cast<devices::Confidence>(level);
+            fired = true;
+        }
+    }
+    if (ImGui::IsKeyPressed('V', false)) {
+        settings.cloud.orbit = {};
+        fired = true;
+    }
+    if (ImGui::IsKeyPressed('C', false)) {
+        settings.panels.controls = !settings.panels.controls;
+        fired = true;
+    }
+    return fired;
+}
+
+} // namespace dc::ui

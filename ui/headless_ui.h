@@ -1,0 +1,33 @@
+#pragma once
+
+#include "devices/expected.h"
+#include "render/render_target.h"
+
+#include <imgui.h>
+
+namespace dc::ui {
+
+// Dear ImGui without a window: the OpenGL3 renderer draws every frame into an offscreen target. Used by the
+// UI tests (input is injected through io()) and by `depthcloud bench render`. Needs a current GL context.
+class HeadlessUi {
+public:
+    HeadlessUi() = default;
+    ~HeadlessUi();
+    HeadlessUi(const HeadlessUi&) = delete;
+    HeadlessUi& operator=(const HeadlessUi&) = delete;
+
+    Status init(int width, int height);
+    void newFrame(float deltaSeconds);
+    // Finishes the ImGui frame and draws it into target().
+    void render();
+
+    ImGuiIO& io() { return ImGui::GetIO(); }
+    const render::RenderTarget& target() const { return target_; }
+
+private:
+    ImGuiContext* context_ = nullptr;
+    bool rendererReady_ = false;
+    render::RenderTarget target_;
+};
+
+} // namespace dc::ui

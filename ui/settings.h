@@ -1,0 +1,53 @@
+#pragma once
+
+#include "devices/expected.h"
+#include "devices/frame.h"
+#include "processing/pipeline.h"
+#include "render/orbit_camera.h"
+
+#include <string>
+
+namespace dc::ui {
+
+struct PanelVisibility {
+    bool cloud = true;
+    bool depth = true;
+    bool confidence = true;
+    bool camera = true;
+    bool controls = true;
+};
+
+struct CloudSettings {
+    devices::Confidence minConfidence = devices::Confidence::Low; // points below are not drawn
+    float pointSizePixels = 2.0f;
+    float nearMeters = 0.1f; // points nearer than this are not drawn (the sample drops the nearest too)
+    render::AutoMotion motion;
+    render::OrbitView orbit;
+};
+
+struct DepthRange {
+    float minMeters = 0.0f;
+    float maxMeters = 2.5f; // the sample's range: fine detail in a room-sized scene
+};
+
+// Everything the user can set; plain data, edited by the panels, persisted between runs.
+struct Settings {
+    PanelVisibility panels;
+    CloudSettings cloud;
+    DepthRange depthRange;
+    processing::ProcessingSettings processing;
+};
+
+// Puts every field back into its valid range (a hand-edited or old settings file may hold anything).
+void sanitize(CloudSettings& cloud);
+void sanitize(Settings& settings);
+
+std::string settingsToJson(const Settings& settings);
+// Reads what it can: unknown keys are ignored, missing or mistyped ones keep their defaults, and the
+// result is sanitized. A file that is not JSON at all gives an Error naming the parse failure.
+Expected<Settings> settingsFromJson(const std::string& text);
+
+// $XDG_CONFIG_HOME/depthcloud, else $HOME/.config/depthcloud, else the current directory.
+std::string configDirectory();
+
+} // namespace dc::ui

@@ -1,0 +1,200 @@
+#include "ui/viewer.h"
+
+#include "devices/log.h"
+#include "processing/confidence_filter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+namespace dc::ui {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double millisecondsSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// The orbit pivot: the median valid depth, so the swing turns the cloud about the middle of the scene.
+float medianDepth(const devices::DepthData& depth) {
+    std::vector<float> valid;
+    const auto& pixels = depth.depthMeters.pixels;
+    valid.reserve(pixels.size() / 4 + 1);
+    for (std::size_t i = 0; i < pixels.size(); i += 4) // every 4th sample is plenty for a median
+        if (std::isfinite(pixels[i]) && pixels[i] > 0.0f)
+            valid.push_back(pixels[i]);
+    if (valid.empty())
+        return 1.0f;
+    const auto mid = valid.begin() + static_cast<std::ptrdiff_t>(valid.size() / 2);
+    std::nth_element(valid.begin(), mid, valid.end());
+    return *mid;
+}
+
+// The camera panel is for looking, not measuring: cap its texture so a 1920x1440 image costs no more
+// than needed to fill a panel.
+constexpr int kCameraPanelMaxWidth = 960;
+
+bool sameCounting(const CloudSettings& a, const CloudSettings& b) {
+    return a.minConfidence == b.minConfidence && a.nearMeters == b.nearMeters;
+}
+
+render::OrbitView combine(const render::OrbitView& manual, const render::OrbitView& automatic) {
+    return {manual.yawRadians + automatic.yawRadians, manual.pitchRadians + automatic.pitchRadians,
+            manual.zoom * automatic.zoom, manual.panMeters + automatic.panMeters};
+}
+
+} // namespace
+
+Viewer::Viewer(std::unique_ptr<devices::Device> device, Settings settings)
+    : session_(std::move(device)), settings_(settings), pipeline_(processing::makeDefaultPipeline()) {
+    sanitize(settings_);
+}
+
+Viewer::~Viewer() { session_.stop(); }
+
+Status Viewer::init() {
+    if (Status s = cloudRenderer_.init(); !s)
+        return s;
+    if (Status s = panelRenderer_.init(); !s)
+        return s;
+    resizeCloud(kDefaultCloudWidth, kDefaultCloudHeight);
+    if (Status s = session_.start(); !s) {
+        sourceMessage_ = s.error().message;
+        logError(session_.description() + ": " + sourceMessage_);
+        return {};
+    }
+    sourceRunning_ = true;
+    return {};
+}
+
+void Viewer::resizeCloud(int width, int height) { cloudTarget_.resize(std::max(width, 1), std::max(height, 1)); }
+
+bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
+    updates_.tick();
+    drainEvents();
+    std::optional<devices::FramePtr> next;
+    if (sourceRunning_)
+        next = wait.count() > 0 ? session_.waitForFrame(wait) : session_.takeLatest();
+    if (next && *next)
+        acceptFrame(std::move(*next));
+    if (frame_ && !sameCounting(countedWith_, settings_.cloud))
+        countPoints();
+    if (frame_ && settings_.panels.cloud)
+        renderCloud(timeSeconds);
+    return next.has_value();
+}
+
+void Viewer::drainEvents() {
+    for (const devices::SessionEvent& e : session_.drainEvents()) {
+        state_ = devices::toString(e.state);
+        if (e.kind == devices::SessionEvent::Kind::EndOfStream)
+            state_ = "end of stream";
+        if (!e.message.empty())
+            sourceMessage_ = e.message;
+    }
+}
+
+void Viewer::acceptFrame(devices::FramePtr frame) {
+    auto start = Clock::now();
+    frame = pipeline_.run(std::move(frame), settings_.processing, needs());
+    stage("process").add(millisecondsSince(start));
+    const bool firstFrame = !frame_;
+    frame_ = std::move(frame);
+    ++framesShown_;
+    if (firstFrame && frame_->sceneDepth)
+        pivotDepthMeters_ = medianDepth(*frame_->sceneDepth);
+
+    start = Clock::now();
+    textures_.upload(*frame_, false);
+    stage("upload").add(millisecondsSince(start));
+    renderPanels();
+    countPoints();
+}
+
+void Viewer::countPoints() {
+    countedWith_ = settings_.cloud;
+    pointsDrawn_ = frame_->sceneDepth ? processing::countDrawablePoints(*frame_->sceneDepth,
+                                                                        settings_.cloud.minConfidence,
+                                                                        settings_.cloud.nearMeters)
+                                      : 0;
+}
+
+void Viewer::renderPanels() {
+    const auto start = Clock::now();
+    const PanelVisibility& show = settings_.panels;
+    if (show.depth && textures_.hasDepth()) {
+        depthTarget_.resize(textures_.depthWidth(), textures_.depthHeight());
+        panelRenderer_.renderDepth(depthTarget_, textures_, settings_.depthRange.minMeters,
+                                   settings_.depthRange.maxMeters);
+    }
+    if (show.confidence && textures_.hasDepth()) {
+        confidenceTarget_.resize(textures_.depthWidth(), textures_.depthHeight());
+        panelRenderer_.renderConfidence(confidenceTarget_, textures_);
+    }
+    if (show.camera && textures_.cameraWidth() > 0) {
+        const int w = std::min(textures_.cameraWidth(), kCameraPanelMaxWidth);
+        const int h = std::max(1, textures_.cameraHeight() * w / textures_.cameraWidth());
+        cameraTarget_.resize(w, h);
+        panelRenderer_.renderCamera(cameraTarget_, textures_);
+    }
+    stage("panels").add(millisecondsSince(start));
+}
+
+void Viewer::renderCloud(double timeSeconds) {
+    const auto start = Clock::now();
+    render::CloudParams params;
+    const render::OrbitView view =
+        combine(settings_.cloud.orbit, render::autoOffset(settings_.cloud.motion, timeSeconds));
+    const float aspect = static_cast<float>(cloudTarget_.width()) / static_cast<float>(cloudTarget_.height());
+    params.viewProjection = render::cloudViewProjection(
+        view, pivotDepthMeters_, render::verticalFovRadians(textures_.depthIntrinsics()), aspect);
+    params.minConfidence = settings_.cloud.minConfidence;
+    params.nearMeters = settings_.cloud.nearMeters;
+    params.pointSizePixels = settings_.cloud.pointSizePixels;
+    cloudRenderer_.render(cloudTarget_, textures_, params);
+    stage("cloud").add(millisecondsSince(start));
+}
+
+processing::Needs Viewer::needs() const {
+    const PanelVisibility& show = settings_.panels;
+    return {show.cloud, show.depth, show.confidence, show.camera};
+}
+
+Status Viewer::savePanels(const std::string& directory) const {
+    const std::pair<const char*, const render::RenderTarget*> panels[] = {
+        {"cloud.png", &cloudTarget_},
+        {"depth.png", &depthTarget_},
+        {"confidence.png", &confidenceTarget_},
+        {"camera.png", &cameraTarget_}};
+    for (const auto& [name, target] : panels) {
+        if (target->width() == 0)
+            return Error{std::string("cannot write ") + name + ": the panel has not been rendered"};
+        if (Status s = target->savePng(directory + "/" + name); !s)
+            return s;
+    }
+    return {};
+}
+
+StatusLine Viewer::statusLine() const {
+    const devices::SessionStats stats = session_.stats();
+    StatusLine line{session_.description(), state_, sourceMessage_, stats.deviceFps, updates_.perSecond(),
+                    stats.framesDropped, pointsDrawn_, {}};
+    for (const auto& [name, samples] : stages_)
+        line.stageMedians.push_back({name, samples.median()});
+    return line;
+}
+
+ViewerSummary Viewer::summary() const {
+    const StatusLine line = statusLine();
+    ViewerSummary s{line.source,     framesShown_, line.framesDropped, line.deviceFps, line.viewerFps,
+                    line.pointsDrawn, 0,           0,                  line.stageMedians};
+    if (frame_ && frame_->sceneDepth) {
+        s.depthWidth = frame_->sceneDepth->depthMeters.width;
+        s.depthHeight = frame_->sceneDepth->depthMeters.height;
+    }
+    return s;
+}
+
+} // namespace dc::ui
