@@ -17,15 +17,16 @@ namespace {
 
 using detail::PlaneFormat;
 
-// Depth and confidence are read with texelFetch, which ignores filtering, but integer textures are only
-// complete with GL_NEAREST, and R32F linear filtering would blend real depths with "no measurement".
+// Depth and confidence are read with texelFetch, which ignores filtering, but a texture must still be
+// complete to be read at all: integer formats are incomplete with linear filtering, and so is any texture
+// left with the default minification filter, which expects mipmaps.
 constexpr PlaneFormat kDepthFormat{GL_R32F, GL_RED, GL_FLOAT, GL_NEAREST};
 constexpr PlaneFormat kConfidenceFormat{GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE, GL_NEAREST};
 constexpr PlaneFormat kLumaFormat{GL_R8, GL_RED, GL_UNSIGNED_BYTE, GL_LINEAR};
 constexpr PlaneFormat kChromaFormat{GL_RG8, GL_RG, GL_UNSIGNED_BYTE, GL_LINEAR};
 
 constexpr std::uint8_t kHighConfidence = static_cast<std::uint8_t>(devices::Confidence::High);
-constexpr std::uint8_t kMidGray = 128;       // Y = 0.5 and neutral chroma: mid-gray
+constexpr std::uint8_t kMidGray = 128;              // Y = 0.5 and neutral chroma: mid-gray
 constexpr std::uint8_t kGrayChroma[2] = {128, 128}; // Cb = Cr = 0.5: no color
 
 // A camera image as the shaders' two planes; the chroma size is whatever the format subsamples to.
@@ -46,7 +47,7 @@ bool wellFormed(const devices::CapturedImage& image) {
 
 // YUYV carries one Cb/Cr pair per horizontal pixel pair: chroma at half width, full height.
 void splitYuyv(const devices::CapturedImage& image, std::vector<std::uint8_t>& luma,
-                     std::vector<std::uint8_t>& chroma) {
+               std::vector<std::uint8_t>& chroma) {
     const int pairs = (image.width + 1) / 2;
     luma.resize(static_cast<std::size_t>(image.width) * image.height);
     chroma.resize(static_cast<std::size_t>(pairs) * 2 * image.height);
@@ -67,7 +68,7 @@ void splitYuyv(const devices::CapturedImage& image, std::vector<std::uint8_t>& l
 // RGB is converted to full-resolution YCbCr so every format takes the shaders' one color path. The
 // round trip through 8-bit YCbCr costs about 1/255 per channel.
 void convertRgb24(const devices::CapturedImage& image, std::vector<std::uint8_t>& luma,
-                        std::vector<std::uint8_t>& chroma) {
+                  std::vector<std::uint8_t>& chroma) {
     const std::size_t count = static_cast<std::size_t>(image.width) * image.height;
     luma.resize(count);
     chroma.resize(count * 2);
@@ -115,9 +116,10 @@ void FrameTextures::upload(const devices::Frame& frame, bool preferSmoothed) {
     uploadCamera(frame.capturedImage);
 }
 
-void FrameTextures::uploadDepth(const devices::DepthData* depth, const devices::Intrinsics& cameraIntrinsics) {
+void FrameTextures::uploadDepth(const devices::DepthData* depth,
+                                const devices::Intrinsics& cameraIntrinsics) {
     if (!depth || !usable(depth->depthMeters)) {
-        // The textures keep their storage for the next frame with depth; hasDepth() now reports none.
+        // hasDepth() reads the size, so forget it; the next frame with depth reallocates the storage.
         depth_.width = depth_.height = 0;
         hasConfidence_ = false;
         depthIntrinsics_ = {};
@@ -170,7 +172,8 @@ void FrameTextures::uploadPlane(PlaneTexture& plane, const detail::PlaneFormat& 
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format.format, format.type, pixels);
         return;
     }
-    glTexImage2D(GL_TEXTURE_2D, 0, format.internalFormat, width, height, 0, format.format, format.type, pixels);
+    glTexImage2D(GL_TEXTURE_2D, 0, format.internalFormat, width, height, 0, format.format, format.type,
+                 pixels);
     plane.width = width;
     plane.height = height;
 }

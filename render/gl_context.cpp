@@ -18,10 +18,13 @@ Error noContext(const std::string& reason) {
 }
 
 // The surfaceless platform needs neither X nor a GPU; the default display is the fallback for EGL
-// implementations without it.
+// implementations without it. The EXT entry point, not EGL 1.5's eglGetPlatformDisplay: before a display
+// exists libepoxy cannot tell the EGL version and refuses to resolve core 1.5 functions.
 EGLDisplay openDisplay(bool& surfaceless) {
-    if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
-        EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+    if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base") &&
+        epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_MESA_platform_surfaceless")) {
+        EGLDisplay display =
+            eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
         if (display != EGL_NO_DISPLAY && eglInitialize(display, nullptr, nullptr)) {
             surfaceless = true;
             return display;
@@ -37,15 +40,25 @@ EGLDisplay openDisplay(bool& surfaceless) {
 bool chooseConfig(EGLDisplay display, bool surfaceless, EGLConfig& config) {
     // Without a surface the config only has to support desktop GL; the fallback renders into a pbuffer.
     const EGLint surfaceType = surfaceless ? 0 : EGL_PBUFFER_BIT;
-    const EGLint attributes[] = {EGL_SURFACE_TYPE, surfaceType, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
-                                 EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8, EGL_NONE};
+    // One attribute-value pair per line.
+    // clang-format off
+    const EGLint attributes[] = {EGL_SURFACE_TYPE, surfaceType,
+                                 EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT,
+                                 EGL_RED_SIZE, 8, EGL_GREEN_SIZE, 8, EGL_BLUE_SIZE, 8,
+                                 EGL_NONE};
+    // clang-format on
     EGLint count = 0;
     return eglChooseConfig(display, attributes, &config, 1, &count) && count == 1;
 }
 
 EGLContext createCoreContext(EGLDisplay display, EGLConfig config) {
-    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 3,
-                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT, EGL_NONE};
+    // One attribute-value pair per line.
+    // clang-format off
+    const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3,
+                                 EGL_CONTEXT_MINOR_VERSION, 3,
+                                 EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                 EGL_NONE};
+    // clang-format on
     return eglCreateContext(display, config, EGL_NO_CONTEXT, attributes);
 }
 
@@ -94,7 +107,9 @@ EglContext& EglContext::operator=(EglContext&& other) noexcept {
     return *this;
 }
 
-EglContext::~EglContext() { destroy(); }
+EglContext::~EglContext() {
+    destroy();
+}
 
 void EglContext::destroy() {
     if (display_ == EGL_NO_DISPLAY)

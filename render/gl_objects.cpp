@@ -6,21 +6,34 @@ namespace dc::render::gl {
 
 namespace detail {
 
-void deleteTexture(GLuint id) { glDeleteTextures(1, &id); }
-void deleteBuffer(GLuint id) { glDeleteBuffers(1, &id); }
-void deleteVertexArray(GLuint id) { glDeleteVertexArrays(1, &id); }
-void deleteShader(GLuint id) { glDeleteShader(id); }
-void deleteProgram(GLuint id) { glDeleteProgram(id); }
-void deleteFramebuffer(GLuint id) { glDeleteFramebuffers(1, &id); }
-void deleteRenderbuffer(GLuint id) { glDeleteRenderbuffers(1, &id); }
+void deleteTexture(GLuint id) {
+    glDeleteTextures(1, &id);
+}
+void deleteBuffer(GLuint id) {
+    glDeleteBuffers(1, &id);
+}
+void deleteVertexArray(GLuint id) {
+    glDeleteVertexArrays(1, &id);
+}
+void deleteShader(GLuint id) {
+    glDeleteShader(id);
+}
+void deleteProgram(GLuint id) {
+    glDeleteProgram(id);
+}
+void deleteFramebuffer(GLuint id) {
+    glDeleteFramebuffers(1, &id);
+}
+void deleteRenderbuffer(GLuint id) {
+    glDeleteRenderbuffers(1, &id);
+}
 
 } // namespace detail
 
 namespace {
 
 // glGen* only reserves a name; the object itself comes into existence at its first bind.
-template <class Object>
-Object generate(void (*gen)(GLsizei, GLuint*)) {
+template <class Object> Object generate(void (*gen)(GLsizei, GLuint*)) {
     GLuint id = 0;
     gen(1, &id);
     return Object(id);
@@ -44,19 +57,32 @@ std::string programLog(GLuint program) {
 
 const char* stageName(GLenum stage) {
     switch (stage) {
-    case GL_VERTEX_SHADER: return "vertex";
-    case GL_FRAGMENT_SHADER: return "fragment";
-    default: return "unknown";
+    case GL_VERTEX_SHADER:
+        return "vertex";
+    case GL_FRAGMENT_SHADER:
+        return "fragment";
+    default:
+        return "unknown";
     }
 }
 
 } // namespace
 
-Texture Texture::create() { return generate<Texture>(glGenTextures); }
-Buffer Buffer::create() { return generate<Buffer>(glGenBuffers); }
-VertexArray VertexArray::create() { return generate<VertexArray>(glGenVertexArrays); }
-Framebuffer Framebuffer::create() { return generate<Framebuffer>(glGenFramebuffers); }
-Renderbuffer Renderbuffer::create() { return generate<Renderbuffer>(glGenRenderbuffers); }
+Texture Texture::create() {
+    return generate<Texture>(glGenTextures);
+}
+Buffer Buffer::create() {
+    return generate<Buffer>(glGenBuffers);
+}
+VertexArray VertexArray::create() {
+    return generate<VertexArray>(glGenVertexArrays);
+}
+Framebuffer Framebuffer::create() {
+    return generate<Framebuffer>(glGenFramebuffers);
+}
+Renderbuffer Renderbuffer::create() {
+    return generate<Renderbuffer>(glGenRenderbuffers);
+}
 
 Expected<Shader> Shader::compile(GLenum stage, std::string_view source) {
     Shader shader(glCreateShader(stage));
@@ -96,6 +122,8 @@ Expected<Program> Program::link(std::string_view vertexSource, std::string_view 
     return program;
 }
 
-GLint Program::uniformLocation(const char* name) const { return glGetUniformLocation(id(), name); }
+GLint Program::uniformLocation(const char* name) const {
+    return glGetUniformLocation(id(), name);
+}
 
 } // namespace dc::render::gl

@@ -24,8 +24,7 @@ void deleteFramebuffer(GLuint id);
 void deleteRenderbuffer(GLuint id);
 
 // One owned name. GL uses 0 as "no object" for every kind, so 0 is the empty state.
-template <void (*Delete)(GLuint)>
-class UniqueName {
+template <void (*Delete)(GLuint)> class UniqueName {
 public:
     UniqueName() = default;
     explicit UniqueName(GLuint id) : id_(id) {}

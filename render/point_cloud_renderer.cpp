@@ -65,7 +65,8 @@ Status PointCloudRenderer::init() {
     return Status::success();
 }
 
-void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textures, const CloudParams& params) {
+void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textures,
+                                const CloudParams& params) {
     lastPointCount_ = 0;
     if (target.empty())
         return;

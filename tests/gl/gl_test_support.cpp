@@ -35,10 +35,13 @@ Rgba toRgba(devices::Rgb c) {
     return {devices::toByte(c.r), devices::toByte(c.g), devices::toByte(c.b), 255};
 }
 
-Rgba toRgba(const std::array<float, 3>& c) { return toRgba(devices::Rgb{c[0], c[1], c[2]}); }
+Rgba toRgba(const std::array<float, 3>& c) {
+    return toRgba(devices::Rgb{c[0], c[1], c[2]});
+}
 
 ::testing::AssertionResult near(Rgba actual, Rgba expected, int tolerance) {
-    const bool close = std::abs(actual.r - expected.r) <= tolerance && std::abs(actual.g - expected.g) <= tolerance &&
+    const bool close = std::abs(actual.r - expected.r) <= tolerance &&
+                       std::abs(actual.g - expected.g) <= tolerance &&
                        std::abs(actual.b - expected.b) <= tolerance && actual.a == expected.a;
     if (close)
         return ::testing::AssertionSuccess();
@@ -57,16 +60,20 @@ ColorFunction blockColors(int blockPixels) {
 
 namespace {
 
-devices::CapturedImage makeImage(devices::PixelFormat format, int width, int height, std::vector<std::uint8_t> bytes) {
+devices::CapturedImage makeImage(devices::PixelFormat format, int width, int height,
+                                 std::vector<std::uint8_t> bytes) {
     return {format, width, height, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
 }
 
-devices::Ycbcr ycbcrAt(const ColorFunction& color, int x, int y) { return devices::rgbToYcbcr(color(x, y)); }
+devices::Ycbcr ycbcrAt(const ColorFunction& color, int x, int y) {
+    return devices::rgbToYcbcr(color(x, y));
+}
 
 } // namespace
 
 devices::CapturedImage nv12Image(int width, int height, const ColorFunction& color) {
-    std::vector<std::uint8_t> bytes(devices::CapturedImage::byteSize(devices::PixelFormat::Nv12, width, height));
+    std::vector<std::uint8_t> bytes(
+        devices::CapturedImage::byteSize(devices::PixelFormat::Nv12, width, height));
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             bytes[static_cast<std::size_t>(y) * width + x] = devices::toByte(ycbcrAt(color, x, y).y);
@@ -83,7 +90,8 @@ devices::CapturedImage nv12Image(int width, int height, const ColorFunction& col
 }
 
 devices::CapturedImage yuyvImage(int width, int height, const ColorFunction& color) {
-    std::vector<std::uint8_t> bytes(devices::CapturedImage::byteSize(devices::PixelFormat::Yuyv, width, height));
+    std::vector<std::uint8_t> bytes(
+        devices::CapturedImage::byteSize(devices::PixelFormat::Yuyv, width, height));
     const int pairs = (width + 1) / 2;
     for (int y = 0; y < height; ++y) {
         for (int pair = 0; pair < pairs; ++pair) {

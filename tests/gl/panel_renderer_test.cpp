@@ -33,10 +33,12 @@ protected:
 
 // Depth rising from 0.5 m to 4.5 m in reading order, so rows differ and an upside-down panel shows.
 devices::DepthData rampDepth() {
-    devices::DepthData depth{devices::Plane<float>(kWidth, kHeight), devices::Plane<std::uint8_t>(kWidth, kHeight, 2)};
+    devices::DepthData depth{devices::Plane<float>(kWidth, kHeight),
+                             devices::Plane<std::uint8_t>(kWidth, kHeight, 2)};
     for (int v = 0; v < kHeight; ++v)
         for (int u = 0; u < kWidth; ++u)
-            depth.depthMeters.at(u, v) = 0.5f + 4.0f * static_cast<float>(v * kWidth + u) / (kWidth * kHeight);
+            depth.depthMeters.at(u, v) =
+                0.5f + 4.0f * static_cast<float>(v * kWidth + u) / (kWidth * kHeight);
     return depth;
 }
 
@@ -87,7 +89,7 @@ TEST_F(PanelRendererTest, CollapsedDepthRangeDoesNotBreakTheShader) {
     renderer_.renderDepth(target_, textures_, 2.0f, 2.0f);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
-    EXPECT_EQ(pixelAt(rgba, kWidth, 0, 0), toRgba(jetColor(0.0f)));          // 0.5 m, below the range
+    EXPECT_EQ(pixelAt(rgba, kWidth, 0, 0), toRgba(jetColor(0.0f))); // 0.5 m, below the range
     EXPECT_EQ(pixelAt(rgba, kWidth, kWidth - 1, kHeight - 1), toRgba(jetColor(1.0f))); // ~4.5 m, above it
 }
 
@@ -104,7 +106,8 @@ TEST_F(PanelRendererTest, ConfidencePanelIsRedGreenBlue) {
     const Rgba colors[] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, kBlack};
     for (int v = 0; v < kHeight; ++v)
         for (int u = 0; u < kWidth; ++u)
-            ASSERT_EQ(pixelAt(rgba, kWidth, u, v), colors[depth.confidence.at(u, v)]) << "at " << u << ", " << v;
+            ASSERT_EQ(pixelAt(rgba, kWidth, u, v), colors[depth.confidence.at(u, v)])
+                << "at " << u << ", " << v;
 }
 
 // Bilinear chroma blends neighbouring blocks at their borders; block interiors must be exact.
@@ -115,19 +118,22 @@ void expectCameraPanel(const std::vector<std::uint8_t>& rgba, const devices::Cap
             if (x % block < 2 || x % block >= block - 2 || y % block < 2 || y % block >= block - 2)
                 continue;
             const Rgba expected = toRgba(devices::pixelRgb(image, x, y));
-            ASSERT_TRUE(near(pixelAt(rgba, image.width, x, y), expected, tolerance)) << "at " << x << ", " << y;
+            ASSERT_TRUE(near(pixelAt(rgba, image.width, x, y), expected, tolerance))
+                << "at " << x << ", " << y;
         }
     }
 }
 
-class CameraPanelTest : public PanelRendererTest, public ::testing::WithParamInterface<devices::PixelFormat> {};
+class CameraPanelTest : public PanelRendererTest,
+                        public ::testing::WithParamInterface<devices::PixelFormat> {};
 
 TEST_P(CameraPanelTest, CameraPanelShowsTheImage) {
     constexpr int kImageWidth = 64, kImageHeight = 48, kBlock = 8;
     const ColorFunction colors = blockColors(kBlock);
-    const devices::CapturedImage image = GetParam() == devices::PixelFormat::Nv12 ? nv12Image(kImageWidth, kImageHeight, colors)
-                                         : GetParam() == devices::PixelFormat::Yuyv ? yuyvImage(kImageWidth, kImageHeight, colors)
-                                                                                     : rgb24Image(kImageWidth, kImageHeight, colors);
+    const devices::CapturedImage image =
+        GetParam() == devices::PixelFormat::Nv12   ? nv12Image(kImageWidth, kImageHeight, colors)
+        : GetParam() == devices::PixelFormat::Yuyv ? yuyvImage(kImageWidth, kImageHeight, colors)
+                                                   : rgb24Image(kImageWidth, kImageHeight, colors);
     textures_.upload(makeFrame(rampDepth(), image, kIntrinsics), false);
     EXPECT_EQ(textures_.cameraWidth(), kImageWidth);
     EXPECT_EQ(textures_.cameraHeight(), kImageHeight);
@@ -154,7 +160,8 @@ TEST_F(PanelRendererTest, PanelsWithoutDepthAreBlackAndTheCameraPanelStillWorks)
     renderer_.renderConfidence(target_, textures_);
     EXPECT_EQ(pixelAt(target_.readRgba(), 16, 8, 8), kBlack);
     renderer_.renderCamera(target_, textures_);
-    EXPECT_TRUE(near(pixelAt(target_.readRgba(), 16, 8, 8), toRgba(devices::pixelRgb(frame.capturedImage, 8, 8)), 2));
+    EXPECT_TRUE(
+        near(pixelAt(target_.readRgba(), 16, 8, 8), toRgba(devices::pixelRgb(frame.capturedImage, 8, 8)), 2));
     EXPECT_TRUE(noGlError());
 }
 

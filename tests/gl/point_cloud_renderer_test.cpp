@@ -18,8 +18,8 @@ constexpr int kDepthWidth = 64;
 constexpr int kDepthHeight = 48;
 constexpr int kCameraScale = 2;
 // Depth intrinsics fx = fy = 60, cx = 32, cy = 24 after scaling to the depth resolution.
-const devices::Intrinsics kCameraIntrinsics{120.0, 120.0, 64.0, 48.0, kDepthWidth * kCameraScale,
-                                            kDepthHeight * kCameraScale};
+const devices::Intrinsics kCameraIntrinsics{
+    120.0, 120.0, 64.0, 48.0, kDepthWidth* kCameraScale, kDepthHeight* kCameraScale};
 const glm::vec3 kBackground{0.2f, 0.4f, 0.6f};
 
 class PointCloudRendererTest : public GlTest {
@@ -70,7 +70,8 @@ TEST_F(PointCloudRendererTest, EveryPointLandsOnItsPixelWithTheCameraColor) {
     EXPECT_EQ(renderer_.lastPointCount(), std::size_t{kDepthWidth * kDepthHeight});
     for (int v = 0; v < kDepthHeight; ++v)
         for (int u = 0; u < kDepthWidth; ++u)
-            ASSERT_TRUE(near(pixelAt(rgba, kDepthWidth, u, v), cameraColor(u, v), 2)) << "at " << u << ", " << v;
+            ASSERT_TRUE(near(pixelAt(rgba, kDepthWidth, u, v), cameraColor(u, v), 2))
+                << "at " << u << ", " << v;
 }
 
 TEST_F(PointCloudRendererTest, InvalidAndNearSamplesLeaveTheBackground) {
@@ -98,8 +99,9 @@ TEST_F(PointCloudRendererTest, PointsAreUnprojectedWithTheirDepth) {
     for (const float z : {1.0f, 2.0f}) {
         textures_.upload(makeFrame(plane(z), image_, kCameraIntrinsics), false);
         CloudParams params;
-        params.viewProjection = pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight) *
-                                glm::translate(glm::mat4(1.0f), glm::vec3(1.0f / 6.0f, 0.0f, 0.0f));
+        params.viewProjection =
+            pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight) *
+            glm::translate(glm::mat4(1.0f), glm::vec3(1.0f / 6.0f, 0.0f, 0.0f));
         params.pointSizePixels = 1.0f;
         params.background = kBackground;
         renderer_.render(target_, textures_, params);
@@ -119,13 +121,15 @@ TEST_F(PointCloudRendererTest, MinConfidenceRemovesExactlyTheLowerLevels) {
     for (int v = 0; v < kDepthHeight; ++v)
         for (int u = 0; u < kDepthWidth; ++u)
             depth.confidence.at(u, v) = static_cast<std::uint8_t>((u + v) % 3);
-    for (const auto level : {devices::Confidence::Low, devices::Confidence::Medium, devices::Confidence::High}) {
+    for (const auto level :
+         {devices::Confidence::Low, devices::Confidence::Medium, devices::Confidence::High}) {
         const std::vector<std::uint8_t> rgba = renderStraightOn(depth, level);
         ASSERT_TRUE(noGlError());
         std::array<int, 3> lit{};
         for (int v = 0; v < kDepthHeight; ++v)
             for (int u = 0; u < kDepthWidth; ++u)
-                lit[static_cast<std::size_t>((u + v) % 3)] += pixelAt(rgba, kDepthWidth, u, v) != background();
+                lit[static_cast<std::size_t>((u + v) % 3)] +=
+                    pixelAt(rgba, kDepthWidth, u, v) != background();
         const int perClass = kDepthWidth * kDepthHeight / 3;
         for (int c = 0; c < 3; ++c)
             EXPECT_EQ(lit[static_cast<std::size_t>(c)], c >= static_cast<int>(level) ? perClass : 0)
@@ -141,7 +145,8 @@ TEST_F(PointCloudRendererTest, WithoutConfidenceEverySampleCountsAsHigh) {
     EXPECT_FALSE(textures_.hasConfidence());
     for (int v = 0; v < kDepthHeight; ++v)
         for (int u = 0; u < kDepthWidth; ++u)
-            ASSERT_TRUE(near(pixelAt(rgba, kDepthWidth, u, v), cameraColor(u, v), 2)) << "at " << u << ", " << v;
+            ASSERT_TRUE(near(pixelAt(rgba, kDepthWidth, u, v), cameraColor(u, v), 2))
+                << "at " << u << ", " << v;
 }
 
 TEST_F(PointCloudRendererTest, WithoutCameraImageThePointsAreMidGray) {
