@@ -2,13 +2,14 @@
 
 namespace dc::ui {
 
-void drawCameraPanel(const PanelImage& image, bool* open) {
+int drawCameraPanel(const PanelImage& image, bool* open) {
     if (!ImGui::Begin(kCameraTitle, open)) {
         ImGui::End();
-        return;
+        return 0;
     }
-    drawFittedImage(image, "No camera image yet.");
+    const ImageRect shown = drawFittedImage(image, "No camera image yet.");
     ImGui::End();
+    return static_cast<int>(shown.max.x - shown.min.x);
 }
 
 } // namespace dc::ui

@@ -34,7 +34,8 @@ void drawDepthPanel(const PanelImage& image, const DepthRange& range, bool* open
 // Confidence as red (low), green (medium), blue (high); `available` false says the source has none.
 void drawConfidencePanel(const PanelImage& image, bool available, bool* open);
 
-void drawCameraPanel(const PanelImage& image, bool* open);
+// Returns the width in pixels the image is shown at (0 when hidden), so it can be rendered at that size.
+int drawCameraPanel(const PanelImage& image, bool* open);
 
 // What the controls need to know but must not change.
 struct ControlsContext {

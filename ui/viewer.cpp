@@ -32,9 +32,14 @@ float medianDepth(const devices::DepthData& depth) {
     return *mid;
 }
 
-// The camera panel is for looking, not measuring: cap its texture so a 1920x1440 image costs no more
-// than needed to fill a panel.
-constexpr int kCameraPanelMaxWidth = 960;
+// The camera panel is for looking, not measuring: its texture is rendered at the size it is shown (in
+// steps, so resizing the panel does not reallocate every frame), never above the image's own size.
+constexpr int kCameraWidthStep = 64;
+
+int cameraPanelWidth(int imageWidth, int shownWidth) {
+    const int stepped = (shownWidth + kCameraWidthStep - 1) / kCameraWidthStep * kCameraWidthStep;
+    return std::clamp(stepped, 1, imageWidth);
+}
 
 bool sameCounting(const CloudSettings& a, const CloudSettings& b) {
     return a.minConfidence == b.minConfidence && a.nearMeters == b.nearMeters;
@@ -60,6 +65,10 @@ Status Viewer::init() {
     if (Status s = panelRenderer_.init(); !s)
         return s;
     resizeCloud(kDefaultCloudWidth, kDefaultCloudHeight);
+    // An instrument shows the sensor's own samples, not blends of neighbours; the cloud is drawn 1:1.
+    cloudTarget_.setSampling(render::Sampling::Nearest);
+    depthTarget_.setSampling(render::Sampling::Nearest);
+    confidenceTarget_.setSampling(render::Sampling::Nearest);
     if (Status s = session_.start(); !s) {
         sourceMessage_ = s.error().message;
         logError(session_.description() + ": " + sourceMessage_);
@@ -134,7 +143,7 @@ void Viewer::renderPanels() {
         panelRenderer_.renderConfidence(confidenceTarget_, textures_);
     }
     if (show.camera && textures_.cameraWidth() > 0) {
-        const int w = std::min(textures_.cameraWidth(), kCameraPanelMaxWidth);
+        const int w = cameraPanelWidth(textures_.cameraWidth(), cameraShownWidth_);
         const int h = std::max(1, textures_.cameraHeight() * w / textures_.cameraWidth());
         cameraTarget_.resize(w, h);
         panelRenderer_.renderCamera(cameraTarget_, textures_);

@@ -38,6 +38,7 @@ class Viewer {
 public:
     static constexpr int kDefaultCloudWidth = 960;
     static constexpr int kDefaultCloudHeight = 720;
+    static constexpr int kDefaultCameraWidth = 960; // until a camera panel reports its size
 
     Viewer(std::unique_ptr<devices::Device> device, Settings settings);
     ~Viewer();
@@ -89,6 +90,7 @@ private:
     render::RenderTarget depthTarget_;
     render::RenderTarget confidenceTarget_;
     render::RenderTarget cameraTarget_;
+    int cameraShownWidth_ = kDefaultCameraWidth;
     devices::FramePtr frame_;
     std::uint64_t framesShown_ = 0;
     std::uint64_t pointsDrawn_ = 0;

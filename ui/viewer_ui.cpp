@@ -65,7 +65,9 @@ void Viewer::drawUi() {
     }
     if (show.camera) {
         place(l, right, 2.0f * third, l.rightWidth, third);
-        drawCameraPanel(imageOf(cameraTarget_), &show.camera);
+        const int shownWidth = drawCameraPanel(imageOf(cameraTarget_), &show.camera);
+        if (shownWidth > 0)
+            cameraShownWidth_ = shownWidth;
     }
 }
 
