@@ -39,7 +39,8 @@ Rgb pixelRgb(const CapturedImage& image, int x, int y) {
     const auto n = [](std::uint8_t v) { return static_cast<float>(v) / 255.0f; };
     switch (image.format) {
     case PixelFormat::Nv12: {
-        const std::uint8_t* chroma = b + w * image.height + (static_cast<std::size_t>(y / 2) * ((w + 1) / 2) + x / 2) * 2;
+        const std::uint8_t* chroma =
+            b + w * image.height + (static_cast<std::size_t>(y / 2) * ((w + 1) / 2) + x / 2) * 2;
         return ycbcrToRgb({n(b[y * w + x]), n(chroma[0]), n(chroma[1])});
     }
     case PixelFormat::Yuyv: {

@@ -4,12 +4,18 @@ namespace dc::devices {
 
 const char* toString(DeviceState state) {
     switch (state) {
-    case DeviceState::Closed: return "closed";
-    case DeviceState::Open: return "open";
-    case DeviceState::Streaming: return "streaming";
-    case DeviceState::Stopped: return "stopped";
-    case DeviceState::Disconnected: return "disconnected";
-    case DeviceState::Stalled: return "stalled";
+    case DeviceState::Closed:
+        return "closed";
+    case DeviceState::Open:
+        return "open";
+    case DeviceState::Streaming:
+        return "streaming";
+    case DeviceState::Stopped:
+        return "stopped";
+    case DeviceState::Disconnected:
+        return "disconnected";
+    case DeviceState::Stalled:
+        return "stalled";
     }
     return "unknown";
 }

@@ -13,8 +13,7 @@ struct Error {
 };
 
 // A small stand-in for std::expected (GCC 12 only has it in C++23 mode).
-template <class T>
-class Expected {
+template <class T> class Expected {
 public:
     Expected(T value) : v_(std::move(value)) {}
     Expected(Error error) : v_(std::move(error)) {}

@@ -17,9 +17,12 @@ bool Intrinsics::valid() const {
 
 const char* toString(PixelFormat format) {
     switch (format) {
-    case PixelFormat::Nv12: return "NV12";
-    case PixelFormat::Yuyv: return "YUYV";
-    case PixelFormat::Rgb24: return "RGB24";
+    case PixelFormat::Nv12:
+        return "NV12";
+    case PixelFormat::Yuyv:
+        return "YUYV";
+    case PixelFormat::Rgb24:
+        return "RGB24";
     }
     return "unknown";
 }
@@ -28,9 +31,12 @@ std::size_t CapturedImage::byteSize(PixelFormat format, int width, int height) {
     const auto w = static_cast<std::size_t>(width);
     const auto h = static_cast<std::size_t>(height);
     switch (format) {
-    case PixelFormat::Nv12: return w * h + 2 * ((w + 1) / 2) * ((h + 1) / 2);
-    case PixelFormat::Yuyv: return 4 * ((w + 1) / 2) * h; // 4 bytes per horizontal pixel pair
-    case PixelFormat::Rgb24: return 3 * w * h;
+    case PixelFormat::Nv12:
+        return w * h + 2 * ((w + 1) / 2) * ((h + 1) / 2);
+    case PixelFormat::Yuyv:
+        return 4 * ((w + 1) / 2) * h; // 4 bytes per horizontal pixel pair
+    case PixelFormat::Rgb24:
+        return 3 * w * h;
     }
     return 0;
 }

@@ -28,8 +28,7 @@ struct Intrinsics {
 };
 
 // A dense single-channel image owned by value, row-major with no padding.
-template <class T>
-struct Plane {
+template <class T> struct Plane {
     int width = 0;
     int height = 0;
     std::vector<T> pixels;

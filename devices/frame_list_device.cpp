@@ -5,7 +5,6 @@ namespace dc::devices {
 FrameListDevice::FrameListDevice(std::vector<FramePtr> frames, double fps, std::string description)
     : frames_(std::move(frames)), fps_(fps), description_(std::move(description)) {}
 
-
 Capabilities FrameListDevice::capabilities() const {
     if (frames_.empty() || !frames_.front())
         return {};

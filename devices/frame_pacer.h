@@ -39,7 +39,8 @@ private:
 
 // CLOCK_MONOTONIC now, in nanoseconds: the timestamp of frames from sources without a clock of their own.
 inline std::int64_t monotonicNowNs() {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::steady_clock::now().time_since_epoch())
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::steady_clock::now().time_since_epoch())
         .count();
 }
 

@@ -8,8 +8,8 @@
 #include <cstdio>
 #include <cstring>
 #include <fstream>
-#include <vector>
 #include <unistd.h>
+#include <vector>
 
 namespace dc::devices {
 
@@ -53,8 +53,7 @@ Status writeRgbaPng(const std::string& path, int width, int height, const std::u
 }
 
 Status writeTextFile(const std::string& path, const std::string& text) {
-    return writeFileAtomically(
-        path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+    return writeFileAtomically(path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
 }
 
 } // namespace dc::devices

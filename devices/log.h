@@ -16,8 +16,14 @@ void log(LogLevel level, const std::string& message);
 void setLogSink(std::function<void(LogLevel, const std::string&)> sink);
 void setLogQuiet(bool quiet); // keep stderr for warnings and errors only (headless runs, tests)
 
-inline void logInfo(const std::string& m) { log(LogLevel::Info, m); }
-inline void logWarning(const std::string& m) { log(LogLevel::Warning, m); }
-inline void logError(const std::string& m) { log(LogLevel::Error, m); }
+inline void logInfo(const std::string& m) {
+    log(LogLevel::Info, m);
+}
+inline void logWarning(const std::string& m) {
+    log(LogLevel::Warning, m);
+}
+inline void logError(const std::string& m) {
+    log(LogLevel::Error, m);
+}
 
 } // namespace dc

@@ -12,8 +12,7 @@ namespace dc::devices {
 // Single-slot, latest-wins hand-over between one producer and one consumer (librealsense's capacity-1
 // queue). The producer never blocks: a value that the consumer has not taken yet is replaced and counted
 // as dropped, so a slow viewer always sees the newest frame and the capture thread never stalls.
-template <class T>
-class Mailbox {
+template <class T> class Mailbox {
 public:
     void post(T value) {
         std::lock_guard lock(mutex_);

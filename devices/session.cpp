@@ -13,7 +13,9 @@ Session::Session(std::unique_ptr<Device> device)
     : device_(std::move(device)), description_(device_->description()),
       capabilities_(device_->capabilities()) {}
 
-Session::~Session() { stop(); }
+Session::~Session() {
+    stop();
+}
 
 Status Session::start() {
     if (thread_.joinable())
@@ -51,8 +53,11 @@ void Session::run() {
         while (!stopRequested_) {
             CaptureResult result = device_->capture(kCaptureTimeout);
             switch (result.kind) {
-            case CaptureResult::Kind::Frame: onFrame(std::move(result.frame)); break;
-            case CaptureResult::Kind::Timeout: break;
+            case CaptureResult::Kind::Frame:
+                onFrame(std::move(result.frame));
+                break;
+            case CaptureResult::Kind::Timeout:
+                break;
             case CaptureResult::Kind::EndOfStream:
                 push({SessionEvent::Kind::EndOfStream, device_->state(), "end of stream"});
                 return;
@@ -67,7 +72,8 @@ void Session::run() {
             }
         }
     } catch (const std::exception& e) {
-        push({SessionEvent::Kind::Error, device_->state(), std::string("capture thread failed: ") + e.what()});
+        push(
+            {SessionEvent::Kind::Error, device_->state(), std::string("capture thread failed: ") + e.what()});
     } catch (...) {
         push({SessionEvent::Kind::Error, device_->state(), "capture thread failed"});
     }

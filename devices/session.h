@@ -45,7 +45,9 @@ public:
     void stop();
 
     std::optional<FramePtr> takeLatest() { return mailbox_.take(); }
-    std::optional<FramePtr> waitForFrame(std::chrono::milliseconds timeout) { return mailbox_.waitTake(timeout); }
+    std::optional<FramePtr> waitForFrame(std::chrono::milliseconds timeout) {
+        return mailbox_.waitTake(timeout);
+    }
     std::vector<SessionEvent> drainEvents();
 
     SessionStats stats() const;

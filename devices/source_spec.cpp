@@ -18,8 +18,7 @@ std::vector<std::string> split(const std::string& text, char sep) {
     return parts;
 }
 
-template <class T>
-bool parseNumber(const std::string& text, T& out) {
+template <class T> bool parseNumber(const std::string& text, T& out) {
     const char* end = text.data() + text.size();
     auto [ptr, ec] = std::from_chars(text.data(), end, out);
     return ec == std::errc() && ptr == end && !text.empty();
@@ -32,7 +31,8 @@ Status parseMode(const std::string& mode, SyntheticConfig& config) {
     const std::string size = mode.substr(0, at);
     const auto x = size.find('x');
     if (x == std::string::npos || !parseNumber(size.substr(0, x), config.depthWidth) ||
-        !parseNumber(size.substr(x + 1), config.depthHeight) || config.depthWidth <= 0 || config.depthHeight <= 0)
+        !parseNumber(size.substr(x + 1), config.depthHeight) || config.depthWidth <= 0 ||
+        config.depthHeight <= 0)
         return bad;
     if (at != std::string::npos && (!parseNumber(mode.substr(at + 1), config.fps) || !(config.fps > 0.0)))
         return bad;

@@ -13,8 +13,8 @@ SyntheticDevice::SyntheticDevice(SyntheticConfig config)
       cameraIntrinsics_(SyntheticScene::cameraIntrinsics(config.cameraWidth, config.cameraHeight)) {}
 
 std::string SyntheticDevice::description() const {
-    return "synthetic " + std::to_string(config_.depthWidth) + "x" + std::to_string(config_.depthHeight) + "@" +
-           std::to_string(static_cast<int>(config_.fps + 0.5)) + (config_.motion ? " (moving)" : "");
+    return "synthetic " + std::to_string(config_.depthWidth) + "x" + std::to_string(config_.depthHeight) +
+           "@" + std::to_string(static_cast<int>(config_.fps + 0.5)) + (config_.motion ? " (moving)" : "");
 }
 
 Capabilities SyntheticDevice::capabilities() const {

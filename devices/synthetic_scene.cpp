@@ -15,12 +15,24 @@ namespace {
 struct Vec3 {
     double x = 0, y = 0, z = 0;
 };
-Vec3 operator+(Vec3 a, Vec3 b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-Vec3 operator-(Vec3 a, Vec3 b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Vec3 operator*(Vec3 a, double s) { return {a.x * s, a.y * s, a.z * s}; }
-double dot(Vec3 a, Vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-Vec3 cross(Vec3 a, Vec3 b) { return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x}; }
-Vec3 normalize(Vec3 a) { return a * (1.0 / std::sqrt(dot(a, a))); }
+Vec3 operator+(Vec3 a, Vec3 b) {
+    return {a.x + b.x, a.y + b.y, a.z + b.z};
+}
+Vec3 operator-(Vec3 a, Vec3 b) {
+    return {a.x - b.x, a.y - b.y, a.z - b.z};
+}
+Vec3 operator*(Vec3 a, double s) {
+    return {a.x * s, a.y * s, a.z * s};
+}
+double dot(Vec3 a, Vec3 b) {
+    return a.x * b.x + a.y * b.y + a.z * b.z;
+}
+Vec3 cross(Vec3 a, Vec3 b) {
+    return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+Vec3 normalize(Vec3 a) {
+    return a * (1.0 / std::sqrt(dot(a, a)));
+}
 
 using namespace scene;
 constexpr double kCameraPitchRadians = kCameraPitchDegrees * 3.14159265358979323846 / 180.0;
@@ -41,11 +53,14 @@ struct Ray {
     Vec3 dir; // camera-z component 1, so the hit parameter t is the depth along the optical axis
 };
 
-double axis(Vec3 v, int i) { return i == 0 ? v.x : (i == 1 ? v.y : v.z); }
+double axis(Vec3 v, int i) {
+    return i == 0 ? v.x : (i == 1 ? v.y : v.z);
+}
 
 // Intersects the axis-aligned plane coordinate[axisIndex] == value; `inside` limits the plane's extent.
 template <class Inside>
-void hitPlane(const Ray& ray, int axisIndex, double value, Vec3 normal, Material m, Hit& best, Inside inside) {
+void hitPlane(const Ray& ray, int axisIndex, double value, Vec3 normal, Material m, Hit& best,
+              Inside inside) {
     const double d = axis(ray.dir, axisIndex);
     if (std::abs(d) < 1e-12)
         return;
@@ -90,9 +105,8 @@ void hitBook(const Ray& ray, Hit& best) {
 
 Hit castRay(const Ray& ray) {
     Hit best;
-    hitPlane(ray, 1, 0.0, {0, 1, 0}, Material::Desk, best, [](Vec3 p) {
-        return std::abs(p.x) <= kDeskHalfWidth && p.z >= kDeskNear && p.z <= kDeskFar;
-    });
+    hitPlane(ray, 1, 0.0, {0, 1, 0}, Material::Desk, best,
+             [](Vec3 p) { return std::abs(p.x) <= kDeskHalfWidth && p.z >= kDeskNear && p.z <= kDeskFar; });
     hitPlane(ray, 1, kFloorY, {0, 1, 0}, Material::Floor, best, [](Vec3 p) { return p.z < kWallZ; });
     const auto inWindow = [](Vec3 p) {
         return p.x > kWindowLeft && p.x < kWindowRight && p.y > kWindowBottom && p.y < kWindowTop;
@@ -131,7 +145,9 @@ std::vector<Hit> castAll(const Intrinsics& k, const Pose& pose) {
     return hits;
 }
 
-float depthOf(const Hit& h) { return h.t <= SyntheticScene::kMaxRangeMeters ? static_cast<float>(h.t) : 0.0f; }
+float depthOf(const Hit& h) {
+    return h.t <= SyntheticScene::kMaxRangeMeters ? static_cast<float>(h.t) : 0.0f;
+}
 
 // Cheap deterministic per-position value noise in [0, 1) for texture grain.
 double hash3(Vec3 p) {
@@ -141,27 +157,32 @@ double hash3(Vec3 p) {
 
 Rgb albedo(Material m, Vec3 p) {
     switch (m) {
-    case Material::Sky: return {0.72f, 0.83f, 0.95f};
+    case Material::Sky:
+        return {0.72f, 0.83f, 0.95f};
     case Material::Desk: {
         const double grain = 0.5 + 0.5 * std::sin(p.x * 70.0 + 4.0 * std::sin(p.z * 9.0));
         const auto g = static_cast<float>(0.85 + 0.15 * grain + 0.05 * hash3(p * 50.0));
         return {0.58f * g, 0.40f * g, 0.23f * g};
     }
     case Material::Floor: {
-        const bool dark = (static_cast<int>(std::floor(p.x / 0.3)) + static_cast<int>(std::floor(p.z / 0.3))) & 1;
+        const bool dark =
+            (static_cast<int>(std::floor(p.x / 0.3)) + static_cast<int>(std::floor(p.z / 0.3))) & 1;
         return dark ? Rgb{0.30f, 0.30f, 0.32f} : Rgb{0.48f, 0.47f, 0.45f};
     }
     case Material::Wall: {
         const auto s = static_cast<float>(0.04 * std::sin(p.x * 12.0) * std::sin(p.y * 12.0));
         return {0.84f + s, 0.81f + s, 0.74f + s};
     }
-    case Material::Blind: return {0.93f, 0.93f, 0.91f};
+    case Material::Blind:
+        return {0.93f, 0.93f, 0.91f};
     case Material::Apple: {
         const auto top = static_cast<float>(std::clamp((p.y - kApple.y) / kAppleRadius, 0.0, 1.0));
         return {0.80f - 0.2f * top, 0.08f + 0.45f * top, 0.06f};
     }
-    case Material::BookCover: return {0.12f, 0.18f, 0.45f};
-    case Material::BookPages: return {0.92f, 0.89f, 0.80f};
+    case Material::BookCover:
+        return {0.12f, 0.18f, 0.45f};
+    case Material::BookPages:
+        return {0.92f, 0.89f, 0.80f};
     }
     return {};
 }
@@ -268,7 +289,8 @@ DepthData SyntheticScene::sensorDepth(const Intrinsics& k, const Pose& pose, std
                 // A mixed return somewhere between the two surfaces (or none, half of the time, when the
                 // other side is out of range); never trusted.
                 const float w = uniform(rng);
-                out.depthMeters.at(x, y) = across > 0.0f ? z + (across - z) * 0.5f * w : (w < 0.5f ? 0.0f : z);
+                out.depthMeters.at(x, y) =
+                    across > 0.0f ? z + (across - z) * 0.5f * w : (w < 0.5f ? 0.0f : z);
                 continue;
             }
             const Hit& hit = hits[static_cast<std::size_t>(y) * k.width + x];
@@ -285,7 +307,8 @@ CapturedImage SyntheticScene::renderImage(const Intrinsics& k, const Pose& pose)
     const CameraRays rays = raysFor(k, pose);
     const int w = k.width, h = k.height;
     const int cw = (w + 1) / 2, ch = (h + 1) / 2;
-    auto bytes = std::make_shared<std::vector<std::uint8_t>>(CapturedImage::byteSize(PixelFormat::Nv12, w, h));
+    auto bytes =
+        std::make_shared<std::vector<std::uint8_t>>(CapturedImage::byteSize(PixelFormat::Nv12, w, h));
     std::vector<float> cb(static_cast<std::size_t>(cw) * ch), cr(cb.size());
     std::vector<int> count(cb.size());
     for (int v = 0; v < h; ++v) {

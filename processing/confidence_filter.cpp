@@ -19,7 +19,8 @@ devices::Plane<float> filterByConfidence(const devices::DepthData& depth, device
     return out;
 }
 
-std::size_t countDrawablePoints(const devices::DepthData& depth, devices::Confidence minLevel, float nearMeters) {
+std::size_t countDrawablePoints(const devices::DepthData& depth, devices::Confidence minLevel,
+                                float nearMeters) {
     std::size_t count = 0;
     for (std::size_t i = 0; i < depth.depthMeters.pixels.size(); ++i)
         count += keepSample(depth.depthMeters.pixels[i], confidenceAt(depth, i), minLevel, nearMeters);

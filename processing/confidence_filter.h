@@ -21,6 +21,7 @@ inline bool keepSample(float depthMeters, std::uint8_t confidence, devices::Conf
 devices::Plane<float> filterByConfidence(const devices::DepthData& depth, devices::Confidence minLevel);
 
 // How many points the cloud draws for this depth map, level and near limit.
-std::size_t countDrawablePoints(const devices::DepthData& depth, devices::Confidence minLevel, float nearMeters);
+std::size_t countDrawablePoints(const devices::DepthData& depth, devices::Confidence minLevel,
+                                float nearMeters);
 
 } // namespace dc::processing

@@ -4,7 +4,9 @@
 
 namespace dc::processing {
 
-void Pipeline::add(std::unique_ptr<Stage> stage) { stages_.push_back(std::move(stage)); }
+void Pipeline::add(std::unique_ptr<Stage> stage) {
+    stages_.push_back(std::move(stage));
+}
 
 void Pipeline::reset() {
     for (auto& stage : stages_)
@@ -18,7 +20,8 @@ bool Pipeline::hasStage(std::string_view name) const {
     return false;
 }
 
-devices::FramePtr Pipeline::run(devices::FramePtr frame, const ProcessingSettings& settings, const Needs& needs) {
+devices::FramePtr Pipeline::run(devices::FramePtr frame, const ProcessingSettings& settings,
+                                const Needs& needs) {
     timings_.clear();
     if (!frame)
         return frame;
@@ -40,6 +43,8 @@ devices::FramePtr Pipeline::run(devices::FramePtr frame, const ProcessingSetting
     return frame;
 }
 
-Pipeline makeDefaultPipeline() { return Pipeline{}; }
+Pipeline makeDefaultPipeline() {
+    return Pipeline{};
+}
 
 } // namespace dc::processing

@@ -23,10 +23,13 @@ std::vector<CloudPoint> buildPointCloud(const devices::Frame& frame, devices::Co
                 continue;
             const auto [x, y, zz] = unproject(u, v, z, k);
             // The camera pixel whose area matches this depth pixel's centre, as the shader samples it.
-            const int cx = static_cast<int>((u + 0.5f) * static_cast<float>(image.width) / static_cast<float>(w));
-            const int cy = static_cast<int>((v + 0.5f) * static_cast<float>(image.height) / static_cast<float>(h));
+            const int cx =
+                static_cast<int>((u + 0.5f) * static_cast<float>(image.width) / static_cast<float>(w));
+            const int cy =
+                static_cast<int>((v + 0.5f) * static_cast<float>(image.height) / static_cast<float>(h));
             const devices::Rgb rgb = devices::pixelRgb(image, cx, cy);
-            points.push_back({x, y, zz, devices::toByte(rgb.r), devices::toByte(rgb.g), devices::toByte(rgb.b), c});
+            points.push_back(
+                {x, y, zz, devices::toByte(rgb.r), devices::toByte(rgb.g), devices::toByte(rgb.b), c});
         }
     }
     return points;

@@ -33,7 +33,9 @@ public:
         return 0.5 * (*mid + *std::max_element(sorted.begin(), mid));
     }
 
-    double max() const { return samples_.empty() ? 0.0 : *std::max_element(samples_.begin(), samples_.end()); }
+    double max() const {
+        return samples_.empty() ? 0.0 : *std::max_element(samples_.begin(), samples_.end());
+    }
 
 private:
     std::size_t capacity_;

@@ -26,7 +26,8 @@ OrbitView autoOffset(const AutoMotion& motion, double timeSeconds) {
     return offset;
 }
 
-glm::mat4 cloudViewProjection(const OrbitView& view, float pivotDepthMeters, float fovYRadians, float aspect) {
+glm::mat4 cloudViewProjection(const OrbitView& view, float pivotDepthMeters, float fovYRadians,
+                              float aspect) {
     // OpenCV camera axes to OpenGL eye axes (y up, looking down -z).
     const glm::mat4 flip = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, -1.0f, -1.0f));
     const float pivot = std::max(pivotDepthMeters, 0.05f);

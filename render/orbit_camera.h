@@ -11,8 +11,8 @@ namespace dc::render {
 struct OrbitView {
     float yawRadians = 0.0f;
     float pitchRadians = 0.0f;
-    float zoom = 1.0f;          // > 1 moves the eye towards the pivot
-    glm::vec2 panMeters{0.0f};  // shifts the scene parallel to the screen
+    float zoom = 1.0f;         // > 1 moves the eye towards the pivot
+    glm::vec2 panMeters{0.0f}; // shifts the scene parallel to the screen
 };
 
 // The sample's automatic movement: the view swings from side to side around the pivot so the cloud's 3D

@@ -78,11 +78,11 @@ Expected<CaseResult> runCase(const BenchCase& c, const BenchOptions& o) {
 }
 
 void printResult(const CaseResult& r, const BenchOptions& o) {
-    std::printf("depth %dx%d in a %dx%d window, all panels shown, %d frames:\n", r.c.depthWidth, r.c.depthHeight,
-                o.width, o.height, o.frames);
+    std::printf("depth %dx%d in a %dx%d window, all panels shown, %d frames:\n", r.c.depthWidth,
+                r.c.depthHeight, o.width, o.height, o.frames);
     std::printf("  frame median %.2f ms (max %.2f ms) = %.0f fps; target %.1f ms: %s (%.2fx of target)\n",
-                r.medianMs, r.maxMs, 1000.0 / r.medianMs, kTargetMs, r.medianMs <= kTargetMs ? "met" : "MISSED",
-                r.medianMs / kTargetMs);
+                r.medianMs, r.maxMs, 1000.0 / r.medianMs, kTargetMs,
+                r.medianMs <= kTargetMs ? "met" : "MISSED", r.medianMs / kTargetMs);
     std::printf("  vs bare GL_POINTS baseline %.0f ms: %.2fx\n", r.c.bareGlPointsBaselineMs,
                 r.medianMs / r.c.bareGlPointsBaselineMs);
     std::printf("  stage medians:");

@@ -146,7 +146,8 @@ int runGui(const ViewerOptions& options) {
     }
     WindowPtr window = openWindow();
     if (!window) {
-        std::fprintf(stderr, "depthcloud: error: no OpenGL 3.3 context available for a window; use --headless\n");
+        std::fprintf(stderr,
+                     "depthcloud: error: no OpenGL 3.3 context available for a window; use --headless\n");
         return kExitFailure;
     }
     glfwMakeContextCurrent(window.get());

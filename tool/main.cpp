@@ -44,13 +44,13 @@ std::string checkOutDirectory(const std::string& dir) {
 void addViewerOptions(CLI::App& app, ViewerOptions& o) {
     app.add_option("--source", o.source, std::string("depth source: ") + dc::devices::kSourceSpecHelp)
         ->capture_default_str();
-    app.add_flag("--headless", o.headless, "no window: render offscreen and write PNGs + summary.json to --out");
+    app.add_flag("--headless", o.headless,
+                 "no window: render offscreen and write PNGs + summary.json to --out");
     app.add_option("--frames", o.frames, "stop after N frames (headless default 60)");
     app.add_option("--out", o.outDirectory, "output directory (headless default: depthcloud-snapshots)");
-    const std::map<std::string, dc::devices::Confidence> levels{
-        {"low", dc::devices::Confidence::Low},
-        {"medium", dc::devices::Confidence::Medium},
-        {"high", dc::devices::Confidence::High}};
+    const std::map<std::string, dc::devices::Confidence> levels{{"low", dc::devices::Confidence::Low},
+                                                                {"medium", dc::devices::Confidence::Medium},
+                                                                {"high", dc::devices::Confidence::High}};
     app.add_option("--confidence", o.confidence, "lowest confidence drawn in the cloud: low|medium|high")
         ->transform(CLI::CheckedTransformer(levels, CLI::ignore_case));
     app.add_flag("--reset", o.reset, "start with default settings and layout");

@@ -9,7 +9,7 @@ namespace dc::tool {
 
 // Exit codes of every depthcloud command.
 inline constexpr int kExitOk = 0;
-inline constexpr int kExitFailure = 1;   // something went wrong while running
+inline constexpr int kExitFailure = 1; // something went wrong while running
 inline constexpr int kExitBadArguments = 2;
 
 struct ViewerOptions {

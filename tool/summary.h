@@ -7,6 +7,7 @@
 namespace dc::tool {
 
 // summary.json: what a run measured (frames, rates, per-stage medians, points, drops).
-std::string summaryJson(const ui::ViewerSummary& summary, const std::string& renderer, const std::string& mode);
+std::string summaryJson(const ui::ViewerSummary& summary, const std::string& renderer,
+                        const std::string& mode);
 
 } // namespace dc::tool

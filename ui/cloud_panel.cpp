@@ -39,7 +39,8 @@ bool applyMouse(CloudSettings& cloud) {
 
 } // namespace
 
-CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const std::string& message, bool* open) {
+CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const std::string& message,
+                                bool* open) {
     CloudPanelResult result;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
     const bool visible = ImGui::Begin(kCloudTitle, open);

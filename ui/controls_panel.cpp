@@ -22,20 +22,21 @@ bool viewSection(CloudSettings& cloud) {
         cloud.orbit = {};
         changed = true;
     }
-    ImGui::SameLine();
-    ImGui::TextDisabled("drag: orbit, right-drag: pan, wheel: zoom");
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("Drag to orbit, right-drag to pan, wheel to zoom, double-click to reset.");
+    ImGui::PopStyleColor();
     changed |= ImGui::SliderFloat("Point size", &cloud.pointSizePixels, 1.0f, 8.0f, "%.1f px");
     changed |= ImGui::SliderFloat("Near limit", &cloud.nearMeters, 0.0f, 2.0f, "%.2f m");
     return changed;
 }
 
 // A toggle for a processing stage; disabled, with the reason as its tooltip, while this build lacks it.
-bool stageToggle(const char* label, bool* value, bool available) {
+bool stageToggle(const char* label, const char* stage, bool* value, bool available) {
     ImGui::BeginDisabled(!available);
     const bool changed = ImGui::Checkbox(label, value);
     ImGui::EndDisabled();
     if (!available && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
-        ImGui::SetTooltip("Not available yet: this build has no %s stage.", label);
+        ImGui::SetTooltip("Not available yet: this build has no %s stage.", stage);
     return changed && available;
 }
 
@@ -54,16 +55,19 @@ bool drawControlsPanel(Settings& settings, const ControlsContext& context, bool*
         ImGui::End();
         return false;
     }
-    ImGui::PushItemWidth(-ImGui::GetFontSize() * 7.0f);
+    ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f); // room for the longest label
     bool changed = confidenceSection(settings.cloud);
     ImGui::Separator();
     changed |= viewSection(settings.cloud);
     ImGui::Separator();
-    changed |= ImGui::DragFloatRange2("Depth range", &settings.depthRange.minMeters, &settings.depthRange.maxMeters,
-                                      0.01f, 0.0f, 100.0f, "%.2f m", "%.2f m", ImGuiSliderFlags_AlwaysClamp);
+    changed |=
+        ImGui::DragFloatRange2("Depth range", &settings.depthRange.minMeters, &settings.depthRange.maxMeters,
+                               0.01f, 0.0f, 100.0f, "%.2f m", "%.2f m", ImGuiSliderFlags_AlwaysClamp);
     ImGui::Separator();
-    changed |= stageToggle("upsampling", &settings.processing.upsampling, context.upsamplingAvailable);
-    changed |= stageToggle("smoothing", &settings.processing.smoothing, context.smoothingAvailable);
+    changed |= stageToggle("Guided upsampling", "upsampling", &settings.processing.upsampling,
+                           context.upsamplingAvailable);
+    changed |= stageToggle("Temporal smoothing", "smoothing", &settings.processing.smoothing,
+                           context.smoothingAvailable);
     ImGui::Separator();
     changed |= panelsSection(settings.panels);
     ImGui::PopItemWidth();

@@ -26,7 +26,8 @@ struct CloudPanelResult {
 
 // The rotating cloud. Left-drag orbits, right- or middle-drag pans, the wheel zooms, a double-click resets
 // the manual view. `message` (e.g. an unsupported source) is drawn over the panel when not empty.
-CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const std::string& message, bool* open);
+CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const std::string& message,
+                                bool* open);
 
 // Depth in the jet colormap, with the colormap and its range as a legend.
 void drawDepthPanel(const PanelImage& image, const DepthRange& range, bool* open);

@@ -12,10 +12,11 @@ namespace {
 
 using nlohmann::json;
 
-float finiteOr(float v, float fallback) { return std::isfinite(v) ? v : fallback; }
+float finiteOr(float v, float fallback) {
+    return std::isfinite(v) ? v : fallback;
+}
 
-template <class T>
-void read(const json& j, const char* key, T& out) {
+template <class T> void read(const json& j, const char* key, T& out) {
     const auto it = j.find(key);
     if (it == j.end())
         return;
@@ -33,7 +34,8 @@ void sanitize(CloudSettings& c) {
     c.pointSizePixels = std::clamp(finiteOr(c.pointSizePixels, d.cloud.pointSizePixels), 1.0f, 16.0f);
     c.nearMeters = std::clamp(finiteOr(c.nearMeters, d.cloud.nearMeters), 0.0f, 10.0f);
     c.motion.speed = std::clamp(finiteOr(c.motion.speed, d.cloud.motion.speed), 0.0f, 10.0f);
-    c.motion.scaleMovement = std::clamp(finiteOr(c.motion.scaleMovement, d.cloud.motion.scaleMovement), 0.0f, 2.0f);
+    c.motion.scaleMovement =
+        std::clamp(finiteOr(c.motion.scaleMovement, d.cloud.motion.scaleMovement), 0.0f, 2.0f);
     c.orbit.yawRadians = std::remainder(finiteOr(c.orbit.yawRadians, 0.0f), 2.0f * static_cast<float>(M_PI));
     c.orbit.pitchRadians = std::clamp(finiteOr(c.orbit.pitchRadians, 0.0f), -1.5f, 1.5f);
     c.orbit.zoom = std::clamp(finiteOr(c.orbit.zoom, 1.0f), 0.1f, 20.0f);
@@ -55,8 +57,11 @@ void sanitize(Settings& s) {
 std::string settingsToJson(const Settings& s) {
     const auto& c = s.cloud;
     json j;
-    j["panels"] = {{"cloud", s.panels.cloud}, {"depth", s.panels.depth}, {"confidence", s.panels.confidence},
-                   {"camera", s.panels.camera}, {"controls", s.panels.controls}};
+    j["panels"] = {{"cloud", s.panels.cloud},
+                   {"depth", s.panels.depth},
+                   {"confidence", s.panels.confidence},
+                   {"camera", s.panels.camera},
+                   {"controls", s.panels.controls}};
     j["cloud"] = {{"minConfidence", static_cast<int>(c.minConfidence)},
                   {"pointSizePixels", c.pointSizePixels},
                   {"nearMeters", c.nearMeters},

@@ -9,12 +9,13 @@ float drawStatusBar(const StatusLine& s) {
     const float height = ImGui::GetFrameHeightWithSpacing() + ImGui::GetStyle().WindowPadding.y;
     ImGui::SetNextWindowPos({viewport->WorkPos.x, viewport->WorkPos.y + viewport->WorkSize.y - height});
     ImGui::SetNextWindowSize({viewport->WorkSize.x, height});
-    constexpr ImGuiWindowFlags kFlags = ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove |
-                                        ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing |
-                                        ImGuiWindowFlags_NoBringToFrontOnFocus;
+    constexpr ImGuiWindowFlags kFlags =
+        ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoSavedSettings |
+        ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoBringToFrontOnFocus;
     if (ImGui::Begin("##status", nullptr, kFlags)) {
-        ImGui::Text("%s | %s | device %.1f fps | viewer %.1f fps | dropped %llu | points %llu", s.source.c_str(),
-                    s.state.c_str(), s.deviceFps, s.viewerFps, static_cast<unsigned long long>(s.framesDropped),
+        ImGui::Text("%s | %s | device %.1f fps | viewer %.1f fps | dropped %llu | points %llu",
+                    s.source.c_str(), s.state.c_str(), s.deviceFps, s.viewerFps,
+                    static_cast<unsigned long long>(s.framesDropped),
                     static_cast<unsigned long long>(s.pointsDrawn));
         for (const auto& stage : s.stageMedians) {
             ImGui::SameLine();

@@ -57,7 +57,9 @@ Viewer::Viewer(std::unique_ptr<devices::Device> device, Settings settings)
     sanitize(settings_);
 }
 
-Viewer::~Viewer() { session_.stop(); }
+Viewer::~Viewer() {
+    session_.stop();
+}
 
 Status Viewer::init() {
     if (Status s = cloudRenderer_.init(); !s)
@@ -78,7 +80,9 @@ Status Viewer::init() {
     return {};
 }
 
-void Viewer::resizeCloud(int width, int height) { cloudTarget_.resize(std::max(width, 1), std::max(height, 1)); }
+void Viewer::resizeCloud(int width, int height) {
+    cloudTarget_.resize(std::max(width, 1), std::max(height, 1));
+}
 
 bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     updates_.tick();
@@ -124,10 +128,10 @@ void Viewer::acceptFrame(devices::FramePtr frame) {
 
 void Viewer::countPoints() {
     countedWith_ = settings_.cloud;
-    pointsDrawn_ = frame_->sceneDepth ? processing::countDrawablePoints(*frame_->sceneDepth,
-                                                                        settings_.cloud.minConfidence,
-                                                                        settings_.cloud.nearMeters)
-                                      : 0;
+    pointsDrawn_ = frame_->sceneDepth
+                       ? processing::countDrawablePoints(*frame_->sceneDepth, settings_.cloud.minConfidence,
+                                                         settings_.cloud.nearMeters)
+                       : 0;
 }
 
 void Viewer::renderPanels() {
@@ -188,8 +192,10 @@ Status Viewer::savePanels(const std::string& directory) const {
 
 StatusLine Viewer::statusLine() const {
     const devices::SessionStats stats = session_.stats();
-    StatusLine line{session_.description(), state_, sourceMessage_, stats.deviceFps, updates_.perSecond(),
-                    stats.framesDropped, pointsDrawn_, {}};
+    StatusLine line{session_.description(), state_,
+                    sourceMessage_,         stats.deviceFps,
+                    updates_.perSecond(),   stats.framesDropped,
+                    pointsDrawn_,           {}};
     for (const auto& [name, samples] : stages_)
         line.stageMedians.push_back({name, samples.median()});
     return line;
@@ -197,8 +203,15 @@ StatusLine Viewer::statusLine() const {
 
 ViewerSummary Viewer::summary() const {
     const StatusLine line = statusLine();
-    ViewerSummary s{line.source,     framesShown_, line.framesDropped, line.deviceFps, line.viewerFps,
-                    line.pointsDrawn, 0,           0,                  line.stageMedians};
+    ViewerSummary s{line.source,
+                    framesShown_,
+                    line.framesDropped,
+                    line.deviceFps,
+                    line.viewerFps,
+                    line.pointsDrawn,
+                    0,
+                    0,
+                    line.stageMedians};
     if (frame_ && frame_->sceneDepth) {
         s.depthWidth = frame_->sceneDepth->depthMeters.width;
         s.depthHeight = frame_->sceneDepth->depthMeters.height;

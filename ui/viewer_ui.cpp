@@ -49,7 +49,8 @@ void Viewer::drawUi() {
     if (show.cloud) {
         place(l, l.leftWidth, 0, cloudWidth, l.size.y);
         const std::string message = sourceRunning_ ? std::string() : sourceMessage_;
-        const CloudPanelResult r = drawCloudPanel(imageOf(cloudTarget_), settings_.cloud, message, &show.cloud);
+        const CloudPanelResult r =
+            drawCloudPanel(imageOf(cloudTarget_), settings_.cloud, message, &show.cloud);
         if (r.wantedWidth > 0 && r.wantedHeight > 0 &&
             (r.wantedWidth != cloudTarget_.width() || r.wantedHeight != cloudTarget_.height()))
             resizeCloud(r.wantedWidth, r.wantedHeight);

@@ -23,7 +23,8 @@ struct RunResult {
 
 // Runs a shell command line, capturing stdout and stderr together.
 RunResult run(const std::string& commandLine) {
-    const fs::path log = fs::temp_directory_path() / ("depthcloud-app-test-" + std::to_string(::getpid()) + ".log");
+    const fs::path log =
+        fs::temp_directory_path() / ("depthcloud-app-test-" + std::to_string(::getpid()) + ".log");
     const int status = std::system((commandLine + " > " + log.string() + " 2>&1").c_str());
     std::ifstream in(log);
     std::stringstream text;
@@ -32,13 +33,15 @@ RunResult run(const std::string& commandLine) {
     return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, text.str()};
 }
 
-std::string binary() { return DEPTHCLOUD_BINARY; }
+std::string binary() {
+    return DEPTHCLOUD_BINARY;
+}
 
 class TempDir {
 public:
     TempDir() {
-        path_ = fs::temp_directory_path() / ("depthcloud-test-" + std::to_string(::getpid()) + "-" +
-                                             std::to_string(counter_++));
+        path_ = fs::temp_directory_path() /
+                ("depthcloud-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter_++));
         fs::remove_all(path_);
         fs::create_directories(path_);
     }
@@ -135,7 +138,8 @@ TEST(AppHeadless, NoGlContextIsAClearRuntimeError) {
 // Mean of the pixels in a rectangle given as fractions of the image.
 cv::Mat region(const cv::Mat& image, double x0, double y0, double x1, double y1) {
     return image(cv::Rect(static_cast<int>(x0 * image.cols), static_cast<int>(y0 * image.rows),
-                          static_cast<int>((x1 - x0) * image.cols), static_cast<int>((y1 - y0) * image.rows)));
+                          static_cast<int>((x1 - x0) * image.cols),
+                          static_cast<int>((y1 - y0) * image.rows)));
 }
 
 TEST(AppWindow, RunsUnderXvfbAndShowsCloudDepthAndConfidence) {
@@ -146,7 +150,8 @@ TEST(AppWindow, RunsUnderXvfbAndShowsCloudDepthAndConfidence) {
     const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
     ASSERT_EQ(shot.cols, 1280);
     ASSERT_EQ(shot.rows, 720);
-    // Default layout: controls at the left, the cloud in the middle, depth / confidence / camera on the right.
+    // Default layout: controls at the left, the cloud in the middle, depth / confidence / camera on the
+    // right.
     EXPECT_GT(contrast(region(shot, 0.35, 0.2, 0.65, 0.8)), 15.0) << "the cloud panel shows points";
     EXPECT_GT(contrast(region(shot, 0.76, 0.08, 0.98, 0.25)), 15.0) << "the depth panel shows depth";
     const cv::Mat confidence = region(shot, 0.76, 0.4, 0.98, 0.58);

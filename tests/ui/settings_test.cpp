@@ -57,7 +57,8 @@ TEST(Settings, MistypedAndOutOfRangeValuesFallBackOrClamp) {
                                         "panels": 7, "unknown": true})");
     ASSERT_TRUE(r.ok());
     EXPECT_EQ(r->cloud.minConfidence, devices::Confidence::High) << "9 clamps to the highest level";
-    EXPECT_FLOAT_EQ(r->cloud.pointSizePixels, Settings{}.cloud.pointSizePixels) << "mistyped keeps the default";
+    EXPECT_FLOAT_EQ(r->cloud.pointSizePixels, Settings{}.cloud.pointSizePixels)
+        << "mistyped keeps the default";
     EXPECT_GT(r->cloud.orbit.zoom, 0.0f);
     EXPECT_LE(r->cloud.nearMeters, 10.0f);
     EXPECT_LT(r->depthRange.minMeters, r->depthRange.maxMeters) << "an inverted range is repaired";

@@ -201,7 +201,7 @@ TEST_F(UiTest, ShortcutsChangeLevelRotationAndControls) {
 }
 
 TEST_F(UiTest, UnavailableStagesAreDisabledAndCannotBeSwitchedOn) {
-    const auto box = locate(kControlsTitle, "upsampling");
+    const auto box = locate(kControlsTitle, "Guided upsampling");
     ASSERT_TRUE(box.has_value()) << "the toggle is shown, disabled";
     click(*box, 0.0);
     EXPECT_FALSE(viewer_->settings().processing.upsampling);

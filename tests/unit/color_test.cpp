@@ -15,12 +15,9 @@ struct Known {
 };
 
 constexpr Known kKnown[] = {
-    {"black", {0, 0, 0}, 0, 127.5f, 127.5f},
-    {"white", {1, 1, 1}, 255, 127.5f, 127.5f},
-    {"red", {1, 0, 0}, 76.245f, 84.472f, 255.0f},
-    {"green", {0, 1, 0}, 149.685f, 43.028f, 20.735f},
-    {"blue", {0, 0, 1}, 29.07f, 255.0f, 106.765f},
-    {"mid gray", {0.5f, 0.5f, 0.5f}, 127.5f, 127.5f, 127.5f},
+    {"black", {0, 0, 0}, 0, 127.5f, 127.5f},       {"white", {1, 1, 1}, 255, 127.5f, 127.5f},
+    {"red", {1, 0, 0}, 76.245f, 84.472f, 255.0f},  {"green", {0, 1, 0}, 149.685f, 43.028f, 20.735f},
+    {"blue", {0, 0, 1}, 29.07f, 255.0f, 106.765f}, {"mid gray", {0.5f, 0.5f, 0.5f}, 127.5f, 127.5f, 127.5f},
 };
 
 TEST(Color, YcbcrToRgbReproducesKnownColors) {
@@ -52,10 +49,12 @@ TEST(Color, PixelRgbReadsEveryFormat) {
     // One 2x2 image per format, all pure red.
     const Ycbcr red = rgbToYcbcr({1, 0, 0});
     const std::uint8_t y = toByte(red.y), cb = toByte(red.cb), cr = toByte(red.cr);
-    CapturedImage nv12{PixelFormat::Nv12, 2, 2,
-                       std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>{y, y, y, y, cb, cr})};
-    CapturedImage yuyv{PixelFormat::Yuyv, 2, 2,
-                       std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>{y, cb, y, cr, y, cb, y, cr})};
+    CapturedImage nv12{
+        PixelFormat::Nv12, 2, 2,
+        std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>{y, y, y, y, cb, cr})};
+    CapturedImage yuyv{
+        PixelFormat::Yuyv, 2, 2,
+        std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>{y, cb, y, cr, y, cb, y, cr})};
     CapturedImage rgb{PixelFormat::Rgb24, 2, 2,
                       std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>(12, 0))};
     for (int i = 0; i < 4; ++i)

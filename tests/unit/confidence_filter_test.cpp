@@ -18,8 +18,10 @@ devices::DepthData sample() {
 
 TEST(ConfidenceFilter, KeepsOnlySamplesAtOrAboveTheLevel) {
     const devices::DepthData d = sample();
-    EXPECT_EQ(filterByConfidence(d, Confidence::Low).pixels, (std::vector<float>{1.0f, 1.5f, 2.0f, 0, 0, 0.05f}));
-    EXPECT_EQ(filterByConfidence(d, Confidence::Medium).pixels, (std::vector<float>{0, 1.5f, 2.0f, 0, 0, 0.05f}));
+    EXPECT_EQ(filterByConfidence(d, Confidence::Low).pixels,
+              (std::vector<float>{1.0f, 1.5f, 2.0f, 0, 0, 0.05f}));
+    EXPECT_EQ(filterByConfidence(d, Confidence::Medium).pixels,
+              (std::vector<float>{0, 1.5f, 2.0f, 0, 0, 0.05f}));
     EXPECT_EQ(filterByConfidence(d, Confidence::High).pixels, (std::vector<float>{0, 0, 2.0f, 0, 0, 0.05f}));
 }
 
@@ -38,7 +40,8 @@ TEST(ConfidenceFilter, WithoutAConfidenceMapEveryValidSampleIsKept) {
 
 TEST(ConfidenceFilter, InvalidDepthNeverSurvives) {
     devices::DepthData d{devices::Plane<float>(3, 1), devices::Plane<std::uint8_t>(3, 1, 2)};
-    d.depthMeters.pixels = {-1.0f, std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+    d.depthMeters.pixels = {-1.0f, std::numeric_limits<float>::infinity(),
+                            -std::numeric_limits<float>::infinity()};
     EXPECT_EQ(countDrawablePoints(d, Confidence::Low, 0.0f), 0u);
     for (float v : filterByConfidence(d, Confidence::Low).pixels)
         EXPECT_EQ(v, 0.0f);

@@ -33,8 +33,8 @@ TEST(SourceSpec, SyntheticModeAndOptions) {
 
 TEST(SourceSpec, MalformedModesNameTheProblem) {
     for (const char* bad : {"synthetic:640", "synthetic:640x", "synthetic:x480", "synthetic:640x480@",
-                            "synthetic:640x480@abc", "synthetic:-5x4", "synthetic:0x480", "synthetic:640x480@0",
-                            "synthetic:640x480@-3", "synthetic:64ox480"}) {
+                            "synthetic:640x480@abc", "synthetic:-5x4", "synthetic:0x480",
+                            "synthetic:640x480@0", "synthetic:640x480@-3", "synthetic:64ox480"}) {
         auto d = openSourceSpec(bad);
         ASSERT_FALSE(d.ok()) << bad;
         EXPECT_NE(d.error().message.find("malformed mode"), std::string::npos) << bad;

@@ -26,10 +26,12 @@ struct AnalyticCamera {
     // Depth at which the ray first meets the apple, or NaN.
     double appleDepth(int u, int v) const {
         const auto d = dir(u, v);
-        const double oc[3] = {ox - scene::kAppleCenter[0], oy - scene::kAppleCenter[1], oz - scene::kAppleCenter[2]};
+        const double oc[3] = {ox - scene::kAppleCenter[0], oy - scene::kAppleCenter[1],
+                              oz - scene::kAppleCenter[2]};
         const double a = d[0] * d[0] + d[1] * d[1] + d[2] * d[2];
         const double b = oc[0] * d[0] + oc[1] * d[1] + oc[2] * d[2];
-        const double c = oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - scene::kAppleRadius * scene::kAppleRadius;
+        const double c =
+            oc[0] * oc[0] + oc[1] * oc[1] + oc[2] * oc[2] - scene::kAppleRadius * scene::kAppleRadius;
         const double disc = b * b - a * c;
         return disc < 0 ? std::nan("") : (-b - std::sqrt(disc)) / a;
     }
