@@ -8,6 +8,7 @@ namespace dc {
 namespace {
 std::mutex gMutex;
 std::function<void(LogLevel, const std::string&)> gSink;
+std::uint64_t gSinkToken = 0;
 bool gQuiet = false;
 } // namespace
 
@@ -34,9 +35,16 @@ void log(LogLevel level, const std::string& message) {
         gSink(level, message);
 }
 
-void setLogSink(std::function<void(LogLevel, const std::string&)> sink) {
+std::uint64_t setLogSink(std::function<void(LogLevel, const std::string&)> sink) {
     std::lock_guard lock(gMutex);
     gSink = std::move(sink);
+    return ++gSinkToken;
+}
+
+void removeLogSink(std::uint64_t token) {
+    std::lock_guard lock(gMutex);
+    if (token == gSinkToken)
+        gSink = nullptr;
 }
 
 void setLogQuiet(bool quiet) {

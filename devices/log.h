@@ -1,5 +1,6 @@
 #pragma once
 
+#include <cstdint>
 #include <functional>
 #include <string>
 
@@ -13,7 +14,10 @@ const char* toString(LogLevel level);
 // UI installs to show messages in its status line. Thread-safe; the sink is called with the lock held, so
 // it must only copy the message.
 void log(LogLevel level, const std::string& message);
-void setLogSink(std::function<void(LogLevel, const std::string&)> sink);
+// Installs `sink` in place of any other and returns a token for removeLogSink(), which removes it only if it
+// is still the one installed: a sink's owner going away late must not remove its successor's sink.
+std::uint64_t setLogSink(std::function<void(LogLevel, const std::string&)> sink);
+void removeLogSink(std::uint64_t token);
 void setLogQuiet(bool quiet); // keep stderr for warnings and errors only (headless runs, tests)
 
 inline void logInfo(const std::string& m) {

@@ -22,6 +22,16 @@ public:
 
     std::size_t count() const { return samples_.size(); }
 
+    // The samples oldest first, for plotting.
+    std::vector<double> inOrder() const {
+        if (samples_.size() < capacity_)
+            return samples_;
+        const auto split = samples_.begin() + static_cast<std::ptrdiff_t>(next_);
+        std::vector<double> out(split, samples_.end());
+        out.insert(out.end(), samples_.begin(), split);
+        return out;
+    }
+
     double median() const {
         if (samples_.empty())
             return 0.0;

@@ -9,8 +9,23 @@ namespace dc::render {
 // `normalised` is clamped to [0, 1]; NaN maps like 0.
 std::array<float, 3> jetColor(float normalised);
 
-// The same function in GLSL, `vec3 jetColor(float normalised)`, for shaders to include. It lives next to
-// the C++ version so the two cannot drift apart unnoticed; the gl tests compare them pixel by pixel.
-extern const char* const kJetColorGlsl;
+// The depth panel's colormaps. Jet is the Depth Cloud sample's; turbo keeps jet's contrast without its
+// false bands; viridis is perceptually uniform and survives colour blindness and grayscale printing.
+enum class Colormap { Jet, Turbo, Viridis, Grayscale };
+inline constexpr int kColormapCount = 4;
+const char* toString(Colormap colormap);
+
+// Every colormap is piecewise linear over this many evenly spaced stops, on the CPU and in GLSL alike, so
+// the legend, the tests and the shader agree to rounding. Jet's breakpoints sit on multiples of 1/8, so
+// jet is reproduced exactly.
+inline constexpr int kColormapStopCount = 17;
+using ColormapStops = std::array<std::array<float, 3>, kColormapStopCount>;
+const ColormapStops& colormapStops(Colormap colormap);
+// `normalised` is clamped to [0, 1]; NaN maps like 0.
+std::array<float, 3> colormapColor(Colormap colormap, float normalised);
+
+// GLSL for shaders: `uniform vec3 colormapStops[17]` (upload colormapStops() into it) and
+// `vec3 colormapColor(float normalised)`, the same interpolation as the C++ function.
+extern const char* const kColormapGlsl;
 
 } // namespace dc::render

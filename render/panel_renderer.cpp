@@ -41,7 +41,7 @@ uniform float inverseRangeMeters;
 
 void main() {
     float d = texelFetch(depthMap, texelUnder(textureSize(depthMap, 0)), 0).r;
-    vec3 color = validDepth(d) ? jetColor((d - minMeters) * inverseRangeMeters) : vec3(0.0);
+    vec3 color = validDepth(d) ? colormapColor((d - minMeters) * inverseRangeMeters) : vec3(0.0);
     fragColor = vec4(color, 1.0);
 }
 )glsl";
@@ -68,7 +68,7 @@ constexpr float kMinRangeMeters = 1e-6f;
 
 Expected<gl::Program> linkPanel(const char* name, const char* main) {
     const std::string fragment =
-        std::string("#version 330 core\n") + kFrameTexturesGlsl + kJetColorGlsl + kPanelCommon + main;
+        std::string("#version 330 core\n") + kFrameTexturesGlsl + kColormapGlsl + kPanelCommon + main;
     Expected<gl::Program> program = gl::Program::link(kFullscreenVertexShader, fragment);
     if (!program)
         return Error{std::string(name) + " panel shaders: " + program.error().message};
@@ -91,15 +91,17 @@ Status PanelRenderer::init() {
     }
     depthMinMeters_ = depth_.program.uniformLocation("minMeters");
     depthInverseRange_ = depth_.program.uniformLocation("inverseRangeMeters");
+    depthColormapStops_ = depth_.program.uniformLocation("colormapStops");
     emptyVertexArray_ = gl::VertexArray::create();
     glUseProgram(0);
     return Status::success();
 }
 
 void PanelRenderer::renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters,
-                                float maxMeters) {
+                                float maxMeters, Colormap colormap) {
     if (!begin(target, textures, depth_, textures.hasDepth()))
         return;
+    glUniform3fv(depthColormapStops_, kColormapStopCount, colormapStops(colormap).front().data());
     glUniform1f(depthMinMeters_, minMeters);
     glUniform1f(depthInverseRange_, 1.0f / glm::max(maxMeters - minMeters, kMinRangeMeters));
     draw();

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "devices/expected.h"
+#include "render/colormap.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"
 #include "render/render_target.h"
@@ -15,8 +16,10 @@ class PanelRenderer {
 public:
     // Compiles the shaders; needs a current context.
     Status init();
-    // jetColor((d - minMeters) / (maxMeters - minMeters)), black where there is no measurement.
-    void renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters, float maxMeters);
+    // colormapColor(colormap, (d - minMeters) / (maxMeters - minMeters)), black where there is no
+    // measurement.
+    void renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters, float maxMeters,
+                     Colormap colormap = Colormap::Jet);
     // Low red, medium green, high blue (the sample's colors); black without depth.
     void renderConfidence(RenderTarget& target, const FrameTextures& textures);
     // The camera image converted to RGB; mid-gray without one.
@@ -37,6 +40,7 @@ private:
     Panel camera_;
     GLint depthMinMeters_ = -1;
     GLint depthInverseRange_ = -1;
+    GLint depthColormapStops_ = -1;
 };
 
 } // namespace dc::render

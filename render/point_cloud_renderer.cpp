@@ -4,6 +4,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <string>
 
 namespace dc::render {
@@ -48,6 +49,30 @@ void main() {
 }
 )glsl";
 
+// A cube per instance, built from gl_VertexID (6 faces x 2 triangles), flat-lit from above the camera so
+// its faces read as a solid among the points, as the sample draws its anchors.
+constexpr const char* kAnchorVertexShader = R"glsl(#version 330 core
+uniform mat4 viewProjection;
+uniform vec3 anchors[32];
+uniform float halfSize;
+out vec3 pointColor;
+
+const vec3 kNormals[6] = vec3[](vec3(1, 0, 0), vec3(-1, 0, 0), vec3(0, 1, 0), vec3(0, -1, 0), vec3(0, 0, 1),
+                                vec3(0, 0, -1));
+const vec2 kCorners[6] = vec2[](vec2(-1, -1), vec2(1, -1), vec2(1, 1), vec2(-1, -1), vec2(1, 1), vec2(-1, 1));
+
+void main() {
+    vec3 n = kNormals[gl_VertexID / 6];
+    vec3 t = abs(n.x) > 0.5 ? vec3(0, 1, 0) : vec3(1, 0, 0);
+    vec2 c = kCorners[gl_VertexID % 6];
+    vec3 local = n + c.x * t + c.y * cross(n, t);
+    gl_Position = viewProjection * vec4(anchors[gl_InstanceID] + halfSize * local, 1.0);
+    // OpenCV camera axes: y points down, so "above" is -y; the light also comes from behind the viewer.
+    float lambert = max(dot(n, normalize(vec3(0.3, -0.8, -0.5))), 0.0);
+    pointColor = vec3(1.0, 0.84, 0.25) * (0.35 + 0.65 * lambert);
+}
+)glsl";
+
 } // namespace
 
 Status PointCloudRenderer::init() {
@@ -56,6 +81,13 @@ Status PointCloudRenderer::init() {
     if (!program)
         return Error{"point cloud shaders: " + program.error().message};
     program_ = std::move(program).value();
+    Expected<gl::Program> anchors = gl::Program::link(kAnchorVertexShader, kFragmentShader);
+    if (!anchors)
+        return Error{"anchor shaders: " + anchors.error().message};
+    anchorProgram_ = std::move(anchors).value();
+    anchorViewProjection_ = anchorProgram_.uniformLocation("viewProjection");
+    anchorPositions_ = anchorProgram_.uniformLocation("anchors");
+    anchorHalfSize_ = anchorProgram_.uniformLocation("halfSize");
     emptyVertexArray_ = gl::VertexArray::create();
     FrameTextures::connectSamplers(program_);
     uniforms_ = {program_.uniformLocation("viewProjection"), program_.uniformLocation("depthIntrinsics"),
@@ -81,7 +113,20 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
         glDrawArrays(GL_POINTS, 0, count);
         lastPointCount_ = static_cast<std::size_t>(count);
     }
+    drawAnchors(params);
     endPass();
+}
+
+void PointCloudRenderer::drawAnchors(const CloudParams& params) const {
+    if (!anchorProgram_ || params.anchors.empty())
+        return;
+    const auto count = static_cast<GLsizei>(std::min(params.anchors.size(), kMaxDrawnAnchors));
+    glUseProgram(anchorProgram_.id());
+    glUniformMatrix4fv(anchorViewProjection_, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
+    glUniform3fv(anchorPositions_, count, glm::value_ptr(params.anchors.front()));
+    glUniform1f(anchorHalfSize_, 0.5f * params.anchorSizeMeters);
+    glBindVertexArray(emptyVertexArray_.id());
+    glDrawArraysInstanced(GL_TRIANGLES, 0, 36, count);
 }
 
 void PointCloudRenderer::setUniforms(const FrameTextures& textures, const CloudParams& params) const {

@@ -9,6 +9,7 @@
 #include <glm/glm.hpp>
 
 #include <cstddef>
+#include <vector>
 
 namespace dc::render {
 
@@ -22,7 +23,12 @@ struct CloudParams {
     float nearMeters = 0.1f;
     float pointSizePixels = 2.0f;
     glm::vec3 background{0.0f, 0.0f, 0.0f}; // linear RGB in [0, 1]
+    // Anchors, in the same frame as the points, drawn as small lit cubes among them (depth-tested).
+    std::vector<glm::vec3> anchors;
+    float anchorSizeMeters = 0.012f;
 };
+
+inline constexpr std::size_t kMaxDrawnAnchors = 32;
 
 // Draws one point per depth sample, placed by unprojecting it through the depth intrinsics and colored
 // by the camera image, the Depth Cloud sample's pointCloudVertexShader. All the work happens in the
@@ -47,8 +53,13 @@ private:
     };
 
     void setUniforms(const FrameTextures& textures, const CloudParams& params) const;
+    void drawAnchors(const CloudParams& params) const;
 
     gl::Program program_;
+    gl::Program anchorProgram_;
+    GLint anchorViewProjection_ = -1;
+    GLint anchorPositions_ = -1;
+    GLint anchorHalfSize_ = -1;
     gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
     Uniforms uniforms_;
     std::size_t lastPointCount_ = 0;

@@ -164,6 +164,7 @@ int runGui(const ViewerOptions& options) {
     if (options.confidence)
         settings.cloud.minConfidence = *options.confidence;
 
+    ui::rememberSource(settings, options.source);
     auto device = devices::openSourceSpec(options.source);
     if (!device) {
         std::fprintf(stderr, "depthcloud: error: %s\n", device.error().message.c_str());

@@ -1,4 +1,4 @@
-#include "ui/panels.h"
+#include "ui/image_panel.h"
 
 namespace dc::ui {
 
@@ -13,19 +13,21 @@ void legendEntry(const char* label, ImVec4 color) {
 
 } // namespace
 
-void drawConfidencePanel(const PanelImage& image, bool available, bool* open) {
-    if (!ImGui::Begin(kConfidenceTitle, open)) {
+PanelResult drawConfidencePanel(const PanelImage& image, bool available, const ProbeSource& probe,
+                                bool* open) {
+    PanelResult result;
+    if (!beginImagePanel(kConfidenceTitle, open, result)) {
         ImGui::End();
-        return;
+        return result;
     }
     if (!available) {
         ImGui::TextWrapped("This source provides no confidence: every depth sample is treated as high.");
         ImGui::End();
-        return;
+        return result;
     }
     const float legendHeight = ImGui::GetFrameHeightWithSpacing();
     if (ImGui::BeginChild("##confidence", ImVec2(0.0f, -legendHeight)))
-        drawFittedImage(image, "No confidence yet.");
+        interactWithImage(drawImage(image, ImageFit::Fit, "No confidence yet."), probe, result);
     ImGui::EndChild();
     legendEntry("low", ImVec4(1, 0, 0, 1));
     ImGui::SameLine();
@@ -33,6 +35,7 @@ void drawConfidencePanel(const PanelImage& image, bool available, bool* open) {
     ImGui::SameLine();
     legendEntry("high", ImVec4(0, 0, 1, 1));
     ImGui::End();
+    return result;
 }
 
 } // namespace dc::ui

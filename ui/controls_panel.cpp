@@ -40,29 +40,72 @@ bool stageToggle(const char* label, const char* stage, bool* value, bool availab
     return changed && available;
 }
 
+bool depthSection(DepthRange& range) {
+    int colormap = static_cast<int>(range.colormap);
+    bool changed = ImGui::Combo("Colormap", &colormap, "jet\0turbo\0viridis\0grayscale\0");
+    range.colormap = static_cast<render::Colormap>(colormap);
+    changed |= ImGui::Checkbox("Automatic range", &range.automatic);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Follow each frame's 2nd to 98th depth percentile.");
+    ImGui::BeginDisabled(range.automatic);
+    changed |= ImGui::DragFloatRange2("Depth range", &range.minMeters, &range.maxMeters, 0.01f, 0.0f, 100.0f,
+                                      "%.2f m", "%.2f m", ImGuiSliderFlags_AlwaysClamp);
+    ImGui::EndDisabled();
+    return changed;
+}
+
+bool cameraSection(CameraView& camera) {
+    bool changed = ImGui::Checkbox("Fill camera panel", &camera.fill);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Crop the image to fill the panel, as the sample's display transform does.");
+    changed |= ImGui::Checkbox("Depth over camera", &camera.depthOverlay);
+    ImGui::BeginDisabled(!camera.depthOverlay);
+    changed |= ImGui::SliderFloat("Opacity", &camera.overlayOpacity, 0.0f, 1.0f, "%.2f");
+    ImGui::EndDisabled();
+    return changed;
+}
+
+void anchorsSection(const ControlsContext& context, ControlsResult& result) {
+    ImGui::Text("Anchors: %zu", context.anchorCount);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(context.anchorCount == 0);
+    result.undoAnchor = ImGui::SmallButton("Undo [Z]");
+    ImGui::SameLine();
+    result.clearAnchors = ImGui::SmallButton("Clear");
+    ImGui::EndDisabled();
+    ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
+    ImGui::TextWrapped("Click the cloud to drop an anchor; two show their distance, three or more an area.");
+    ImGui::PopStyleColor();
+}
+
 bool panelsSection(PanelVisibility& panels) {
     bool changed = ImGui::Checkbox(kCloudTitle, &panels.cloud);
     changed |= ImGui::Checkbox(kDepthTitle, &panels.depth);
     changed |= ImGui::Checkbox(kConfidenceTitle, &panels.confidence);
     changed |= ImGui::Checkbox(kCameraTitle, &panels.camera);
+    changed |= ImGui::Checkbox("Stats [S]", &panels.stats);
+    changed |= ImGui::Checkbox("Log [L]", &panels.log);
     return changed;
 }
 
 } // namespace
 
-bool drawControlsPanel(Settings& settings, const ControlsContext& context, bool* open) {
+ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& context, bool* open) {
+    ControlsResult result;
     if (!ImGui::Begin(kControlsTitle, open)) {
         ImGui::End();
-        return false;
+        return result;
     }
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f); // room for the longest label
     bool changed = confidenceSection(settings.cloud);
     ImGui::Separator();
     changed |= viewSection(settings.cloud);
     ImGui::Separator();
-    changed |=
-        ImGui::DragFloatRange2("Depth range", &settings.depthRange.minMeters, &settings.depthRange.maxMeters,
-                               0.01f, 0.0f, 100.0f, "%.2f m", "%.2f m", ImGuiSliderFlags_AlwaysClamp);
+    anchorsSection(context, result);
+    ImGui::Separator();
+    changed |= depthSection(settings.depthRange);
+    ImGui::Separator();
+    changed |= cameraSection(settings.camera);
     ImGui::Separator();
     changed |= stageToggle("Guided upsampling", "upsampling", &settings.processing.upsampling,
                            context.upsamplingAvailable);
@@ -74,7 +117,8 @@ bool drawControlsPanel(Settings& settings, const ControlsContext& context, bool*
     ImGui::End();
     if (changed)
         sanitize(settings);
-    return changed;
+    result.changed = changed;
+    return result;
 }
 
 bool handleShortcuts(Settings& settings) {
@@ -98,9 +142,13 @@ bool handleShortcuts(Settings& settings) {
         settings.cloud.orbit = {};
         fired = true;
     }
-    if (ImGui::IsKeyPressed('C', false)) {
-        settings.panels.controls = !settings.panels.controls;
-        fired = true;
+    const std::pair<int, bool*> panelKeys[] = {
+        {'C', &settings.panels.controls}, {'S', &settings.panels.stats}, {'L', &settings.panels.log}};
+    for (const auto& [key, shown] : panelKeys) {
+        if (ImGui::IsKeyPressed(key, false)) {
+            *shown = !*shown;
+            fired = true;
+        }
     }
     return fired;
 }

@@ -1,5 +1,5 @@
 #include "render/colormap.h"
-#include "ui/panels.h"
+#include "ui/image_panel.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -8,16 +8,18 @@ namespace dc::ui {
 
 namespace {
 
-// The jet ramp drawn as a strip of linear segments, with the range at its ends.
-void drawLegend(const DepthRange& range) {
-    constexpr int kSegments = 32;
+// The colormap drawn as a strip of linear segments (exact: the maps are piecewise linear over their
+// stops), with the range at its ends.
+void drawLegend(const DepthLegend& legend) {
+    constexpr int kSegments = render::kColormapStopCount - 1;
     ImDrawList* draw = ImGui::GetWindowDrawList();
     const ImVec2 p = ImGui::GetCursorScreenPos();
     const float width = ImGui::GetContentRegionAvail().x;
     const float height = ImGui::GetTextLineHeight() * 0.6f;
+    const auto& stops = render::colormapStops(legend.colormap);
     for (int i = 0; i < kSegments; ++i) {
-        const auto a = render::jetColor(static_cast<float>(i) / kSegments);
-        const auto b = render::jetColor(static_cast<float>(i + 1) / kSegments);
+        const auto& a = stops[static_cast<std::size_t>(i)];
+        const auto& b = stops[static_cast<std::size_t>(i) + 1];
         const ImU32 ca = ImGui::GetColorU32(ImVec4(a[0], a[1], a[2], 1.0f));
         const ImU32 cb = ImGui::GetColorU32(ImVec4(b[0], b[1], b[2], 1.0f));
         const float x0 = p.x + width * static_cast<float>(i) / kSegments;
@@ -25,27 +27,31 @@ void drawLegend(const DepthRange& range) {
         draw->AddRectFilledMultiColor({x0, p.y}, {x1, p.y + height}, ca, cb, cb, ca);
     }
     ImGui::Dummy({width, height});
-    ImGui::Text("%.2f m", range.minMeters);
-    char text[32];
-    std::snprintf(text, sizeof text, "%.2f m", range.maxMeters);
+    ImGui::Text("%.2f m", legend.minMeters);
+    char text[48];
+    std::snprintf(text, sizeof text, "%s%s  %.2f m", render::toString(legend.colormap),
+                  legend.automatic ? ", auto" : "", legend.maxMeters);
     ImGui::SameLine(std::max(0.0f, width - ImGui::CalcTextSize(text).x));
     ImGui::TextUnformatted(text);
 }
 
 } // namespace
 
-void drawDepthPanel(const PanelImage& image, const DepthRange& range, bool* open) {
-    if (!ImGui::Begin(kDepthTitle, open)) {
+PanelResult drawDepthPanel(const PanelImage& image, const DepthLegend& legend, const ProbeSource& probe,
+                           bool* open) {
+    PanelResult result;
+    if (!beginImagePanel(kDepthTitle, open, result)) {
         ImGui::End();
-        return;
+        return result;
     }
     const float legendHeight = ImGui::GetTextLineHeight() * 0.6f + ImGui::GetTextLineHeightWithSpacing() +
                                ImGui::GetStyle().ItemSpacing.y * 2.0f;
     if (ImGui::BeginChild("##depth", ImVec2(0.0f, -legendHeight)))
-        drawFittedImage(image, "No depth yet.");
+        interactWithImage(drawImage(image, ImageFit::Fit, "No depth yet."), probe, result);
     ImGui::EndChild();
-    drawLegend(range);
+    drawLegend(legend);
     ImGui::End();
+    return result;
 }
 
 } // namespace dc::ui

@@ -3,6 +3,10 @@
 #include <backends/imgui_impl_opengl3.h>
 #include <epoxy/gl.h>
 
+#include <GLFW/glfw3.h>
+
+#include <utility>
+
 namespace dc::ui {
 
 HeadlessUi::~HeadlessUi() {
@@ -19,6 +23,14 @@ Status HeadlessUi::init(int width, int height) {
     ImGuiIO& io = ImGui::GetIO();
     io.IniFilename = nullptr; // tests and benchmarks start from the default layout every time
     io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
+    // The named keys as GLFW's backend maps them, so shortcuts behave the same with and without a window.
+    const std::pair<ImGuiKey, int> keys[] = {
+        {ImGuiKey_Escape, GLFW_KEY_ESCAPE},  {ImGuiKey_Space, GLFW_KEY_SPACE},
+        {ImGuiKey_LeftArrow, GLFW_KEY_LEFT}, {ImGuiKey_RightArrow, GLFW_KEY_RIGHT},
+        {ImGuiKey_Home, GLFW_KEY_HOME},      {ImGuiKey_End, GLFW_KEY_END},
+        {ImGuiKey_Enter, GLFW_KEY_ENTER},    {ImGuiKey_Tab, GLFW_KEY_TAB}};
+    for (const auto& [key, code] : keys)
+        io.KeyMap[key] = code;
     if (!ImGui_ImplOpenGL3_Init("#version 330 core"))
         return Error{"ImGui's OpenGL 3 renderer failed to initialise"};
     rendererReady_ = true;

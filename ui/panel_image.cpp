@@ -5,22 +5,64 @@
 
 namespace dc::ui {
 
-ImageRect drawFittedImage(const PanelImage& image, const char* emptyMessage) {
+namespace {
+
+ImTextureID textureOf(const PanelImage& image) {
+    return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(image.textureId));
+}
+
+// Texture coordinates of a visible part of an upright image in a bottom-up render target.
+ImVec2 flippedUv(ImVec2 fraction) {
+    return {fraction.x, 1.0f - fraction.y};
+}
+
+} // namespace
+
+ImageRect drawImage(const PanelImage& image, ImageFit fit, const char* emptyMessage) {
     const ImVec2 avail = ImGui::GetContentRegionAvail();
     const ImVec2 origin = ImGui::GetCursorScreenPos();
     if (image.empty() || avail.x < 1.0f || avail.y < 1.0f) {
         ImGui::TextWrapped("%s", emptyMessage);
         return {origin, origin};
     }
-    const float scale =
-        std::min(avail.x / static_cast<float>(image.width), avail.y / static_cast<float>(image.height));
+    const float sx = avail.x / static_cast<float>(image.width);
+    const float sy = avail.y / static_cast<float>(image.height);
+    const float scale = fit == ImageFit::Fit ? std::min(sx, sy) : std::max(sx, sy);
     const ImVec2 size{static_cast<float>(image.width) * scale, static_cast<float>(image.height) * scale};
-    const ImVec2 offset{(avail.x - size.x) * 0.5f, (avail.y - size.y) * 0.5f};
-    ImGui::SetCursorScreenPos({origin.x + offset.x, origin.y + offset.y});
-    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(image.textureId)), size,
-                 kFlippedUv0, kFlippedUv1);
-    const ImVec2 min{origin.x + offset.x, origin.y + offset.y};
-    return {min, {min.x + size.x, min.y + size.y}};
+    ImageRect shown;
+    if (fit == ImageFit::Fit) {
+        shown.min = {origin.x + (avail.x - size.x) * 0.5f, origin.y + (avail.y - size.y) * 0.5f};
+        shown.max = {shown.min.x + size.x, shown.min.y + size.y};
+    } else {
+        shown.min = origin;
+        shown.max = {origin.x + avail.x, origin.y + avail.y};
+        const ImVec2 crop{(1.0f - avail.x / size.x) * 0.5f, (1.0f - avail.y / size.y) * 0.5f};
+        shown.visibleMin = crop;
+        shown.visibleMax = {1.0f - crop.x, 1.0f - crop.y};
+    }
+    ImGui::SetCursorScreenPos(shown.min);
+    ImGui::Image(textureOf(image), {shown.max.x - shown.min.x, shown.max.y - shown.min.y},
+                 flippedUv(shown.visibleMin), flippedUv(shown.visibleMax));
+    return shown;
+}
+
+void drawOverlay(const PanelImage& overlay, const ImageRect& shown, float opacity) {
+    if (overlay.empty() || shown.max.x <= shown.min.x)
+        return;
+    const ImU32 tint = ImGui::GetColorU32(ImVec4(1.0f, 1.0f, 1.0f, opacity));
+    ImGui::GetWindowDrawList()->AddImage(textureOf(overlay), shown.min, shown.max,
+                                         flippedUv(shown.visibleMin), flippedUv(shown.visibleMax), tint);
+}
+
+std::optional<ImVec2> imageFractionUnderMouse(const ImageRect& shown) {
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    if (!ImGui::IsWindowHovered() || m.x < shown.min.x || m.y < shown.min.y || m.x >= shown.max.x ||
+        m.y >= shown.max.y)
+        return std::nullopt;
+    const float fx = (m.x - shown.min.x) / (shown.max.x - shown.min.x);
+    const float fy = (m.y - shown.min.y) / (shown.max.y - shown.min.y);
+    return ImVec2(shown.visibleMin.x + fx * (shown.visibleMax.x - shown.visibleMin.x),
+                  shown.visibleMin.y + fy * (shown.visibleMax.y - shown.visibleMin.y));
 }
 
 } // namespace dc::ui

@@ -2,6 +2,8 @@
 
 #include <imgui.h>
 
+#include <optional>
+
 namespace dc::ui {
 
 // A panel's content rendered into a GL texture by render/, with its size in pixels.
@@ -13,13 +15,30 @@ struct PanelImage {
     bool empty() const { return textureId == 0 || width <= 0 || height <= 0; }
 };
 
-// Draws `image` as large as the remaining content region allows, keeping its aspect ratio, centred.
-// Returns the screen rectangle it occupies (min, max); an empty image draws `emptyMessage` instead.
+// Where an image landed on screen (min, max) and which part of it is visible there: fractions of the
+// image, (0, 0) at its top-left corner. A fitted image shows all of it; a filling one is cropped.
 struct ImageRect {
     ImVec2 min;
     ImVec2 max;
+    ImVec2 visibleMin{0.0f, 0.0f};
+    ImVec2 visibleMax{1.0f, 1.0f};
 };
-ImageRect drawFittedImage(const PanelImage& image, const char* emptyMessage);
+
+enum class ImageFit {
+    Fit,  // as large as fits, aspect kept, centred (letterboxed)
+    Fill, // covers the region, aspect kept, cropped evenly (the sample's aspect-fill display transform)
+};
+
+// Draws `image` into the remaining content region. An empty image draws `emptyMessage` instead and
+// returns an empty rectangle at the cursor.
+ImageRect drawImage(const PanelImage& image, ImageFit fit, const char* emptyMessage);
+
+// Draws `overlay` over exactly the part of the image `shown` covers, at the given opacity.
+void drawOverlay(const PanelImage& overlay, const ImageRect& shown, float opacity);
+
+// Where the mouse is over a drawn image, as a fraction of the whole image; nothing when it is elsewhere or
+// the window is not hovered.
+std::optional<ImVec2> imageFractionUnderMouse(const ImageRect& shown);
 
 // Render targets are stored bottom-up (OpenGL), ImGui draws top-down: these UVs flip them upright.
 inline const ImVec2 kFlippedUv0{0.0f, 1.0f};

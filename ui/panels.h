@@ -2,8 +2,12 @@
 
 #include "devices/device.h"
 #include "processing/pipeline.h"
+#include "ui/log_store.h"
 #include "ui/panel_image.h"
+#include "ui/probe.h"
 #include "ui/settings.h"
+
+#include <optional>
 
 #include <cstdint>
 #include <string>
@@ -18,34 +22,85 @@ inline constexpr const char* kConfidenceTitle = "Confidence";
 inline constexpr const char* kCameraTitle = "Camera";
 inline constexpr const char* kControlsTitle = "Controls";
 
+inline constexpr const char* kStatsTitle = "Stats";
+inline constexpr const char* kLogTitle = "Log";
+
+// What every image panel reports back: the window's place (to restore it after a zoom), a request to
+// open it large or bring it back (a click on a 2D panel, the zoom button on the cloud), and the depth
+// sample under the mouse for the readout.
+struct PanelResult {
+    bool visible = false;
+    ImVec2 windowPos;
+    ImVec2 windowSize;
+    bool toggleZoom = false;
+    std::optional<Probe> probe;
+};
+
+// A mark drawn over the cloud: an anchor (a label at a point) or a measured segment between two.
+struct CloudOverlay {
+    std::vector<ImVec2> anchors;                       // in the cloud image, fractions of its size
+    std::vector<std::pair<int, std::string>> segments; // (first anchor of the segment, label)
+    std::string summary;                               // e.g. the area of the anchors' polygon
+};
+
 struct CloudPanelResult {
+    PanelResult panel;
     bool viewChanged = false;
     int wantedWidth = 0; // pixel size of the panel's content region: render the next cloud at this size
     int wantedHeight = 0;
+    std::optional<ImVec2> hoverPixels; // the mouse over the cloud, in cloud-image pixels
+    std::optional<ImVec2> clickPixels; // a left click (not a drag) on the cloud, in cloud-image pixels
+    bool doubleClicked = false;        // the view was reset by a double-click
 };
 
 // The rotating cloud. Left-drag orbits, right- or middle-drag pans, the wheel zooms, a double-click resets
-// the manual view. `message` (e.g. an unsupported source) is drawn over the panel when not empty.
-CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const std::string& message,
-                                bool* open);
+// the manual view, a click is reported (anchors). `message` (e.g. an unsupported source) is drawn over the
+// panel when not empty.
+CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const CloudOverlay& overlay,
+                                const std::string& message, bool zoomed, bool* open);
 
-// Depth in the jet colormap, with the colormap and its range as a legend.
-void drawDepthPanel(const PanelImage& image, const DepthRange& range, bool* open);
+// How the depth panel maps meters to colour: the range actually used (fixed or automatic) and the ramp.
+struct DepthLegend {
+    float minMeters = 0.0f;
+    float maxMeters = 2.5f;
+    render::Colormap colormap = render::Colormap::Jet;
+    bool automatic = false;
+};
+
+// Depth in the chosen colormap, with the colormap and its range as a legend.
+PanelResult drawDepthPanel(const PanelImage& image, const DepthLegend& legend, const ProbeSource& probe,
+                           bool* open);
 
 // Confidence as red (low), green (medium), blue (high); `available` false says the source has none.
-void drawConfidencePanel(const PanelImage& image, bool available, bool* open);
+PanelResult drawConfidencePanel(const PanelImage& image, bool available, const ProbeSource& probe,
+                                bool* open);
 
-// Returns the width in pixels the image is shown at (0 when hidden), so it can be rendered at that size.
-int drawCameraPanel(const PanelImage& image, bool* open);
+struct CameraPanelResult {
+    PanelResult panel;
+    int shownWidth =
+        0; // the width in pixels the image is shown at (0 when hidden), to render it at that size
+};
+
+// The camera image, fitted or filling the panel, optionally with the depth panel's image laid over it.
+CameraPanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay,
+                                  const CameraView& view, const ProbeSource& probe, bool* open);
 
 // What the controls need to know but must not change.
 struct ControlsContext {
     bool smoothingAvailable = false;
     bool upsamplingAvailable = false;
+    std::size_t anchorCount = 0;
 };
 
-// Every setting; returns whether anything changed.
-bool drawControlsPanel(Settings& settings, const ControlsContext& context, bool* open);
+// What the controls ask for beyond settings.
+struct ControlsResult {
+    bool changed = false; // any setting
+    bool undoAnchor = false;
+    bool clearAnchors = false;
+};
+
+// Every setting.
+ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& context, bool* open);
 
 struct StatusLine {
     std::string source;
@@ -58,11 +113,42 @@ struct StatusLine {
     std::vector<processing::StageTiming> stageMedians;
 };
 
+struct StageHistory {
+    std::string name;
+    double medianMs = 0.0;
+    double maxMs = 0.0;
+    std::vector<float> history; // the last few seconds, oldest first
+};
+
+struct StatsView {
+    double deviceFps = 0.0;
+    double viewerFps = 0.0;
+    std::uint64_t framesDropped = 0;
+    std::uint64_t pointsDrawn = 0;
+    std::optional<double> latencyMs; // median device timestamp to screen; none when clocks differ
+    double residentMebibytes = 0.0;
+    std::vector<StageHistory> stages;
+};
+
+// Rates, drops, latency, memory and each stage's median and maximum with a plot of its recent history.
+void drawStatsPanel(const StatsView& stats, bool* open);
+
+struct LogPanelState {
+    int minLevel = static_cast<int>(LogLevel::Info);
+    ImGuiTextFilter filter;
+};
+
+// The log's recent messages, filtered by level and text.
+void drawLogPanel(const std::vector<LogEntry>& entries, LogPanelState& state, bool* open);
+
+// Recent warnings and errors as small notes in the bottom-right corner, above `bottomMargin` pixels.
+void drawToasts(const std::vector<LogEntry>& entries, float bottomMargin);
+
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.
 float drawStatusBar(const StatusLine& status);
 
 // Keyboard shortcuts for the common toggles (R rotation, 1/2/3 confidence level, V reset view,
-// C show/hide the controls).
+// C / S / L show or hide the controls, stats and log panels).
 // Returns whether any fired. Ignored while a text field has the keyboard.
 bool handleShortcuts(Settings& settings);
 

@@ -52,16 +52,30 @@ void sanitize(Settings& s) {
     auto& r = s.depthRange;
     r.minMeters = std::clamp(finiteOr(r.minMeters, d.depthRange.minMeters), 0.0f, 99.0f);
     r.maxMeters = std::clamp(finiteOr(r.maxMeters, d.depthRange.maxMeters), r.minMeters + 0.01f, 100.0f);
+    const auto colormap = static_cast<int>(r.colormap);
+    if (colormap < 0 || colormap >= render::kColormapCount)
+        r.colormap = d.depthRange.colormap;
+    s.camera.overlayOpacity =
+        std::clamp(finiteOr(s.camera.overlayOpacity, d.camera.overlayOpacity), 0.0f, 1.0f);
+    if (s.recentSources.size() > kMaxRecentSources)
+        s.recentSources.resize(kMaxRecentSources);
+}
+
+void rememberSource(Settings& settings, const std::string& source) {
+    auto& recent = settings.recentSources;
+    recent.erase(std::remove(recent.begin(), recent.end(), source), recent.end());
+    recent.insert(recent.begin(), source);
+    if (recent.size() > kMaxRecentSources)
+        recent.resize(kMaxRecentSources);
 }
 
 std::string settingsToJson(const Settings& s) {
     const auto& c = s.cloud;
     json j;
-    j["panels"] = {{"cloud", s.panels.cloud},
-                   {"depth", s.panels.depth},
-                   {"confidence", s.panels.confidence},
-                   {"camera", s.panels.camera},
-                   {"controls", s.panels.controls}};
+    j["panels"] = {
+        {"cloud", s.panels.cloud},   {"depth", s.panels.depth},       {"confidence", s.panels.confidence},
+        {"camera", s.panels.camera}, {"controls", s.panels.controls}, {"stats", s.panels.stats},
+        {"log", s.panels.log}};
     j["cloud"] = {{"minConfidence", static_cast<int>(c.minConfidence)},
                   {"pointSizePixels", c.pointSizePixels},
                   {"nearMeters", c.nearMeters},
@@ -73,7 +87,14 @@ std::string settingsToJson(const Settings& s) {
                   {"zoom", c.orbit.zoom},
                   {"panX", c.orbit.panMeters.x},
                   {"panY", c.orbit.panMeters.y}};
-    j["depthRange"] = {{"minMeters", s.depthRange.minMeters}, {"maxMeters", s.depthRange.maxMeters}};
+    j["depthRange"] = {{"minMeters", s.depthRange.minMeters},
+                       {"maxMeters", s.depthRange.maxMeters},
+                       {"automatic", s.depthRange.automatic},
+                       {"colormap", static_cast<int>(s.depthRange.colormap)}};
+    j["camera"] = {{"fill", s.camera.fill},
+                   {"depthOverlay", s.camera.depthOverlay},
+                   {"overlayOpacity", s.camera.overlayOpacity}};
+    j["recentSources"] = s.recentSources;
     j["processing"] = {{"smoothing", s.processing.smoothing}, {"upsampling", s.processing.upsampling}};
     return j.dump(2) + "\n";
 }
@@ -90,6 +111,8 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(p, "confidence", s.panels.confidence);
     read(p, "camera", s.panels.camera);
     read(p, "controls", s.panels.controls);
+    read(p, "stats", s.panels.stats);
+    read(p, "log", s.panels.log);
     const json& c = j.contains("cloud") ? j["cloud"] : none;
     int level = static_cast<int>(s.cloud.minConfidence);
     read(c, "minConfidence", level);
@@ -107,6 +130,15 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     const json& r = j.contains("depthRange") ? j["depthRange"] : none;
     read(r, "minMeters", s.depthRange.minMeters);
     read(r, "maxMeters", s.depthRange.maxMeters);
+    read(r, "automatic", s.depthRange.automatic);
+    int colormap = static_cast<int>(s.depthRange.colormap);
+    read(r, "colormap", colormap);
+    s.depthRange.colormap = static_cast<render::Colormap>(colormap);
+    const json& cam = j.contains("camera") ? j["camera"] : none;
+    read(cam, "fill", s.camera.fill);
+    read(cam, "depthOverlay", s.camera.depthOverlay);
+    read(cam, "overlayOpacity", s.camera.overlayOpacity);
+    read(j, "recentSources", s.recentSources);
     const json& pr = j.contains("processing") ? j["processing"] : none;
     read(pr, "smoothing", s.processing.smoothing);
     read(pr, "upsampling", s.processing.upsampling);

@@ -3,9 +3,11 @@
 #include "devices/expected.h"
 #include "devices/frame.h"
 #include "processing/pipeline.h"
+#include "render/colormap.h"
 #include "render/orbit_camera.h"
 
 #include <string>
+#include <vector>
 
 namespace dc::ui {
 
@@ -15,6 +17,8 @@ struct PanelVisibility {
     bool confidence = true;
     bool camera = true;
     bool controls = true;
+    bool stats = false;
+    bool log = false;
 };
 
 struct CloudSettings {
@@ -28,6 +32,16 @@ struct CloudSettings {
 struct DepthRange {
     float minMeters = 0.0f;
     float maxMeters = 2.5f; // the sample's range: fine detail in a room-sized scene
+    bool automatic = false; // follow the frame's 2nd to 98th depth percentiles instead
+    render::Colormap colormap = render::Colormap::Jet;
+};
+
+// The camera panel fits the whole image (letterboxed) or fills the panel and crops, as the sample's
+// display transform does; the depth can be laid over it.
+struct CameraView {
+    bool fill = false;
+    bool depthOverlay = false;
+    float overlayOpacity = 0.5f;
 };
 
 // Everything the user can set; plain data, edited by the panels, persisted between runs.
@@ -35,8 +49,15 @@ struct Settings {
     PanelVisibility panels;
     CloudSettings cloud;
     DepthRange depthRange;
+    CameraView camera;
     processing::ProcessingSettings processing;
+    std::vector<std::string> recentSources; // newest first, at most kMaxRecentSources
 };
+
+inline constexpr std::size_t kMaxRecentSources = 8;
+
+// Moves `source` to the front of the recent list (adding it if new) and trims the list.
+void rememberSource(Settings& settings, const std::string& source);
 
 // Puts every field back into its valid range (a hand-edited or old settings file may hold anything).
 void sanitize(CloudSettings& cloud);

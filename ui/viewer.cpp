@@ -1,10 +1,13 @@
 #include "ui/viewer.h"
 
+#include "devices/frame_pacer.h"
 #include "devices/log.h"
 #include "processing/confidence_filter.h"
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <unistd.h>
 #include <vector>
 
 namespace dc::ui {
@@ -39,6 +42,37 @@ constexpr int kCameraWidthStep = 64;
 int cameraPanelWidth(int imageWidth, int shownWidth) {
     const int stepped = (shownWidth + kCameraWidthStep - 1) / kCameraWidthStep * kCameraWidthStep;
     return std::clamp(stepped, 1, imageWidth);
+}
+
+// The automatic colormap range: the 2nd to 98th percentile of the valid depth, so a few outliers do not
+// flatten the ramp; at least a centimetre wide.
+std::optional<std::pair<float, float>> percentileRange(const devices::DepthData& depth) {
+    std::vector<float> valid;
+    const auto& pixels = depth.depthMeters.pixels;
+    valid.reserve(pixels.size() / 2 + 1);
+    for (std::size_t i = 0; i < pixels.size(); i += 2)
+        if (std::isfinite(pixels[i]) && pixels[i] > 0.0f)
+            valid.push_back(pixels[i]);
+    if (valid.empty())
+        return std::nullopt;
+    const auto at = [&](double q) {
+        const auto it =
+            valid.begin() + static_cast<std::ptrdiff_t>(q * static_cast<double>(valid.size() - 1));
+        std::nth_element(valid.begin(), it, valid.end());
+        return *it;
+    };
+    const float low = at(0.02);
+    const float high = std::max(at(0.98), low + 0.01f);
+    return std::make_pair(low, high);
+}
+
+// Resident memory from /proc, so the stats panel shows what the process really holds.
+double residentMebibytes() {
+    std::ifstream statm("/proc/self/statm");
+    long pages = 0, resident = 0;
+    if (!(statm >> pages >> resident))
+        return 0.0;
+    return static_cast<double>(resident) * static_cast<double>(sysconf(_SC_PAGESIZE)) / (1024.0 * 1024.0);
 }
 
 bool sameCounting(const CloudSettings& a, const CloudSettings& b) {
@@ -122,8 +156,13 @@ void Viewer::acceptFrame(devices::FramePtr frame) {
     start = Clock::now();
     textures_.upload(*frame_, false);
     stage("upload").add(millisecondsSince(start));
+    updateLegend();
     renderPanels();
     countPoints();
+    // Live sources stamp frames with the monotonic clock; a recording's own clock gives no latency.
+    const double latency = static_cast<double>(devices::monotonicNowNs() - frame_->timestampNs) * 1e-6;
+    if (latency >= 0.0 && latency < 10'000.0)
+        latencyMs_.add(latency);
 }
 
 void Viewer::countPoints() {
@@ -139,8 +178,8 @@ void Viewer::renderPanels() {
     const PanelVisibility& show = settings_.panels;
     if (show.depth && textures_.hasDepth()) {
         depthTarget_.resize(textures_.depthWidth(), textures_.depthHeight());
-        panelRenderer_.renderDepth(depthTarget_, textures_, settings_.depthRange.minMeters,
-                                   settings_.depthRange.maxMeters);
+        panelRenderer_.renderDepth(depthTarget_, textures_, legend_.minMeters, legend_.maxMeters,
+                                   legend_.colormap);
     }
     if (show.confidence && textures_.hasDepth()) {
         confidenceTarget_.resize(textures_.depthWidth(), textures_.depthHeight());
@@ -166,8 +205,27 @@ void Viewer::renderCloud(double timeSeconds) {
     params.minConfidence = settings_.cloud.minConfidence;
     params.nearMeters = settings_.cloud.nearMeters;
     params.pointSizePixels = settings_.cloud.pointSizePixels;
+    params.anchors = anchors_.inCameraFrame(frame_->pose);
+    cloudViewProjection_ = params.viewProjection;
     cloudRenderer_.render(cloudTarget_, textures_, params);
     stage("cloud").add(millisecondsSince(start));
+}
+
+void Viewer::updateLegend() {
+    const DepthRange& r = settings_.depthRange;
+    legend_ = {r.minMeters, r.maxMeters, r.colormap, r.automatic};
+    if (r.automatic && frame_->sceneDepth) {
+        if (const auto range = percentileRange(*frame_->sceneDepth)) {
+            legend_.minMeters = range->first;
+            legend_.maxMeters = range->second;
+        }
+    }
+}
+
+ProbeSource Viewer::probeSource() const {
+    if (!frame_ || !frame_->sceneDepth)
+        return {};
+    return {&*frame_->sceneDepth, frame_->depthIntrinsics()};
 }
 
 processing::Needs Viewer::needs() const {
@@ -199,6 +257,26 @@ StatusLine Viewer::statusLine() const {
     for (const auto& [name, samples] : stages_)
         line.stageMedians.push_back({name, samples.median()});
     return line;
+}
+
+StatsView Viewer::statsView() const {
+    const devices::SessionStats stats = session_.stats();
+    StatsView v{stats.deviceFps,
+                updates_.perSecond(),
+                stats.framesDropped,
+                pointsDrawn_,
+                std::nullopt,
+                residentMebibytes(),
+                {}};
+    if (latencyMs_.count() > 0)
+        v.latencyMs = latencyMs_.median();
+    for (const auto& [name, samples] : stages_) {
+        StageHistory h{name, samples.median(), samples.max(), {}};
+        for (const double ms : samples.inOrder())
+            h.history.push_back(static_cast<float>(ms));
+        v.stages.push_back(std::move(h));
+    }
+    return v;
 }
 
 ViewerSummary Viewer::summary() const {

@@ -8,6 +8,7 @@
 #include "render/panel_renderer.h"
 #include "render/point_cloud_renderer.h"
 #include "render/render_target.h"
+#include "ui/anchors.h"
 #include "ui/panels.h"
 #include "ui/settings.h"
 
@@ -71,12 +72,33 @@ public:
     const render::RenderTarget& confidenceTarget() const { return confidenceTarget_; }
     const render::RenderTarget& cameraTarget() const { return cameraTarget_; }
 
+    // The depth sample under the mouse in the last drawUi(), on any panel.
+    const std::optional<Probe>& hoverProbe() const { return hoverProbe_; }
+    // The depth panel's range and colormap as last rendered (the automatic range follows each frame).
+    const DepthLegend& depthLegend() const { return legend_; }
+    Anchors& anchors() { return anchors_; }
+    // The matrix the last cloud was drawn with (depth camera frame to clip space).
+    const glm::mat4& cloudViewProjection() const { return cloudViewProjection_; }
+    // The panel shown large, or empty.
+    const std::string& zoomedPanel() const { return zoomed_; }
+    StatsView statsView() const;
+    const LogStore& log() const { return logs_; }
+    void setZoomedPanel(const std::string& title);
+
 private:
     void drainEvents();
     void acceptFrame(devices::FramePtr frame);
     void renderPanels();
     void renderCloud(double timeSeconds);
     void countPoints();
+    void updateLegend();
+    ProbeSource probeSource() const;
+    void placePanel(const char* title, float x, float y, float w, float h);
+    void afterPanel(const char* title, const PanelResult& result);
+    void drawCloud(float x, float y, float w, float h);
+    void drawSidePanels(float x, float w, float h);
+    void onCloudPointer(const CloudPanelResult& r);
+    CloudOverlay cloudOverlay() const;
     processing::Needs needs() const;
     processing::RollingStats& stage(const std::string& name) { return stages_[name]; }
 
@@ -97,10 +119,23 @@ private:
     std::uint64_t countedSequence_ = ~0ull;
     CloudSettings countedWith_;
     float pivotDepthMeters_ = 1.0f;
+    glm::mat4 cloudViewProjection_{1.0f};
+    DepthLegend legend_;
+    Anchors anchors_;
+    double lastAnchorTime_ = -1.0;
+    std::optional<Probe> hoverProbe_;
+    ImVec2 workOrigin_; // the area above the status bar, where panels are laid out and zoomed into
+    ImVec2 workSize_;
+    std::string zoomed_;
+    std::string restoring_; // the panel going back to its place after a zoom, for one frame
+    std::map<std::string, std::pair<ImVec2, ImVec2>> panelPlaces_; // title -> (pos, size) before zooming
     std::string state_ = "closed";
     std::string sourceMessage_;
     bool sourceRunning_ = false;
     std::map<std::string, processing::RollingStats> stages_;
+    processing::RollingStats latencyMs_;
+    LogStore logs_;
+    LogPanelState logPanel_;
     devices::RateMeter updates_;
 };
 

@@ -1,5 +1,7 @@
 #include "ui/viewer.h"
 
+#include "render/cloud_pick.h"
+
 #include <algorithm>
 
 namespace dc::ui {
@@ -21,55 +23,169 @@ Layout defaultLayout(float statusHeight) {
     return {vp->WorkPos, size, std::clamp(size.x * 0.23f, 220.0f, 340.0f), size.x * 0.27f};
 }
 
-void place(const Layout& l, float x, float y, float w, float h) {
-    ImGui::SetNextWindowPos({l.origin.x + x, l.origin.y + y}, ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize({w, h}, ImGuiCond_FirstUseEver);
-}
-
 PanelImage imageOf(const render::RenderTarget& target) {
     return {target.colorTexture(), target.width(), target.height()};
 }
 
 } // namespace
 
+void Viewer::setZoomedPanel(const std::string& title) {
+    if (!zoomed_.empty() && zoomed_ != title)
+        restoring_ = zoomed_;
+    if (title.empty() && !zoomed_.empty())
+        restoring_ = zoomed_;
+    zoomed_ = title;
+}
+
+// A zoomed panel covers the work area and stays in front; the panel that was zoomed goes back to where it
+// was; every other panel keeps the user's layout, with the default placement on first use.
+void Viewer::placePanel(const char* title, float x, float y, float w, float h) {
+    if (zoomed_ == title) {
+        ImGui::SetNextWindowPos(workOrigin_, ImGuiCond_Always);
+        ImGui::SetNextWindowSize(workSize_, ImGuiCond_Always);
+        ImGui::SetNextWindowFocus();
+        return;
+    }
+    if (restoring_ == title) {
+        if (const auto it = panelPlaces_.find(title); it != panelPlaces_.end()) {
+            ImGui::SetNextWindowPos(it->second.first, ImGuiCond_Always);
+            ImGui::SetNextWindowSize(it->second.second, ImGuiCond_Always);
+        }
+        restoring_.clear();
+        return;
+    }
+    ImGui::SetNextWindowPos({workOrigin_.x + x, workOrigin_.y + y}, ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSize({w, h}, ImGuiCond_FirstUseEver);
+}
+
+void Viewer::afterPanel(const char* title, const PanelResult& result) {
+    if (zoomed_ != title && restoring_ != title)
+        panelPlaces_[title] = {result.windowPos, result.windowSize};
+    if (result.probe)
+        hoverProbe_ = result.probe;
+    if (result.toggleZoom)
+        setZoomedPanel(zoomed_ == title ? std::string() : std::string(title));
+}
+
 void Viewer::drawUi() {
     handleShortcuts(settings_);
+    if (!ImGui::GetIO().WantTextInput) {
+        if (!zoomed_.empty() && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+            setZoomedPanel({});
+        if (ImGui::IsKeyPressed('Z', false))
+            anchors_.undo();
+    }
+    hoverProbe_.reset();
     const float statusHeight = drawStatusBar(statusLine());
     const Layout l = defaultLayout(statusHeight);
-    const float cloudWidth = l.size.x - l.leftWidth - l.rightWidth;
-    const float third = l.size.y / 3.0f;
+    workOrigin_ = l.origin;
+    workSize_ = l.size;
     PanelVisibility& show = settings_.panels;
 
     if (show.controls) {
-        place(l, 0, 0, l.leftWidth, l.size.y);
+        placePanel(kControlsTitle, 0, 0, l.leftWidth, l.size.y);
         const ControlsContext context{pipeline_.hasStage(processing::kSmoothingStage),
-                                      pipeline_.hasStage(processing::kUpsamplingStage)};
-        drawControlsPanel(settings_, context, &show.controls);
+                                      pipeline_.hasStage(processing::kUpsamplingStage), anchors_.size()};
+        const ControlsResult r = drawControlsPanel(settings_, context, &show.controls);
+        if (r.clearAnchors)
+            anchors_.clear();
+        if (r.undoAnchor)
+            anchors_.undo();
     }
-    if (show.cloud) {
-        place(l, l.leftWidth, 0, cloudWidth, l.size.y);
-        const std::string message = sourceRunning_ ? std::string() : sourceMessage_;
-        const CloudPanelResult r =
-            drawCloudPanel(imageOf(cloudTarget_), settings_.cloud, message, &show.cloud);
-        if (r.wantedWidth > 0 && r.wantedHeight > 0 &&
-            (r.wantedWidth != cloudTarget_.width() || r.wantedHeight != cloudTarget_.height()))
-            resizeCloud(r.wantedWidth, r.wantedHeight);
+    if (show.cloud)
+        drawCloud(l.leftWidth, 0, l.size.x - l.leftWidth - l.rightWidth, l.size.y);
+    drawSidePanels(l.size.x - l.rightWidth, l.rightWidth, l.size.y / 3.0f);
+    if (show.stats) {
+        placePanel(kStatsTitle, l.leftWidth + 16.0f, 16.0f, 460.0f, 300.0f);
+        drawStatsPanel(statsView(), &show.stats);
     }
-    const float right = l.size.x - l.rightWidth;
+    const std::vector<LogEntry> log = logs_.snapshot();
+    if (show.log) {
+        placePanel(kLogTitle, l.leftWidth + 16.0f, l.size.y - 260.0f, 640.0f, 240.0f);
+        drawLogPanel(log, logPanel_, &show.log);
+    }
+    drawToasts(log, statusHeight);
+    if (hoverProbe_)
+        showProbeTooltip(*hoverProbe_);
+}
+
+void Viewer::drawCloud(float x, float y, float w, float h) {
+    placePanel(kCloudTitle, x, y, w, h);
+    const std::string message = sourceRunning_ ? std::string() : sourceMessage_;
+    const CloudPanelResult r = drawCloudPanel(imageOf(cloudTarget_), settings_.cloud, cloudOverlay(), message,
+                                              zoomed_ == kCloudTitle, &settings_.panels.cloud);
+    afterPanel(kCloudTitle, r.panel);
+    if (r.wantedWidth > 0 && r.wantedHeight > 0 &&
+        (r.wantedWidth != cloudTarget_.width() || r.wantedHeight != cloudTarget_.height()))
+        resizeCloud(r.wantedWidth, r.wantedHeight);
+    onCloudPointer(r);
+}
+
+void Viewer::drawSidePanels(float x, float w, float h) {
+    PanelVisibility& show = settings_.panels;
+    const ProbeSource probe = probeSource();
     if (show.depth) {
-        place(l, right, 0, l.rightWidth, third);
-        drawDepthPanel(imageOf(depthTarget_), settings_.depthRange, &show.depth);
+        placePanel(kDepthTitle, x, 0, w, h);
+        afterPanel(kDepthTitle, drawDepthPanel(imageOf(depthTarget_), legend_, probe, &show.depth));
     }
     if (show.confidence) {
-        place(l, right, third, l.rightWidth, third);
-        drawConfidencePanel(imageOf(confidenceTarget_), session_.capabilities().confidence, &show.confidence);
+        placePanel(kConfidenceTitle, x, h, w, h);
+        afterPanel(kConfidenceTitle,
+                   drawConfidencePanel(imageOf(confidenceTarget_), session_.capabilities().confidence, probe,
+                                       &show.confidence));
     }
     if (show.camera) {
-        place(l, right, 2.0f * third, l.rightWidth, third);
-        const int shownWidth = drawCameraPanel(imageOf(cameraTarget_), &show.camera);
-        if (shownWidth > 0)
-            cameraShownWidth_ = shownWidth;
+        placePanel(kCameraTitle, x, 2.0f * h, w, h);
+        const CameraPanelResult r = drawCameraPanel(imageOf(cameraTarget_), imageOf(depthTarget_),
+                                                    settings_.camera, probe, &show.camera);
+        afterPanel(kCameraTitle, r.panel);
+        if (r.shownWidth > 0)
+            cameraShownWidth_ = r.shownWidth;
     }
+}
+
+// Hovering the cloud reads out the point under the mouse; a click drops an anchor on it. The first click
+// of a double-click (which resets the view) must not leave an anchor behind.
+void Viewer::onCloudPointer(const CloudPanelResult& r) {
+    if (!frame_ || !frame_->sceneDepth || !r.hoverPixels)
+        return;
+    const double now = ImGui::GetTime();
+    if (r.doubleClicked && lastAnchorTime_ >= 0.0 &&
+        now - lastAnchorTime_ <= ImGui::GetIO().MouseDoubleClickTime) {
+        anchors_.undo();
+        lastAnchorTime_ = -1.0;
+    }
+    render::PickQuery query;
+    query.viewProjection = cloudViewProjection_;
+    query.cursorPixels = {r.hoverPixels->x, r.hoverPixels->y};
+    query.imageSize = {static_cast<float>(cloudTarget_.width()), static_cast<float>(cloudTarget_.height())};
+    query.radiusPixels = std::max(3.0f, settings_.cloud.pointSizePixels);
+    query.minConfidence = settings_.cloud.minConfidence;
+    query.nearMeters = settings_.cloud.nearMeters;
+    const auto picked = render::pickCloudSample(*frame_->sceneDepth, frame_->depthIntrinsics(), query);
+    if (!picked)
+        return;
+    hoverProbe_ = probeAt(probeSource(), picked->u, picked->v);
+    if (r.clickPixels && !r.doubleClicked) {
+        anchors_.add(picked->point, frame_->pose);
+        lastAnchorTime_ = now;
+    }
+}
+
+CloudOverlay Viewer::cloudOverlay() const {
+    CloudOverlay overlay;
+    if (anchors_.empty() || !frame_)
+        return overlay;
+    for (const glm::vec3& p : anchors_.inCameraFrame(frame_->pose)) {
+        const glm::vec4 clip = cloudViewProjection_ * glm::vec4(p, 1.0f);
+        const float w = clip.w > 1e-6f ? clip.w : 1e-6f;
+        overlay.anchors.emplace_back(0.5f * (clip.x / w + 1.0f), 0.5f * (1.0f - clip.y / w));
+    }
+    for (std::size_t i = 0; i + 1 < anchors_.size(); ++i)
+        overlay.segments.emplace_back(static_cast<int>(i), formatLength(anchors_.segmentMeters(i)));
+    if (anchors_.size() >= 3)
+        overlay.summary = "area " + formatArea(anchors_.areaSquareMeters());
+    return overlay;
 }
 
 } // namespace dc::ui

@@ -68,6 +68,54 @@ TEST_F(PanelRendererTest, DepthPanelIsTheJetColormapOfEachSample) {
     EXPECT_EQ(pixelAt(rgba, kWidth, 4, 2), kBlack); // NaN
 }
 
+class DepthColormapTest : public PanelRendererTest, public ::testing::WithParamInterface<Colormap> {};
+
+TEST_P(DepthColormapTest, DepthPanelFollowsTheChosenColormap) {
+    const devices::DepthData depth = rampDepth();
+    textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
+    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters, GetParam());
+    const std::vector<std::uint8_t> rgba = target_.readRgba();
+    ASSERT_TRUE(noGlError());
+    for (int v = 0; v < kHeight; ++v) {
+        for (int u = 0; u < kWidth; ++u) {
+            const float t = (depth.depthMeters.at(u, v) - kMinMeters) / (kMaxMeters - kMinMeters);
+            ASSERT_TRUE(near(pixelAt(rgba, kWidth, u, v), toRgba(colormapColor(GetParam(), t)), 1))
+                << "at " << u << ", " << v;
+        }
+    }
+}
+
+INSTANTIATE_TEST_SUITE_P(Colormaps, DepthColormapTest,
+                         ::testing::Values(Colormap::Jet, Colormap::Turbo, Colormap::Viridis,
+                                           Colormap::Grayscale),
+                         [](const auto& info) { return std::string(toString(info.param)); });
+
+TEST(Colormap, JetStopsReproduceTheJetFunctionExactly) {
+    for (int i = 0; i <= 1000; ++i) {
+        const float t = static_cast<float>(i) / 1000.0f;
+        const auto a = colormapColor(Colormap::Jet, t);
+        const auto b = jetColor(t);
+        for (int c = 0; c < 3; ++c)
+            ASSERT_NEAR(a[c], b[c], 1e-6f) << "t = " << t;
+    }
+}
+
+TEST(Colormap, RampsRunTheirWholeRangeAndClampOutside) {
+    EXPECT_EQ(colormapColor(Colormap::Grayscale, 0.25f)[1], 0.25f);
+    EXPECT_EQ(colormapColor(Colormap::Viridis, -3.0f), colormapStops(Colormap::Viridis).front());
+    EXPECT_EQ(colormapColor(Colormap::Turbo, 7.0f), colormapStops(Colormap::Turbo).back());
+    EXPECT_EQ(colormapColor(Colormap::Turbo, std::numeric_limits<float>::quiet_NaN()),
+              colormapStops(Colormap::Turbo).front());
+    // Viridis gets brighter all the way, so it reads correctly in grayscale.
+    float previous = -1.0f;
+    for (const auto& c : colormapStops(Colormap::Viridis)) {
+        const float luma = 0.299f * c[0] + 0.587f * c[1] + 0.114f * c[2];
+        EXPECT_GT(luma, previous);
+        previous = luma;
+    }
+}
+
 TEST_F(PanelRendererTest, LargerDepthPanelRepeatsEachSampleWithoutBlending) {
     const devices::DepthData depth = rampDepth();
     textures_.upload(makeFrame(depth, {}, kIntrinsics), false);

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace dc::ui {
@@ -21,8 +22,13 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     s.cloud.orbit.pitchRadians = -0.2f;
     s.cloud.orbit.zoom = 1.8f;
     s.cloud.orbit.panMeters = {0.1f, -0.05f};
-    s.depthRange = {0.5f, 4.0f};
+    s.depthRange = {0.5f, 4.0f, true, render::Colormap::Turbo};
+    s.camera = {true, true, 0.3f};
+    s.panels.stats = true;
+    s.panels.log = true;
     s.processing.smoothing = true;
+    rememberSource(s, "synthetic:640x480@30");
+    rememberSource(s, "replay:/data/a.dcrec");
 
     const auto back = settingsFromJson(settingsToJson(s));
     ASSERT_TRUE(back.ok()) << back.error().message;
@@ -42,7 +48,26 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     EXPECT_FLOAT_EQ(r.cloud.orbit.panMeters.y, -0.05f);
     EXPECT_FLOAT_EQ(r.depthRange.minMeters, 0.5f);
     EXPECT_FLOAT_EQ(r.depthRange.maxMeters, 4.0f);
+    EXPECT_TRUE(r.depthRange.automatic);
+    EXPECT_EQ(r.depthRange.colormap, render::Colormap::Turbo);
+    EXPECT_TRUE(r.camera.fill);
+    EXPECT_TRUE(r.camera.depthOverlay);
+    EXPECT_FLOAT_EQ(r.camera.overlayOpacity, 0.3f);
+    EXPECT_TRUE(r.panels.stats);
+    EXPECT_TRUE(r.panels.log);
     EXPECT_TRUE(r.processing.smoothing);
+    EXPECT_EQ(r.recentSources, (std::vector<std::string>{"replay:/data/a.dcrec", "synthetic:640x480@30"}));
+}
+
+TEST(Settings, RecentSourcesAreNewestFirstWithoutDuplicatesAndBounded) {
+    Settings s;
+    for (int i = 0; i < 12; ++i)
+        rememberSource(s, "synthetic:" + std::to_string(100 + i) + "x100");
+    rememberSource(s, "synthetic:105x100");
+    ASSERT_EQ(s.recentSources.size(), kMaxRecentSources);
+    EXPECT_EQ(s.recentSources.front(), "synthetic:105x100");
+    EXPECT_EQ(s.recentSources[1], "synthetic:111x100");
+    EXPECT_EQ(std::count(s.recentSources.begin(), s.recentSources.end(), "synthetic:105x100"), 1);
 }
 
 TEST(Settings, NotJsonIsAnError) {

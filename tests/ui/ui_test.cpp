@@ -1,108 +1,9 @@
-// Headless UI tests: the real panel functions in Debian's ImGui 1.86 (IM_ASSERT live), drawn with the
-// OpenGL3 renderer into an offscreen target on Mesa llvmpipe, driven by injected mouse and keyboard input.
+// Headless UI tests of the viewer's core controls: confidence, rotation, orbit, zoom, shortcuts, stages.
 
-#include "devices/synthetic_device.h"
-#include "render/gl_context.h"
-#include "ui/headless_ui.h"
-#include "ui/viewer.h"
+#include "ui_fixture.h"
 
-#include <gtest/gtest.h>
-#include <imgui_internal.h>
-
-#include <optional>
-
-namespace dc::ui {
+namespace dc::ui::test {
 namespace {
-
-devices::SyntheticConfig smallScene() {
-    devices::SyntheticConfig c;
-    c.cameraWidth = 640; // the image only colors points here; a small one keeps the suite fast
-    c.cameraHeight = 480;
-    c.fps = 120.0;
-    return c;
-}
-
-class UiTest : public ::testing::Test {
-protected:
-    void SetUp() override {
-        auto ctx = render::EglContext::createHeadless();
-        ASSERT_TRUE(ctx.ok()) << ctx.error().message;
-        context_.emplace(std::move(*ctx));
-        ASSERT_TRUE(gui_.init(1280, 720).ok());
-        startViewer(smallScene());
-    }
-
-    void startViewer(const devices::SyntheticConfig& config) {
-        viewer_ = std::make_unique<Viewer>(std::make_unique<devices::SyntheticDevice>(config), Settings{});
-        ASSERT_TRUE(viewer_->init().ok());
-        ASSERT_TRUE(viewer_->sourceRunning()) << viewer_->sourceMessage();
-        // Let the first frame arrive so every panel has content.
-        ASSERT_TRUE(viewer_->update(0.0, std::chrono::seconds(5)));
-        frame(0.0);
-    }
-
-    void TearDown() override { viewer_.reset(); }
-
-    // One UI frame at time t: the viewer renders, the panels are drawn with whatever input is set.
-    void frame(double t) {
-        gui_.newFrame(1.0f / 60.0f);
-        viewer_->update(t);
-        viewer_->drawUi();
-        gui_.render();
-    }
-
-    // Finds a widget by label inside a panel by hovering candidate positions until ImGui reports the
-    // widget's ID as hovered: no coordinates are hard-coded, so a layout change cannot fool the test.
-    std::optional<ImVec2> locate(const char* window, const char* label) {
-        ImGuiWindow* w = ImGui::FindWindowByName(window);
-        if (!w)
-            return std::nullopt;
-        const ImGuiID id = w->GetID(label);
-        for (float y = w->Pos.y; y < w->Pos.y + w->Size.y; y += 3.0f) {
-            for (float x = w->Pos.x + 12.0f; x < w->Pos.x + w->Size.x * 0.6f; x += 24.0f) {
-                gui_.io().MousePos = ImVec2(x, y);
-                gui_.newFrame(1.0f / 60.0f);
-                viewer_->drawUi();
-                ImGui::EndFrame();
-                if (ImGui::GetCurrentContext()->HoveredId == id)
-                    return ImVec2(x, y);
-            }
-        }
-        return std::nullopt;
-    }
-
-    void click(ImVec2 at, double t) {
-        gui_.io().MousePos = at;
-        frame(t);
-        gui_.io().MouseDown[0] = true;
-        frame(t);
-        gui_.io().MouseDown[0] = false;
-        frame(t);
-    }
-
-    void pressKey(int key, double t) {
-        gui_.io().KeysDown[key] = true;
-        frame(t);
-        gui_.io().KeysDown[key] = false;
-        frame(t);
-    }
-
-    std::vector<std::uint8_t> cloudSnapshot(double t) {
-        viewer_->update(t);
-        return viewer_->cloudTarget().readRgba();
-    }
-
-    static std::size_t litPixels(const std::vector<std::uint8_t>& rgba) {
-        std::size_t n = 0;
-        for (std::size_t i = 0; i < rgba.size(); i += 4)
-            n += (rgba[i] | rgba[i + 1] | rgba[i + 2]) != 0;
-        return n;
-    }
-
-    std::optional<render::EglContext> context_;
-    HeadlessUi gui_;
-    std::unique_ptr<Viewer> viewer_;
-};
 
 TEST_F(UiTest, EveryPanelSurvivesHundredsOfFramesBeingShownAndHidden) {
     PanelVisibility& show = viewer_->settings().panels;
@@ -112,6 +13,12 @@ TEST_F(UiTest, EveryPanelSurvivesHundredsOfFramesBeingShownAndHidden) {
         show.confidence = i % 70 < 50;
         show.camera = i % 20 < 15;
         show.controls = i % 90 < 80;
+        show.stats = i % 40 < 25;
+        show.log = i % 60 < 45;
+        if (i % 25 == 0)
+            viewer_->setZoomedPanel(i % 50 == 0 ? kCloudTitle : "");
+        if (i % 35 == 0)
+            viewer_->setZoomedPanel(kDepthTitle);
         frame(i / 60.0);
     }
     show = {};
@@ -189,6 +96,7 @@ TEST_F(UiTest, WheelZoomsAndDoubleClickResetsTheView) {
     gui_.io().MouseDown[0] = false;
     frame(0.0);
     EXPECT_FLOAT_EQ(viewer_->settings().cloud.orbit.zoom, 1.0f);
+    EXPECT_EQ(viewer_->anchors().size(), 0u) << "a double-click leaves no anchor behind";
 }
 
 TEST_F(UiTest, ShortcutsChangeLevelRotationAndControls) {
@@ -257,4 +165,4 @@ TEST(UiNoDepth, UnsupportedDeviceIsShownNotCrashed) {
 }
 
 } // namespace
-} // namespace dc::ui
+} // namespace dc::ui::test

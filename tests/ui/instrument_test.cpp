@@ -1,0 +1,258 @@
+// Headless UI tests of the instrument features: hover readout, anchors and measurement, zoom on click,
+// colormaps and automatic range, the camera panel's fill and depth overlay, stats, log and toasts.
+
+#include "devices/log.h"
+#include "devices/synthetic_scene.h"
+#include "render/colormap.h"
+#include "ui_fixture.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace dc::ui::test {
+namespace {
+
+// The exact desk point seen through depth pixel (u, v) of the fixed camera, in the camera frame: the ray
+// through the pixel (the unprojection's own convention) meets the plane y = 0 of the world.
+glm::dvec3 analyticDeskPoint(const devices::Intrinsics& k, int u, int v) {
+    const double pitch = devices::scene::kCameraPitchDegrees * std::numbers::pi / 180.0;
+    const double xn = (u - k.cx) / k.fx, yn = (v - k.cy) / k.fy;
+    const double worldDown = -std::cos(pitch) * yn - std::sin(pitch); // world y of the ray per unit camera z
+    const double z = -devices::scene::kCameraHeight / worldDown;
+    return {xn * z, yn * z, z};
+}
+
+class InstrumentTest : public UiTest {
+protected:
+    void SetUp() override {
+        UiTest::SetUp();
+        ASSERT_FALSE(HasFatalFailure());
+        devices::SyntheticConfig exact = smallScene();
+        exact.noise = false;
+        ASSERT_NO_FATAL_FAILURE(startViewer(exact));
+        viewer_->settings().cloud.motion.enabled = false;
+        frame(0.0);
+        frame(0.0);
+    }
+
+    std::optional<Probe> hoverAt(ImVec2 at) {
+        gui_.io().MousePos = at;
+        frame(0.0);
+        return viewer_->hoverProbe();
+    }
+
+    static ImVec2 centreOf(const char* title) {
+        ImGuiWindow* w = ImGui::FindWindowByName(title);
+        return w ? ImVec2(w->Pos.x + w->Size.x * 0.5f, w->Pos.y + w->Size.y * 0.5f) : ImVec2(-1.0f, -1.0f);
+    }
+
+    // Moves the mouse over a 2D panel until the readout reports depth pixel (u, v): the panel's scale is
+    // measured from two readouts, then corrected pixel by pixel, so no layout figure is assumed.
+    std::optional<ImVec2> mouseOverDepthPixel(const char* title, int u, int v) {
+        const ImVec2 c = centreOf(title);
+        const auto a = hoverAt({c.x - 50.0f, c.y - 30.0f});
+        const auto b = hoverAt({c.x + 50.0f, c.y + 30.0f});
+        if (!a || !b || b->u == a->u || b->v == a->v)
+            return std::nullopt;
+        const float sx = 100.0f / static_cast<float>(b->u - a->u);
+        const float sy = 60.0f / static_cast<float>(b->v - a->v);
+        ImVec2 at{c.x - 50.0f + sx * static_cast<float>(u - a->u) + 0.5f * sx,
+                  c.y - 30.0f + sy * static_cast<float>(v - a->v) + 0.5f * sy};
+        for (int i = 0; i < 12; ++i) {
+            const auto p = hoverAt(at);
+            if (!p)
+                return std::nullopt;
+            if (p->u == u && p->v == v)
+                return at;
+            at.x += 0.5f * sx * static_cast<float>((u > p->u) - (u < p->u));
+            at.y += 0.5f * sy * static_cast<float>((v > p->v) - (v < p->v));
+        }
+        return std::nullopt;
+    }
+
+    // Where depth pixel (u, v) appears on screen in the cloud panel, from the matrix the cloud was drawn
+    // with and the panel's content origin.
+    ImVec2 screenOfCloudSample(int u, int v) {
+        const devices::FramePtr& f = viewer_->currentFrame();
+        const devices::Intrinsics k = f->depthIntrinsics();
+        const float z = f->sceneDepth->depthMeters.at(u, v);
+        const glm::vec4 clip =
+            viewer_->cloudViewProjection() * glm::vec4((u - k.cx) * z / k.fx, (v - k.cy) * z / k.fy, z, 1.0f);
+        const ImGuiWindow* w = ImGui::FindWindowByName(kCloudTitle);
+        const auto& target = viewer_->cloudTarget();
+        return {w->DC.CursorStartPos.x + (clip.x / clip.w + 1.0f) * 0.5f * static_cast<float>(target.width()),
+                w->DC.CursorStartPos.y +
+                    (1.0f - clip.y / clip.w) * 0.5f * static_cast<float>(target.height())};
+    }
+
+    void clickAt(ImVec2 at) { click(at, 0.0); }
+};
+
+TEST_F(InstrumentTest, HoverOnTheDepthPanelReadsTheKnownDepthAtAKnownPixel) {
+    constexpr int kU = 128, kV = 180; // open desk in front of the camera
+    const auto at = mouseOverDepthPixel(kDepthTitle, kU, kV);
+    ASSERT_TRUE(at.has_value()) << "the readout never reported the pixel";
+    const Probe p = *viewer_->hoverProbe();
+    const devices::Intrinsics k = viewer_->currentFrame()->depthIntrinsics();
+    const glm::dvec3 truth = analyticDeskPoint(k, kU, kV);
+    EXPECT_NEAR(p.depthMeters, truth.z, 1e-5 * truth.z);
+    ASSERT_TRUE(p.confidence.has_value());
+    EXPECT_EQ(*p.confidence, devices::Confidence::High);
+    for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(p.point[static_cast<std::size_t>(i)], truth[i], 1e-5) << "axis " << i;
+    EXPECT_EQ(formatDepth(0.734f), "734 mm");
+    EXPECT_EQ(formatDepth(1.2344f), "1.234 m") << "meters above one meter";
+}
+
+TEST_F(InstrumentTest, ConfidenceAndCameraPanelsReadOutTheSameSample) {
+    for (const char* title : {kConfidenceTitle, kCameraTitle}) {
+        const auto at = mouseOverDepthPixel(title, 100, 170);
+        ASSERT_TRUE(at.has_value()) << title;
+        const Probe p = *viewer_->hoverProbe();
+        EXPECT_FLOAT_EQ(p.depthMeters, viewer_->currentFrame()->sceneDepth->depthMeters.at(100, 170))
+            << title;
+    }
+}
+
+TEST_F(InstrumentTest, AnchorsOnTheDeskLandOnTheAnalyticPointsAndMeasureTheirDistance) {
+    const devices::Intrinsics k = viewer_->currentFrame()->depthIntrinsics();
+    const int pixels[2][2] = {{110, 178}, {150, 186}};
+    for (const auto& px : pixels)
+        clickAt(screenOfCloudSample(px[0], px[1]));
+    ASSERT_EQ(viewer_->anchors().size(), 2u);
+    const auto inCamera = viewer_->anchors().inCameraFrame(viewer_->currentFrame()->pose);
+    for (std::size_t i = 0; i < 2; ++i) {
+        const glm::dvec3 truth = analyticDeskPoint(k, pixels[i][0], pixels[i][1]);
+        const glm::dvec3 anchor(inCamera[i]);
+        EXPECT_LT(glm::length(anchor - truth), 1e-3 * truth.z) << "anchor " << i << " within 1 mm per meter";
+    }
+    const double truthDistance = glm::length(analyticDeskPoint(k, 110, 178) - analyticDeskPoint(k, 150, 186));
+    EXPECT_NEAR(viewer_->anchors().segmentMeters(0), truthDistance, 1e-3);
+
+    // Rotating the view keeps the anchors where they are in the world.
+    viewer_->settings().cloud.orbit.yawRadians = 0.6f;
+    frame(0.0);
+    EXPECT_NEAR(viewer_->anchors().segmentMeters(0), truthDistance, 1e-3);
+    clickAt(screenOfCloudSample(130, 170));
+    ASSERT_EQ(viewer_->anchors().size(), 3u);
+    EXPECT_GT(viewer_->anchors().areaSquareMeters(), 1e-4) << "three anchors span an area";
+    pressKey('Z', 0.0);
+    EXPECT_EQ(viewer_->anchors().size(), 2u) << "Z undoes the last anchor";
+}
+
+TEST_F(InstrumentTest, AnchorsAreDrawnAsCubesInTheCloud) {
+    viewer_->settings().cloud.pointSizePixels = 1.0f;
+    frame(0.0);
+    const auto without = viewer_->cloudTarget().readRgba();
+    clickAt(screenOfCloudSample(128, 150));
+    ASSERT_EQ(viewer_->anchors().size(), 1u);
+    viewer_->update(0.0);
+    const auto with = viewer_->cloudTarget().readRgba();
+    std::size_t yellowish = 0;
+    for (std::size_t i = 0; i < with.size(); i += 4)
+        yellowish += with[i] != without[i] && with[i] > 80 && with[i + 1] > 60 && with[i + 2] < with[i] / 2;
+    EXPECT_GT(yellowish, 20u) << "a lit cube covers some pixels";
+}
+
+TEST_F(InstrumentTest, ClickingAPanelOpensItLargeAndClickingAgainBringsItBack) {
+    ImGuiWindow* w = ImGui::FindWindowByName(kDepthTitle);
+    ASSERT_NE(w, nullptr);
+    const ImVec2 size = w->Size;
+    clickAt(centreOf(kDepthTitle));
+    EXPECT_EQ(viewer_->zoomedPanel(), kDepthTitle);
+    frame(0.0);
+    EXPECT_GT(ImGui::FindWindowByName(kDepthTitle)->Size.x, size.x * 2.0f);
+    clickAt(centreOf(kDepthTitle));
+    EXPECT_TRUE(viewer_->zoomedPanel().empty());
+    frame(0.0);
+    EXPECT_FLOAT_EQ(ImGui::FindWindowByName(kDepthTitle)->Size.x, size.x);
+
+    const auto zoom = locate(kCloudTitle, "Zoom", 1.0f);
+    ASSERT_TRUE(zoom.has_value()) << "the cloud has a zoom button, as clicks on it place anchors";
+    clickAt(*zoom);
+    EXPECT_EQ(viewer_->zoomedPanel(), kCloudTitle);
+    EXPECT_EQ(viewer_->anchors().size(), 0u);
+    pressKey(ImGui::GetKeyIndex(ImGuiKey_Escape), 0.0);
+    EXPECT_TRUE(viewer_->zoomedPanel().empty());
+}
+
+TEST_F(InstrumentTest, ColormapAndAutomaticRangeReachTheDepthPanel) {
+    const auto box = locate(kControlsTitle, "Automatic range");
+    ASSERT_TRUE(box.has_value());
+    clickAt(*box);
+    ASSERT_TRUE(viewer_->settings().depthRange.automatic);
+    viewer_->settings().depthRange.colormap = render::Colormap::Viridis;
+    viewer_->update(0.0, std::chrono::seconds(2));
+    frame(0.0);
+    const DepthLegend legend = viewer_->depthLegend();
+    EXPECT_TRUE(legend.automatic);
+    EXPECT_EQ(legend.colormap, render::Colormap::Viridis);
+    EXPECT_GT(legend.minMeters, 0.2f) << "the nearest desk is farther than 20 cm";
+    EXPECT_LT(legend.maxMeters, 5.0f);
+    const auto& target = viewer_->depthTarget();
+    const auto rgba = target.readRgba();
+    const int u = 128, v = 180;
+    const float d = viewer_->currentFrame()->sceneDepth->depthMeters.at(u, v);
+    const auto expected = render::colormapColor(
+        render::Colormap::Viridis, (d - legend.minMeters) / (legend.maxMeters - legend.minMeters));
+    const std::size_t i = (static_cast<std::size_t>(v) * target.width() + u) * 4;
+    for (int c = 0; c < 3; ++c)
+        EXPECT_NEAR(rgba[i + c], expected[c] * 255.0f, 2.0f) << "channel " << c;
+}
+
+TEST_F(InstrumentTest, DepthOverlayAndFillChangeTheCameraPanel) {
+    const ImVec2 c = centreOf(kCameraTitle);
+    auto pixelAt = [&](ImVec2 at) {
+        const auto rgba = gui_.target().readRgba();
+        const int x = static_cast<int>(at.x), y = static_cast<int>(at.y);
+        const std::size_t i = (static_cast<std::size_t>(y) * gui_.target().width() + x) * 4;
+        return std::array<int, 3>{rgba[i], rgba[i + 1], rgba[i + 2]};
+    };
+    gui_.io().MousePos = {0.0f, 0.0f};
+    frame(0.0);
+    const auto plain = pixelAt(c);
+    const auto overlay = locate(kControlsTitle, "Depth over camera");
+    ASSERT_TRUE(overlay.has_value());
+    clickAt(*overlay);
+    ASSERT_TRUE(viewer_->settings().camera.depthOverlay);
+    gui_.io().MousePos = {0.0f, 0.0f};
+    frame(0.0);
+    EXPECT_NE(pixelAt(c), plain) << "the depth colors tint the camera image";
+    const auto fill = locate(kControlsTitle, "Fill camera panel");
+    ASSERT_TRUE(fill.has_value());
+    clickAt(*fill);
+    EXPECT_TRUE(viewer_->settings().camera.fill);
+}
+
+TEST_F(InstrumentTest, StatsLogAndToastsShowWhatHappened) {
+    pressKey('S', 0.0);
+    pressKey('L', 0.0);
+    ASSERT_TRUE(viewer_->settings().panels.stats);
+    ASSERT_TRUE(viewer_->settings().panels.log);
+    logError("disk full while writing /tmp/x.dcrec");
+    for (int i = 0; i < 20; ++i) {
+        viewer_->update(i / 60.0, std::chrono::milliseconds(100));
+        frame(i / 60.0);
+    }
+    EXPECT_NE(ImGui::FindWindowByName(kStatsTitle), nullptr);
+    EXPECT_NE(ImGui::FindWindowByName(kLogTitle), nullptr);
+    const StatsView stats = viewer_->statsView();
+    EXPECT_GT(stats.residentMebibytes, 10.0);
+    ASSERT_TRUE(stats.latencyMs.has_value()) << "synthetic frames carry the monotonic clock";
+    EXPECT_GE(*stats.latencyMs, 0.0);
+    bool cloudPlotted = false;
+    for (const StageHistory& s : stats.stages)
+        cloudPlotted |= s.name == "cloud" && s.history.size() >= 10;
+    EXPECT_TRUE(cloudPlotted);
+    bool logged = false;
+    for (const LogEntry& e : viewer_->log().snapshot())
+        logged |= e.level == LogLevel::Error && e.message.find("disk full") != std::string::npos;
+    EXPECT_TRUE(logged);
+    bool toast = false;
+    for (ImGuiWindow* w : ImGui::GetCurrentContext()->Windows)
+        toast |= std::string(w->Name).rfind("##toast", 0) == 0 && w->Active;
+    EXPECT_TRUE(toast) << "an error shows as a toast";
+}
+
+} // namespace
+} // namespace dc::ui::test

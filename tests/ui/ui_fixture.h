@@ -1,0 +1,111 @@
+#pragma once
+
+// The fixture of the headless UI tests: the real panel functions in Debian's ImGui 1.86 (IM_ASSERT live),
+// drawn with the OpenGL3 renderer into an offscreen target on Mesa llvmpipe, driven by injected mouse and
+// keyboard input.
+
+#include "devices/synthetic_device.h"
+#include "render/gl_context.h"
+#include "ui/headless_ui.h"
+#include "ui/viewer.h"
+
+#include <gtest/gtest.h>
+#include <imgui_internal.h>
+
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace dc::ui::test {
+
+inline devices::SyntheticConfig smallScene() {
+    devices::SyntheticConfig c;
+    c.cameraWidth = 640; // the image only colors points here; a small one keeps the suite fast
+    c.cameraHeight = 480;
+    c.fps = 120.0;
+    return c;
+}
+
+class UiTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        auto ctx = render::EglContext::createHeadless();
+        ASSERT_TRUE(ctx.ok()) << ctx.error().message;
+        context_.emplace(std::move(*ctx));
+        ASSERT_TRUE(gui_.init(1280, 720).ok());
+        startViewer(smallScene());
+    }
+
+    void startViewer(const devices::SyntheticConfig& config) {
+        viewer_ = std::make_unique<Viewer>(std::make_unique<devices::SyntheticDevice>(config), Settings{});
+        ASSERT_TRUE(viewer_->init().ok());
+        ASSERT_TRUE(viewer_->sourceRunning()) << viewer_->sourceMessage();
+        // Let the first frame arrive so every panel has content.
+        ASSERT_TRUE(viewer_->update(0.0, std::chrono::seconds(5)));
+        frame(0.0);
+    }
+
+    void TearDown() override { viewer_.reset(); }
+
+    // One UI frame at time t: the viewer renders, the panels are drawn with whatever input is set.
+    void frame(double t) {
+        gui_.newFrame(1.0f / 60.0f);
+        viewer_->update(t);
+        viewer_->drawUi();
+        gui_.render();
+    }
+
+    // Finds a widget by label inside a panel by hovering candidate positions until ImGui reports the
+    // widget's ID as hovered: no coordinates are hard-coded, so a layout change cannot fool the test.
+    std::optional<ImVec2> locate(const char* window, const char* label, float widthFraction = 0.6f) {
+        ImGuiWindow* w = ImGui::FindWindowByName(window);
+        if (!w)
+            return std::nullopt;
+        const ImGuiID id = w->GetID(label);
+        for (float y = w->Pos.y; y < w->Pos.y + w->Size.y; y += 3.0f) {
+            for (float x = w->Pos.x + 12.0f; x < w->Pos.x + w->Size.x * widthFraction; x += 24.0f) {
+                gui_.io().MousePos = ImVec2(x, y);
+                gui_.newFrame(1.0f / 60.0f);
+                viewer_->drawUi();
+                ImGui::EndFrame();
+                if (ImGui::GetCurrentContext()->HoveredId == id)
+                    return ImVec2(x, y);
+            }
+        }
+        return std::nullopt;
+    }
+
+    void click(ImVec2 at, double t) {
+        gui_.io().MousePos = at;
+        frame(t);
+        gui_.io().MouseDown[0] = true;
+        frame(t);
+        gui_.io().MouseDown[0] = false;
+        frame(t);
+    }
+
+    void pressKey(int key, double t) {
+        gui_.io().KeysDown[key] = true;
+        frame(t);
+        gui_.io().KeysDown[key] = false;
+        frame(t);
+    }
+
+    std::vector<std::uint8_t> cloudSnapshot(double t) {
+        viewer_->update(t);
+        return viewer_->cloudTarget().readRgba();
+    }
+
+    static std::size_t litPixels(const std::vector<std::uint8_t>& rgba) {
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < rgba.size(); i += 4)
+            n += (rgba[i] | rgba[i + 1] | rgba[i + 2]) != 0;
+        return n;
+    }
+
+    std::optional<render::EglContext> context_;
+    HeadlessUi gui_;
+    std::unique_ptr<Viewer> viewer_;
+};
+
+} // namespace dc::ui::test

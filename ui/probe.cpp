@@ -1,0 +1,69 @@
+#include "ui/probe.h"
+
+#include "processing/point_cloud.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace dc::ui {
+
+std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
+    if (source.empty())
+        return std::nullopt;
+    const devices::DepthData& depth = *source.depth;
+    if (u < 0 || v < 0 || u >= depth.depthMeters.width || v >= depth.depthMeters.height)
+        return std::nullopt;
+    Probe probe{u, v, depth.depthMeters.at(u, v), std::nullopt, {}};
+    if (!std::isfinite(probe.depthMeters) || probe.depthMeters < 0.0f)
+        probe.depthMeters = 0.0f;
+    if (!depth.confidence.empty())
+        probe.confidence = static_cast<devices::Confidence>(std::min<int>(depth.confidence.at(u, v), 2));
+    if (probe.depthMeters > 0.0f && source.intrinsics.valid())
+        probe.point = processing::unproject(u, v, probe.depthMeters, source.intrinsics);
+    return probe;
+}
+
+std::optional<Probe> probeAtFraction(const ProbeSource& source, ImVec2 fraction) {
+    if (source.empty() ||
+        !(fraction.x >= 0.0f && fraction.x < 1.0f && fraction.y >= 0.0f && fraction.y < 1.0f))
+        return std::nullopt;
+    const auto& d = source.depth->depthMeters;
+    return probeAt(source, std::min(static_cast<int>(fraction.x * static_cast<float>(d.width)), d.width - 1),
+                   std::min(static_cast<int>(fraction.y * static_cast<float>(d.height)), d.height - 1));
+}
+
+std::string formatDepth(float meters) {
+    char text[32];
+    if (!(meters > 0.0f))
+        return "no depth";
+    if (meters < 1.0f)
+        std::snprintf(text, sizeof text, "%.0f mm", meters * 1000.0f);
+    else
+        std::snprintf(text, sizeof text, "%.3f m", meters);
+    return text;
+}
+
+const char* confidenceName(devices::Confidence level) {
+    switch (level) {
+    case devices::Confidence::Low:
+        return "low";
+    case devices::Confidence::Medium:
+        return "medium";
+    case devices::Confidence::High:
+        return "high";
+    }
+    return "low";
+}
+
+void showProbeTooltip(const Probe& p) {
+    ImGui::BeginTooltip();
+    ImGui::Text("pixel %d, %d", p.u, p.v);
+    ImGui::Text("depth %s", formatDepth(p.depthMeters).c_str());
+    ImGui::Text("confidence %s", p.confidence ? confidenceName(*p.confidence) : "none (source has none)");
+    if (p.depthMeters > 0.0f)
+        ImGui::Text("point %.3f, %.3f, %.3f m", p.point[0], p.point[1], p.point[2]);
+    ImGui::EndTooltip();
+}
+
+} // namespace dc::ui

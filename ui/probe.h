@@ -1,0 +1,43 @@
+#pragma once
+
+#include "devices/frame.h"
+#include "ui/panel_image.h"
+
+#include <array>
+#include <optional>
+#include <string>
+
+namespace dc::ui {
+
+// What the hover readout shows: one depth sample, where it is and what the sensor said about it.
+struct Probe {
+    int u = 0; // depth-map pixel
+    int v = 0;
+    float depthMeters = 0.0f;                      // 0 when the sample holds no measurement
+    std::optional<devices::Confidence> confidence; // none when the source provides no confidence
+    std::array<float, 3> point{};                  // camera frame (OpenCV axes), meters; zero without depth
+};
+
+// The depth the panels show, with the intrinsics that place it.
+struct ProbeSource {
+    const devices::DepthData* depth = nullptr;
+    devices::Intrinsics intrinsics;
+
+    bool empty() const { return depth == nullptr || depth->depthMeters.empty(); }
+};
+
+// The sample at depth pixel (u, v); nothing outside the map.
+std::optional<Probe> probeAt(const ProbeSource& source, int u, int v);
+
+// The sample at a position given as fractions of the depth map's size ((0, 0) top-left), which is also
+// where it lies in the camera image: depth and image cover the same field of view.
+std::optional<Probe> probeAtFraction(const ProbeSource& source, ImVec2 fraction);
+
+// Millimetres below a metre, where they are the natural unit; meters above; "no depth" for none.
+std::string formatDepth(float meters);
+const char* confidenceName(devices::Confidence level);
+
+// The readout as a tooltip next to the mouse.
+void showProbeTooltip(const Probe& probe);
+
+} // namespace dc::ui
