@@ -31,6 +31,10 @@ public:
     Capabilities capabilities() const override;
     const SyntheticConfig& config() const { return config_; }
     const SyntheticScene& scene() const { return scene_; }
+    // The frame the device delivers at `timeSeconds` after its start, made on the caller's thread
+    // (benchmarks and tests that need given poses without waiting for them). Needs open() when the scene
+    // does not move: the shared image is rendered there.
+    FramePtr makeFrame(std::uint64_t sequence, double timeSeconds) const;
 
 protected:
     Status doOpen() override;
@@ -39,8 +43,6 @@ protected:
     CaptureResult doCapture(std::chrono::milliseconds timeout) override;
 
 private:
-    FramePtr makeFrame(std::uint64_t sequence, double timeSeconds) const;
-
     SyntheticConfig config_;
     SyntheticScene scene_;
     Intrinsics cameraIntrinsics_;

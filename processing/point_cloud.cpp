@@ -22,11 +22,7 @@ std::vector<CloudPoint> buildPointCloud(const devices::Frame& frame, devices::Co
             if (!keepSample(z, c, minLevel, nearMeters))
                 continue;
             const auto [x, y, zz] = unproject(u, v, z, k);
-            // The camera pixel whose area matches this depth pixel's centre, as the shader samples it.
-            const int cx =
-                static_cast<int>((u + 0.5f) * static_cast<float>(image.width) / static_cast<float>(w));
-            const int cy =
-                static_cast<int>((v + 0.5f) * static_cast<float>(image.height) / static_cast<float>(h));
+            const auto [cx, cy] = cameraPixelOf(u, v, w, h, image);
             const devices::Rgb rgb = devices::pixelRgb(image, cx, cy);
             points.push_back(
                 {x, y, zz, devices::toByte(rgb.r), devices::toByte(rgb.g), devices::toByte(rgb.b), c});

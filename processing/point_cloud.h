@@ -22,6 +22,16 @@ inline std::array<float, 3> unproject(int u, int v, float depthMeters, const dev
             depthMeters};
 }
 
+// The camera-image pixel whose area matches depth pixel (u, v)'s centre, as the cloud's shader samples it:
+// depth and image cover the same field of view at their own resolutions.
+inline std::array<int, 2> cameraPixelOf(int u, int v, int depthWidth, int depthHeight,
+                                        const devices::CapturedImage& image) {
+    return {static_cast<int>((static_cast<float>(u) + 0.5f) * static_cast<float>(image.width) /
+                             static_cast<float>(depthWidth)),
+            static_cast<int>((static_cast<float>(v) + 0.5f) * static_cast<float>(image.height) /
+                             static_cast<float>(depthHeight))};
+}
+
 // The CPU twin of the rendered cloud: one point per kept depth sample (processing::keepSample), colored by
 // the camera image at the matching pixel. Empty when the frame has no depth or invalid intrinsics.
 std::vector<CloudPoint> buildPointCloud(const devices::Frame& frame, devices::Confidence minLevel,

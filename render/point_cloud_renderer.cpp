@@ -103,7 +103,9 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
     if (target.empty())
         return;
     beginPass(target, params.background, true);
-    if (program_ && textures.hasDepth() && textures.depthIntrinsics().valid()) {
+    if (params.accumulated) {
+        params.accumulated->draw(params.worldToClip, params.pointSizePixels);
+    } else if (program_ && textures.hasDepth() && textures.depthIntrinsics().valid()) {
         glEnable(GL_PROGRAM_POINT_SIZE);
         glUseProgram(program_.id());
         setUniforms(textures, params);

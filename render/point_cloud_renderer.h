@@ -2,6 +2,7 @@
 
 #include "devices/expected.h"
 #include "devices/frame.h"
+#include "render/accumulated_points.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"
 #include "render/render_target.h"
@@ -26,6 +27,10 @@ struct CloudParams {
     // Anchors, in the same frame as the points, drawn as small lit cubes among them (depth-tested).
     std::vector<glm::vec3> anchors;
     float anchorSizeMeters = 0.012f;
+    // Accumulate mode: these world points are drawn instead of the frame's own, through worldToClip
+    // (viewProjection composed with the current frame's world-to-camera transform).
+    const AccumulatedPoints* accumulated = nullptr;
+    glm::mat4 worldToClip{1.0f};
 };
 
 inline constexpr std::size_t kMaxDrawnAnchors = 32;

@@ -78,6 +78,23 @@ void anchorsSection(const ControlsContext& context, ControlsResult& result) {
     ImGui::PopStyleColor();
 }
 
+bool accumulateSection(AccumulateSettings& acc, const ControlsContext& context, ControlsResult& result) {
+    ImGui::BeginDisabled(!context.hasPose);
+    bool changed = ImGui::Checkbox("Accumulate", &acc.enabled);
+    ImGui::EndDisabled();
+    if (!context.hasPose && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("Needs a source with camera poses (an ARKit capture, synthetic:motion).");
+    if (!acc.enabled || !context.hasPose)
+        return changed;
+    ImGui::SameLine();
+    result.clearAccumulation = ImGui::SmallButton("Clear points");
+    changed |= ImGui::SliderInt("Budget", &acc.budgetThousands, 10, 4000, "%dk points");
+    changed |= ImGui::SliderFloat("Voxel", &acc.voxelMillimeters, 0.5f, 50.0f, "%.1f mm",
+                                  ImGuiSliderFlags_Logarithmic);
+    ImGui::Text("%zu points held", context.accumulatedPoints);
+    return changed;
+}
+
 bool panelsSection(PanelVisibility& panels) {
     bool changed = ImGui::Checkbox(kCloudTitle, &panels.cloud);
     changed |= ImGui::Checkbox(kDepthTitle, &panels.depth);
@@ -102,6 +119,7 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
     changed |= viewSection(settings.cloud);
     ImGui::Separator();
     anchorsSection(context, result);
+    changed |= accumulateSection(settings.accumulate, context, result);
     ImGui::Separator();
     changed |= depthSection(settings.depthRange);
     ImGui::Separator();

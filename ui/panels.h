@@ -90,6 +90,8 @@ struct ControlsContext {
     bool smoothingAvailable = false;
     bool upsamplingAvailable = false;
     std::size_t anchorCount = 0;
+    bool hasPose = false; // accumulate needs world coordinates
+    std::size_t accumulatedPoints = 0;
 };
 
 // What the controls ask for beyond settings.
@@ -97,6 +99,7 @@ struct ControlsResult {
     bool changed = false; // any setting
     bool undoAnchor = false;
     bool clearAnchors = false;
+    bool clearAccumulation = false;
 };
 
 // Every setting.

@@ -57,6 +57,9 @@ void sanitize(Settings& s) {
         r.colormap = d.depthRange.colormap;
     s.camera.overlayOpacity =
         std::clamp(finiteOr(s.camera.overlayOpacity, d.camera.overlayOpacity), 0.0f, 1.0f);
+    s.accumulate.budgetThousands = std::clamp(s.accumulate.budgetThousands, 10, 4000);
+    s.accumulate.voxelMillimeters =
+        std::clamp(finiteOr(s.accumulate.voxelMillimeters, d.accumulate.voxelMillimeters), 0.5f, 100.0f);
     if (s.recentSources.size() > kMaxRecentSources)
         s.recentSources.resize(kMaxRecentSources);
 }
@@ -94,6 +97,9 @@ std::string settingsToJson(const Settings& s) {
     j["camera"] = {{"fill", s.camera.fill},
                    {"depthOverlay", s.camera.depthOverlay},
                    {"overlayOpacity", s.camera.overlayOpacity}};
+    j["accumulate"] = {{"enabled", s.accumulate.enabled},
+                       {"budgetThousands", s.accumulate.budgetThousands},
+                       {"voxelMillimeters", s.accumulate.voxelMillimeters}};
     j["recentSources"] = s.recentSources;
     j["processing"] = {{"smoothing", s.processing.smoothing}, {"upsampling", s.processing.upsampling}};
     return j.dump(2) + "\n";
@@ -138,6 +144,10 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(cam, "fill", s.camera.fill);
     read(cam, "depthOverlay", s.camera.depthOverlay);
     read(cam, "overlayOpacity", s.camera.overlayOpacity);
+    const json& acc = j.contains("accumulate") ? j["accumulate"] : none;
+    read(acc, "enabled", s.accumulate.enabled);
+    read(acc, "budgetThousands", s.accumulate.budgetThousands);
+    read(acc, "voxelMillimeters", s.accumulate.voxelMillimeters);
     read(j, "recentSources", s.recentSources);
     const json& pr = j.contains("processing") ? j["processing"] : none;
     read(pr, "smoothing", s.processing.smoothing);

@@ -36,6 +36,13 @@ struct DepthRange {
     render::Colormap colormap = render::Colormap::Jet;
 };
 
+// Accumulate mode (posed sources only): world points of every frame within a budget.
+struct AccumulateSettings {
+    bool enabled = false;
+    int budgetThousands = 1000;
+    float voxelMillimeters = 5.0f;
+};
+
 // The camera panel fits the whole image (letterboxed) or fills the panel and crops, as the sample's
 // display transform does; the depth can be laid over it.
 struct CameraView {
@@ -50,6 +57,7 @@ struct Settings {
     CloudSettings cloud;
     DepthRange depthRange;
     CameraView camera;
+    AccumulateSettings accumulate;
     processing::ProcessingSettings processing;
     std::vector<std::string> recentSources; // newest first, at most kMaxRecentSources
 };

@@ -100,6 +100,8 @@ Status Viewer::init() {
         return s;
     if (Status s = panelRenderer_.init(); !s)
         return s;
+    if (Status s = accumulatedPoints_.init(); !s)
+        return s;
     resizeCloud(kDefaultCloudWidth, kDefaultCloudHeight);
     // An instrument shows the sensor's own samples, not blends of neighbours; the cloud is drawn 1:1.
     cloudTarget_.setSampling(render::Sampling::Nearest);
@@ -159,6 +161,7 @@ void Viewer::acceptFrame(devices::FramePtr frame) {
     updateLegend();
     renderPanels();
     countPoints();
+    accumulate();
     // Live sources stamp frames with the monotonic clock; a recording's own clock gives no latency.
     const double latency = static_cast<double>(devices::monotonicNowNs() - frame_->timestampNs) * 1e-6;
     if (latency >= 0.0 && latency < 10'000.0)
@@ -206,9 +209,29 @@ void Viewer::renderCloud(double timeSeconds) {
     params.nearMeters = settings_.cloud.nearMeters;
     params.pointSizePixels = settings_.cloud.pointSizePixels;
     params.anchors = anchors_.inCameraFrame(frame_->pose);
+    if (accumulating()) {
+        accumulatedPoints_.sync(accumulator_);
+        params.accumulated = &accumulatedPoints_;
+        params.worldToClip = params.viewProjection * glm::mat4(glm::inverse(toMatrix(*frame_->pose)));
+    }
     cloudViewProjection_ = params.viewProjection;
     cloudRenderer_.render(cloudTarget_, textures_, params);
     stage("cloud").add(millisecondsSince(start));
+}
+
+bool Viewer::accumulating() const {
+    return settings_.accumulate.enabled && frame_ && frame_->pose;
+}
+
+void Viewer::accumulate() {
+    if (!accumulating())
+        return;
+    const auto start = Clock::now();
+    const AccumulateSettings& a = settings_.accumulate;
+    accumulator_.configure(static_cast<std::size_t>(a.budgetThousands) * 1000, a.voxelMillimeters * 1e-3f);
+    accumulator_.add(*frame_, settings_.cloud.minConfidence, settings_.cloud.nearMeters);
+    pointsDrawn_ = accumulator_.size();
+    stage("accumulate").add(millisecondsSince(start));
 }
 
 void Viewer::updateLegend() {

@@ -3,6 +3,7 @@
 #include "devices/rate_meter.h"
 #include "devices/session.h"
 #include "processing/pipeline.h"
+#include "processing/point_accumulator.h"
 #include "processing/rolling_stats.h"
 #include "render/frame_textures.h"
 #include "render/panel_renderer.h"
@@ -83,6 +84,9 @@ public:
     const std::string& zoomedPanel() const { return zoomed_; }
     StatsView statsView() const;
     const LogStore& log() const { return logs_; }
+    const processing::PointAccumulator& accumulator() const { return accumulator_; }
+    // Whether accumulate mode is on and the current frame carries a pose.
+    bool accumulating() const;
     void setZoomedPanel(const std::string& title);
 
 private:
@@ -92,6 +96,7 @@ private:
     void renderCloud(double timeSeconds);
     void countPoints();
     void updateLegend();
+    void accumulate();
     ProbeSource probeSource() const;
     void placePanel(const char* title, float x, float y, float w, float h);
     void afterPanel(const char* title, const PanelResult& result);
@@ -134,6 +139,8 @@ private:
     bool sourceRunning_ = false;
     std::map<std::string, processing::RollingStats> stages_;
     processing::RollingStats latencyMs_;
+    processing::PointAccumulator accumulator_{10'000};
+    render::AccumulatedPoints accumulatedPoints_;
     LogStore logs_;
     LogPanelState logPanel_;
     devices::RateMeter updates_;

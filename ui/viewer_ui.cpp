@@ -85,8 +85,11 @@ void Viewer::drawUi() {
     if (show.controls) {
         placePanel(kControlsTitle, 0, 0, l.leftWidth, l.size.y);
         const ControlsContext context{pipeline_.hasStage(processing::kSmoothingStage),
-                                      pipeline_.hasStage(processing::kUpsamplingStage), anchors_.size()};
+                                      pipeline_.hasStage(processing::kUpsamplingStage), anchors_.size(),
+                                      frame_ && frame_->pose, accumulator_.size()};
         const ControlsResult r = drawControlsPanel(settings_, context, &show.controls);
+        if (r.clearAccumulation)
+            accumulator_.clear();
         if (r.clearAnchors)
             anchors_.clear();
         if (r.undoAnchor)

@@ -1,6 +1,7 @@
 // Headless UI tests of the instrument features: hover readout, anchors and measurement, zoom on click,
 // colormaps and automatic range, the camera panel's fill and depth overlay, stats, log and toasts.
 
+#include "devices/frame_list_device.h"
 #include "devices/log.h"
 #include "devices/synthetic_scene.h"
 #include "render/colormap.h"
@@ -252,6 +253,56 @@ TEST_F(InstrumentTest, StatsLogAndToastsShowWhatHappened) {
     for (ImGuiWindow* w : ImGui::GetCurrentContext()->Windows)
         toast |= std::string(w->Name).rfind("##toast", 0) == 0 && w->Active;
     EXPECT_TRUE(toast) << "an error shows as a toast";
+}
+
+TEST_F(InstrumentTest, AccumulateGathersWorldPointsWithinTheBudget) {
+    devices::SyntheticConfig moving = smallScene();
+    moving.motion = true;
+    ASSERT_NO_FATAL_FAILURE(startViewer(moving));
+    viewer_->settings().cloud.motion.enabled = false;
+    const auto box = locate(kControlsTitle, "Accumulate");
+    ASSERT_TRUE(box.has_value());
+    clickAt(*box);
+    ASSERT_TRUE(viewer_->settings().accumulate.enabled);
+    viewer_->settings().accumulate.budgetThousands = 300;
+    const std::size_t onePose = viewer_->statusLine().pointsDrawn;
+    for (int i = 0; i < 12; ++i) {
+        viewer_->update(0.1 * i, std::chrono::milliseconds(500));
+        frame(0.1 * i);
+    }
+    ASSERT_TRUE(viewer_->accumulating());
+    const std::size_t gathered = viewer_->accumulator().size();
+    EXPECT_GT(gathered, onePose) << "frames from other poses add points";
+    EXPECT_LE(gathered, 300'000u);
+    EXPECT_EQ(viewer_->statusLine().pointsDrawn, gathered);
+    viewer_->settings().accumulate.budgetThousands = 10;
+    viewer_->update(2.0, std::chrono::milliseconds(500));
+    EXPECT_EQ(viewer_->accumulator().size(), 10'000u) << "a smaller budget keeps only the newest points";
+    EXPECT_GT(litPixels(viewer_->cloudTarget().readRgba()), 1000u);
+}
+
+TEST(InstrumentNoPose, AccumulateIsDisabledWithoutPoses) {
+    auto ctx = render::EglContext::createHeadless();
+    ASSERT_TRUE(ctx.ok()) << ctx.error().message;
+    HeadlessUi gui;
+    ASSERT_TRUE(gui.init(1280, 720).ok());
+    devices::Frame f;
+    const devices::SyntheticScene scene;
+    f.cameraIntrinsics = devices::SyntheticScene::cameraIntrinsics(64, 48);
+    f.sceneDepth = scene.sensorDepth(f.cameraIntrinsics, devices::SyntheticScene::cameraPose(0.0, false), 1);
+    Viewer viewer(std::make_unique<devices::FrameListDevice>(
+                      std::vector<devices::FramePtr>{std::make_shared<const devices::Frame>(f)}, 60.0),
+                  Settings{});
+    ASSERT_TRUE(viewer.init().ok());
+    viewer.settings().accumulate.enabled = true;
+    for (int i = 0; i < 5; ++i) {
+        gui.newFrame(1.0f / 60.0f);
+        viewer.update(i / 60.0, std::chrono::milliseconds(200));
+        viewer.drawUi();
+        gui.render();
+    }
+    EXPECT_FALSE(viewer.accumulating());
+    EXPECT_EQ(viewer.accumulator().size(), 0u);
 }
 
 } // namespace
