@@ -174,6 +174,7 @@ int runGui(const ViewerOptions& options) {
     {
         ImGuiScope imgui(window.get(), iniPath);
         ui::Viewer viewer(std::move(*device), settings);
+        viewer.setSourceSpec(options.source);
         if (Status s = viewer.init(); !s) {
             std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
             return kExitFailure;

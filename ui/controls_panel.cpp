@@ -102,6 +102,7 @@ bool panelsSection(PanelVisibility& panels) {
     changed |= ImGui::Checkbox(kCameraTitle, &panels.camera);
     changed |= ImGui::Checkbox("Stats [S]", &panels.stats);
     changed |= ImGui::Checkbox("Log [L]", &panels.log);
+    changed |= ImGui::Checkbox("Source [O]", &panels.source);
     return changed;
 }
 
@@ -160,8 +161,10 @@ bool handleShortcuts(Settings& settings) {
         settings.cloud.orbit = {};
         fired = true;
     }
-    const std::pair<int, bool*> panelKeys[] = {
-        {'C', &settings.panels.controls}, {'S', &settings.panels.stats}, {'L', &settings.panels.log}};
+    const std::pair<int, bool*> panelKeys[] = {{'C', &settings.panels.controls},
+                                               {'S', &settings.panels.stats},
+                                               {'L', &settings.panels.log},
+                                               {'O', &settings.panels.source}};
     for (const auto& [key, shown] : panelKeys) {
         if (ImGui::IsKeyPressed(key, false)) {
             *shown = !*shown;

@@ -9,6 +9,7 @@
 
 #include <optional>
 
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -24,6 +25,7 @@ inline constexpr const char* kControlsTitle = "Controls";
 
 inline constexpr const char* kStatsTitle = "Stats";
 inline constexpr const char* kLogTitle = "Log";
+inline constexpr const char* kSourceTitle = "Source";
 
 // What every image panel reports back: the window's place (to restore it after a zoom), a request to
 // open it large or bring it back (a click on a 2D panel, the zoom button on the cloud), and the depth
@@ -146,6 +148,27 @@ void drawLogPanel(const std::vector<LogEntry>& entries, LogPanelState& state, bo
 
 // Recent warnings and errors as small notes in the bottom-right corner, above `bottomMargin` pixels.
 void drawToasts(const std::vector<LogEntry>& entries, float bottomMargin);
+
+struct SourceEntry {
+    std::string label;
+    std::string spec; // what --source takes
+};
+
+// What the source picker offers: live cameras (kept current by hotplug), recent sources, built-in ones.
+struct SourceList {
+    std::string current;
+    std::vector<SourceEntry> live;
+    std::vector<SourceEntry> recent;
+    std::vector<SourceEntry> builtIn;
+};
+
+struct SourcePanelState {
+    std::array<char, 512> spec{};
+    std::string error; // why the last attempt to open a source failed
+};
+
+// The source picker; returns the spec the user chose to open.
+std::optional<std::string> drawSourcePanel(const SourceList& list, SourcePanelState& state, bool* open);
 
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.
 float drawStatusBar(const StatusLine& status);

@@ -119,6 +119,7 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(p, "controls", s.panels.controls);
     read(p, "stats", s.panels.stats);
     read(p, "log", s.panels.log);
+    read(p, "source", s.panels.source);
     const json& c = j.contains("cloud") ? j["cloud"] : none;
     int level = static_cast<int>(s.cloud.minConfidence);
     read(c, "minConfidence", level);

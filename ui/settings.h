@@ -19,6 +19,7 @@ struct PanelVisibility {
     bool controls = true;
     bool stats = false;
     bool log = false;
+    bool source = false;
 };
 
 struct CloudSettings {

@@ -2,6 +2,7 @@
 
 #include "devices/frame_pacer.h"
 #include "devices/log.h"
+#include "devices/source_spec.h"
 #include "processing/confidence_filter.h"
 
 #include <algorithm>
@@ -87,12 +88,13 @@ render::OrbitView combine(const render::OrbitView& manual, const render::OrbitVi
 } // namespace
 
 Viewer::Viewer(std::unique_ptr<devices::Device> device, Settings settings)
-    : session_(std::move(device)), settings_(settings), pipeline_(processing::makeDefaultPipeline()) {
+    : session_(std::make_unique<devices::Session>(std::move(device))), settings_(settings),
+      pipeline_(processing::makeDefaultPipeline()) {
     sanitize(settings_);
 }
 
 Viewer::~Viewer() {
-    session_.stop();
+    session_->stop();
 }
 
 Status Viewer::init() {
@@ -107,13 +109,49 @@ Status Viewer::init() {
     cloudTarget_.setSampling(render::Sampling::Nearest);
     depthTarget_.setSampling(render::Sampling::Nearest);
     confidenceTarget_.setSampling(render::Sampling::Nearest);
-    if (Status s = session_.start(); !s) {
+    startSession();
+    return {};
+}
+
+// A source that cannot start does not fail the viewer: the panels say why.
+void Viewer::startSession() {
+    sourceMessage_.clear();
+    state_ = "closed";
+    if (Status s = session_->start(); !s) {
         sourceMessage_ = s.error().message;
-        logError(session_.description() + ": " + sourceMessage_);
-        return {};
+        sourceRunning_ = false;
+        logError(session_->description() + ": " + sourceMessage_);
+        return;
     }
     sourceRunning_ = true;
+}
+
+Status Viewer::openSource(const std::string& spec) {
+    auto device = devices::openSourceSpec(spec);
+    if (!device) {
+        sourcePanel_.error = device.error().message;
+        logError(spec + ": " + device.error().message);
+        return device.error();
+    }
+    sourcePanel_.error.clear();
+    currentSpec_ = spec;
+    rememberSource(settings_, spec);
+    switchSource(std::move(*device));
     return {};
+}
+
+void Viewer::switchSource(std::unique_ptr<devices::Device> device) {
+    session_->stop();
+    session_ = std::make_unique<devices::Session>(std::move(device));
+    // Another source means another world: nothing measured in the old one carries over.
+    pipeline_.reset();
+    anchors_.clear();
+    accumulator_.clear();
+    frame_.reset();
+    stages_.clear();
+    latencyMs_ = processing::RollingStats();
+    startSession();
+    logInfo("source: " + session_->description());
 }
 
 void Viewer::resizeCloud(int width, int height) {
@@ -125,7 +163,7 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     drainEvents();
     std::optional<devices::FramePtr> next;
     if (sourceRunning_)
-        next = wait.count() > 0 ? session_.waitForFrame(wait) : session_.takeLatest();
+        next = wait.count() > 0 ? session_->waitForFrame(wait) : session_->takeLatest();
     if (next && *next)
         acceptFrame(std::move(*next));
     if (frame_ && !sameCounting(countedWith_, settings_.cloud))
@@ -136,7 +174,7 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
 }
 
 void Viewer::drainEvents() {
-    for (const devices::SessionEvent& e : session_.drainEvents()) {
+    for (const devices::SessionEvent& e : session_->drainEvents()) {
         state_ = devices::toString(e.state);
         if (e.kind == devices::SessionEvent::Kind::EndOfStream)
             state_ = "end of stream";
@@ -272,18 +310,22 @@ Status Viewer::savePanels(const std::string& directory) const {
 }
 
 StatusLine Viewer::statusLine() const {
-    const devices::SessionStats stats = session_.stats();
-    StatusLine line{session_.description(), state_,
-                    sourceMessage_,         stats.deviceFps,
-                    updates_.perSecond(),   stats.framesDropped,
-                    pointsDrawn_,           {}};
+    const devices::SessionStats stats = session_->stats();
+    StatusLine line{session_->description(),
+                    state_,
+                    sourceMessage_,
+                    stats.deviceFps,
+                    updates_.perSecond(),
+                    stats.framesDropped,
+                    pointsDrawn_,
+                    {}};
     for (const auto& [name, samples] : stages_)
         line.stageMedians.push_back({name, samples.median()});
     return line;
 }
 
 StatsView Viewer::statsView() const {
-    const devices::SessionStats stats = session_.stats();
+    const devices::SessionStats stats = session_->stats();
     StatsView v{stats.deviceFps,
                 updates_.perSecond(),
                 stats.framesDropped,

@@ -73,6 +73,18 @@ public:
     const render::RenderTarget& confidenceTarget() const { return confidenceTarget_; }
     const render::RenderTarget& cameraTarget() const { return cameraTarget_; }
 
+    // Stops the current source and starts `device` in its place; anchors, accumulated points and temporal
+    // state belong to the old source and are dropped.
+    void switchSource(std::unique_ptr<devices::Device> device);
+    const devices::Session& session() const { return *session_; }
+    // Opens the source a --source spec names and switches to it; a bad spec leaves the current source
+    // running and says why (returned, logged and shown in the source panel).
+    Status openSource(const std::string& spec);
+    // Live cameras for the source picker, kept current by whoever watches hotplug.
+    void setLiveSources(std::vector<SourceEntry> live) { liveSources_ = std::move(live); }
+    // The spec of the source the viewer was created with, for the picker to mark.
+    void setSourceSpec(std::string spec) { currentSpec_ = std::move(spec); }
+
     // The depth sample under the mouse in the last drawUi(), on any panel.
     const std::optional<Probe>& hoverProbe() const { return hoverProbe_; }
     // The depth panel's range and colormap as last rendered (the automatic range follows each frame).
@@ -83,6 +95,9 @@ public:
     // The panel shown large, or empty.
     const std::string& zoomedPanel() const { return zoomed_; }
     StatsView statsView() const;
+    // What the cloud panel says over the view: why the source is not running, or that it is
+    // disconnected or stalled (empty while all is well).
+    std::string cloudMessage() const;
     const LogStore& log() const { return logs_; }
     const processing::PointAccumulator& accumulator() const { return accumulator_; }
     // Whether accumulate mode is on and the current frame carries a pose.
@@ -90,6 +105,7 @@ public:
     void setZoomedPanel(const std::string& title);
 
 private:
+    void startSession();
     void drainEvents();
     void acceptFrame(devices::FramePtr frame);
     void renderPanels();
@@ -102,12 +118,13 @@ private:
     void afterPanel(const char* title, const PanelResult& result);
     void drawCloud(float x, float y, float w, float h);
     void drawSidePanels(float x, float w, float h);
+    void drawSourcePicker(float x, float y);
     void onCloudPointer(const CloudPanelResult& r);
     CloudOverlay cloudOverlay() const;
     processing::Needs needs() const;
     processing::RollingStats& stage(const std::string& name) { return stages_[name]; }
 
-    devices::Session session_;
+    std::unique_ptr<devices::Session> session_;
     Settings settings_;
     processing::Pipeline pipeline_;
     render::FrameTextures textures_;
@@ -143,6 +160,9 @@ private:
     render::AccumulatedPoints accumulatedPoints_;
     LogStore logs_;
     LogPanelState logPanel_;
+    SourcePanelState sourcePanel_;
+    std::vector<SourceEntry> liveSources_;
+    std::string currentSpec_;
     devices::RateMeter updates_;
 };
 

@@ -107,6 +107,8 @@ void Viewer::drawUi() {
         placePanel(kLogTitle, l.leftWidth + 16.0f, l.size.y - 260.0f, 640.0f, 240.0f);
         drawLogPanel(log, logPanel_, &show.log);
     }
+    if (show.source)
+        drawSourcePicker(l.leftWidth + 40.0f, 40.0f);
     drawToasts(log, statusHeight);
     if (hoverProbe_)
         showProbeTooltip(*hoverProbe_);
@@ -114,9 +116,9 @@ void Viewer::drawUi() {
 
 void Viewer::drawCloud(float x, float y, float w, float h) {
     placePanel(kCloudTitle, x, y, w, h);
-    const std::string message = sourceRunning_ ? std::string() : sourceMessage_;
-    const CloudPanelResult r = drawCloudPanel(imageOf(cloudTarget_), settings_.cloud, cloudOverlay(), message,
-                                              zoomed_ == kCloudTitle, &settings_.panels.cloud);
+    const CloudPanelResult r =
+        drawCloudPanel(imageOf(cloudTarget_), settings_.cloud, cloudOverlay(), cloudMessage(),
+                       zoomed_ == kCloudTitle, &settings_.panels.cloud);
     afterPanel(kCloudTitle, r.panel);
     if (r.wantedWidth > 0 && r.wantedHeight > 0 &&
         (r.wantedWidth != cloudTarget_.width() || r.wantedHeight != cloudTarget_.height()))
@@ -134,7 +136,7 @@ void Viewer::drawSidePanels(float x, float w, float h) {
     if (show.confidence) {
         placePanel(kConfidenceTitle, x, h, w, h);
         afterPanel(kConfidenceTitle,
-                   drawConfidencePanel(imageOf(confidenceTarget_), session_.capabilities().confidence, probe,
+                   drawConfidencePanel(imageOf(confidenceTarget_), session_->capabilities().confidence, probe,
                                        &show.confidence));
     }
     if (show.camera) {
@@ -145,6 +147,18 @@ void Viewer::drawSidePanels(float x, float w, float h) {
         if (r.shownWidth > 0)
             cameraShownWidth_ = r.shownWidth;
     }
+}
+
+void Viewer::drawSourcePicker(float x, float y) {
+    placePanel(kSourceTitle, x, y, 420.0f, 360.0f);
+    SourceList list{currentSpec_, liveSources_, {}, {}};
+    for (const std::string& spec : settings_.recentSources)
+        list.recent.push_back({spec, spec});
+    list.builtIn = {{"Synthetic desk, 256x192 @ 60 Hz", "synthetic"},
+                    {"Synthetic desk, 640x480 @ 30 Hz", "synthetic:640x480@30"},
+                    {"Synthetic desk, moving camera (poses)", "synthetic:motion"}};
+    if (const auto chosen = drawSourcePanel(list, sourcePanel_, &settings_.panels.source))
+        (void)openSource(*chosen);
 }
 
 // Hovering the cloud reads out the point under the mouse; a click drops an anchor on it. The first click
@@ -172,6 +186,20 @@ void Viewer::onCloudPointer(const CloudPanelResult& r) {
     if (r.clickPixels && !r.doubleClicked) {
         anchors_.add(picked->point, frame_->pose);
         lastAnchorTime_ = now;
+    }
+}
+
+// The last frame stays on screen, marked, while a live camera is away (seed 003's interruption).
+std::string Viewer::cloudMessage() const {
+    if (!sourceRunning_)
+        return sourceMessage_;
+    switch (session_->state()) {
+    case devices::DeviceState::Disconnected:
+        return "Disconnected: showing the last frame; streaming resumes when the camera is back.";
+    case devices::DeviceState::Stalled:
+        return "Stalled: the camera stopped delivering frames.";
+    default:
+        return {};
     }
 }
 

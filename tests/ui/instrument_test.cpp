@@ -281,6 +281,25 @@ TEST_F(InstrumentTest, AccumulateGathersWorldPointsWithinTheBudget) {
     EXPECT_GT(litPixels(viewer_->cloudTarget().readRgba()), 1000u);
 }
 
+TEST_F(InstrumentTest, TheSourcePickerSwitchesSourcesAndRefusesBadOnes) {
+    pressKey('O', 0.0);
+    ASSERT_TRUE(viewer_->settings().panels.source);
+    frame(0.0);
+    const auto entry = locate(kSourceTitle, "Synthetic desk, 640x480 @ 30 Hz", 1.0f);
+    ASSERT_TRUE(entry.has_value());
+    click(*entry, 0.0);
+    for (int i = 0; i < 20 && viewer_->summary().depthWidth != 640; ++i) {
+        viewer_->update(0.0, std::chrono::milliseconds(200));
+        frame(0.0);
+    }
+    EXPECT_EQ(viewer_->summary().depthWidth, 640);
+    EXPECT_EQ(viewer_->settings().recentSources.front(), "synthetic:640x480@30");
+    EXPECT_FALSE(viewer_->openSource("synthetic:12x").ok());
+    viewer_->update(0.0, std::chrono::milliseconds(200));
+    EXPECT_EQ(viewer_->summary().depthWidth, 640) << "a bad spec leaves the current source running";
+    EXPECT_TRUE(viewer_->sourceRunning());
+}
+
 TEST(InstrumentNoPose, AccumulateIsDisabledWithoutPoses) {
     auto ctx = render::EglContext::createHeadless();
     ASSERT_TRUE(ctx.ok()) << ctx.error().message;

@@ -164,5 +164,44 @@ TEST(UiNoDepth, UnsupportedDeviceIsShownNotCrashed) {
     EXPECT_EQ(viewer.statusLine().message, devices::Session::kNoDepthMessage);
 }
 
+// Delivers a few frames of the synthetic scene, then reports the camera gone.
+class UnpluggedDevice final : public devices::Device {
+public:
+    std::string description() const override { return "unplugged camera"; }
+    devices::Capabilities capabilities() const override { return synthetic_.capabilities(); }
+
+protected:
+    Status doOpen() override { return synthetic_.open(); }
+    Status doStart() override { return synthetic_.start(); }
+    void doStop() override {}
+    devices::CaptureResult doCapture(std::chrono::milliseconds timeout) override {
+        if (++captures_ > 3)
+            return {devices::CaptureResult::Kind::Disconnected, nullptr, "unplugged camera: No such device"};
+        return synthetic_.capture(timeout);
+    }
+
+private:
+    devices::SyntheticDevice synthetic_{smallScene()};
+    int captures_ = 0;
+};
+
+TEST(UiDisconnected, TheLastFrameStaysWithADisconnectedNote) {
+    auto ctx = render::EglContext::createHeadless();
+    ASSERT_TRUE(ctx.ok()) << ctx.error().message;
+    HeadlessUi gui;
+    ASSERT_TRUE(gui.init(1280, 720).ok());
+    Viewer viewer(std::make_unique<UnpluggedDevice>(), Settings{});
+    ASSERT_TRUE(viewer.init().ok());
+    for (int i = 0; i < 40 && viewer.statusLine().state != "disconnected"; ++i) {
+        gui.newFrame(1.0f / 60.0f);
+        viewer.update(i / 60.0, std::chrono::milliseconds(100));
+        viewer.drawUi();
+        gui.render();
+    }
+    EXPECT_EQ(viewer.statusLine().state, "disconnected");
+    ASSERT_NE(viewer.currentFrame(), nullptr) << "the view keeps the last frame";
+    EXPECT_NE(viewer.cloudMessage().find("Disconnected"), std::string::npos);
+}
+
 } // namespace
 } // namespace dc::ui::test
