@@ -115,6 +115,10 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
         return result;
     }
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f); // room for the longest label
+    if (context.recordState) {
+        result.toggleRecording = drawRecordControls(context.record, *context.recordState);
+        ImGui::Separator();
+    }
     bool changed = confidenceSection(settings.cloud);
     ImGui::Separator();
     changed |= viewSection(settings.cloud);

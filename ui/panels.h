@@ -1,6 +1,7 @@
 #pragma once
 
 #include "devices/device.h"
+#include "devices/replay/replay_device.h"
 #include "processing/pipeline.h"
 #include "ui/log_store.h"
 #include "ui/panel_image.h"
@@ -26,6 +27,7 @@ inline constexpr const char* kControlsTitle = "Controls";
 inline constexpr const char* kStatsTitle = "Stats";
 inline constexpr const char* kLogTitle = "Log";
 inline constexpr const char* kSourceTitle = "Source";
+inline constexpr const char* kTimelineTitle = "Timeline";
 
 // What every image panel reports back: the window's place (to restore it after a zoom), a request to
 // open it large or bring it back (a click on a 2D panel, the zoom button on the cloud), and the depth
@@ -87,6 +89,20 @@ struct CameraPanelResult {
 CameraPanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay,
                                   const CameraView& view, const ProbeSource& probe, bool* open);
 
+struct RecordView {
+    bool recording = false;
+    std::uint64_t framesWritten = 0;
+    std::uint64_t framesDropped = 0;
+    std::uint64_t bytesWritten = 0;
+};
+
+struct RecordPanelState {
+    std::array<char, 512> path{"depthcloud-recording.dcrec"};
+};
+
+// The record button (inside the controls panel); returns true when it was pressed.
+bool drawRecordControls(const RecordView& view, RecordPanelState& state);
+
 // What the controls need to know but must not change.
 struct ControlsContext {
     bool smoothingAvailable = false;
@@ -94,6 +110,8 @@ struct ControlsContext {
     std::size_t anchorCount = 0;
     bool hasPose = false; // accumulate needs world coordinates
     std::size_t accumulatedPoints = 0;
+    RecordView record;
+    RecordPanelState* recordState = nullptr;
 };
 
 // What the controls ask for beyond settings.
@@ -102,6 +120,7 @@ struct ControlsResult {
     bool undoAnchor = false;
     bool clearAnchors = false;
     bool clearAccumulation = false;
+    bool toggleRecording = false;
 };
 
 // Every setting.
@@ -169,6 +188,35 @@ struct SourcePanelState {
 
 // The source picker; returns the spec the user chose to open.
 std::optional<std::string> drawSourcePanel(const SourceList& list, SourcePanelState& state, bool* open);
+
+struct TimelineView {
+    devices::replay::ReplayStatus status;
+    bool exporting = false;
+    std::size_t exportDone = 0;
+    std::size_t exportTotal = 0;
+};
+
+// The timeline's own edits: the range to export, its format and where it goes.
+struct TimelinePanelState {
+    std::size_t rangeStart = 0;
+    std::size_t rangeEnd = 0; // exclusive; 0 = to the last frame
+    int format = 0;           // exporting::ExportFormat
+    std::array<char, 512> outDirectory{"depthcloud-export"};
+};
+
+// What the user asked the replay to do this frame.
+struct TimelineActions {
+    std::optional<std::size_t> seekIndex;
+    int step = 0;
+    std::optional<bool> play;
+    std::optional<bool> loop;
+    std::optional<double> speed;
+    bool exportRange = false;
+    bool cancelExport = false;
+};
+
+// Play/pause, step, first/last, loop, speed, a frame scrubber with the time, and the range export.
+TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& state, bool* open);
 
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.
 float drawStatusBar(const StatusLine& status);

@@ -120,6 +120,7 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(p, "stats", s.panels.stats);
     read(p, "log", s.panels.log);
     read(p, "source", s.panels.source);
+    read(p, "timeline", s.panels.timeline);
     const json& c = j.contains("cloud") ? j["cloud"] : none;
     int level = static_cast<int>(s.cloud.minConfidence);
     read(c, "minConfidence", level);

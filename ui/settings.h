@@ -20,6 +20,7 @@ struct PanelVisibility {
     bool stats = false;
     bool log = false;
     bool source = false;
+    bool timeline = true; // shown while the source is a replay
 };
 
 struct CloudSettings {

@@ -2,6 +2,7 @@
 
 #include "devices/frame_pacer.h"
 #include "devices/log.h"
+#include "devices/replay/replay_device.h"
 #include "devices/source_spec.h"
 #include "processing/confidence_filter.h"
 
@@ -88,12 +89,23 @@ render::OrbitView combine(const render::OrbitView& manual, const render::OrbitVi
 } // namespace
 
 Viewer::Viewer(std::unique_ptr<devices::Device> device, Settings settings)
-    : session_(std::make_unique<devices::Session>(std::move(device))), settings_(settings),
-      pipeline_(processing::makeDefaultPipeline()) {
+    : settings_(settings), pipeline_(processing::makeDefaultPipeline()) {
     sanitize(settings_);
+    adoptDevice(*device);
+    session_ = std::make_unique<devices::Session>(std::move(device));
+}
+
+// A replay hands the UI its timeline; every other source has none.
+void Viewer::adoptDevice(devices::Device& device) {
+    const auto* replay = dynamic_cast<const devices::replay::ReplayDevice*>(&device);
+    replay_ = replay ? replay->control() : nullptr;
+    awaitedSeek_ = 0;
 }
 
 Viewer::~Viewer() {
+    exportJob_.reset();
+    if (recording_)
+        (void)stopRecording();
     session_->stop();
 }
 
@@ -126,6 +138,75 @@ void Viewer::startSession() {
     sourceRunning_ = true;
 }
 
+void Viewer::seekReplay(std::size_t index) {
+    if (!replay_)
+        return;
+    awaitedSeek_ = replay_->seekToIndex(index);
+    pipeline_.reset(); // temporal smoothing must not blend frames across the jump
+}
+
+void Viewer::stepReplay(int frames) {
+    if (!replay_)
+        return;
+    awaitedSeek_ = replay_->step(frames);
+    pipeline_.reset();
+}
+
+Status Viewer::startExport(exporting::ExportFormat format, const std::string& directory, std::size_t first,
+                           std::size_t end) {
+    if (!replay_)
+        return Error{"export needs a replay source"};
+    if (exportJob_ && !exportJob_->finished())
+        return Error{"an export is already running"};
+    exporting::ExportOptions options;
+    options.format = format;
+    options.outDirectory = directory;
+    options.frames = {first, end};
+    auto job = ExportJob::start(currentSpec_, options);
+    if (!job) {
+        logError("export: " + job.error().message);
+        return job.error();
+    }
+    exportJob_ = std::move(*job);
+    return {};
+}
+
+Status Viewer::startRecording(const std::string& path) {
+    if (recording_)
+        return Error{"already recording to " + recording_->path()};
+    auto r = devices::recording::SessionRecording::start(*session_, path);
+    if (!r) {
+        logError("record: " + r.error().message);
+        return r.error();
+    }
+    recording_ = std::move(*r);
+    logInfo("recording to " + path);
+    return {};
+}
+
+Status Viewer::stopRecording() {
+    if (!recording_)
+        return {};
+    const devices::recording::RecorderStats stats = recording_->stats();
+    Status s = recording_->stop();
+    const std::string path = recording_->path();
+    recording_.reset();
+    if (!s) {
+        logError("recording " + path + ": " + s.error().message);
+        return s;
+    }
+    logInfo("recorded " + std::to_string(stats.framesWritten) + " frames (" +
+            std::to_string(stats.framesDropped) + " dropped) to " + path);
+    return {};
+}
+
+RecordView Viewer::recordView() const {
+    if (!recording_)
+        return {};
+    const devices::recording::RecorderStats s = recording_->stats();
+    return {true, s.framesWritten, s.framesDropped, s.bytesWritten};
+}
+
 Status Viewer::openSource(const std::string& spec) {
     auto device = devices::openSourceSpec(spec);
     if (!device) {
@@ -141,7 +222,10 @@ Status Viewer::openSource(const std::string& spec) {
 }
 
 void Viewer::switchSource(std::unique_ptr<devices::Device> device) {
+    if (recording_)
+        (void)stopRecording();
     session_->stop();
+    adoptDevice(*device);
     session_ = std::make_unique<devices::Session>(std::move(device));
     // Another source means another world: nothing measured in the old one carries over.
     pipeline_.reset();
@@ -164,7 +248,9 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     std::optional<devices::FramePtr> next;
     if (sourceRunning_)
         next = wait.count() > 0 ? session_->waitForFrame(wait) : session_->takeLatest();
-    if (next && *next)
+    // After a seek, frames decoded before it are still in flight: the first one shown is the one asked for.
+    const bool stale = next && *next && (*next)->replay && (*next)->replay->seekGeneration < awaitedSeek_;
+    if (next && *next && !stale)
         acceptFrame(std::move(*next));
     if (frame_ && !sameCounting(countedWith_, settings_.cloud))
         countPoints();

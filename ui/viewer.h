@@ -1,6 +1,7 @@
 #pragma once
 
 #include "devices/rate_meter.h"
+#include "devices/recording/session_recording.h"
 #include "devices/session.h"
 #include "processing/pipeline.h"
 #include "processing/point_accumulator.h"
@@ -10,6 +11,7 @@
 #include "render/point_cloud_renderer.h"
 #include "render/render_target.h"
 #include "ui/anchors.h"
+#include "ui/export_job.h"
 #include "ui/panels.h"
 #include "ui/settings.h"
 
@@ -85,6 +87,22 @@ public:
     // The spec of the source the viewer was created with, for the picker to mark.
     void setSourceSpec(std::string spec) { currentSpec_ = std::move(spec); }
 
+    // The replay's timeline while the source is a replay (null otherwise).
+    const std::shared_ptr<devices::replay::ReplayControl>& replayControl() const { return replay_; }
+    // Seeks the replay to `index`; frames decoded before the seek are not shown, so the next frame the
+    // viewer accepts is exactly the one asked for.
+    void seekReplay(std::size_t index);
+    void stepReplay(int frames);
+    // Starts exporting frames [first, end) of the replay (end 0: to the last) in the background.
+    Status startExport(exporting::ExportFormat format, const std::string& directory, std::size_t first,
+                       std::size_t end);
+    const ExportJob* exportJob() const { return exportJob_.get(); }
+    // Records what the source captures into `path` (from the capture thread, never stalling it).
+    Status startRecording(const std::string& path);
+    Status stopRecording();
+    bool recording() const { return recording_ != nullptr; }
+    RecordView recordView() const;
+
     // The depth sample under the mouse in the last drawUi(), on any panel.
     const std::optional<Probe>& hoverProbe() const { return hoverProbe_; }
     // The depth panel's range and colormap as last rendered (the automatic range follows each frame).
@@ -119,6 +137,10 @@ private:
     void drawCloud(float x, float y, float w, float h);
     void drawSidePanels(float x, float w, float h);
     void drawSourcePicker(float x, float y);
+    void drawTimeline(float x, float y, float w);
+    void applyTimeline(const TimelineActions& actions);
+    void handleReplayKeys();
+    void adoptDevice(devices::Device& device);
     void onCloudPointer(const CloudPanelResult& r);
     CloudOverlay cloudOverlay() const;
     processing::Needs needs() const;
@@ -161,6 +183,12 @@ private:
     LogStore logs_;
     LogPanelState logPanel_;
     SourcePanelState sourcePanel_;
+    std::shared_ptr<devices::replay::ReplayControl> replay_;
+    std::uint64_t awaitedSeek_ = 0;
+    TimelinePanelState timelineState_;
+    std::unique_ptr<ExportJob> exportJob_;
+    RecordPanelState recordState_;
+    std::unique_ptr<devices::recording::SessionRecording> recording_;
     std::vector<SourceEntry> liveSources_;
     std::string currentSpec_;
     devices::RateMeter updates_;

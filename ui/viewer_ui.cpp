@@ -3,6 +3,7 @@
 #include "render/cloud_pick.h"
 
 #include <algorithm>
+#include <tuple>
 
 namespace dc::ui {
 
@@ -85,9 +86,15 @@ void Viewer::drawUi() {
     if (show.controls) {
         placePanel(kControlsTitle, 0, 0, l.leftWidth, l.size.y);
         const ControlsContext context{pipeline_.hasStage(processing::kSmoothingStage),
-                                      pipeline_.hasStage(processing::kUpsamplingStage), anchors_.size(),
-                                      frame_ && frame_->pose, accumulator_.size()};
+                                      pipeline_.hasStage(processing::kUpsamplingStage),
+                                      anchors_.size(),
+                                      frame_ && frame_->pose,
+                                      accumulator_.size(),
+                                      recordView(),
+                                      &recordState_};
         const ControlsResult r = drawControlsPanel(settings_, context, &show.controls);
+        if (r.toggleRecording)
+            (void)(recording_ ? stopRecording() : startRecording(recordState_.path.data()));
         if (r.clearAccumulation)
             accumulator_.clear();
         if (r.clearAnchors)
@@ -109,6 +116,9 @@ void Viewer::drawUi() {
     }
     if (show.source)
         drawSourcePicker(l.leftWidth + 40.0f, 40.0f);
+    if (replay_ && show.timeline)
+        drawTimeline(l.leftWidth, l.size.y - 150.0f, l.size.x - l.leftWidth - l.rightWidth);
+    handleReplayKeys();
     drawToasts(log, statusHeight);
     if (hoverProbe_)
         showProbeTooltip(*hoverProbe_);
@@ -159,6 +169,52 @@ void Viewer::drawSourcePicker(float x, float y) {
                     {"Synthetic desk, moving camera (poses)", "synthetic:motion"}};
     if (const auto chosen = drawSourcePanel(list, sourcePanel_, &settings_.panels.source))
         (void)openSource(*chosen);
+}
+
+void Viewer::drawTimeline(float x, float y, float w) {
+    placePanel(kTimelineTitle, x, y, w, 140.0f);
+    TimelineView view{replay_->status(), exportJob_ && !exportJob_->finished(), 0, 0};
+    if (exportJob_)
+        std::tie(view.exportDone, view.exportTotal) = exportJob_->progress();
+    applyTimeline(drawTimelinePanel(view, timelineState_, &settings_.panels.timeline));
+}
+
+void Viewer::applyTimeline(const TimelineActions& a) {
+    if (a.seekIndex)
+        seekReplay(*a.seekIndex);
+    if (a.step != 0)
+        stepReplay(a.step);
+    if (a.play)
+        *a.play ? replay_->play() : replay_->pause();
+    if (a.loop)
+        replay_->setLoop(*a.loop);
+    if (a.speed)
+        replay_->setSpeed(*a.speed);
+    if (a.cancelExport && exportJob_)
+        exportJob_->cancel();
+    if (a.exportRange)
+        (void)startExport(static_cast<exporting::ExportFormat>(timelineState_.format),
+                          timelineState_.outDirectory.data(), timelineState_.rangeStart,
+                          timelineState_.rangeEnd);
+}
+
+// Space plays or pauses, the arrows step a frame, Home and End jump to the ends (as in video players).
+void Viewer::handleReplayKeys() {
+    if (!replay_ || ImGui::GetIO().WantTextInput)
+        return;
+    const auto pressed = [](ImGuiKey key) {
+        return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), key != ImGuiKey_Space);
+    };
+    if (pressed(ImGuiKey_Space))
+        replay_->status().playing ? replay_->pause() : replay_->play();
+    if (pressed(ImGuiKey_LeftArrow))
+        stepReplay(-1);
+    if (pressed(ImGuiKey_RightArrow))
+        stepReplay(1);
+    if (pressed(ImGuiKey_Home))
+        seekReplay(0);
+    if (pressed(ImGuiKey_End))
+        seekReplay(std::max<std::size_t>(replay_->status().count, 1) - 1);
 }
 
 // Hovering the cloud reads out the point under the mouse; a click drops an anchor on it. The first click

@@ -57,13 +57,14 @@ protected:
 
     // Finds a widget by label inside a panel by hovering candidate positions until ImGui reports the
     // widget's ID as hovered: no coordinates are hard-coded, so a layout change cannot fool the test.
-    std::optional<ImVec2> locate(const char* window, const char* label, float widthFraction = 0.6f) {
+    std::optional<ImVec2> locate(const char* window, const char* label, float widthFraction = 0.6f,
+                                 float xStep = 24.0f) {
         ImGuiWindow* w = ImGui::FindWindowByName(window);
         if (!w)
             return std::nullopt;
         const ImGuiID id = w->GetID(label);
         for (float y = w->Pos.y; y < w->Pos.y + w->Size.y; y += 3.0f) {
-            for (float x = w->Pos.x + 12.0f; x < w->Pos.x + w->Size.x * widthFraction; x += 24.0f) {
+            for (float x = w->Pos.x + 12.0f; x < w->Pos.x + w->Size.x * widthFraction; x += xStep) {
                 gui_.io().MousePos = ImVec2(x, y);
                 gui_.newFrame(1.0f / 60.0f);
                 viewer_->drawUi();

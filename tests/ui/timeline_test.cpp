@@ -1,0 +1,130 @@
+// Headless UI tests of replay: the timeline steps and seeks to exact frames, keys drive it, the record
+// button records, and an export started from the UI writes the same files as `depthcloud export`.
+
+#include "devices/source_spec.h"
+#include "ui_fixture.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+
+namespace dc::ui::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::map<std::string, std::string> filesUnder(const fs::path& dir) {
+    std::map<std::string, std::string> files;
+    for (const auto& e : fs::recursive_directory_iterator(dir)) {
+        if (!e.is_regular_file())
+            continue;
+        std::ifstream in(e.path(), std::ios::binary);
+        files[fs::relative(e.path(), dir).string()] = {std::istreambuf_iterator<char>(in), {}};
+    }
+    return files;
+}
+
+class TimelineTest : public UiTest {
+protected:
+    void SetUp() override {
+        UiTest::SetUp();
+        ASSERT_FALSE(HasFatalFailure());
+        dir_ = fs::temp_directory_path() / ("dc-timeline-" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+        recording_ = (dir_ / "scene.dcrec").string();
+        // A recording made by the real recorder, the same path as `depthcloud record`.
+        ASSERT_TRUE(viewer_->startRecording(recording_).ok());
+        for (int i = 0; i < 200 && viewer_->recordView().framesWritten < kFrames; ++i)
+            viewer_->update(0.0, std::chrono::milliseconds(20));
+        ASSERT_TRUE(viewer_->stopRecording().ok());
+        ASSERT_TRUE(fs::exists(recording_));
+        ASSERT_TRUE(viewer_->openSource("replay:" + recording_ + ":paused").ok());
+        ASSERT_NE(viewer_->replayControl(), nullptr);
+        waitForIndex(0);
+    }
+
+    void TearDown() override {
+        UiTest::TearDown();
+        fs::remove_all(dir_);
+    }
+
+    // Runs the viewer until it shows frame `index` of the replay; false if it never does.
+    bool waitForIndex(std::size_t index) {
+        for (int i = 0; i < 100; ++i) {
+            viewer_->update(0.0, std::chrono::milliseconds(20));
+            frame(0.0);
+            const auto& f = viewer_->currentFrame();
+            if (f && f->replay && f->replay->index == index)
+                return true;
+        }
+        return false;
+    }
+
+    std::size_t shownIndex() const { return viewer_->currentFrame()->replay->index; }
+
+    static constexpr std::uint64_t kFrames = 24;
+    fs::path dir_;
+    std::string recording_;
+};
+
+TEST_F(TimelineTest, SeeksAndStepsShowExactlyTheFrameAskedFor) {
+    const std::size_t count = viewer_->replayControl()->status().count;
+    ASSERT_GE(count, kFrames);
+    for (const std::size_t target :
+         {std::size_t{17}, std::size_t{3}, count - 1, std::size_t{0}, std::size_t{11}}) {
+        viewer_->seekReplay(target);
+        // The first frame accepted after the seek is the target: never a stale one in between.
+        for (int i = 0; i < 100; ++i) {
+            if (viewer_->update(0.0, std::chrono::milliseconds(20)))
+                break;
+        }
+        EXPECT_EQ(shownIndex(), target);
+    }
+    pressKey(ImGui::GetKeyIndex(ImGuiKey_RightArrow), 0.0);
+    ASSERT_TRUE(waitForIndex(12)) << "right arrow steps forward";
+    pressKey(ImGui::GetKeyIndex(ImGuiKey_LeftArrow), 0.0);
+    pressKey(ImGui::GetKeyIndex(ImGuiKey_LeftArrow), 0.0);
+    ASSERT_TRUE(waitForIndex(10)) << "left arrow steps back";
+    pressKey(ImGui::GetKeyIndex(ImGuiKey_End), 0.0);
+    ASSERT_TRUE(waitForIndex(count - 1));
+    pressKey(ImGui::GetKeyIndex(ImGuiKey_Home), 0.0);
+    ASSERT_TRUE(waitForIndex(0));
+    pressKey(ImGui::GetKeyIndex(ImGuiKey_Space), 0.0);
+    EXPECT_TRUE(viewer_->replayControl()->status().playing) << "space plays";
+}
+
+TEST_F(TimelineTest, TheTimelineButtonsDriveTheReplay) {
+    const auto next = locate(kTimelineTitle, ">", 1.0f, 6.0f);
+    ASSERT_TRUE(next.has_value());
+    click(*next, 0.0);
+    ASSERT_TRUE(waitForIndex(1));
+    const auto loop = locate(kTimelineTitle, "Loop", 1.0f);
+    ASSERT_TRUE(loop.has_value());
+    click(*loop, 0.0);
+    EXPECT_TRUE(viewer_->replayControl()->status().loop);
+}
+
+TEST_F(TimelineTest, ExportFromTheUiWritesWhatTheCliWrites) {
+    const fs::path ui = dir_ / "ui", cli = dir_ / "cli";
+    ASSERT_TRUE(viewer_->startExport(exporting::ExportFormat::Ply, ui.string(), 4, 9).ok());
+    for (int i = 0; i < 600 && !viewer_->exportJob()->finished(); ++i) {
+        viewer_->update(0.0, std::chrono::milliseconds(10));
+        frame(0.0); // the UI keeps drawing while the export runs
+    }
+    ASSERT_TRUE(viewer_->exportJob()->finished());
+    const auto result = viewer_->exportJob()->result();
+    ASSERT_TRUE(result && result->ok()) << (result ? result->error().message : "no result");
+    EXPECT_EQ((*result)->framesWritten, 5u);
+    const std::string command = std::string(DEPTHCLOUD_BINARY) + " export --source replay:" + recording_ +
+                                " --out " + cli.string() + " --frames 4:9 --format ply > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    const auto uiFiles = filesUnder(ui);
+    EXPECT_EQ(uiFiles.size(), 5u);
+    EXPECT_EQ(uiFiles, filesUnder(cli));
+}
+
+} // namespace
+} // namespace dc::ui::test

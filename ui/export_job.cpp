@@ -1,0 +1,48 @@
+#include "ui/export_job.h"
+
+#include "devices/log.h"
+#include "devices/replay/replay_spec.h"
+
+namespace dc::ui {
+
+Expected<std::unique_ptr<ExportJob>> ExportJob::start(const std::string& replaySpec,
+                                                      const exporting::ExportOptions& options) {
+    auto source = devices::replay::openReplaySpecSource(replaySpec);
+    if (!source)
+        return source.error();
+    std::unique_ptr<ExportJob> job(new ExportJob());
+    ExportJob* self = job.get();
+    // The thread owns the source; errors and cancellation come back as values, never as exceptions.
+    job->thread_ = std::thread([self, options, src = std::move(*source)]() mutable {
+        auto r = exporting::exportFrames(*src, options, [self](std::size_t done, std::size_t total) {
+            self->done_ = done;
+            self->total_ = total;
+            return !self->cancelled_.load();
+        });
+        if (r)
+            logInfo("exported " + std::to_string(r->framesWritten) + " frames to " + options.outDirectory);
+        else
+            logError("export to " + options.outDirectory + ": " + r.error().message);
+        std::lock_guard lock(self->mutex_);
+        self->result_ = std::move(r);
+        self->finished_ = true;
+    });
+    return job;
+}
+
+ExportJob::~ExportJob() {
+    cancel();
+    join();
+}
+
+void ExportJob::join() {
+    if (thread_.joinable())
+        thread_.join();
+}
+
+std::optional<Expected<exporting::ExportResult>> ExportJob::result() const {
+    std::lock_guard lock(mutex_);
+    return result_;
+}
+
+} // namespace dc::ui

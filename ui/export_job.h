@@ -1,0 +1,47 @@
+#pragma once
+
+#include "devices/expected.h"
+#include "exporting/export.h"
+
+#include <atomic>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+namespace dc::ui {
+
+// An export of a replay source's frame range running on its own thread, so the UI stays responsive; the
+// UI polls progress() and may cancel(). It opens its own copy of the source (sources are not thread-safe)
+// and calls exactly the code `depthcloud export` calls, so both write the same files.
+class ExportJob {
+public:
+    static Expected<std::unique_ptr<ExportJob>> start(const std::string& replaySpec,
+                                                      const exporting::ExportOptions& options);
+    ~ExportJob();
+    ExportJob(const ExportJob&) = delete;
+    ExportJob& operator=(const ExportJob&) = delete;
+
+    // Frames done and in total.
+    std::pair<std::size_t, std::size_t> progress() const { return {done_.load(), total_.load()}; }
+    void cancel() { cancelled_ = true; }
+    bool finished() const { return finished_.load(); }
+    // Once finished: what was written, or why it stopped.
+    std::optional<Expected<exporting::ExportResult>> result() const;
+    // Waits for the thread (the destructor cancels first).
+    void join();
+
+private:
+    ExportJob() = default;
+
+    std::atomic<std::size_t> done_{0};
+    std::atomic<std::size_t> total_{0};
+    std::atomic<bool> cancelled_{false};
+    std::atomic<bool> finished_{false};
+    mutable std::mutex mutex_;
+    std::optional<Expected<exporting::ExportResult>> result_;
+    std::thread thread_;
+};
+
+} // namespace dc::ui

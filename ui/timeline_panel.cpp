@@ -1,0 +1,119 @@
+#include "ui/panels.h"
+
+#include <algorithm>
+#include <cstdio>
+
+namespace dc::ui {
+
+namespace {
+
+double secondsOf(std::int64_t ns, std::int64_t originNs) {
+    return static_cast<double>(ns - originNs) * 1e-9;
+}
+
+void transport(const devices::replay::ReplayStatus& s, TimelineActions& a) {
+    if (ImGui::Button("|<"))
+        a.seekIndex = 0;
+    ImGui::SameLine();
+    if (ImGui::Button("<"))
+        a.step = -1;
+    ImGui::SameLine();
+    if (ImGui::Button(s.playing ? "Pause [Space]" : "Play [Space]"))
+        a.play = !s.playing;
+    ImGui::SameLine();
+    if (ImGui::Button(">"))
+        a.step = 1;
+    ImGui::SameLine();
+    if (ImGui::Button(">|"))
+        a.seekIndex = s.count > 0 ? s.count - 1 : 0;
+    ImGui::SameLine();
+    bool loop = s.loop;
+    if (ImGui::Checkbox("Loop", &loop))
+        a.loop = loop;
+    ImGui::SameLine();
+    float speed = static_cast<float>(s.speed);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 8.0f);
+    if (ImGui::SliderFloat("Speed", &speed, 0.25f, 4.0f, "x%.2f", ImGuiSliderFlags_Logarithmic))
+        a.speed = speed;
+}
+
+void scrubber(const devices::replay::ReplayStatus& s, TimelineActions& a) {
+    int index = static_cast<int>(s.index);
+    const int last = std::max(0, static_cast<int>(s.count) - 1);
+    ImGui::SetNextItemWidth(-1.0f);
+    char label[96];
+    std::snprintf(label, sizeof label, "frame %d / %d  %.3f s", index, last,
+                  secondsOf(s.timestampNs, s.firstTimestampNs));
+    if (ImGui::SliderInt("##frame", &index, 0, last, label, ImGuiSliderFlags_AlwaysClamp))
+        a.seekIndex = static_cast<std::size_t>(index);
+}
+
+void rangeAndExport(const TimelineView& v, TimelinePanelState& state, TimelineActions& a) {
+    if (ImGui::SmallButton("Range start"))
+        state.rangeStart = v.status.index;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Range end"))
+        state.rangeEnd = v.status.index + 1;
+    ImGui::SameLine();
+    if (ImGui::SmallButton("Whole"))
+        state.rangeStart = state.rangeEnd = 0;
+    ImGui::SameLine();
+    const std::size_t end = state.rangeEnd > 0 ? state.rangeEnd : v.status.count;
+    ImGui::Text("range %zu:%zu (%zu frames)", state.rangeStart, end,
+                end > state.rangeStart ? end - state.rangeStart : 0);
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 6.0f);
+    ImGui::Combo("##format", &state.format, "PLY\0Stray\0PNG16\0");
+    ImGui::SameLine();
+    ImGui::SetNextItemWidth(ImGui::GetFontSize() * 14.0f);
+    ImGui::InputText("##out", state.outDirectory.data(), state.outDirectory.size());
+    ImGui::SameLine();
+    if (v.exportTotal > 0 || v.exporting) {
+        const float fraction = v.exportTotal > 0 ? static_cast<float>(v.exportDone) / v.exportTotal : 0.0f;
+        ImGui::ProgressBar(fraction, ImVec2(ImGui::GetFontSize() * 8.0f, 0.0f));
+        ImGui::SameLine();
+    }
+    if (v.exporting) {
+        a.cancelExport = ImGui::Button("Cancel");
+    } else if (ImGui::Button("Export range")) {
+        a.exportRange = true;
+    }
+}
+
+} // namespace
+
+TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& state, bool* open) {
+    TimelineActions actions;
+    if (!ImGui::Begin(kTimelineTitle, open)) {
+        ImGui::End();
+        return actions;
+    }
+    transport(view.status, actions);
+    scrubber(view.status, actions);
+    if (view.status.framesSkipped > 0)
+        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%llu damaged frames skipped: %s",
+                           static_cast<unsigned long long>(view.status.framesSkipped),
+                           view.status.lastProblem.c_str());
+    rangeAndExport(view, state, actions);
+    ImGui::End();
+    return actions;
+}
+
+bool drawRecordControls(const RecordView& view, RecordPanelState& state) {
+    bool toggle = false;
+    if (view.recording) {
+        ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.15f, 0.15f, 1.0f));
+        toggle = ImGui::Button("Stop recording");
+        ImGui::PopStyleColor();
+        ImGui::Text("%llu frames, %llu dropped, %.1f MB", static_cast<unsigned long long>(view.framesWritten),
+                    static_cast<unsigned long long>(view.framesDropped),
+                    static_cast<double>(view.bytesWritten) / 1e6);
+    } else {
+        ImGui::SetNextItemWidth(-ImGui::GetFontSize() * 5.0f);
+        ImGui::InputText("##recordPath", state.path.data(), state.path.size());
+        ImGui::SameLine();
+        toggle = ImGui::Button("Record");
+    }
+    return toggle;
+}
+
+} // namespace dc::ui
