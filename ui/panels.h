@@ -121,6 +121,7 @@ struct ControlsResult {
     bool clearAnchors = false;
     bool clearAccumulation = false;
     bool toggleRecording = false;
+    bool snapshot = false;
 };
 
 // Every setting.

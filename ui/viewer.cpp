@@ -1,13 +1,17 @@
 #include "ui/viewer.h"
 
 #include "devices/frame_pacer.h"
+#include "devices/image_io.h"
 #include "devices/log.h"
 #include "devices/replay/replay_device.h"
 #include "devices/source_spec.h"
+#include "exporting/ply.h"
 #include "processing/confidence_filter.h"
+#include "processing/point_cloud.h"
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <unistd.h>
 #include <vector>
@@ -393,6 +397,25 @@ Status Viewer::savePanels(const std::string& directory) const {
             return s;
     }
     return {};
+}
+
+Expected<std::string> Viewer::saveSnapshot(const std::string& parent) const {
+    if (!frame_)
+        return Error{"no frame to save yet"};
+    const std::string dir = parent + "/frame-" + std::to_string(frame_->sequence);
+    std::error_code ec;
+    std::filesystem::create_directories(dir, ec);
+    if (ec)
+        return Error{dir + ": cannot create directory: " + ec.message()};
+    if (Status s = savePanels(dir); !s)
+        return s.error();
+    const auto points =
+        processing::buildPointCloud(*frame_, settings_.cloud.minConfidence, settings_.cloud.nearMeters);
+    const auto ply = exporting::encodePly(points, {"depthcloud snapshot of " + session_->description()});
+    if (Status s = devices::writeFileAtomically(dir + "/cloud.ply", ply); !s)
+        return s.error();
+    logInfo("snapshot: " + dir);
+    return dir;
 }
 
 StatusLine Viewer::statusLine() const {

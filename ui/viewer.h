@@ -43,6 +43,7 @@ public:
     static constexpr int kDefaultCloudWidth = 960;
     static constexpr int kDefaultCloudHeight = 720;
     static constexpr int kDefaultCameraWidth = 960; // until a camera panel reports its size
+    static constexpr const char* kSnapshotDirectory = "depthcloud-snapshots";
 
     Viewer(std::unique_ptr<devices::Device> device, Settings settings);
     ~Viewer();
@@ -65,6 +66,9 @@ public:
 
     // Writes cloud.png, depth.png, confidence.png and camera.png into `directory`.
     Status savePanels(const std::string& directory) const;
+    // Writes the panels as PNGs and the current cloud as cloud.ply (the points drawn, camera frame) into
+    // a new directory under `parent` named after the frame; returns that directory.
+    Expected<std::string> saveSnapshot(const std::string& parent) const;
     StatusLine statusLine() const;
     ViewerSummary summary() const;
     const std::string& sourceMessage() const { return sourceMessage_; }

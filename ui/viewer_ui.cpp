@@ -75,6 +75,8 @@ void Viewer::drawUi() {
             setZoomedPanel({});
         if (ImGui::IsKeyPressed('Z', false))
             anchors_.undo();
+        if (ImGui::IsKeyPressed('P', false))
+            (void)saveSnapshot(kSnapshotDirectory);
     }
     hoverProbe_.reset();
     const float statusHeight = drawStatusBar(statusLine());
@@ -93,6 +95,8 @@ void Viewer::drawUi() {
                                       recordView(),
                                       &recordState_};
         const ControlsResult r = drawControlsPanel(settings_, context, &show.controls);
+        if (r.snapshot)
+            (void)saveSnapshot(kSnapshotDirectory);
         if (r.toggleRecording)
             (void)(recording_ ? stopRecording() : startRecording(recordState_.path.data()));
         if (r.clearAccumulation)

@@ -4,11 +4,16 @@
 #include "devices/frame_list_device.h"
 #include "devices/log.h"
 #include "devices/synthetic_scene.h"
+#include "processing/point_cloud.h"
 #include "render/colormap.h"
 #include "ui_fixture.h"
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <numbers>
+#include <unistd.h>
 
 namespace dc::ui::test {
 namespace {
@@ -298,6 +303,21 @@ TEST_F(InstrumentTest, TheSourcePickerSwitchesSourcesAndRefusesBadOnes) {
     viewer_->update(0.0, std::chrono::milliseconds(200));
     EXPECT_EQ(viewer_->summary().depthWidth, 640) << "a bad spec leaves the current source running";
     EXPECT_TRUE(viewer_->sourceRunning());
+}
+
+TEST_F(InstrumentTest, SnapshotWritesEveryPanelAndThePointCloud) {
+    const std::filesystem::path parent =
+        std::filesystem::temp_directory_path() / ("dc-snapshot-" + std::to_string(::getpid()));
+    const auto dir = viewer_->saveSnapshot(parent.string());
+    ASSERT_TRUE(dir.ok()) << dir.error().message;
+    for (const char* name : {"cloud.png", "depth.png", "confidence.png", "camera.png", "cloud.ply"})
+        EXPECT_GT(std::filesystem::file_size(std::filesystem::path(*dir) / name), 100u) << name;
+    std::ifstream ply(std::filesystem::path(*dir) / "cloud.ply", std::ios::binary);
+    std::string header((std::istreambuf_iterator<char>(ply)), {});
+    const auto points = processing::buildPointCloud(*viewer_->currentFrame(), devices::Confidence::Low,
+                                                    viewer_->settings().cloud.nearMeters);
+    EXPECT_NE(header.find("element vertex " + std::to_string(points.size())), std::string::npos);
+    std::filesystem::remove_all(parent);
 }
 
 TEST(InstrumentNoPose, AccumulateIsDisabledWithoutPoses) {
