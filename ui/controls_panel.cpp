@@ -95,6 +95,54 @@ bool accumulateSection(AccumulateSettings& acc, const ControlsContext& context, 
     return changed;
 }
 
+bool smoothingControls(processing::SmoothingParams& p) {
+    bool changed = ImGui::SliderFloat("Alpha", &p.alpha, 0.05f, 1.0f, "%.2f");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Weight of the newest depth: lower is smoother and slower to follow.");
+    changed |=
+        ImGui::SliderFloat("Jump", &p.jumpMeters, 0.005f, 1.0f, "%.3f m", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("A change larger than this restarts the average (motion, not noise).");
+    changed |= ImGui::SliderInt("Hole frames", &p.holeFrames, 0, 30);
+    return changed;
+}
+
+bool upsamplingControls(processing::UpsamplingParams& p) {
+    // One list for the method: the full filter, or the fast one with its subsampling factor.
+    int method = p.method == processing::UpsamplingMethod::Full ? 0
+                 : p.subsample == 2                             ? 1
+                 : p.subsample == 8                             ? 3
+                                                                : 2;
+    bool changed =
+        ImGui::Combo("Method", &method, "full guided filter\0fast, s = 2\0fast, s = 4\0fast, s = 8\0");
+    p.method = method == 0 ? processing::UpsamplingMethod::Full : processing::UpsamplingMethod::Fast;
+    p.subsample = method == 1 ? 2 : method == 3 ? 8 : 4;
+    int size = static_cast<int>(p.size);
+    changed |= ImGui::Combo("Output", &size, "half camera size\0full camera size\0");
+    p.size = static_cast<processing::UpsamplingSize>(size);
+    changed |= ImGui::SliderInt("Radius", &p.radiusPixels, 1, 32, "%d px");
+    changed |= ImGui::SliderFloat("Epsilon", &p.epsilon, 1e-5f, 1e-1f, "%.5f", ImGuiSliderFlags_Logarithmic);
+    changed |= ImGui::Checkbox("Edge-aware weights", &p.fitWeighted);
+    return changed;
+}
+
+bool processingSection(processing::ProcessingSettings& p, const ControlsContext& context) {
+    int source = static_cast<int>(p.depthSource);
+    ImGui::TextUnformatted("Depth shown");
+    ImGui::SameLine();
+    bool changed = ImGui::RadioButton("raw", &source, 0);
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("smoothed", &source, 1);
+    p.depthSource = static_cast<processing::DepthSource>(source);
+    changed |= stageToggle("Temporal smoothing", "smoothing", &p.smoothing, context.smoothingAvailable);
+    if (p.smoothing && context.smoothingAvailable)
+        changed |= smoothingControls(p.smoothingParams);
+    changed |= stageToggle("Guided upsampling", "upsampling", &p.upsampling, context.upsamplingAvailable);
+    if (p.upsampling && context.upsamplingAvailable)
+        changed |= upsamplingControls(p.upsamplingParams);
+    return changed;
+}
+
 bool panelsSection(PanelVisibility& panels) {
     bool changed = ImGui::Checkbox(kCloudTitle, &panels.cloud);
     changed |= ImGui::Checkbox(kDepthTitle, &panels.depth);
@@ -103,6 +151,8 @@ bool panelsSection(PanelVisibility& panels) {
     changed |= ImGui::Checkbox("Stats [S]", &panels.stats);
     changed |= ImGui::Checkbox("Log [L]", &panels.log);
     changed |= ImGui::Checkbox("Source [O]", &panels.source);
+    changed |= ImGui::Checkbox("Fog [F]", &panels.fog);
+    changed |= ImGui::Checkbox("Aura [A]", &panels.aura);
     return changed;
 }
 
@@ -133,10 +183,7 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
     ImGui::Separator();
     changed |= cameraSection(settings.camera);
     ImGui::Separator();
-    changed |= stageToggle("Guided upsampling", "upsampling", &settings.processing.upsampling,
-                           context.upsamplingAvailable);
-    changed |= stageToggle("Temporal smoothing", "smoothing", &settings.processing.smoothing,
-                           context.smoothingAvailable);
+    changed |= processingSection(settings.processing, context);
     ImGui::Separator();
     changed |= panelsSection(settings.panels);
     ImGui::PopItemWidth();
@@ -168,10 +215,9 @@ bool handleShortcuts(Settings& settings) {
         settings.cloud.orbit = {};
         fired = true;
     }
-    const std::pair<int, bool*> panelKeys[] = {{'C', &settings.panels.controls},
-                                               {'S', &settings.panels.stats},
-                                               {'L', &settings.panels.log},
-                                               {'O', &settings.panels.source}};
+    const std::pair<int, bool*> panelKeys[] = {
+        {'C', &settings.panels.controls}, {'S', &settings.panels.stats}, {'L', &settings.panels.log},
+        {'O', &settings.panels.source},   {'F', &settings.panels.fog},   {'A', &settings.panels.aura}};
     for (const auto& [key, shown] : panelKeys) {
         if (ImGui::IsKeyPressed(key, false)) {
             *shown = !*shown;

@@ -28,6 +28,8 @@ inline constexpr const char* kStatsTitle = "Stats";
 inline constexpr const char* kLogTitle = "Log";
 inline constexpr const char* kSourceTitle = "Source";
 inline constexpr const char* kTimelineTitle = "Timeline";
+inline constexpr const char* kFogTitle = "Fog";
+inline constexpr const char* kAuraTitle = "Aura";
 
 // What every image panel reports back: the window's place (to restore it after a zoom), a request to
 // open it large or bring it back (a click on a 2D panel, the zoom button on the cloud), and the depth
@@ -218,6 +220,11 @@ struct TimelineActions {
 
 // Play/pause, step, first/last, loop, speed, a frame scrubber with the time, and the range export.
 TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& state, bool* open);
+
+// Seed 002's fog and seed 004's aura, each with its own controls above the image; return whether a
+// setting changed.
+bool drawFogPanel(const PanelImage& image, processing::FogSettings& fog, bool* open);
+bool drawAuraPanel(const PanelImage& image, processing::AuraSettings& aura, bool* open);
 
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.
 float drawStatusBar(const StatusLine& status);

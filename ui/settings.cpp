@@ -27,6 +27,86 @@ template <class T> void read(const json& j, const char* key, T& out) {
     }
 }
 
+json processingToJson(const processing::ProcessingSettings& p) {
+    const auto& sm = p.smoothingParams;
+    const auto& up = p.upsamplingParams;
+    return {{"smoothing", p.smoothing},
+            {"upsampling", p.upsampling},
+            {"depthSource", static_cast<int>(p.depthSource)},
+            {"alpha", sm.alpha},
+            {"jumpMeters", sm.jumpMeters},
+            {"holeFrames", sm.holeFrames},
+            {"method", static_cast<int>(up.method)},
+            {"subsample", up.subsample},
+            {"outputSize", static_cast<int>(up.size)},
+            {"radiusPixels", up.radiusPixels},
+            {"epsilon", up.epsilon},
+            {"fitWeighted", up.fitWeighted},
+            {"fogMaxMeters", p.fog.fogMaxMeters},
+            {"fogColor", p.fog.color},
+            {"fogConfidenceOverlay", p.fog.confidenceOverlay},
+            {"auraMatte", static_cast<int>(p.aura.matte)},
+            {"auraNearMeters", p.aura.nearMeters},
+            {"auraFarMeters", p.aura.farMeters},
+            {"auraRegionDepthMeters", p.aura.regionDepthMeters},
+            {"auraRingPixels", p.aura.ringPixels}};
+}
+
+template <class E> void readEnum(const json& j, const char* key, E& out, int count) {
+    int v = static_cast<int>(out);
+    read(j, key, v);
+    if (v >= 0 && v < count)
+        out = static_cast<E>(v);
+}
+
+void processingFromJson(const json& j, processing::ProcessingSettings& p) {
+    auto& sm = p.smoothingParams;
+    auto& up = p.upsamplingParams;
+    read(j, "smoothing", p.smoothing);
+    read(j, "upsampling", p.upsampling);
+    readEnum(j, "depthSource", p.depthSource, 2);
+    read(j, "alpha", sm.alpha);
+    read(j, "jumpMeters", sm.jumpMeters);
+    read(j, "holeFrames", sm.holeFrames);
+    readEnum(j, "method", up.method, 2);
+    read(j, "subsample", up.subsample);
+    readEnum(j, "outputSize", up.size, 2);
+    read(j, "radiusPixels", up.radiusPixels);
+    read(j, "epsilon", up.epsilon);
+    read(j, "fitWeighted", up.fitWeighted);
+    read(j, "fogMaxMeters", p.fog.fogMaxMeters);
+    read(j, "fogColor", p.fog.color);
+    read(j, "fogConfidenceOverlay", p.fog.confidenceOverlay);
+    readEnum(j, "auraMatte", p.aura.matte, 2);
+    read(j, "auraNearMeters", p.aura.nearMeters);
+    read(j, "auraFarMeters", p.aura.farMeters);
+    read(j, "auraRegionDepthMeters", p.aura.regionDepthMeters);
+    read(j, "auraRingPixels", p.aura.ringPixels);
+}
+
+// Keeps the processing parameters where the stages are defined and stable.
+void sanitize(processing::ProcessingSettings& p) {
+    const processing::ProcessingSettings d;
+    auto& sm = p.smoothingParams;
+    auto& up = p.upsamplingParams;
+    sm.alpha = std::clamp(finiteOr(sm.alpha, d.smoothingParams.alpha), 0.01f, 1.0f);
+    sm.jumpMeters = std::clamp(finiteOr(sm.jumpMeters, d.smoothingParams.jumpMeters), 0.001f, 10.0f);
+    sm.holeFrames = std::clamp(sm.holeFrames, 0, 120);
+    if (up.subsample != 2 && up.subsample != 4 && up.subsample != 8)
+        up.subsample = d.upsamplingParams.subsample;
+    up.radiusPixels = std::clamp(up.radiusPixels, 1, 64);
+    up.epsilon = std::clamp(finiteOr(up.epsilon, d.upsamplingParams.epsilon), 1e-6f, 1.0f);
+    p.fog.fogMaxMeters = std::clamp(finiteOr(p.fog.fogMaxMeters, d.fog.fogMaxMeters), 0.1f, 100.0f);
+    for (float& c : p.fog.color)
+        c = std::clamp(finiteOr(c, 0.8f), 0.0f, 1.0f);
+    p.aura.nearMeters = std::clamp(finiteOr(p.aura.nearMeters, d.aura.nearMeters), 0.0f, 50.0f);
+    p.aura.farMeters =
+        std::clamp(finiteOr(p.aura.farMeters, d.aura.farMeters), p.aura.nearMeters + 0.01f, 100.0f);
+    p.aura.regionDepthMeters =
+        std::clamp(finiteOr(p.aura.regionDepthMeters, d.aura.regionDepthMeters), 0.01f, 10.0f);
+    p.aura.ringPixels = std::clamp(p.aura.ringPixels, 1, 100);
+}
+
 } // namespace
 
 void sanitize(CloudSettings& c) {
@@ -52,6 +132,7 @@ void sanitize(Settings& s) {
     auto& r = s.depthRange;
     r.minMeters = std::clamp(finiteOr(r.minMeters, d.depthRange.minMeters), 0.0f, 99.0f);
     r.maxMeters = std::clamp(finiteOr(r.maxMeters, d.depthRange.maxMeters), r.minMeters + 0.01f, 100.0f);
+    sanitize(s.processing);
     const auto colormap = static_cast<int>(r.colormap);
     if (colormap < 0 || colormap >= render::kColormapCount)
         r.colormap = d.depthRange.colormap;
@@ -101,7 +182,7 @@ std::string settingsToJson(const Settings& s) {
                        {"budgetThousands", s.accumulate.budgetThousands},
                        {"voxelMillimeters", s.accumulate.voxelMillimeters}};
     j["recentSources"] = s.recentSources;
-    j["processing"] = {{"smoothing", s.processing.smoothing}, {"upsampling", s.processing.upsampling}};
+    j["processing"] = processingToJson(s.processing);
     return j.dump(2) + "\n";
 }
 
@@ -121,6 +202,8 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(p, "log", s.panels.log);
     read(p, "source", s.panels.source);
     read(p, "timeline", s.panels.timeline);
+    read(p, "fog", s.panels.fog);
+    read(p, "aura", s.panels.aura);
     const json& c = j.contains("cloud") ? j["cloud"] : none;
     int level = static_cast<int>(s.cloud.minConfidence);
     read(c, "minConfidence", level);
@@ -151,9 +234,7 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(acc, "budgetThousands", s.accumulate.budgetThousands);
     read(acc, "voxelMillimeters", s.accumulate.voxelMillimeters);
     read(j, "recentSources", s.recentSources);
-    const json& pr = j.contains("processing") ? j["processing"] : none;
-    read(pr, "smoothing", s.processing.smoothing);
-    read(pr, "upsampling", s.processing.upsampling);
+    processingFromJson(j.contains("processing") ? j["processing"] : none, s.processing);
     sanitize(s);
     return s;
 }

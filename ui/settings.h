@@ -21,6 +21,8 @@ struct PanelVisibility {
     bool log = false;
     bool source = false;
     bool timeline = true; // shown while the source is a replay
+    bool fog = false;
+    bool aura = false;
 };
 
 struct CloudSettings {

@@ -6,7 +6,9 @@
 #include "devices/replay/replay_device.h"
 #include "devices/source_spec.h"
 #include "exporting/ply.h"
+#include "processing/aura.h"
 #include "processing/confidence_filter.h"
+#include "processing/fog.h"
 #include "processing/point_cloud.h"
 
 #include <algorithm>
@@ -277,17 +279,20 @@ void Viewer::acceptFrame(devices::FramePtr frame) {
     auto start = Clock::now();
     frame = pipeline_.run(std::move(frame), settings_.processing, needs());
     stage("process").add(millisecondsSince(start));
+    for (const processing::StageTiming& t : pipeline_.lastTimings())
+        stage(t.name).add(t.milliseconds);
     const bool firstFrame = !frame_;
     frame_ = std::move(frame);
     ++framesShown_;
-    if (firstFrame && frame_->sceneDepth)
-        pivotDepthMeters_ = medianDepth(*frame_->sceneDepth);
+    if (firstFrame && shownDepth())
+        pivotDepthMeters_ = medianDepth(*shownDepth());
 
     start = Clock::now();
-    textures_.upload(*frame_, false);
+    textures_.upload(*frame_, processing::showsSmoothed(*frame_, settings_.processing.depthSource));
     stage("upload").add(millisecondsSince(start));
     updateLegend();
     renderPanels();
+    renderEffects(ImGui::GetCurrentContext() ? ImGui::GetTime() : 0.0);
     countPoints();
     accumulate();
     // Live sources stamp frames with the monotonic clock; a recording's own clock gives no latency.
@@ -298,8 +303,8 @@ void Viewer::acceptFrame(devices::FramePtr frame) {
 
 void Viewer::countPoints() {
     countedWith_ = settings_.cloud;
-    pointsDrawn_ = frame_->sceneDepth
-                       ? processing::countDrawablePoints(*frame_->sceneDepth, settings_.cloud.minConfidence,
+    pointsDrawn_ = shownDepth()
+                       ? processing::countDrawablePoints(*shownDepth(), settings_.cloud.minConfidence,
                                                          settings_.cloud.nearMeters)
                        : 0;
 }
@@ -365,8 +370,8 @@ void Viewer::accumulate() {
 void Viewer::updateLegend() {
     const DepthRange& r = settings_.depthRange;
     legend_ = {r.minMeters, r.maxMeters, r.colormap, r.automatic};
-    if (r.automatic && frame_->sceneDepth) {
-        if (const auto range = percentileRange(*frame_->sceneDepth)) {
+    if (r.automatic && shownDepth()) {
+        if (const auto range = percentileRange(*shownDepth())) {
             legend_.minMeters = range->first;
             legend_.maxMeters = range->second;
         }
@@ -374,14 +379,38 @@ void Viewer::updateLegend() {
 }
 
 ProbeSource Viewer::probeSource() const {
-    if (!frame_ || !frame_->sceneDepth)
+    const devices::DepthData* depth = shownDepth();
+    if (!depth)
         return {};
-    return {&*frame_->sceneDepth, frame_->depthIntrinsics()};
+    return {depth, frame_->cameraIntrinsics.scaledTo(depth->depthMeters.width, depth->depthMeters.height)};
 }
 
 processing::Needs Viewer::needs() const {
     const PanelVisibility& show = settings_.panels;
-    return {show.cloud, show.depth, show.confidence, show.camera};
+    return {show.cloud, show.depth, show.confidence, show.camera, show.fog, show.aura};
+}
+
+const devices::DepthData* Viewer::shownDepth() const {
+    return frame_ ? processing::shownDepth(*frame_, settings_.processing.depthSource) : nullptr;
+}
+
+// Fog and aura are made on the CPU for each new frame, only while their panels are shown.
+void Viewer::renderEffects(double timeSeconds) {
+    const PanelVisibility& show = settings_.panels;
+    const processing::ProcessingSettings& p = settings_.processing;
+    if (show.fog) {
+        const auto start = Clock::now();
+        const processing::RgbaImage fog = processing::renderFog(*frame_, p.fog, p.depthSource);
+        fogTexture_.upload(fog.width, fog.height, fog.pixels.data());
+        stage("fog").add(millisecondsSince(start));
+    }
+    if (show.aura) {
+        const auto start = Clock::now();
+        const processing::RgbaImage aura =
+            processing::renderAura(*frame_, p.aura, p.depthSource, timeSeconds);
+        auraTexture_.upload(aura.width, aura.height, aura.pixels.data());
+        stage("aura").add(millisecondsSince(start));
+    }
 }
 
 Status Viewer::savePanels(const std::string& directory) const {
@@ -464,9 +493,9 @@ ViewerSummary Viewer::summary() const {
                     0,
                     0,
                     line.stageMedians};
-    if (frame_ && frame_->sceneDepth) {
-        s.depthWidth = frame_->sceneDepth->depthMeters.width;
-        s.depthHeight = frame_->sceneDepth->depthMeters.height;
+    if (const devices::DepthData* depth = shownDepth()) {
+        s.depthWidth = depth->depthMeters.width;
+        s.depthHeight = depth->depthMeters.height;
     }
     return s;
 }

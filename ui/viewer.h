@@ -10,6 +10,7 @@
 #include "render/panel_renderer.h"
 #include "render/point_cloud_renderer.h"
 #include "render/render_target.h"
+#include "render/rgba_texture.h"
 #include "ui/anchors.h"
 #include "ui/export_job.h"
 #include "ui/panels.h"
@@ -78,6 +79,8 @@ public:
     const render::RenderTarget& depthTarget() const { return depthTarget_; }
     const render::RenderTarget& confidenceTarget() const { return confidenceTarget_; }
     const render::RenderTarget& cameraTarget() const { return cameraTarget_; }
+    const render::RgbaTexture& fogTexture() const { return fogTexture_; }
+    const render::RgbaTexture& auraTexture() const { return auraTexture_; }
 
     // Stops the current source and starts `device` in its place; anchors, accumulated points and temporal
     // state belong to the old source and are dropped.
@@ -134,6 +137,8 @@ private:
     void renderCloud(double timeSeconds);
     void countPoints();
     void updateLegend();
+    void renderEffects(double timeSeconds);
+    const devices::DepthData* shownDepth() const;
     void accumulate();
     ProbeSource probeSource() const;
     void placePanel(const char* title, float x, float y, float w, float h);
@@ -160,6 +165,8 @@ private:
     render::RenderTarget depthTarget_;
     render::RenderTarget confidenceTarget_;
     render::RenderTarget cameraTarget_;
+    render::RgbaTexture fogTexture_;
+    render::RgbaTexture auraTexture_;
     int cameraShownWidth_ = kDefaultCameraWidth;
     devices::FramePtr frame_;
     std::uint64_t framesShown_ = 0;

@@ -120,6 +120,16 @@ void Viewer::drawUi() {
     }
     if (show.source)
         drawSourcePicker(l.leftWidth + 40.0f, 40.0f);
+    if (show.fog) {
+        placePanel(kFogTitle, l.leftWidth + 60.0f, 60.0f, 520.0f, 440.0f);
+        drawFogPanel({fogTexture_.id(), fogTexture_.width(), fogTexture_.height()}, settings_.processing.fog,
+                     &show.fog);
+    }
+    if (show.aura) {
+        placePanel(kAuraTitle, l.leftWidth + 80.0f, 80.0f, 520.0f, 440.0f);
+        drawAuraPanel({auraTexture_.id(), auraTexture_.width(), auraTexture_.height()},
+                      settings_.processing.aura, &show.aura);
+    }
     if (replay_ && show.timeline)
         drawTimeline(l.leftWidth, l.size.y - 150.0f, l.size.x - l.leftWidth - l.rightWidth);
     handleReplayKeys();
@@ -224,7 +234,7 @@ void Viewer::handleReplayKeys() {
 // Hovering the cloud reads out the point under the mouse; a click drops an anchor on it. The first click
 // of a double-click (which resets the view) must not leave an anchor behind.
 void Viewer::onCloudPointer(const CloudPanelResult& r) {
-    if (!frame_ || !frame_->sceneDepth || !r.hoverPixels)
+    if (!shownDepth() || !r.hoverPixels)
         return;
     const double now = ImGui::GetTime();
     if (r.doubleClicked && lastAnchorTime_ >= 0.0 &&
@@ -239,10 +249,11 @@ void Viewer::onCloudPointer(const CloudPanelResult& r) {
     query.radiusPixels = std::max(3.0f, settings_.cloud.pointSizePixels);
     query.minConfidence = settings_.cloud.minConfidence;
     query.nearMeters = settings_.cloud.nearMeters;
-    const auto picked = render::pickCloudSample(*frame_->sceneDepth, frame_->depthIntrinsics(), query);
+    const ProbeSource source = probeSource();
+    const auto picked = render::pickCloudSample(*source.depth, source.intrinsics, query);
     if (!picked)
         return;
-    hoverProbe_ = probeAt(probeSource(), picked->u, picked->v);
+    hoverProbe_ = probeAt(source, picked->u, picked->v);
     if (r.clickPixels && !r.doubleClicked) {
         anchors_.add(picked->point, frame_->pose);
         lastAnchorTime_ = now;

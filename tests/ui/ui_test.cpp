@@ -108,11 +108,32 @@ TEST_F(UiTest, ShortcutsChangeLevelRotationAndControls) {
     EXPECT_FALSE(viewer_->settings().panels.controls);
 }
 
-TEST_F(UiTest, UnavailableStagesAreDisabledAndCannotBeSwitchedOn) {
-    const auto box = locate(kControlsTitle, "Guided upsampling");
-    ASSERT_TRUE(box.has_value()) << "the toggle is shown, disabled";
-    click(*box, 0.0);
-    EXPECT_FALSE(viewer_->settings().processing.upsampling);
+TEST_F(UiTest, ProcessingTogglesReachThePipelineAndTheStatusLine) {
+    const auto upsampling = locate(kControlsTitle, "Guided upsampling");
+    ASSERT_TRUE(upsampling.has_value());
+    click(*upsampling, 0.0);
+    ASSERT_TRUE(viewer_->settings().processing.upsampling);
+    const auto smoothing = locate(kControlsTitle, "Temporal smoothing");
+    ASSERT_TRUE(smoothing.has_value());
+    click(*smoothing, 0.0);
+    ASSERT_TRUE(viewer_->settings().processing.smoothing);
+    pressKey('F', 0.0);
+    pressKey('A', 0.0);
+    for (int i = 0; i < 6; ++i) {
+        viewer_->update(i / 60.0, std::chrono::milliseconds(300));
+        frame(i / 60.0);
+    }
+    // Half the 640x480 camera image: one point per upsampled pixel.
+    EXPECT_EQ(viewer_->summary().depthWidth, 320);
+    EXPECT_EQ(viewer_->summary().depthHeight, 240);
+    EXPECT_TRUE(viewer_->currentFrame()->smoothedSceneDepth.has_value());
+    EXPECT_GT(viewer_->fogTexture().width(), 0);
+    EXPECT_GT(viewer_->auraTexture().width(), 0);
+    std::vector<std::string> names;
+    for (const auto& t : viewer_->statusLine().stageMedians)
+        names.push_back(t.name);
+    for (const char* expected : {"smoothing", "upsampling", "fog", "aura"})
+        EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
 }
 
 TEST_F(UiTest, StatusLineReportsSourceRatesAndStages) {

@@ -1,0 +1,24 @@
+#pragma once
+
+#include "render/gl_objects.h"
+
+#include <cstdint>
+
+namespace dc::render {
+
+// An 8-bit RGBA image made on the CPU (fog, aura) as a texture for ImGui::Image: row 0 is the top, so
+// the default texture coordinates show it upright. Reallocated only when the size changes.
+class RgbaTexture {
+public:
+    void upload(int width, int height, const std::uint8_t* rgba);
+    GLuint id() const { return texture_.id(); }
+    int width() const { return width_; }
+    int height() const { return height_; }
+
+private:
+    gl::Texture texture_;
+    int width_ = 0;
+    int height_ = 0;
+};
+
+} // namespace dc::render
