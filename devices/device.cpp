@@ -63,12 +63,25 @@ void Device::close() {
 }
 
 CaptureResult Device::capture(std::chrono::milliseconds timeout) {
-    if (state_ != DeviceState::Streaming)
+    if (state_ != DeviceState::Streaming && state_ != DeviceState::Stalled)
         return {CaptureResult::Kind::Error, nullptr, transitionError("capture from").error().message};
     CaptureResult result = doCapture(timeout);
     if (result.kind == CaptureResult::Kind::Disconnected)
         state_ = DeviceState::Disconnected;
+    else if (result.kind == CaptureResult::Kind::Stalled)
+        state_ = DeviceState::Stalled;
+    else if (result.kind == CaptureResult::Kind::Frame)
+        state_ = DeviceState::Streaming;
     return result;
+}
+
+Status Device::reconnect() {
+    if (state_ != DeviceState::Disconnected)
+        return transitionError("reconnect");
+    Status status = doReconnect();
+    if (status)
+        state_ = DeviceState::Streaming;
+    return status;
 }
 
 } // namespace dc::devices

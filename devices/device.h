@@ -15,7 +15,16 @@ struct Capabilities {
     bool confidence = false;
     bool color = false;
     bool pose = false;
+    bool reconnects = false; // after Disconnected, reconnect() can bring the same camera back
+    // No calibration is known: the intrinsics come from a default field of view, so the cloud's geometry is
+    // approximate. The session says so in its first event (kApproximateIntrinsicsMessage).
+    bool approximateIntrinsics = false;
+    // Frame timestamps are CLOCK_MONOTONIC capture times, so now - timestampNs is the frame's age.
+    bool monotonicTimestamps = false;
 };
+
+inline constexpr const char* kApproximateIntrinsicsMessage =
+    "approximate geometry: no calibration file, intrinsics assume a default field of view (add calib=FILE)";
 
 // Closed -> Open -> Streaming -> Stopped (-> Streaming again, or -> Closed). Disconnected and Stalled are
 // entered from Streaming by live devices when the hardware goes away or stops delivering.
@@ -25,10 +34,11 @@ const char* toString(DeviceState state);
 
 // The outcome of one capture attempt on the capture thread.
 struct CaptureResult {
-    enum class Kind { Frame, Timeout, EndOfStream, Disconnected, Error };
+    // Stalled: streaming, but no frame for longer than the device's dequeue watchdog allows.
+    enum class Kind { Frame, Timeout, EndOfStream, Disconnected, Stalled, Error };
     Kind kind = Kind::Timeout;
     FramePtr frame;      // set when kind == Frame
-    std::string message; // set for Disconnected and Error
+    std::string message; // set for Disconnected, Stalled and Error
 };
 
 // A depth source. The public methods check the state machine and call the do*() hooks that a device
@@ -50,8 +60,14 @@ public:
     void close();
     DeviceState state() const { return state_; }
 
-    // Waits at most `timeout` for the next frame. Only valid while Streaming.
+    // Waits at most `timeout` for the next frame. Only valid while Streaming or Stalled (a frame ends the
+    // stall).
     CaptureResult capture(std::chrono::milliseconds timeout);
+    // Disconnected -> Streaming when the camera is back (capabilities().reconnects); called on the capture
+    // thread, which retries until it succeeds or the session stops.
+    Status reconnect();
+    // Wakes a capture() blocked on the capture thread. The one method another thread may call.
+    virtual void interruptCapture() {}
 
 protected:
     Device() = default;
@@ -60,6 +76,7 @@ protected:
     virtual void doStop() = 0;
     virtual void doClose() {}
     virtual CaptureResult doCapture(std::chrono::milliseconds timeout) = 0;
+    virtual Status doReconnect() { return Error{description() + " cannot reconnect"}; }
 
 private:
     Status transitionError(const char* action) const;

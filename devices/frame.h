@@ -70,11 +70,23 @@ enum class Confidence : std::uint8_t { Low = 0, Medium = 1, High = 2 };
 struct DepthData {
     Plane<float> depthMeters;
     Plane<std::uint8_t> confidence;
+    // The sensor gave no confidence and `confidence` was estimated from the depth map itself
+    // (processing/confidence_estimator.h): the UI labels it "estimated".
+    bool confidenceEstimated = false;
 };
 
 // Camera-to-world rigid transform, column-major 4x4 (OpenCV camera axes, meters).
 struct Pose {
     std::array<double, 16> cameraToWorld{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+};
+
+// Where a replayed frame sits in its recording. A consumer that asked for a seek compares
+// seekGeneration with the value the seek returned: an older generation is a frame decoded before the
+// seek (still in flight), the first frame with the new generation is exactly the one asked for.
+struct ReplayPosition {
+    std::size_t index = 0;
+    std::size_t count = 0;
+    std::uint64_t seekGeneration = 0;
 };
 
 // One capture: an immutable value handed between threads as FramePtr (ARFrame, made explicit).
@@ -86,6 +98,7 @@ struct Frame {
     std::optional<DepthData> sceneDepth;
     std::optional<DepthData> smoothedSceneDepth;
     std::optional<Pose> pose;
+    std::optional<ReplayPosition> replay; // set by replay sources only
 
     // Depth intrinsics are never stored: they follow from the image intrinsics and the depth map size.
     Intrinsics depthIntrinsics() const;

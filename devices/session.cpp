@@ -7,6 +7,8 @@ namespace dc::devices {
 namespace {
 // Short enough that stop() returns promptly, long enough not to spin.
 constexpr std::chrono::milliseconds kCaptureTimeout{50};
+// How often a disconnected device looks for its camera again.
+constexpr std::chrono::milliseconds kReconnectInterval{500};
 } // namespace
 
 Session::Session(std::unique_ptr<Device> device)
@@ -29,7 +31,8 @@ Status Session::start() {
     if (Status s = device_->start(); !s)
         return s;
     state_ = device_->state();
-    push({SessionEvent::Kind::StateChanged, state_.load(), {}});
+    push({SessionEvent::Kind::StateChanged, state_.load(),
+          capabilities_.approximateIntrinsics ? kApproximateIntrinsicsMessage : ""});
     stopRequested_ = false;
     deliveries_ = {};
     thread_ = std::thread([this] { run(); });
@@ -38,6 +41,7 @@ Status Session::start() {
 
 void Session::stop() {
     stopRequested_ = true;
+    device_->interruptCapture();
     if (thread_.joinable())
         thread_.join();
     if (device_->state() != DeviceState::Closed) {
@@ -64,7 +68,12 @@ void Session::run() {
             case CaptureResult::Kind::Disconnected:
                 state_ = DeviceState::Disconnected;
                 push({SessionEvent::Kind::StateChanged, DeviceState::Disconnected, result.message});
-                return;
+                if (!capabilities_.reconnects || !waitForReconnect())
+                    return;
+                break;
+            case CaptureResult::Kind::Stalled:
+                onStalled(result.message);
+                break;
             case CaptureResult::Kind::Error:
                 push({SessionEvent::Kind::Error, device_->state(), result.message});
                 std::this_thread::sleep_for(kCaptureTimeout);
@@ -79,7 +88,48 @@ void Session::run() {
     }
 }
 
+bool Session::waitForReconnect() {
+    while (!stopRequested_) {
+        if (device_->reconnect()) {
+            state_ = DeviceState::Streaming;
+            push({SessionEvent::Kind::StateChanged, DeviceState::Streaming, "reconnected"});
+            return true;
+        }
+        for (auto waited = std::chrono::milliseconds(0); waited < kReconnectInterval && !stopRequested_;
+             waited += kCaptureTimeout)
+            std::this_thread::sleep_for(kCaptureTimeout);
+    }
+    return false;
+}
+
+void Session::onStalled(const std::string& message) {
+    if (state_ == DeviceState::Stalled)
+        return;
+    state_ = DeviceState::Stalled;
+    push({SessionEvent::Kind::StateChanged, DeviceState::Stalled, message});
+}
+
+std::optional<FramePtr> Session::noteAge(std::optional<FramePtr> frame) {
+    if (capabilities_.monotonicTimestamps && frame && *frame)
+        ages_.add(frameAgeMs(**frame));
+    return frame;
+}
+
+void Session::setFrameTap(std::function<void(const FramePtr&)> tap) {
+    std::lock_guard lock(tapMutex_);
+    tap_ = std::move(tap);
+}
+
 void Session::onFrame(FramePtr frame) {
+    {
+        std::lock_guard lock(tapMutex_);
+        if (tap_)
+            tap_(frame);
+    }
+    if (state_ == DeviceState::Stalled) {
+        state_ = DeviceState::Streaming;
+        push({SessionEvent::Kind::StateChanged, DeviceState::Streaming, "frames flow again"});
+    }
     mailbox_.post(std::move(frame));
     deliveries_.tick();
     deviceFps_ = deliveries_.perSecond();
@@ -98,7 +148,7 @@ std::vector<SessionEvent> Session::drainEvents() {
 }
 
 SessionStats Session::stats() const {
-    return {mailbox_.posted(), mailbox_.dropped(), deviceFps_.load()};
+    return {mailbox_.posted(), mailbox_.dropped(), deviceFps_.load(), ages_.medianMs()};
 }
 
 } // namespace dc::devices

@@ -1,11 +1,13 @@
 #pragma once
 
 #include "devices/device.h"
+#include "devices/frame_age.h"
 #include "devices/mailbox.h"
 #include "devices/rate_meter.h"
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -26,6 +28,9 @@ struct SessionStats {
     std::uint64_t framesCaptured = 0;
     std::uint64_t framesDropped = 0; // replaced in the mailbox before any consumer took them
     double deviceFps = 0.0;          // delivery rate measured on the capture thread
+    // Median age of the frames consumers took (now - timestampNs at take), for devices whose timestamps are
+    // CLOCK_MONOTONIC capture times (Capabilities::monotonicTimestamps); 0 for the others.
+    double latencyMs = 0.0;
 };
 
 // Runs one device on its own capture thread. The thread only captures and posts: frames reach consumers
@@ -44,13 +49,16 @@ public:
     Status start();
     void stop();
 
-    std::optional<FramePtr> takeLatest() { return mailbox_.take(); }
+    std::optional<FramePtr> takeLatest() { return noteAge(mailbox_.take()); }
     std::optional<FramePtr> waitForFrame(std::chrono::milliseconds timeout) {
-        return mailbox_.waitTake(timeout);
+        return noteAge(mailbox_.waitTake(timeout));
     }
     std::vector<SessionEvent> drainEvents();
 
     SessionStats stats() const;
+    // Called on the capture thread with every frame before it is posted (a recorder's push). The tap
+    // must return at once; an empty function removes it. Thread-safe.
+    void setFrameTap(std::function<void(const FramePtr&)> tap);
     DeviceState state() const { return state_.load(); }
     const std::string& description() const { return description_; }
     const Capabilities& capabilities() const { return capabilities_; }
@@ -58,6 +66,10 @@ public:
 private:
     void run();
     void onFrame(FramePtr frame);
+    void onStalled(const std::string& message);
+    // After a disconnect: retries reconnect() until it works (true) or the session stops (false).
+    bool waitForReconnect();
+    std::optional<FramePtr> noteAge(std::optional<FramePtr> frame);
     void push(SessionEvent event);
 
     std::unique_ptr<Device> device_;
@@ -69,6 +81,9 @@ private:
     std::atomic<DeviceState> state_{DeviceState::Closed};
     std::atomic<double> deviceFps_{0.0};
     RateMeter deliveries_; // capture thread only; published through deviceFps_
+    AgeMeter ages_;
+    std::mutex tapMutex_;
+    std::function<void(const FramePtr&)> tap_;
     mutable std::mutex eventsMutex_;
     std::vector<SessionEvent> events_;
 };

@@ -1,5 +1,7 @@
 #include "devices/source_spec.h"
 
+#include "devices/live_source_spec.h"
+#include "devices/replay/replay_spec.h"
 #include "devices/synthetic_device.h"
 
 #include <charconv>
@@ -63,6 +65,10 @@ Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec) {
     const std::vector<std::string> parts = split(spec, ':');
     if (!parts.empty() && parts[0] == "synthetic")
         return openSynthetic(parts);
+    if (isLiveSourceSpec(spec))
+        return openLiveSourceSpec(spec);
+    if (spec.starts_with("replay:"))
+        return replay::openReplaySpec(spec.substr(7));
     return Error{"unknown source '" + spec + "' (expected " + kSourceSpecHelp + ")"};
 }
 

@@ -1,5 +1,9 @@
 #include "processing/pipeline.h"
 
+#include "processing/confidence_estimator.h"
+#include "processing/smoothing_stage.h"
+#include "processing/upsampling_stage.h"
+
 #include <chrono>
 
 namespace dc::processing {
@@ -43,8 +47,23 @@ devices::FramePtr Pipeline::run(devices::FramePtr frame, const ProcessingSetting
     return frame;
 }
 
+const devices::DepthData* shownDepth(const devices::Frame& frame, DepthSource source) {
+    if (showsSmoothed(frame, source))
+        return &*frame.smoothedSceneDepth;
+    return frame.sceneDepth ? &*frame.sceneDepth : nullptr;
+}
+
+bool showsSmoothed(const devices::Frame& frame, DepthSource source) {
+    return source == DepthSource::Smoothed && frame.smoothedSceneDepth.has_value();
+}
+
 Pipeline makeDefaultPipeline() {
-    return Pipeline{};
+    Pipeline pipeline;
+    pipeline.add(std::make_unique<ConfidenceEstimatorStage>()); // first: later stages read confidence
+    // Smoothing at the sensor's resolution, where it is cheap; upsampling last, of what will be shown.
+    pipeline.add(std::make_unique<SmoothingStage>());
+    pipeline.add(std::make_unique<UpsamplingStage>());
+    return pipeline;
 }
 
 } // namespace dc::processing

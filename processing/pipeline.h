@@ -1,6 +1,7 @@
 #pragma once
 
 #include "devices/frame.h"
+#include "processing/settings.h"
 
 #include <memory>
 #include <string>
@@ -16,7 +17,18 @@ inline constexpr std::string_view kUpsamplingStage = "upsampling";
 struct ProcessingSettings {
     bool smoothing = false;  // temporal smoothing into smoothedSceneDepth
     bool upsampling = false; // guided upsampling of depth and confidence to the camera image
+    SmoothingParams smoothingParams;
+    UpsamplingParams upsamplingParams;
+    // Which depth the cloud, depth panel, fog and aura show; smoothing runs only when it is Smoothed.
+    DepthSource depthSource = DepthSource::Smoothed;
+    FogSettings fog;
+    AuraSettings aura;
 };
+
+// The depth map that `source` selects in `frame` (smoothed when asked for and present, else sceneDepth);
+// null when the frame has no depth. Consumers use it (or showsSmoothed) so they all show the same map.
+const devices::DepthData* shownDepth(const devices::Frame& frame, DepthSource source);
+bool showsSmoothed(const devices::Frame& frame, DepthSource source);
 
 // What the visible panels and running exports need from a frame. A stage whose output nobody needs is
 // not run ("leave out what the scene does not need").
@@ -25,8 +37,10 @@ struct Needs {
     bool depthPanel = true;
     bool confidencePanel = true;
     bool cameraPanel = true;
+    bool fogPanel = false;
+    bool auraPanel = false;
 
-    bool anyDepth() const { return cloud || depthPanel || confidencePanel; }
+    bool anyDepth() const { return cloud || depthPanel || confidencePanel || fogPanel || auraPanel; }
 };
 
 // One processing step: takes a frame and returns a new one (frames are immutable; a stage that changes
@@ -64,8 +78,7 @@ private:
     int lastHeight_ = -1;
 };
 
-// The pipeline with every stage this build implements. Smoothing and upsampling are not implemented yet,
-// so hasStage() reports them missing and the UI keeps their toggles disabled.
+// The pipeline with every stage this build implements, in the order they must run (see pipeline.cpp).
 Pipeline makeDefaultPipeline();
 
 } // namespace dc::processing

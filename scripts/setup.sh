@@ -7,10 +7,12 @@ packages=(
     build-essential cmake pkg-config git
     libglfw3-dev libglm-dev libimgui-dev libepoxy-dev
     libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libglx-mesa0
-    libopencv-dev libusb-1.0-0-dev libv4l-dev
+    libopencv-dev libopencv-contrib-dev libusb-1.0-0-dev libv4l-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     libcli11-dev nlohmann-json3-dev
+    libzstd-dev libxxhash-dev clang libclang-rt-14-dev
     xvfb xauth
+    qemu-system-x86 busybox-static cpio kmod v4l-utils xz-utils patch
 )
 
 missing=()

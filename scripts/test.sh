@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Command 2: install what is missing, build, and run every test tier (unit, gl, ui, app), then the unit
+# Command 2: install what is missing, build, and run every test tier (unit, gl, ui, app, kernel), then the unit
 # and gl tiers again under AddressSanitizer + UndefinedBehaviorSanitizer.
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -10,7 +10,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDC_BUILD_TESTS=ON -DDC_W
 cmake --build build -j"$jobs"
 
 # Every tier the issues require must have tests; an empty label would pass silently.
-for label in unit gl ui app; do
+for label in unit gl ui app kernel; do
     count=$(ctest --test-dir build -N -L "^${label}\$" | sed -n 's/^Total Tests: //p')
     if [ "${count:-0}" -eq 0 ]; then
         echo "test.sh: no tests carry the label '$label'" >&2
@@ -21,7 +21,8 @@ ctest --test-dir build --output-on-failure -j"$jobs" --timeout 600
 
 echo "test.sh: unit and gl tiers under ASan + UBSan"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DDC_BUILD_TESTS=ON -DDC_WERROR=ON -DDC_SANITIZE=ON >/dev/null
-cmake --build build-asan -j"$jobs" --target test_unit test_settings test_gl
+cmake --build build-asan -j"$jobs" --target test_unit test_processing test_settings test_gl test_recording test_live
 # Mesa's llvmpipe keeps allocations alive until process exit; leak checking stays on for the unit tier.
 ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^unit$'
 ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^gl$'
+./scripts/fuzz.sh # libFuzzer targets of the recording reader and importers, 15 s each

@@ -2,7 +2,11 @@
 
 #include "devices/log.h"
 #include "devices/source_spec.h"
+#include "tool/bench_instrument.h"
+#include "tool/bench_upsample_options.h"
+#include "tool/live_commands.h"
 #include "tool/options.h"
+#include "tool/recording_commands.h"
 
 #include <CLI/CLI.hpp>
 
@@ -92,6 +96,17 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(10, 100000))
         ->capture_default_str();
     benchRender->add_option("--json", bench.jsonPath, "also write the results as JSON to this file");
+    BenchInstrumentOptions benchInstrument;
+    CLI::App* benchInstrumentCmd = addBenchInstrumentCommand(*benchCmd, benchInstrument);
+    BenchCaptureOptions benchCapture;
+    CLI::App* benchCaptureCmd = addBenchCaptureCommand(*benchCmd, benchCapture);
+    BenchUpsampleOptions benchUpsample;
+    CLI::App* benchUpsampleCmd = addBenchUpsampleCommand(*benchCmd, benchUpsample);
+    DevicesOptions devicesOptions;
+    CLI::App* devicesCmd = addDevicesCommand(app, devicesOptions);
+
+    RecordingCommands recording;
+    addRecordingCommands(app, *benchCmd, recording);
 
     try {
         app.parse(argc, argv);
@@ -100,7 +115,17 @@ int main(int argc, char** argv) {
     } catch (const CLI::ParseError& e) {
         return badArgument(e.what());
     }
+    if (auto code = runRecordingCommands(recording))
+        return *code;
     if (benchRender->parsed())
         return runBenchRender(bench);
+    if (benchInstrumentCmd->parsed())
+        return runBenchInstrument(benchInstrument);
+    if (benchCaptureCmd->parsed())
+        return runBenchCapture(benchCapture);
+    if (benchUpsampleCmd->parsed())
+        return runBenchUpsample(benchUpsample);
+    if (devicesCmd->parsed())
+        return runDevices(devicesOptions);
     return runViewer(viewer);
 }

@@ -28,6 +28,12 @@ private:
     bool needsCloud_;
 };
 
+ProcessingSettings smoothingSetTo(bool on) {
+    ProcessingSettings s;
+    s.smoothing = on;
+    return s;
+}
+
 devices::FramePtr frameOfSize(int w, int h) {
     auto f = std::make_shared<devices::Frame>();
     f->sceneDepth = devices::DepthData{devices::Plane<float>(w, h), {}};
@@ -39,7 +45,7 @@ TEST(Pipeline, RunsAWantedStageAndTimesIt) {
     auto stage = std::make_unique<RecordingStage>(true);
     RecordingStage* s = stage.get();
     p.add(std::move(stage));
-    const auto out = p.run(frameOfSize(4, 4), {.smoothing = true}, {});
+    const auto out = p.run(frameOfSize(4, 4), smoothingSetTo(true), {});
     EXPECT_EQ(s->runs, 1);
     EXPECT_EQ(out->sequence, 100u);
     ASSERT_EQ(p.lastTimings().size(), 1u);
@@ -53,10 +59,10 @@ TEST(Pipeline, SkipsStagesThatAreOffOrThatNoVisiblePanelNeeds) {
     RecordingStage* s = stage.get();
     p.add(std::move(stage));
     const auto in = frameOfSize(4, 4);
-    EXPECT_EQ(p.run(in, {.smoothing = false}, {}), in) << "switched off: the frame passes through untouched";
+    EXPECT_EQ(p.run(in, smoothingSetTo(false), {}), in) << "switched off: the frame passes through untouched";
     Needs cloudHidden;
     cloudHidden.cloud = false;
-    EXPECT_EQ(p.run(in, {.smoothing = true}, cloudHidden), in) << "nothing visible needs it";
+    EXPECT_EQ(p.run(in, smoothingSetTo(true), cloudHidden), in) << "nothing visible needs it";
     EXPECT_EQ(s->runs, 0);
     EXPECT_TRUE(p.lastTimings().empty());
 }
@@ -66,17 +72,30 @@ TEST(Pipeline, AResolutionChangeResetsTemporalState) {
     auto stage = std::make_unique<RecordingStage>(true);
     RecordingStage* s = stage.get();
     p.add(std::move(stage));
-    p.run(frameOfSize(4, 4), {.smoothing = true}, {});
-    p.run(frameOfSize(4, 4), {.smoothing = true}, {});
+    p.run(frameOfSize(4, 4), smoothingSetTo(true), {});
+    p.run(frameOfSize(4, 4), smoothingSetTo(true), {});
     EXPECT_EQ(s->resets, 1) << "the first frame starts clean";
-    p.run(frameOfSize(8, 6), {.smoothing = true}, {});
+    p.run(frameOfSize(8, 6), smoothingSetTo(true), {});
     EXPECT_EQ(s->resets, 2);
 }
 
-TEST(Pipeline, DefaultPipelineDoesNotClaimStagesItLacks) {
+TEST(Pipeline, DefaultPipelineHasSmoothingAndUpsampling) {
     const Pipeline p = makeDefaultPipeline();
-    EXPECT_FALSE(p.hasStage(kSmoothingStage));
-    EXPECT_FALSE(p.hasStage(kUpsamplingStage));
+    EXPECT_TRUE(p.hasStage(kSmoothingStage));
+    EXPECT_TRUE(p.hasStage(kUpsamplingStage));
+    EXPECT_FALSE(p.hasStage("no such stage"));
+}
+
+TEST(Pipeline, ShownDepthFallsBackToTheRawMap) {
+    devices::Frame f;
+    EXPECT_EQ(shownDepth(f, DepthSource::Smoothed), nullptr);
+    f.sceneDepth = devices::DepthData{devices::Plane<float>(2, 2, 1.0f), {}};
+    EXPECT_EQ(shownDepth(f, DepthSource::Smoothed), &*f.sceneDepth) << "no smoothed map: the raw one";
+    EXPECT_FALSE(showsSmoothed(f, DepthSource::Smoothed));
+    f.smoothedSceneDepth = devices::DepthData{devices::Plane<float>(2, 2, 1.1f), {}};
+    EXPECT_EQ(shownDepth(f, DepthSource::Smoothed), &*f.smoothedSceneDepth);
+    EXPECT_EQ(shownDepth(f, DepthSource::Raw), &*f.sceneDepth);
+    EXPECT_TRUE(showsSmoothed(f, DepthSource::Smoothed));
 }
 
 } // namespace

@@ -1,0 +1,457 @@
+#include "devices/recording/frame_codec.h"
+
+#include "devices/recording/byte_io.h"
+#include "devices/recording/format.h"
+#include "devices/rgb_image.h"
+
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <bit>
+#include <cmath>
+#include <zstd.h>
+
+namespace dc::devices::recording {
+
+namespace {
+
+enum class Section : std::uint8_t {
+    Meta = 1,
+    SceneDepth = 2,
+    SceneConfidence = 3,
+    SmoothedDepth = 4,
+    SmoothedConfidence = 5,
+    Color = 6,
+};
+enum class Codec : std::uint8_t { Raw = 0, Zstd = 1 };
+// Layouts of a section's raw bytes.
+constexpr std::uint8_t kDepthFloat32Shuffled = 0; // byte k of every float in plane k: zstd finds the
+                                                  // slowly varying sign/exponent bytes together
+constexpr std::uint8_t kDepthUint16Scaled = 1;
+constexpr std::uint8_t kConfidenceUint8 = 0;
+constexpr std::uint8_t kColorJpeg = 3; // 0..2 are PixelFormat values stored as captured
+constexpr std::size_t kSectionHeaderSize = 36;
+constexpr std::size_t kMaxDescriptionLength = 4096;
+
+// Metres per unit that importers use: millimetres (Stray, PNG16) and TUM's 1/5000 m.
+constexpr double kKnownScales[] = {0.001, 0.0002};
+
+struct SectionHeader {
+    Section kind = Section::Meta;
+    Codec codec = Codec::Raw;
+    std::uint8_t layout = 0;
+    std::int32_t width = 0;
+    std::int32_t height = 0;
+    double scale = 0.0;
+    std::uint64_t rawSize = 0;
+};
+
+// Byte k of float i goes to plane k. Whole 32-bit words are read and written (the format is
+// little-endian), which the compiler vectorises; a byte-by-byte loop is several times slower.
+void shuffleBytes(const float* samples, std::size_t n, std::uint8_t* planes) {
+    for (std::size_t i = 0; i < n; ++i) {
+        const auto v = std::bit_cast<std::uint32_t>(samples[i]);
+        planes[i] = static_cast<std::uint8_t>(v);
+        planes[n + i] = static_cast<std::uint8_t>(v >> 8);
+        planes[2 * n + i] = static_cast<std::uint8_t>(v >> 16);
+        planes[3 * n + i] = static_cast<std::uint8_t>(v >> 24);
+    }
+}
+
+void unshuffleBytes(const std::uint8_t* planes, std::size_t n, float* samples) {
+    const std::uint8_t* p0 = planes;
+    const std::uint8_t* p1 = planes + n;
+    const std::uint8_t* p2 = planes + 2 * n;
+    const std::uint8_t* p3 = planes + 3 * n;
+    for (std::size_t i = 0; i < n; ++i)
+        samples[i] = std::bit_cast<float>(
+            static_cast<std::uint32_t>(p0[i]) | static_cast<std::uint32_t>(p1[i]) << 8 |
+            static_cast<std::uint32_t>(p2[i]) << 16 | static_cast<std::uint32_t>(p3[i]) << 24);
+}
+
+std::uint8_t capabilityBits(const Capabilities& c) {
+    return static_cast<std::uint8_t>(c.sceneDepth | c.smoothedSceneDepth << 1 | c.confidence << 2 |
+                                     c.color << 3 | c.pose << 4);
+}
+
+Capabilities capabilitiesFromBits(std::uint8_t b) {
+    return {.sceneDepth = (b & 1) != 0,
+            .smoothedSceneDepth = (b & 2) != 0,
+            .confidence = (b & 4) != 0,
+            .color = (b & 8) != 0,
+            .pose = (b & 16) != 0};
+}
+
+} // namespace
+
+const char* toString(ColorStorage storage) {
+    return storage == ColorStorage::Jpeg ? "jpeg" : "as captured";
+}
+
+std::vector<std::uint8_t> encodeDescription(const DeviceInfo& info) {
+    std::vector<std::uint8_t> out;
+    ByteWriter w(out);
+    w.putString(info.description.substr(0, kMaxDescriptionLength));
+    w.put(capabilityBits(info.capabilities));
+    return out;
+}
+
+std::optional<DeviceInfo> decodeDescription(std::span<const std::uint8_t> payload) {
+    ByteReader r(payload, 0);
+    DeviceInfo info;
+    info.description = r.getString(kMaxDescriptionLength);
+    info.capabilities = capabilitiesFromBits(r.get<std::uint8_t>());
+    if (!r.ok())
+        return std::nullopt;
+    return info;
+}
+
+std::optional<double> exactUint16Scale(const Plane<float>& depthMeters) {
+    for (const double scale : kKnownScales) {
+        bool exact = true;
+        for (const float v : depthMeters.pixels) {
+            if (std::bit_cast<std::uint32_t>(v) == 0)
+                continue;
+            const double units = std::nearbyint(v / scale);
+            if (!(units >= 1.0 && units <= 65535.0) ||
+                std::bit_cast<std::uint32_t>(depthFromUnits(static_cast<std::uint16_t>(units), scale)) !=
+                    std::bit_cast<std::uint32_t>(v)) {
+                exact = false;
+                break;
+            }
+        }
+        if (exact && !depthMeters.pixels.empty())
+            return scale;
+    }
+    return std::nullopt;
+}
+
+// ---------------------------------------------------------------------------------------------------
+
+struct FrameEncoder::Impl {
+    EncodeOptions options;
+    std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> cctx{ZSTD_createCCtx(), &ZSTD_freeCCtx};
+    std::vector<std::uint8_t> scratch;
+
+    void section(std::vector<std::uint8_t>& out, SectionHeader h, std::span<const std::uint8_t> raw,
+                 bool compressible);
+    void depth(std::vector<std::uint8_t>& out, Section kind, const Plane<float>& plane);
+    void plane8(std::vector<std::uint8_t>& out, Section kind, const Plane<std::uint8_t>& plane);
+    Status color(std::vector<std::uint8_t>& out, const CapturedImage& image);
+};
+
+void FrameEncoder::Impl::section(std::vector<std::uint8_t>& out, SectionHeader h,
+                                 std::span<const std::uint8_t> raw, bool compressible) {
+    const bool zstd = compressible && options.compress;
+    h.codec = zstd ? Codec::Zstd : Codec::Raw;
+    h.rawSize = raw.size();
+    const std::size_t sectionStart = out.size();
+    ByteWriter w(out);
+    w.put(static_cast<std::uint8_t>(h.kind));
+    w.put(static_cast<std::uint8_t>(h.codec));
+    w.put(h.layout);
+    w.put(std::uint8_t{0});
+    w.put(h.width);
+    w.put(h.height);
+    w.put(h.scale);
+    w.put(h.rawSize);
+    const std::size_t storedSizeAt = out.size();
+    w.put(std::uint64_t{0});
+    std::size_t stored = raw.size();
+    if (zstd) {
+        const std::size_t start = out.size();
+        out.resize(start + ZSTD_compressBound(raw.size()));
+        ZSTD_CCtx_setParameter(cctx.get(), ZSTD_c_compressionLevel, options.zstdLevel);
+        stored = ZSTD_compress2(cctx.get(), out.data() + start, out.size() - start, raw.data(), raw.size());
+        // compressBound makes failure impossible short of a library bug; store raw bytes then.
+        if (ZSTD_isError(stored)) {
+            out.resize(start);
+            out[sectionStart + 1] = static_cast<std::uint8_t>(Codec::Raw);
+            w.putBytes(raw);
+            stored = raw.size();
+        } else {
+            out.resize(start + stored);
+        }
+    } else {
+        w.putBytes(raw);
+    }
+    std::memcpy(out.data() + storedSizeAt, &stored, sizeof(stored));
+}
+
+void FrameEncoder::Impl::depth(std::vector<std::uint8_t>& out, Section kind, const Plane<float>& plane) {
+    SectionHeader h{kind, Codec::Raw, kDepthFloat32Shuffled, plane.width, plane.height, 0.0, 0};
+    const std::size_t n = plane.pixels.size();
+    if (const auto scale = exactUint16Scale(plane)) {
+        h.layout = kDepthUint16Scaled;
+        h.scale = *scale;
+        scratch.resize(2 * n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const auto units = static_cast<std::uint16_t>(std::nearbyint(plane.pixels[i] / *scale));
+            std::memcpy(&scratch[2 * i], &units, 2);
+        }
+    } else {
+        scratch.resize(4 * n);
+        shuffleBytes(plane.pixels.data(), n, scratch.data());
+    }
+    section(out, h, scratch, true);
+}
+
+void FrameEncoder::Impl::plane8(std::vector<std::uint8_t>& out, Section kind,
+                                const Plane<std::uint8_t>& plane) {
+    section(out, {kind, Codec::Raw, kConfidenceUint8, plane.width, plane.height, 0.0, 0}, plane.pixels, true);
+}
+
+Status FrameEncoder::Impl::color(std::vector<std::uint8_t>& out, const CapturedImage& image) {
+    if (image.bytes->size() != CapturedImage::byteSize(image.format, image.width, image.height))
+        return Error{"camera image holds " + std::to_string(image.bytes->size()) + " bytes, " +
+                     toString(image.format) + " " + std::to_string(image.width) + "x" +
+                     std::to_string(image.height) + " needs " +
+                     std::to_string(CapturedImage::byteSize(image.format, image.width, image.height))};
+    if (options.color == ColorStorage::AsCaptured) {
+        section(out,
+                {Section::Color, Codec::Raw, static_cast<std::uint8_t>(image.format), image.width,
+                 image.height, 0.0, 0},
+                *image.bytes, true);
+        return {};
+    }
+    std::vector<std::uint8_t> rgb = toRgb24(image);
+    cv::Mat bgr;
+    cv::cvtColor(cv::Mat(image.height, image.width, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
+    std::vector<std::uint8_t> jpeg;
+    if (!cv::imencode(".jpg", bgr, jpeg, {cv::IMWRITE_JPEG_QUALITY, options.jpegQuality}))
+        return Error{"cannot encode the camera image as JPEG"};
+    section(out, {Section::Color, Codec::Raw, kColorJpeg, image.width, image.height, 0.0, 0}, jpeg, false);
+    return {};
+}
+
+FrameEncoder::FrameEncoder(EncodeOptions options) : impl_(std::make_unique<Impl>()) {
+    impl_->options = options;
+}
+FrameEncoder::~FrameEncoder() = default;
+FrameEncoder::FrameEncoder(FrameEncoder&&) noexcept = default;
+FrameEncoder& FrameEncoder::operator=(FrameEncoder&&) noexcept = default;
+
+Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const Frame& frame) {
+    std::vector<std::uint8_t> out;
+    std::vector<std::uint8_t> meta;
+    ByteWriter m(meta);
+    m.put(frame.sequence);
+    const Intrinsics& k = frame.cameraIntrinsics;
+    for (const double v : {k.fx, k.fy, k.cx, k.cy})
+        m.put(v);
+    m.put(static_cast<std::int32_t>(k.width));
+    m.put(static_cast<std::int32_t>(k.height));
+    m.put(static_cast<std::uint8_t>(frame.pose.has_value()));
+    if (frame.pose)
+        for (const double v : frame.pose->cameraToWorld)
+            m.put(v);
+    impl_->section(out, {Section::Meta, Codec::Raw, 0, 0, 0, 0.0, 0}, meta, false);
+    if (frame.sceneDepth) {
+        impl_->depth(out, Section::SceneDepth, frame.sceneDepth->depthMeters);
+        if (!frame.sceneDepth->confidence.empty())
+            impl_->plane8(out, Section::SceneConfidence, frame.sceneDepth->confidence);
+    }
+    if (frame.smoothedSceneDepth) {
+        impl_->depth(out, Section::SmoothedDepth, frame.smoothedSceneDepth->depthMeters);
+        if (!frame.smoothedSceneDepth->confidence.empty())
+            impl_->plane8(out, Section::SmoothedConfidence, frame.smoothedSceneDepth->confidence);
+    }
+    if (!frame.capturedImage.empty()) {
+        if (Status s = impl_->color(out, frame.capturedImage); !s)
+            return s.error();
+    }
+    return out;
+}
+
+// ---------------------------------------------------------------------------------------------------
+
+struct FrameDecoder::Impl {
+    std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> dctx{ZSTD_createDCtx(), &ZSTD_freeDCtx};
+    std::vector<std::uint8_t> scratch;
+    std::string where; // "FILE: frame N"
+
+    Error error(const std::string& what, std::uint64_t offset) const {
+        return Error{where + ": " + what + " (byte offset " + std::to_string(offset) + ")"};
+    }
+    Status unpack(const SectionHeader& h, std::span<const std::uint8_t> stored, std::uint64_t offset);
+    Status decodeMeta(ByteReader r, Frame& frame);
+    Expected<Plane<float>> decodeDepth(const SectionHeader& h, std::uint64_t offset);
+    Expected<Plane<std::uint8_t>> decodePlane8(const SectionHeader& h, std::uint64_t offset);
+    Expected<CapturedImage> decodeColor(const SectionHeader& h, std::uint64_t offset);
+    Status apply(const SectionHeader& h, std::span<const std::uint8_t> stored, std::uint64_t offset,
+                 Frame& frame);
+};
+
+// Leaves the section's raw bytes in `scratch`.
+Status FrameDecoder::Impl::unpack(const SectionHeader& h, std::span<const std::uint8_t> stored,
+                                  std::uint64_t offset) {
+    if (h.codec == Codec::Raw) {
+        if (stored.size() != h.rawSize)
+            return error("raw section of " + std::to_string(stored.size()) + " bytes, expected " +
+                             std::to_string(h.rawSize),
+                         offset);
+        scratch.assign(stored.begin(), stored.end());
+        return {};
+    }
+    if (h.codec != Codec::Zstd)
+        return error("unknown compression " + std::to_string(static_cast<int>(h.codec)), offset);
+    const unsigned long long content = ZSTD_getFrameContentSize(stored.data(), stored.size());
+    if (content != h.rawSize)
+        return error("compressed section does not hold the " + std::to_string(h.rawSize) +
+                         " bytes it declares",
+                     offset);
+    scratch.resize(h.rawSize);
+    const std::size_t n =
+        ZSTD_decompressDCtx(dctx.get(), scratch.data(), scratch.size(), stored.data(), stored.size());
+    if (ZSTD_isError(n) || n != h.rawSize)
+        return error(std::string("cannot decompress section: ") +
+                         (ZSTD_isError(n) ? ZSTD_getErrorName(n) : "short output"),
+                     offset);
+    return {};
+}
+
+Status FrameDecoder::Impl::decodeMeta(ByteReader r, Frame& frame) {
+    frame.sequence = r.get<std::uint64_t>();
+    Intrinsics& k = frame.cameraIntrinsics;
+    k.fx = r.get<double>();
+    k.fy = r.get<double>();
+    k.cx = r.get<double>();
+    k.cy = r.get<double>();
+    k.width = r.get<std::int32_t>();
+    k.height = r.get<std::int32_t>();
+    if (r.get<std::uint8_t>() != 0) {
+        Pose pose;
+        for (double& v : pose.cameraToWorld)
+            v = r.get<double>();
+        frame.pose = pose;
+    }
+    if (!r.ok())
+        return error("frame metadata ends early", r.offset());
+    return {};
+}
+
+Expected<Plane<float>> FrameDecoder::Impl::decodeDepth(const SectionHeader& h, std::uint64_t offset) {
+    Plane<float> plane(h.width, h.height);
+    const std::size_t n = plane.pixels.size();
+    if (h.layout == kDepthUint16Scaled && std::isfinite(h.scale) && h.scale > 0.0 &&
+        scratch.size() == 2 * n) {
+        for (std::size_t i = 0; i < n; ++i) {
+            std::uint16_t units;
+            std::memcpy(&units, &scratch[2 * i], 2);
+            plane.pixels[i] = units == 0 ? 0.0f : depthFromUnits(units, h.scale);
+        }
+        return plane;
+    }
+    if (h.layout == kDepthFloat32Shuffled && scratch.size() == 4 * n) {
+        unshuffleBytes(scratch.data(), n, plane.pixels.data());
+        return plane;
+    }
+    return error("depth section with unknown layout " + std::to_string(h.layout) + " or wrong size", offset);
+}
+
+Expected<Plane<std::uint8_t>> FrameDecoder::Impl::decodePlane8(const SectionHeader& h, std::uint64_t offset) {
+    Plane<std::uint8_t> plane(h.width, h.height);
+    if (h.layout != kConfidenceUint8 || scratch.size() != plane.pixels.size())
+        return error("confidence section with unknown layout or wrong size", offset);
+    plane.pixels = scratch;
+    return plane;
+}
+
+Expected<CapturedImage> FrameDecoder::Impl::decodeColor(const SectionHeader& h, std::uint64_t offset) {
+    if (h.layout == kColorJpeg) {
+        cv::Mat bgr;
+        try {
+            bgr = cv::imdecode(scratch, cv::IMREAD_COLOR);
+        } catch (const cv::Exception&) {
+            bgr.release();
+        }
+        if (bgr.empty() || bgr.cols != h.width || bgr.rows != h.height)
+            return error("cannot decode the JPEG camera image", offset);
+        std::vector<std::uint8_t> rgb(static_cast<std::size_t>(h.width) * h.height * 3);
+        cv::cvtColor(bgr, cv::Mat(h.height, h.width, CV_8UC3, rgb.data()), cv::COLOR_BGR2RGB);
+        return makeRgb24Image(h.width, h.height, std::move(rgb));
+    }
+    if (h.layout > static_cast<std::uint8_t>(PixelFormat::Rgb24))
+        return error("camera image in unknown format " + std::to_string(h.layout), offset);
+    const auto format = static_cast<PixelFormat>(h.layout);
+    if (scratch.size() != CapturedImage::byteSize(format, h.width, h.height))
+        return error("camera image of the wrong size", offset);
+    return CapturedImage{format, h.width, h.height,
+                         std::make_shared<const std::vector<std::uint8_t>>(scratch)};
+}
+
+Status FrameDecoder::Impl::apply(const SectionHeader& h, std::span<const std::uint8_t> stored,
+                                 std::uint64_t offset, Frame& frame) {
+    if (h.kind == Section::Meta)
+        return decodeMeta(ByteReader(stored, offset), frame);
+    if (h.kind < Section::SceneDepth || h.kind > Section::Color)
+        return {}; // a section a newer minor version added: skipped
+    if (h.width <= 0 || h.height <= 0 || h.width > kMaxImageSide || h.height > kMaxImageSide ||
+        static_cast<std::uint64_t>(h.width) * static_cast<std::uint64_t>(h.height) > kMaxImagePixels)
+        return error("image size " + std::to_string(h.width) + "x" + std::to_string(h.height) +
+                         " out of range",
+                     offset);
+    if (h.rawSize > 4 * kMaxImagePixels)
+        return error("section too large", offset);
+    if (Status s = unpack(h, stored, offset); !s)
+        return s;
+    const bool smoothed = h.kind == Section::SmoothedDepth || h.kind == Section::SmoothedConfidence;
+    std::optional<DepthData>& target = smoothed ? frame.smoothedSceneDepth : frame.sceneDepth;
+    if (h.kind == Section::SceneDepth || h.kind == Section::SmoothedDepth) {
+        auto plane = decodeDepth(h, offset);
+        if (!plane)
+            return plane.error();
+        target = DepthData{std::move(*plane), {}};
+    } else if (h.kind == Section::SceneConfidence || h.kind == Section::SmoothedConfidence) {
+        auto plane = decodePlane8(h, offset);
+        if (!plane)
+            return plane.error();
+        if (!target || target->depthMeters.width != h.width || target->depthMeters.height != h.height)
+            return error("confidence without a depth map of its size", offset);
+        target->confidence = std::move(*plane);
+    } else {
+        auto image = decodeColor(h, offset);
+        if (!image)
+            return image.error();
+        frame.capturedImage = std::move(*image);
+    }
+    return {};
+}
+
+FrameDecoder::FrameDecoder() : impl_(std::make_unique<Impl>()) {}
+FrameDecoder::~FrameDecoder() = default;
+FrameDecoder::FrameDecoder(FrameDecoder&&) noexcept = default;
+FrameDecoder& FrameDecoder::operator=(FrameDecoder&&) noexcept = default;
+
+Expected<Frame> FrameDecoder::decode(std::span<const std::uint8_t> payload, std::uint64_t payloadOffset,
+                                     const std::string& file, std::uint64_t frameIndex) {
+    impl_->where = file + ": frame " + std::to_string(frameIndex);
+    Frame frame;
+    ByteReader r(payload, payloadOffset);
+    bool sawMeta = false;
+    while (r.remaining() > 0) {
+        const std::uint64_t at = r.offset();
+        SectionHeader h;
+        h.kind = static_cast<Section>(r.get<std::uint8_t>());
+        h.codec = static_cast<Codec>(r.get<std::uint8_t>());
+        h.layout = r.get<std::uint8_t>();
+        (void)r.get<std::uint8_t>();
+        h.width = r.get<std::int32_t>();
+        h.height = r.get<std::int32_t>();
+        h.scale = r.get<double>();
+        h.rawSize = r.get<std::uint64_t>();
+        const auto storedSize = r.get<std::uint64_t>();
+        if (!r.ok() || storedSize > r.remaining())
+            return impl_->error("section overruns its chunk", at);
+        const auto stored = r.getBytes(static_cast<std::size_t>(storedSize));
+        if (Status s = impl_->apply(h, stored, at + kSectionHeaderSize, frame); !s)
+            return s.error();
+        sawMeta = sawMeta || h.kind == Section::Meta;
+    }
+    if (!sawMeta)
+        return impl_->error("frame without metadata", payloadOffset);
+    return frame;
+}
+
+} // namespace dc::devices::recording

@@ -1,0 +1,146 @@
+#include "devices/recording/recorder.h"
+
+#include "devices/log.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace dc::devices::recording {
+
+namespace {
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+} // namespace
+
+Expected<std::unique_ptr<Recorder>> Recorder::start(const std::string& path, const DeviceInfo& device,
+                                                    RecorderOptions options) {
+    auto writer = RecordingWriter::create(path, device, options.writer);
+    if (!writer)
+        return writer.error();
+    std::unique_ptr<Recorder> recorder(new Recorder(std::move(*writer), options));
+    Recorder* r = recorder.get();
+    r->encodersRunning_ = std::max(1, options.encoderThreads);
+    for (int i = 0; i < r->encodersRunning_; ++i)
+        r->encoders_.emplace_back([r, encode = options.writer.encode] { r->encodeLoop(encode); });
+    r->writerThread_ = std::thread([r] { r->writeLoop(); });
+    return recorder;
+}
+
+Recorder::Recorder(RecordingWriter writer, const RecorderOptions& options)
+    : path_(writer.path()), writer_(std::move(writer)),
+      capacity_(std::max<std::size_t>(1, options.queueFrames)) {}
+
+Recorder::~Recorder() {
+    if (Status s = stop(); !s)
+        logError(s.error().message);
+}
+
+bool Recorder::push(FramePtr frame) {
+    {
+        std::lock_guard lock(mutex_);
+        if (stopping_ || failed_ || inFlight_ >= capacity_) {
+            ++stats_.framesDropped;
+            return false;
+        }
+        pending_.emplace_back(nextSequence_++, std::move(frame));
+        stats_.queueDepth = ++inFlight_;
+    }
+    work_.notify_one();
+    return true;
+}
+
+RecorderStats Recorder::stats() const {
+    std::lock_guard lock(mutex_);
+    return stats_;
+}
+
+void Recorder::fail(const std::string& message) {
+    // Everything written so far stays readable in the partial file; nothing more is accepted.
+    if (!failed_)
+        stats_.error = message;
+    failed_ = true;
+    stats_.framesDropped += pending_.size();
+    pending_.clear();
+}
+
+void Recorder::encodeLoop(EncodeOptions options) {
+    FrameEncoder encoder(options);
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        work_.wait(lock, [this] { return stopping_ || failed_ || !pending_.empty(); });
+        if (pending_.empty())
+            break;
+        auto [sequence, frame] = std::move(pending_.front());
+        pending_.pop_front();
+        lock.unlock();
+        const auto begin = std::chrono::steady_clock::now();
+        Encoded result{frame->timestampNs, encoder.encode(*frame)};
+        frame.reset();
+        const double seconds = secondsSince(begin);
+        lock.lock();
+        stats_.encodeSeconds += seconds;
+        encoded_.emplace(sequence, std::move(result));
+        written_.notify_one();
+    }
+    --encodersRunning_;
+    written_.notify_one();
+}
+
+void Recorder::writeLoop() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        written_.wait(lock, [this] { return encoded_.contains(nextToWrite_) || encodersRunning_ == 0; });
+        const auto next = encoded_.find(nextToWrite_);
+        if (next == encoded_.end())
+            return; // the encoders have ended and everything they made is written
+        Encoded item = std::move(next->second);
+        encoded_.erase(next);
+        ++nextToWrite_;
+        if (failed_) {
+            --inFlight_;
+            ++stats_.framesDropped;
+            continue;
+        }
+        lock.unlock();
+        const auto begin = std::chrono::steady_clock::now();
+        const Status s = item.payload
+                             ? writer_.appendEncoded(*item.payload, item.timestampNs)
+                             : Status(Error{path_ + ": frame " + std::to_string(writer_.framesWritten()) +
+                                            ": " + item.payload.error().message});
+        const double seconds = secondsSince(begin);
+        lock.lock();
+        stats_.writeSeconds += seconds;
+        stats_.framesWritten = writer_.framesWritten();
+        stats_.bytesWritten = writer_.bytesWritten();
+        stats_.queueDepth = --inFlight_;
+        if (!s) {
+            fail(s.error().message);
+            work_.notify_all();
+        }
+    }
+}
+
+Status Recorder::stop() {
+    if (result_)
+        return *result_;
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    work_.notify_all();
+    for (std::thread& t : encoders_)
+        t.join();
+    if (writerThread_.joinable())
+        writerThread_.join();
+    std::lock_guard lock(mutex_);
+    if (failed_) {
+        result_ = Error{stats_.error + " (the frames written before are in " + writer_.partialPath() + ")"};
+    } else {
+        result_ = writer_.finish();
+        stats_.bytesWritten = writer_.bytesWritten();
+    }
+    return *result_;
+}
+
+} // namespace dc::devices::recording

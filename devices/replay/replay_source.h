@@ -1,0 +1,66 @@
+#pragma once
+
+#include "devices/device.h"
+#include "devices/expected.h"
+#include "devices/frame.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace dc::devices::replay {
+
+// Random access to a finished capture: our recordings and the formats other tools write. Every
+// importer sits behind this interface, so the replay device, export and the benchmarks treat them alike.
+// Not thread-safe: one thread decodes.
+class ReplaySource {
+public:
+    virtual ~ReplaySource() = default;
+
+    virtual std::string description() const = 0;
+    // What the capture holds (a capture without confidence says so here).
+    virtual Capabilities capabilities() const = 0;
+    virtual std::size_t frameCount() const = 0;
+    // Cheap: from the index or the file lists, without decoding.
+    virtual std::int64_t timestampNs(std::size_t i) const = 0;
+    // Decodes frame i (< frameCount()) with its recorded timestamp. Errors name file, frame and offset.
+    virtual Expected<Frame> frame(std::size_t i) = 0;
+    // Problems found at open that did not prevent it (a recovered recording, skipped list entries).
+    virtual std::vector<std::string> warnings() const { return {}; }
+    // Consumers that show no color (depth export, depth-only benchmarks) skip its decoding, often the
+    // most expensive part (a video).
+    virtual void setDecodeColor(bool) {}
+
+    // The frame on screen at time `ns`: the last one whose timestamp is not after it (the first frame
+    // before the capture starts). Timestamps are non-decreasing in every source.
+    std::size_t indexAtTime(std::int64_t ns) const;
+
+protected:
+    ReplaySource() = default;
+};
+
+// Frame i made safe to use: NaN, infinite and negative depth becomes 0 (no measurement) and confidence
+// above High becomes High, with a warning that counts them.
+Expected<Frame> loadFrame(ReplaySource& source, std::size_t i);
+
+// NaN, infinite and negative samples set to 0; returns how many.
+std::size_t sanitizeDepth(Plane<float>& depthMeters);
+
+struct ReplayOpenOptions {
+    std::string calibrationPath; // OpenCV YAML camera matrix that replaces the source's intrinsics
+};
+
+// Opens PATH as whatever it is: a depthcloud recording (a file), a Stray Scanner directory (depth/,
+// rgb.mp4, camera_matrix.csv, odometry.csv) or a TUM RGB-D directory (rgb.txt, depth.txt).
+Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path,
+                                                         const ReplayOpenOptions& options = {});
+
+// Seconds as capture files store them -> nanoseconds, rounded to the nearest.
+std::int64_t secondsToNs(double seconds);
+
+// Camera-to-world from a translation and a unit quaternion (x, y, z, w), as Stray and TUM store poses.
+Pose poseFromQuaternion(const double translation[3], const double quaternion[4]);
+
+} // namespace dc::devices::replay

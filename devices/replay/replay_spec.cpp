@@ -1,0 +1,73 @@
+#include "devices/replay/replay_spec.h"
+
+#include "devices/replay/replay_device.h"
+#include "devices/replay/text_fields.h"
+
+namespace dc::devices::replay {
+
+namespace {
+
+// Applies one trailing ":option"; false when `option` is not one (then it belongs to the path).
+bool applyOption(const std::string& option, ReplayOptions& replay, ReplayOpenOptions& open,
+                 std::string& problem) {
+    if (option == "loop") {
+        replay.loop = true;
+    } else if (option == "paused") {
+        replay.startPlaying = false;
+    } else if (option.starts_with("speed=")) {
+        double speed = 0.0;
+        if (!parseFiniteDouble(option.substr(6), speed) || speed < ReplayControl::kMinSpeed ||
+            speed > ReplayControl::kMaxSpeed)
+            problem = "replay speed '" + option.substr(6) + "' must be between 0.25 and 4";
+        replay.speed = speed;
+    } else if (option.starts_with("calib=")) {
+        open.calibrationPath = option.substr(6);
+        if (open.calibrationPath.empty())
+            problem = "calib= needs a calibration file";
+    } else {
+        return false;
+    }
+    return true;
+}
+
+struct ParsedSpec {
+    std::string path;
+    ReplayOptions replay;
+    ReplayOpenOptions open;
+};
+
+Expected<ParsedSpec> parseSpec(const std::string& rest) {
+    ParsedSpec spec{rest, {}, {}};
+    std::string problem;
+    for (auto colon = spec.path.rfind(':'); colon != std::string::npos; colon = spec.path.rfind(':')) {
+        if (!applyOption(spec.path.substr(colon + 1), spec.replay, spec.open, problem))
+            break;
+        spec.path.resize(colon);
+    }
+    if (!problem.empty())
+        return Error{problem};
+    if (spec.path.empty())
+        return Error{std::string("replay needs a path (") + kReplaySpecHelp + ")"};
+    return spec;
+}
+
+} // namespace
+
+Expected<std::unique_ptr<Device>> openReplaySpec(const std::string& rest) {
+    auto spec = parseSpec(rest);
+    if (!spec)
+        return spec.error();
+    auto source = openReplaySource(spec->path, spec->open);
+    if (!source)
+        return source.error();
+    return std::unique_ptr<Device>(std::make_unique<ReplayDevice>(std::move(*source), spec->replay));
+}
+
+Expected<std::unique_ptr<ReplaySource>> openReplaySpecSource(const std::string& text) {
+    auto spec = parseSpec(text.starts_with("replay:") ? text.substr(7) : text);
+    if (!spec)
+        return spec.error();
+    return openReplaySource(spec->path, spec->open);
+}
+
+} // namespace dc::devices::replay

@@ -1,0 +1,140 @@
+#include "exporting/export.h"
+
+#include "devices/image_io.h"
+#include "devices/log.h"
+#include "exporting/ply.h"
+#include "exporting/stray_writer.h"
+#include "processing/point_cloud.h"
+
+#include <algorithm>
+#include <charconv>
+#include <cstdio>
+#include <filesystem>
+
+namespace dc::exporting {
+
+namespace {
+
+std::string numberedName(std::size_t i, const char* extension) {
+    char name[32];
+    std::snprintf(name, sizeof(name), "%06zu.%s", i, extension);
+    return name;
+}
+
+bool parseIndex(const std::string& text, std::size_t& out) {
+    const auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), out);
+    return ec == std::errc() && ptr == text.data() + text.size() && !text.empty();
+}
+
+// The points of a frame, through its pose when world coordinates are asked for.
+std::vector<processing::CloudPoint> framePoints(const devices::Frame& frame, bool world) {
+    auto points = processing::buildPointCloud(frame, devices::Confidence::Low, 0.0f);
+    if (!world || !frame.pose)
+        return points;
+    const auto& m = frame.pose->cameraToWorld;
+    for (processing::CloudPoint& p : points) {
+        const double x = p.x, y = p.y, z = p.z;
+        p.x = static_cast<float>(m[0] * x + m[4] * y + m[8] * z + m[12]);
+        p.y = static_cast<float>(m[1] * x + m[5] * y + m[9] * z + m[13]);
+        p.z = static_cast<float>(m[2] * x + m[6] * y + m[10] * z + m[14]);
+    }
+    return points;
+}
+
+Status writePlyFrame(const devices::Frame& frame, std::size_t index, const ExportOptions& options) {
+    const bool world = options.worldCoordinates && frame.pose;
+    const std::vector<std::string> comments = {
+        "depthcloud export: frame " + std::to_string(index) + ", timestamp " +
+            std::to_string(frame.timestampNs) + " ns",
+        world ? "world coordinates (camera-to-world pose applied), meters"
+              : "camera coordinates, OpenCV axes (x right, y down, z forward), meters",
+        "confidence: 0 low, 1 medium, 2 high"};
+    const auto bytes = encodePly(framePoints(frame, world), comments);
+    return devices::writeFileAtomically(options.outDirectory + "/" + numberedName(index, "ply"), bytes);
+}
+
+// The mean frame rate over the range, for the Stray video (30 when it cannot be told).
+double meanFps(const devices::replay::ReplaySource& source, const FrameRange& range) {
+    if (range.end - range.first < 2)
+        return 30.0;
+    const double seconds =
+        static_cast<double>(source.timestampNs(range.end - 1) - source.timestampNs(range.first)) * 1e-9;
+    const double fps = seconds > 0.0 ? static_cast<double>(range.end - range.first - 1) / seconds : 30.0;
+    return std::clamp(fps, 1.0, 240.0);
+}
+
+} // namespace
+
+const char* toString(ExportFormat format) {
+    switch (format) {
+    case ExportFormat::Ply:
+        return "ply";
+    case ExportFormat::Stray:
+        return "stray";
+    case ExportFormat::Png16:
+        return "png16";
+    }
+    return "unknown";
+}
+
+Expected<FrameRange> parseFrameRange(const std::string& text, std::size_t count) {
+    const auto colon = text.find(':');
+    const Error bad{"frame range '" + text + "' is not A:B, A: or :B (B excluded)"};
+    if (colon == std::string::npos)
+        return bad;
+    FrameRange range{0, count};
+    const std::string a = text.substr(0, colon), b = text.substr(colon + 1);
+    if ((!a.empty() && !parseIndex(a, range.first)) || (!b.empty() && !parseIndex(b, range.end)))
+        return bad;
+    if (range.end > count)
+        return Error{"frame range '" + text + "' ends after the last frame (the source has " +
+                     std::to_string(count) + " frames)"};
+    if (range.first >= range.end)
+        return Error{"frame range '" + text + "' is empty"};
+    return range;
+}
+
+Expected<ExportResult> exportFrames(devices::replay::ReplaySource& source, const ExportOptions& options,
+                                    const ExportProgress& progress) {
+    FrameRange range = options.frames;
+    if (range.end == 0)
+        range.end = source.frameCount();
+    if (range.first >= range.end || range.end > source.frameCount())
+        return Error{"frames " + std::to_string(range.first) + ":" + std::to_string(range.end) +
+                     " are not within the source's " + std::to_string(source.frameCount()) + " frames"};
+    std::error_code ec;
+    std::filesystem::create_directories(
+        options.outDirectory + (options.format == ExportFormat::Png16 ? "/depth" : ""), ec);
+    if (ec)
+        return Error{"cannot create " + options.outDirectory + ": " + ec.message()};
+    source.setDecodeColor(options.format != ExportFormat::Png16);
+    StrayWriter stray(options.outDirectory, meanFps(source, range));
+    ExportResult result;
+    const std::size_t total = range.end - range.first;
+    for (std::size_t i = range.first; i < range.end; ++i) {
+        auto frame = devices::replay::loadFrame(source, i);
+        if (!frame || !frame->sceneDepth) {
+            logWarning("export: skipping frame " + std::to_string(i) + ": " +
+                       (frame ? std::string("it has no depth") : frame.error().message));
+            ++result.framesSkipped;
+        } else {
+            const std::size_t out = options.format == ExportFormat::Stray ? result.framesWritten : i;
+            Status s = options.format == ExportFormat::Ply ? writePlyFrame(*frame, out, options)
+                       : options.format == ExportFormat::Stray
+                           ? stray.add(*frame)
+                           : writeDepthPng16(options.outDirectory + "/depth/" + numberedName(out, "png"),
+                                             frame->sceneDepth->depthMeters);
+            if (!s)
+                return s.error();
+            ++result.framesWritten;
+        }
+        if (progress && !progress(i - range.first + 1, total))
+            return Error{"export cancelled after " + std::to_string(result.framesWritten) + " frames"};
+    }
+    if (options.format == ExportFormat::Stray)
+        if (Status s = stray.finish(); !s)
+            return s.error();
+    return result;
+}
+
+} // namespace dc::exporting

@@ -1,0 +1,50 @@
+#pragma once
+
+#include "devices/expected.h"
+#include "devices/replay/replay_source.h"
+
+#include <cstddef>
+#include <functional>
+#include <string>
+
+namespace dc::exporting {
+
+enum class ExportFormat {
+    Ply,   // one binary PLY per frame: x y z (meters, camera frame) red green blue confidence
+    Stray, // the Stray Scanner layout, which our importer (and Stray's tools) read back
+    Png16, // depth/NNNNNN.png, 16-bit millimetres, 0 = no measurement
+};
+
+const char* toString(ExportFormat format);
+
+// Frames [first, end) of a source.
+struct FrameRange {
+    std::size_t first = 0;
+    std::size_t end = 0;
+};
+
+// "A:B" (B excluded), "A:" or ":B", against a source of `count` frames; errors name the problem.
+Expected<FrameRange> parseFrameRange(const std::string& text, std::size_t count);
+
+struct ExportOptions {
+    ExportFormat format = ExportFormat::Ply;
+    std::string outDirectory;
+    FrameRange frames;             // end == 0: to the last frame
+    bool worldCoordinates = false; // PLY: points through the frame's pose (when it has one)
+};
+
+struct ExportResult {
+    std::size_t framesWritten = 0;
+    std::size_t framesSkipped = 0; // unreadable frames, each logged with its error
+};
+
+// Called after each frame with (frames done, frames in the range); returning false cancels the export.
+using ExportProgress = std::function<bool(std::size_t done, std::size_t total)>;
+
+// Writes the frames of `source` to options.outDirectory (created when missing), every file atomically.
+// Runs on the calling thread (the UI calls it from a worker with a source of its own: sources are not
+// thread-safe). Unreadable frames are skipped with a warning; a write failure ends the export.
+Expected<ExportResult> exportFrames(devices::replay::ReplaySource& source, const ExportOptions& options,
+                                    const ExportProgress& progress = {});
+
+} // namespace dc::exporting

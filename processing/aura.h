@@ -1,0 +1,28 @@
+#pragma once
+
+#include "devices/frame.h"
+#include "processing/camera_image.h"
+#include "processing/settings.h"
+
+#include <cstdint>
+
+namespace dc::processing {
+
+// The subject the aura surrounds, 1 inside and 0 outside, at the depth map's resolution (or at most 480
+// pixels wide, nearest-sampled, for large maps: the ring is blurred by tens of pixels anyway). NearRange:
+// measured depths within [nearMeters, farMeters]. NearestRegion: the 4-connected surface grown from the
+// nearest measurement (its 1st percentile, so one stray sample does not decide) over neighbour steps
+// below regionJumpMeters, at most regionDepthMeters behind its start.
+devices::Plane<std::uint8_t> subjectMatte(const devices::DepthData& depth, const AuraSettings& settings);
+
+// The "super saiyan" aura: the matte dilated by a ringPixels-wide square window (separable) minus the matte
+// itself is a ring; a small tent blur of it adds white, a large one yellow (twice as strong), their sizes
+// oscillating over time as the article's, and both are added to the camera color.
+//
+// The image has half the camera image's size (960x720 for 1920x1440, the article's half-resolution matte);
+// matte, ring and blurs work at half of that again, since the blurs span 15 to 150 of those pixels; the
+// sizes in AuraSettings are in output pixels. Empty without a camera image; the camera image without depth.
+RgbaImage renderAura(const devices::Frame& frame, const AuraSettings& settings, DepthSource source,
+                     double timeSeconds);
+
+} // namespace dc::processing

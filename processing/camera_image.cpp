@@ -1,0 +1,119 @@
+#include "processing/camera_image.h"
+
+#include "devices/color.h"
+#include "processing/parallel.h"
+#include "processing/resample.h"
+
+#include <opencv2/imgproc.hpp>
+
+namespace dc::processing {
+
+namespace {
+
+bool wellFormed(const devices::CapturedImage& image) {
+    return !image.empty() && image.width > 0 && image.height > 0 &&
+           image.bytes->size() >= devices::CapturedImage::byteSize(image.format, image.width, image.height);
+}
+
+// Packed Y + interleaved CbCr at the output size to packed RGB, with the sample's matrix.
+std::vector<std::uint8_t> ycbcrToRgb24(const cv::Mat& luma, const cv::Mat& chroma) {
+    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(luma.cols) * luma.rows * 3);
+    parallelRanges(luma.rows, 32, [&](int begin, int end) {
+        for (int y = begin; y < end; ++y) {
+            const std::uint8_t* yRow = luma.ptr<std::uint8_t>(y);
+            const std::uint8_t* cRow = chroma.ptr<std::uint8_t>(y);
+            std::uint8_t* out = rgb.data() + static_cast<std::size_t>(y) * luma.cols * 3;
+            for (int x = 0; x < luma.cols; ++x) {
+                const devices::Rgb c =
+                    devices::ycbcrToRgb({yRow[x] / 255.0f, cRow[2 * x] / 255.0f, cRow[2 * x + 1] / 255.0f});
+                out[3 * x] = devices::toByte(c.r);
+                out[3 * x + 1] = devices::toByte(c.g);
+                out[3 * x + 2] = devices::toByte(c.b);
+            }
+        }
+    });
+    return rgb;
+}
+
+std::size_t yuyvRowBytes(int width) {
+    return 4 * static_cast<std::size_t>((width + 1) / 2);
+}
+
+// YUYV's luma into a packed width x height plane.
+void yuyvLuma(const devices::CapturedImage& image, std::uint8_t* out) {
+    const std::uint8_t* bytes = image.bytes->data();
+    for (int y = 0; y < image.height; ++y) {
+        const std::uint8_t* in = bytes + y * yuyvRowBytes(image.width);
+        for (int x = 0; x < image.width; ++x)
+            out[static_cast<std::size_t>(y) * image.width + x] = in[(x / 2) * 4 + (x & 1) * 2];
+    }
+}
+
+// YUYV's Y and CbCr as two planes (CbCr at half width).
+void splitYuyv(const devices::CapturedImage& image, cv::Mat& luma, cv::Mat& chroma) {
+    const int pairs = (image.width + 1) / 2;
+    luma.create(image.height, image.width, CV_8U);
+    yuyvLuma(image, luma.ptr<std::uint8_t>(0));
+    chroma.create(image.height, pairs, CV_8UC2);
+    for (int y = 0; y < image.height; ++y) {
+        const std::uint8_t* in = image.bytes->data() + y * yuyvRowBytes(image.width);
+        std::uint8_t* out = chroma.ptr<std::uint8_t>(y);
+        for (int p = 0; p < pairs; ++p) {
+            out[2 * p] = in[4 * p + 1];
+            out[2 * p + 1] = in[4 * p + 3];
+        }
+    }
+}
+
+} // namespace
+
+GrayView lumaView(const devices::CapturedImage& image, std::vector<std::uint8_t>& scratch) {
+    if (!wellFormed(image))
+        return {};
+    const std::uint8_t* bytes = image.bytes->data();
+    const auto count = static_cast<std::size_t>(image.width) * image.height;
+    switch (image.format) {
+    case devices::PixelFormat::Nv12:
+        return {bytes, image.width, image.height, image.width};
+    case devices::PixelFormat::Yuyv:
+        scratch.resize(count);
+        yuyvLuma(image, scratch.data());
+        return {scratch.data(), image.width, image.height, image.width};
+    case devices::PixelFormat::Rgb24: {
+        const cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(bytes));
+        scratch.resize(count);
+        cv::Mat gray(image.height, image.width, CV_8U, scratch.data());
+        cv::cvtColor(rgb, gray, cv::COLOR_RGB2GRAY); // BT.601 weights, as rgbToYcbcr
+        return {scratch.data(), image.width, image.height, image.width};
+    }
+    }
+    return {};
+}
+
+std::vector<std::uint8_t> cameraRgb(const devices::CapturedImage& image, int width, int height) {
+    if (!wellFormed(image) || width <= 0 || height <= 0)
+        return {};
+    const cv::Size size(width, height);
+    auto* bytes = const_cast<std::uint8_t*>(image.bytes->data()); // cv::Mat wants non-const; only read
+    switch (image.format) {
+    case devices::PixelFormat::Nv12: {
+        const cv::Mat luma(image.height, image.width, CV_8U, bytes);
+        const cv::Mat chroma((image.height + 1) / 2, (image.width + 1) / 2, CV_8UC2,
+                             bytes + static_cast<std::size_t>(image.width) * image.height);
+        return ycbcrToRgb24(resized(luma, size), resized(chroma, size));
+    }
+    case devices::PixelFormat::Yuyv: {
+        cv::Mat luma, chroma;
+        splitYuyv(image, luma, chroma);
+        return ycbcrToRgb24(resized(luma, size), resized(chroma, size));
+    }
+    case devices::PixelFormat::Rgb24: {
+        const cv::Mat rgb = resized(cv::Mat(image.height, image.width, CV_8UC3, bytes), size);
+        const std::uint8_t* data = rgb.ptr<std::uint8_t>(0);
+        return {data, data + static_cast<std::size_t>(width) * height * 3};
+    }
+    }
+    return {};
+}
+
+} // namespace dc::processing

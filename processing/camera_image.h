@@ -1,0 +1,45 @@
+#pragma once
+
+#include "devices/frame.h"
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace dc::processing {
+
+// Rows of 8-bit single-channel pixels that somebody else owns.
+struct GrayView {
+    const std::uint8_t* pixels = nullptr;
+    int width = 0;
+    int height = 0;
+    std::ptrdiff_t stride = 0; // bytes from one row to the next
+
+    bool empty() const { return pixels == nullptr || width <= 0 || height <= 0; }
+};
+
+// An 8-bit RGBA image, rows top to bottom without padding, ready for a texture or writeRgbaPng.
+struct RgbaImage {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> pixels;
+
+    bool empty() const { return pixels.empty(); }
+};
+
+// The luma (full-range BT.601 Y) of a captured image: NV12's Y plane in place, YUYV and RGB24 converted
+// into `scratch`. Empty for an empty or malformed image.
+GrayView lumaView(const devices::CapturedImage& image, std::vector<std::uint8_t>& scratch);
+
+// The image resampled to width x height (area-averaged when shrinking) as packed 8-bit RGB, converted with
+// the sample's YCbCr matrix (devices::ycbcrToRgb). Empty for an empty or malformed image.
+std::vector<std::uint8_t> cameraRgb(const devices::CapturedImage& image, int width, int height);
+
+// Half the camera image's size, rounded up: the resolution of the fog and aura images (960x720 for ARKit's
+// 1920x1440), which the point-cloud sample also uses for its depth texture.
+inline std::array<int, 2> halfCameraSize(const devices::CapturedImage& image) {
+    return {(image.width + 1) / 2, (image.height + 1) / 2};
+}
+
+} // namespace dc::processing

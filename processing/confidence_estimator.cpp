@@ -1,0 +1,136 @@
+#include "processing/confidence_estimator.h"
+
+#include <cmath>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace dc::processing {
+
+namespace {
+
+using devices::Confidence;
+
+bool measured(float d) {
+    return d > 0.0f && d < std::numeric_limits<float>::infinity(); // also rejects NaN
+}
+
+// Mirrored index (the image edge is not a hole): -1 -> 1, size -> size - 2.
+int mirror(int i, int size) {
+    if (size == 1)
+        return 0;
+    return i < 0 ? -i : (i >= size ? 2 * size - 2 - i : i);
+}
+
+// Horizontal 3-sums of one row: measured count, depth and squared depth (unmeasured pixels add nothing).
+// Double, because the variance below is taken as E[d^2] - E[d]^2 around the centre.
+struct RowSums {
+    std::vector<double> count, sum, squares;
+};
+
+void horizontalSums(const float* row, int w, std::vector<double>& scratch, RowSums& out) {
+    scratch.resize(3 * static_cast<std::size_t>(w));
+    double* c = scratch.data();
+    double* s = c + w;
+    double* q = s + w;
+    for (int x = 0; x < w; ++x) {
+        const bool m = measured(row[x]);
+        c[x] = m ? 1.0 : 0.0;
+        s[x] = m ? row[x] : 0.0;
+        q[x] = s[x] * s[x];
+    }
+    out.count.resize(static_cast<std::size_t>(w));
+    out.sum.resize(static_cast<std::size_t>(w));
+    out.squares.resize(static_cast<std::size_t>(w));
+    for (const auto& [in, dst] :
+         {std::pair{c, out.count.data()}, {s, out.sum.data()}, {q, out.squares.data()}}) {
+        for (int x = 1; x + 1 < w; ++x)
+            dst[x] = in[x - 1] + in[x] + in[x + 1];
+        dst[0] = in[mirror(-1, w)] + in[0] + in[mirror(1, w)];
+        dst[w - 1] = in[mirror(w - 2, w)] + in[w - 1] + in[mirror(w, w)];
+    }
+}
+
+Confidence level(int invalid, double spread, double change, bool changeKnown,
+                 const ConfidenceEstimatorParams& p) {
+    const auto within = [&](int maxInvalid, float maxSpread, float maxChange) {
+        return invalid <= maxInvalid && spread <= maxSpread && (!changeKnown || change <= maxChange);
+    };
+    if (within(p.highInvalidNeighbours, p.highSpread, p.highChange))
+        return Confidence::High;
+    if (within(p.mediumInvalidNeighbours, p.mediumSpread, p.mediumChange))
+        return Confidence::Medium;
+    return Confidence::Low;
+}
+
+// Levels of one row from the 3x3 sums (three rows of horizontal sums).
+void classifyRow(const float* depth, const float* before, const RowSums* const rows[3], int w,
+                 const ConfidenceEstimatorParams& params, std::uint8_t* levels) {
+    for (int x = 0; x < w; ++x) {
+        const double centre = depth[x];
+        if (!measured(depth[x]))
+            continue;
+        const double n = rows[0]->count[x] + rows[1]->count[x] + rows[2]->count[x]; // >= 1: the pixel itself
+        const double sum = rows[0]->sum[x] + rows[1]->sum[x] + rows[2]->sum[x];
+        const double squares = rows[0]->squares[x] + rows[1]->squares[x] + rows[2]->squares[x];
+        const double mean = sum / n;
+        const double variance = std::max(0.0, squares / n - mean * mean);
+        const bool changeKnown = before && measured(before[x]);
+        const double change = changeKnown ? std::abs(centre - before[x]) / centre : 0.0;
+        levels[x] = static_cast<std::uint8_t>(
+            level(9 - static_cast<int>(n + 0.5), std::sqrt(variance) / centre, change, changeKnown, params));
+    }
+}
+
+} // namespace
+
+devices::Plane<std::uint8_t> estimateConfidence(const devices::Plane<float>& depth,
+                                                const devices::Plane<float>* previous,
+                                                const ConfidenceEstimatorParams& params) {
+    devices::Plane<std::uint8_t> out(depth.width, depth.height, static_cast<std::uint8_t>(Confidence::Low));
+    if (depth.empty())
+        return out;
+    const bool temporal = previous && previous->width == depth.width && previous->height == depth.height;
+    const int w = depth.width;
+    const auto rowOf = [&](const devices::Plane<float>& plane, int y) {
+        return &plane.pixels[static_cast<std::size_t>(y) * w];
+    };
+    // Horizontal sums of three consecutive rows at a time: row i lives in slot i % 3.
+    RowSums slots[3];
+    int slotRow[3] = {-1, -1, -1};
+    std::vector<double> scratch;
+    const auto sumsOf = [&](int y) -> const RowSums* {
+        RowSums& slot = slots[y % 3];
+        if (slotRow[y % 3] != y) {
+            horizontalSums(rowOf(depth, y), w, scratch, slot);
+            slotRow[y % 3] = y;
+        }
+        return &slot;
+    };
+    for (int y = 0; y < depth.height; ++y) {
+        const RowSums* rows[3] = {sumsOf(mirror(y - 1, depth.height)), sumsOf(y),
+                                  sumsOf(mirror(y + 1, depth.height))};
+        classifyRow(rowOf(depth, y), temporal ? rowOf(*previous, y) : nullptr, rows, w, params,
+                    &out.pixels[static_cast<std::size_t>(y) * w]);
+    }
+    return out;
+}
+
+bool ConfidenceEstimatorStage::wanted(const ProcessingSettings&, const Needs& needs) const {
+    return needs.anyDepth();
+}
+
+devices::FramePtr ConfidenceEstimatorStage::process(devices::FramePtr frame, const ProcessingSettings&) {
+    if (!frame || !frame->sceneDepth || !frame->sceneDepth->confidence.empty() ||
+        frame->sceneDepth->depthMeters.empty())
+        return frame;
+    auto estimated = std::make_shared<devices::Frame>(*frame);
+    devices::DepthData& depth = *estimated->sceneDepth;
+    depth.confidence =
+        estimateConfidence(depth.depthMeters, previous_.empty() ? nullptr : &previous_, params_);
+    depth.confidenceEstimated = true;
+    previous_ = depth.depthMeters;
+    return estimated;
+}
+
+} // namespace dc::processing

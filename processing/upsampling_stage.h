@@ -1,0 +1,35 @@
+#pragma once
+
+#include "processing/guided_filter.h"
+#include "processing/pipeline.h"
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace dc::processing {
+
+// Guided upsampling, to half or the full camera image size and guided by the camera's luma, of the depth
+// map that is shown (shownDepth(): smoothedSceneDepth when selected and present, else sceneDepth); the
+// other map keeps the sensor's resolution, since upsampling it too would double the stage's cost for
+// nothing on screen. The cloud then has one point per output pixel; intrinsics follow each map's size
+// (Frame::depthIntrinsics() for sceneDepth, Intrinsics::scaledTo for the smoothed map). Frames without a
+// camera image pass through.
+class UpsamplingStage final : public Stage {
+public:
+    std::string_view name() const override { return kUpsamplingStage; }
+    bool wanted(const ProcessingSettings& settings, const Needs& needs) const override;
+    devices::FramePtr process(devices::FramePtr frame, const ProcessingSettings& settings) override;
+
+private:
+    GuidedUpsampler upsampler_;
+    std::vector<std::uint8_t> lumaScratch_;
+};
+
+// The output size `params` selects for a camera image of width x height.
+std::array<int, 2> upsamplingOutputSize(int cameraWidth, int cameraHeight, const UpsamplingParams& params);
+
+// The guided filter's parameters for frames in meters.
+GuidedFilterParams guidedFilterParams(const UpsamplingParams& params);
+
+} // namespace dc::processing

@@ -1,0 +1,104 @@
+// `depthcloud bench upsample` end to end on a tiny data set of the noisy-Middlebury layout: it must print
+// the table and the protocol check, and write a valid JSON report and PNG chart. Seconds, not minutes.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+// A 96x64 scene: a slanted background and a square in front, a colour guide with the square's edge, and
+// the four noisy inputs at 1/2 .. 1/16 (area-downsampled plus noise, as the real benchmark's).
+void writeTinyScene(const fs::path& dir) {
+    fs::create_directories(dir / "tiny");
+    cv::Mat truth(64, 96, CV_8U), color(64, 96, CV_8UC3);
+    for (int y = 0; y < 64; ++y)
+        for (int x = 0; x < 96; ++x) {
+            const bool square = x > 30 && x < 70 && y > 15 && y < 50;
+            truth.at<std::uint8_t>(y, x) = static_cast<std::uint8_t>(square ? 200 : 60 + x / 2);
+            color.at<cv::Vec3b>(y, x) = square ? cv::Vec3b(40, 60, 200) : cv::Vec3b(180, 170, 150);
+        }
+    cv::imwrite((dir / "tiny" / "tiny_big.png").string(), truth);
+    cv::imwrite((dir / "tiny" / "tiny_color.png").string(), color);
+    cv::RNG rng(5);
+    for (int k = 1; k <= 4; ++k) {
+        cv::Mat low, noise(64 >> k, 96 >> k, CV_32F);
+        cv::resize(truth, low, noise.size(), 0, 0, cv::INTER_AREA);
+        rng.fill(noise, cv::RNG::NORMAL, 0.0, 5.0);
+        low.convertTo(low, CV_32F);
+        cv::Mat noisy = low + noise;
+        noisy.convertTo(low, CV_8U);
+        cv::imwrite((dir / "tiny" / ("depth_" + std::to_string(k) + "_n.png")).string(), low);
+    }
+    std::ofstream(dir / "PROVENANCE.txt") << "made by bench_upsample_test\n";
+}
+
+struct Output {
+    int exitCode = -1;
+    std::string text;
+};
+
+Output runBinary(const std::string& arguments) {
+    Output out;
+    FILE* pipe = ::popen((std::string(DEPTHCLOUD_BINARY) + " " + arguments + " 2>&1").c_str(), "r");
+    if (!pipe)
+        return out;
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+        out.text.append(buffer, n);
+    const int status = ::pclose(pipe);
+    out.exitCode = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    return out;
+}
+
+TEST(BenchUpsample, WritesTableJsonAndChartOnTinyInputs) {
+    const fs::path dir =
+        fs::temp_directory_path() / ("depthcloud-bench-upsample-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    writeTinyScene(dir / "data");
+    const std::string json = (dir / "report.json").string(), chart = (dir / "chart.png").string();
+    const Output out = runBinary("bench upsample --quick --runs 10 --data " + (dir / "data").string() +
+                                 " --json " + json + " --chart " + chart);
+    ASSERT_EQ(out.exitCode, 0) << out.text;
+    EXPECT_NE(out.text.find("median ms"), std::string::npos) << out.text;
+    EXPECT_NE(out.text.find("ours fast s=4               tiny"), std::string::npos) << out.text;
+    EXPECT_NE(out.text.find("protocol check"), std::string::npos);
+    EXPECT_NE(out.text.find("whole chain per ARKit frame"), std::string::npos);
+    EXPECT_NE(out.text.find("temporal smoothing"), std::string::npos);
+
+    std::ifstream in(json);
+    const nlohmann::json report = nlohmann::json::parse(in);
+    ASSERT_EQ(report["middlebury"].size(), 4u * 11u) << "4 factors x 11 methods";
+    for (const auto& row : report["middlebury"]) {
+        EXPECT_GE(row["mad"].get<double>(), 0.0);
+        EXPECT_GT(row["medianMs"].get<double>(), 0.0);
+    }
+    EXPECT_TRUE(report["chain"].contains("medianMs"));
+    EXPECT_GT(report["smoothing"]["flickerReduction"].get<double>(), 1.0);
+
+    const cv::Mat png = cv::imread(chart, cv::IMREAD_COLOR);
+    ASSERT_FALSE(png.empty()) << "a PNG OpenCV can decode";
+    EXPECT_GT(png.cols, png.rows) << "two panels side by side";
+    cv::Scalar mean, stddev;
+    cv::meanStdDev(png.reshape(1), mean, stddev);
+    EXPECT_GT(stddev[0], 5.0) << "not blank";
+    fs::remove_all(dir);
+}
+
+TEST(BenchUpsample, RejectsTooFewRunsAndAMissingDataDirectory) {
+    EXPECT_EQ(runBinary("bench upsample --runs 3").exitCode, 2);
+    EXPECT_EQ(runBinary("bench upsample --data /nonexistent/depthcloud").exitCode, 2);
+}
+
+} // namespace

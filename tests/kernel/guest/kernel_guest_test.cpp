@@ -1,0 +1,301 @@
+// Runs inside the kernel-tier VM (tests/kernel/vmkit/init.sh): our V4L2, libusb and device code against a
+// real kernel's uvcvideo, UVC gadget, v4l2loopback and vivid. The scenario passes what it set up through
+// the environment; a missing variable is a failure, never a skip.
+
+#include "devices/frame_age.h"
+#include "devices/live_devices.h"
+#include "devices/live_source_spec.h"
+#include "devices/session.h"
+#include "devices/usb/hotplug_monitor.h"
+#include "devices/usb/usb_enumeration.h"
+#include "devices/v4l2/v4l2_node.h"
+#include "tests/kernel/vmkit/src/test_pattern.h"
+
+#include <gtest/gtest.h>
+#include <linux/videodev2.h>
+
+#include <algorithm>
+#include <cmath>
+#include <csignal>
+#include <cstdlib>
+#include <fstream>
+#include <iterator>
+#include <thread>
+
+namespace dc::devices {
+namespace {
+
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+constexpr int kWidth = 640;
+constexpr int kHeight = 480;
+constexpr float kD435Scale = 0.001f; // the known-camera table's value for 8086:0b07
+
+std::string env(const char* name) {
+    const char* v = std::getenv(name);
+    return v ? v : "";
+}
+
+// Checks a depth map against the feeder's pattern: every pixel must be exactly raw * scale of the raw
+// value the feeder sent for that frame. Returns the frame number, or -1 with `why` set.
+long patternFrame(const Plane<float>& meters, float scale, std::string& why) {
+    const auto raw = [&](int x, int y) { return std::lround(meters.at(x, y) / scale); };
+    if (meters.width != kWidth || meters.height != kHeight) {
+        why = "size " + std::to_string(meters.width) + "x" + std::to_string(meters.height);
+        return -1;
+    }
+    const auto frame = static_cast<unsigned>(raw(0, 0) | (raw(1, 0) << 16));
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const std::uint16_t expected =
+                dc_pattern(static_cast<unsigned>(x), static_cast<unsigned>(y), frame);
+            if (meters.at(x, y) != static_cast<float>(expected) * scale) {
+                why = "pixel (" + std::to_string(x) + "," + std::to_string(y) + ") of frame " +
+                      std::to_string(frame) + " is " + std::to_string(meters.at(x, y)) +
+                      " m, the feeder sent " + std::to_string(expected);
+                return -1;
+            }
+        }
+    return frame;
+}
+
+// Captures `count` frames from a device and checks each against the pattern; frame numbers must rise.
+void expectPatternFrames(Device& device, int count, float scale) {
+    long last = -1;
+    for (int got = 0; got < count;) {
+        const CaptureResult r = device.capture(5000ms);
+        ASSERT_TRUE(r.kind == CaptureResult::Kind::Frame || r.kind == CaptureResult::Kind::Error)
+            << r.message;
+        if (r.kind != CaptureResult::Kind::Frame) {
+            std::printf("capture error (frame dropped): %s\n", r.message.c_str());
+            continue;
+        }
+        std::string why;
+        const long frame = patternFrame(r.frame->sceneDepth->depthMeters, scale, why);
+        ASSERT_GE(frame, 0) << why;
+        EXPECT_GT(frame, last) << "frames arrive in order";
+        std::printf("frame %ld: pattern exact, age at capture %.1f ms\n", frame, frameAgeMs(*r.frame));
+        last = frame;
+        ++got;
+    }
+}
+
+template <class Predicate> bool waitFor(Predicate done, std::chrono::seconds limit) {
+    const auto end = Clock::now() + limit;
+    while (!done()) {
+        if (Clock::now() > end)
+            return false;
+        std::this_thread::sleep_for(50ms);
+    }
+    return true;
+}
+
+bool writeSysfs(const std::string& path, const std::string& value) {
+    std::ofstream out(path);
+    out << value << "\n";
+    out.flush();
+    return static_cast<bool>(out);
+}
+
+// ---- the UVC gadget camera (uvcvideo on dummy_hcd) -------------------------------------------------
+
+TEST(Uvc, LibusbFindsTheCameraWithItsStrings) {
+    ASSERT_FALSE(env("VIDEO").empty());
+    auto devices = usb::enumerateUsbDevices();
+    ASSERT_TRUE(devices) << devices.error().message;
+    const auto camera = std::find_if(devices->begin(), devices->end(),
+                                     [](const usb::UsbDeviceInfo& d) { return d.id() == "8086:0b07"; });
+    ASSERT_NE(camera, devices->end());
+    EXPECT_EQ(camera->manufacturer, "Fake Depth Inc");
+    EXPECT_EQ(camera->product, "Virtual Z16 Depth Camera");
+    EXPECT_EQ(camera->serial, "VDC0001");
+    EXPECT_TRUE(camera->hasVideoInterface);
+    EXPECT_EQ(camera->sysfsName(), "1-1");
+    const auto nodes = usb::Sysfs().videoNodesOf(camera->sysfsName());
+    EXPECT_NE(std::find(nodes.begin(), nodes.end(), env("VIDEO")), nodes.end());
+}
+
+TEST(Uvc, TheListingNamesTheDepthNodeAndItsZ16Mode) {
+    const LiveDeviceListing listing = listLiveDevices();
+    const auto camera =
+        std::find_if(listing.devices.begin(), listing.devices.end(),
+                     [](const LiveDeviceInfo& d) { return d.usb && d.usb->id() == "8086:0b07"; });
+    ASSERT_NE(camera, listing.devices.end());
+    EXPECT_EQ(camera->depthNode, env("VIDEO"));
+    EXPECT_EQ(camera->knownModel, "Intel RealSense D435");
+    EXPECT_EQ(camera->sourceSpec, "usb:8086:0b07:VDC0001");
+    bool z16 = false;
+    for (const VideoNodeInfo& node : camera->nodes)
+        for (const NodeMode& m : node.modes)
+            z16 |= node.path == camera->depthNode && m.fourcc == "Z16 " && m.width == kWidth &&
+                   m.height == kHeight;
+    EXPECT_TRUE(z16);
+    for (const std::string& p : listing.problems)
+        std::printf("listing note: %s\n", p.c_str());
+}
+
+TEST(Uvc, V4l2NodeStreamsTheFeedersPatternPixelForPixel) {
+    v4l2::V4l2Node node;
+    ASSERT_EQ(node.open(env("VIDEO")), 0);
+    EXPECT_EQ(node.capability().driver, "uvcvideo");
+    v4l2::V4l2Format f{V4L2_PIX_FMT_Z16, kWidth, kHeight, 0, 0};
+    ASSERT_EQ(node.setFormat(f), 0);
+    ASSERT_EQ(f.fourcc, V4L2_PIX_FMT_Z16);
+    ASSERT_EQ(node.allocateBuffers(), static_cast<int>(v4l2::V4l2Node::kBufferCount));
+    ASSERT_EQ(node.streamOn(), 0);
+    long last = -1;
+    std::vector<v4l2::NodeReadiness> ready;
+    v4l2::V4l2Node* nodes[] = {&node};
+    for (int got = 0; got < 10;) {
+        ASSERT_GT(v4l2::waitForNodes(v4l2::systemSyscalls(), nodes, nullptr, 5000, ready), 0)
+            << "no frame in 5 s";
+        const v4l2::DequeueResult d = node.dequeue();
+        if (d.kind == v4l2::DequeueResult::Kind::NotReady)
+            continue;
+        ASSERT_EQ(d.kind, v4l2::DequeueResult::Kind::Buffer) << d.message;
+        Plane<float> units;
+        v4l2::depthToMeters(d.buffer.bytes, kWidth, kHeight, f.bytesPerLine, 1.0f, units);
+        std::string why;
+        const long frame = patternFrame(units, 1.0f, why);
+        ASSERT_GE(frame, 0) << why;
+        EXPECT_GT(frame, last);
+        EXPECT_TRUE(d.buffer.monotonicTimestamp);
+        last = frame;
+        ASSERT_EQ(node.requeue(d.buffer.index), 0);
+        ++got;
+    }
+    node.close();
+}
+
+TEST(Uvc, DepthInMetersEqualsWhatTheFeederSent) {
+    auto device = openLiveSourceSpec("usb:8086:0b07");
+    ASSERT_TRUE(device) << device.error().message;
+    ASSERT_TRUE((*device)->open());
+    ASSERT_TRUE((*device)->start());
+    EXPECT_TRUE((*device)->capabilities().approximateIntrinsics);
+    expectPatternFrames(**device, 10, kD435Scale);
+    (*device)->close();
+}
+
+bool sawHotplug(const std::vector<usb::HotplugEvent>& events, usb::HotplugEvent::Kind kind) {
+    return std::any_of(events.begin(), events.end(), [&](const usb::HotplugEvent& e) {
+        return e.kind == kind && e.device.id() == "8086:0b07";
+    });
+}
+
+TEST(Uvc, UnplugDisconnectsAndReplugResumesWithoutARestart) {
+    ASSERT_FALSE(env("UDC_FILE").empty());
+    usb::HotplugMonitor hotplug;
+    ASSERT_TRUE(hotplug.start());
+    auto device = openLiveSourceSpec("usb:8086:0b07");
+    ASSERT_TRUE(device);
+    Session session(std::move(*device));
+    ASSERT_TRUE(session.start());
+    ASSERT_TRUE(session.waitForFrame(10s)) << "streaming before the unplug";
+    std::vector<usb::HotplugEvent> events;
+    const auto collect = [&] {
+        for (auto& e : hotplug.drain())
+            events.push_back(std::move(e));
+    };
+    ASSERT_TRUE(writeSysfs(env("UDC_FILE"), "")) << "unbinding the gadget from its UDC";
+    EXPECT_TRUE(waitFor([&] { return session.state() == DeviceState::Disconnected; }, 20s));
+    EXPECT_TRUE(waitFor(
+        [&] {
+            collect();
+            return sawHotplug(events, usb::HotplugEvent::Kind::Left);
+        },
+        20s))
+        << "libusb reported the unplug";
+    (void)session.takeLatest(); // the view keeps its last frame; nothing new arrives now
+    ASSERT_TRUE(writeSysfs(env("UDC_FILE"), env("UDC_NAME"))) << "binding it again";
+    EXPECT_TRUE(waitFor(
+        [&] {
+            collect();
+            return sawHotplug(events, usb::HotplugEvent::Kind::Arrived);
+        },
+        30s))
+        << "libusb reported the replug";
+    ASSERT_TRUE(waitFor([&] { return session.state() == DeviceState::Streaming; }, 60s)) << "reconnected";
+    const auto frame = session.waitForFrame(20s);
+    ASSERT_TRUE(frame.has_value()) << "frames flow again in the same process";
+    std::string why;
+    EXPECT_GE(patternFrame((*frame)->sceneDepth->depthMeters, kD435Scale, why), 0) << why;
+    std::vector<DeviceState> states;
+    for (const SessionEvent& e : session.drainEvents())
+        if (e.kind == SessionEvent::Kind::StateChanged) {
+            states.push_back(e.state);
+            std::printf("session: %s %s\n", toString(e.state), e.message.c_str());
+        }
+    EXPECT_NE(std::find(states.begin(), states.end(), DeviceState::Disconnected), states.end());
+    EXPECT_EQ(states.back(), DeviceState::Streaming);
+    for (int i = 0; i < 20; ++i)
+        (void)session.waitForFrame(2s);
+    std::printf("METRIC uvcLatencyMs=%.2f (median DQBUF timestamp -> consumer, TCG guest)\n",
+                session.stats().latencyMs);
+}
+
+TEST(Uvc, AStalledFeederShowsStalledThenStreamsAgain) {
+    const pid_t feeder = static_cast<pid_t>(std::atoi(env("FEEDER_PID").c_str()));
+    ASSERT_GT(feeder, 0);
+    auto device = openLiveSourceSpec("usb:8086:0b07:watchdog=1500");
+    ASSERT_TRUE(device);
+    Session session(std::move(*device));
+    ASSERT_TRUE(session.start());
+    ASSERT_TRUE(session.waitForFrame(10s));
+    ASSERT_EQ(::kill(feeder, SIGUSR1), 0) << "pausing the feeder";
+    EXPECT_TRUE(waitFor([&] { return session.state() == DeviceState::Stalled; }, 20s));
+    bool watchdogMessage = false;
+    for (const SessionEvent& e : session.drainEvents())
+        watchdogMessage |= e.state == DeviceState::Stalled && e.message.find("watchdog") != std::string::npos;
+    EXPECT_TRUE(watchdogMessage);
+    ASSERT_EQ(::kill(feeder, SIGUSR2), 0) << "resuming it";
+    EXPECT_TRUE(waitFor([&] { return session.state() == DeviceState::Streaming; }, 20s));
+    EXPECT_TRUE(session.waitForFrame(10s));
+}
+
+// ---- v4l2loopback Z16 and vivid Y16 --------------------------------------------------------------
+
+TEST(Loopback, Z16FramesArriveInMetersPixelForPixel) {
+    ASSERT_FALSE(env("LOOP_NODE").empty());
+    auto device = openLiveSourceSpec("v4l2:" + env("LOOP_NODE") + ":scale=0.001");
+    ASSERT_TRUE(device) << device.error().message;
+    ASSERT_TRUE((*device)->open());
+    ASSERT_TRUE((*device)->start());
+    expectPatternFrames(**device, 5, 0.001f);
+    (*device)->close();
+}
+
+TEST(Vivid, Y16IsDepthWithTheConfiguredScale) {
+    ASSERT_FALSE(env("VIVID_NODE").empty());
+    std::ifstream in(env("VIVID_RAW"), std::ios::binary);
+    const std::vector<std::uint8_t> raw((std::istreambuf_iterator<char>(in)), {});
+    const std::size_t frameBytes = static_cast<std::size_t>(kWidth) * kHeight * 2;
+    ASSERT_GE(raw.size(), 2 * frameBytes) << "two reference frames from v4l2-ctl";
+    ASSERT_TRUE(std::equal(raw.begin(), raw.begin() + static_cast<long>(frameBytes),
+                           raw.begin() + static_cast<long>(frameBytes)))
+        << "vivid's pattern is static without its on-screen text";
+    constexpr float kScale = 0.0001f;
+    auto device =
+        openLiveSourceSpec("v4l2:" + env("VIVID_NODE") + ":640x480:format=Y16:scale=0.0001:color=none");
+    ASSERT_TRUE(device) << device.error().message;
+    ASSERT_TRUE((*device)->open());
+    ASSERT_TRUE((*device)->start());
+    CaptureResult r;
+    for (int i = 0; i < 5 && r.kind != CaptureResult::Kind::Frame; ++i)
+        r = (*device)->capture(5000ms);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    const Plane<float>& meters = r.frame->sceneDepth->depthMeters;
+    ASSERT_EQ(meters.width, kWidth);
+    int nonZero = 0;
+    for (std::size_t i = 0; i < meters.pixels.size(); ++i) {
+        const auto value = static_cast<std::uint16_t>(raw[2 * i] | (raw[2 * i + 1] << 8));
+        ASSERT_EQ(meters.pixels[i], static_cast<float>(value) * kScale) << "pixel " << i;
+        nonZero += value != 0;
+    }
+    EXPECT_GT(nonZero, kWidth * kHeight / 2) << "the pattern is not blank";
+    (*device)->close();
+}
+
+} // namespace
+} // namespace dc::devices

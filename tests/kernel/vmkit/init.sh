@@ -1,0 +1,158 @@
+#!/bin/busybox sh
+# /init of the kernel-tier VM. Kernel cmdline: rtest=uvc,loopback,vivid  dcbuild=HOST_BUILD_DIR
+# dcudev=HOST_UDEV_DIR. The host's / is mounted read-only at /host (virtio-9p) and our binaries run there
+# in a chroot with the host's libraries; the feeders run outside it. Prints "RESULT name PASS|FAIL"
+# lines, our gtest output, and "=== ALL-DONE failures=N", then powers off. Adapted from ../shared/vmkit.
+/bin/busybox --install -s /bin
+export PATH=/bin
+mount -t proc proc /proc
+mount -t sysfs sys /sys
+mount -t devtmpfs dev /dev
+mount -t tmpfs tmp /tmp
+mount -t tmpfs run /run
+echo 1 > /proc/sys/kernel/printk_ratelimit 2>/dev/null
+up() { cut -d' ' -f1 /proc/uptime; }
+arg() { sed -n "s/.*[ ]$1=\([^ ]*\).*/\1/p" /proc/cmdline; }
+TESTS=$(arg rtest); [ -n "$TESTS" ] || TESTS=uvc,loopback,vivid
+BUILD=$(arg dcbuild)
+UDEV=$(arg dcudev)
+VID=8086 PID=0b07
+echo "=== guest up at $(up)s, kernel $(uname -r), tests: $TESTS"
+FAILS=0
+result() { echo "RESULT $1 $2 (t=$(up)s)"; [ "$2" = PASS ] || FAILS=$((FAILS+1)); }
+finish() { echo "=== ALL-DONE failures=$FAILS uptime=$(up)s"; sync; poweroff -f; }
+
+# --- the host's root, and a chroot on it with this guest's /proc, /sys, /dev
+modprobe virtio_pci && modprobe 9pnet_virtio && modprobe 9p || { result host-mount FAIL; finish; }
+mkdir -p /host
+mount -t 9p -o trans=virtio,version=9p2000.L,ro,cache=loose,msize=512000 hostroot /host || { result host-mount FAIL; finish; }
+mount -t proc proc /host/proc && mount -t sysfs sys /host/sys && mount -t devtmpfs dev /host/dev &&
+	mount -t tmpfs tmp /host/tmp && mount -t tmpfs run /host/run || { result chroot-mounts FAIL; finish; }
+modprobe configfs && mount -t configfs none /sys/kernel/config && mount -t configfs none /host/sys/kernel/config
+in_host() { chroot /host /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/tmp "$@"; }
+GUEST_TEST=$BUILD/tests/kernel/kernel_guest_test
+DEPTHCLOUD=$BUILD/tool/depthcloud
+# libusb learns of hotplug from udevd (no rules needed: it only relays the kernel's events)
+in_host /usr/bin/env LD_LIBRARY_PATH=$UDEV/usr/lib/x86_64-linux-gnu/systemd $UDEV/systemd-udevd --daemon \
+	&& result udevd PASS || result udevd FAIL
+
+# /dev/videoN whose driver is $1 and index $2 (0 = main capture node)
+find_node() {
+	for d in /sys/class/video4linux/video*; do
+		[ -e "$d" ] || continue
+		drv=$(basename "$(readlink "$d/device/driver")" 2>/dev/null)
+		[ "$drv" = "$1" ] && [ "$(cat "$d/index")" = "${2:-0}" ] && { echo /dev/$(basename "$d"); return 0; }
+	done
+	return 1
+}
+
+setup_uvc_gadget() {
+	modprobe dummy_hcd && modprobe libcomposite && modprobe usb_f_uvc || return 1
+	G=/sys/kernel/config/usb_gadget/depthcam
+	mkdir $G && cd $G || return 1
+	echo 0x$VID > idVendor; echo 0x$PID > idProduct; echo 0x0200 > bcdUSB; echo 0x0100 > bcdDevice
+	echo 0xEF > bDeviceClass; echo 0x02 > bDeviceSubClass; echo 0x01 > bDeviceProtocol  # IAD
+	mkdir strings/0x409
+	echo "Fake Depth Inc" > strings/0x409/manufacturer
+	echo "Virtual Z16 Depth Camera" > strings/0x409/product
+	echo "VDC0001" > strings/0x409/serialnumber
+	mkdir configs/c.1 configs/c.1/strings/0x409
+	echo "UVC" > configs/c.1/strings/0x409/configuration; echo 500 > configs/c.1/MaxPower
+	F=$G/functions/uvc.0
+	mkdir $F || return 1
+	mkdir $F/control/header/h
+	ln -s $F/control/header/h $F/control/class/fs/h
+	ln -s $F/control/header/h $F/control/class/ss/h
+	U=$F/streaming/uncompressed/z16
+	mkdir -p $U/480p
+	# guidFormat Z16 = 5a313620-0000-0010-8000-00aa00389b71 (mixed-endian GUID bytes)
+	printf '\x5a\x31\x36\x20\x00\x00\x10\x00\x80\x00\x00\xaa\x00\x38\x9b\x71' > $U/guidFormat
+	echo 16 > $U/bBitsPerPixel 2>/dev/null
+	echo 640 > $U/480p/wWidth; echo 480 > $U/480p/wHeight
+	echo 614400 > $U/480p/dwMaxVideoFrameBufferSize
+	echo 147456000 > $U/480p/dwMinBitRate; echo 147456000 > $U/480p/dwMaxBitRate
+	echo 333333 > $U/480p/dwDefaultFrameInterval; echo 333333 > $U/480p/dwFrameInterval
+	mkdir $F/streaming/header/h
+	ln -s $U $F/streaming/header/h/z16
+	ln -s $F/streaming/header/h $F/streaming/class/fs/h
+	ln -s $F/streaming/header/h $F/streaming/class/hs/h
+	ln -s $F/streaming/header/h $F/streaming/class/ss/h
+	echo 3072 > $F/streaming_maxpacket  # 3x1024 high-bandwidth ISO (the patched dummy_hcd)
+	ln -s $F $G/configs/c.1/uvc.0
+	UDC=$(ls /sys/class/udc | head -1)
+	echo $UDC > $G/UDC || return 1
+	cd /
+}
+
+start_uvc() {
+	echo "--- UVC gadget on dummy_hcd -> uvcvideo"
+	setup_uvc_gadget || { dmesg | tail -20; result uvc-gadget FAIL; return 1; }
+	modprobe uvcvideo || { result uvc-gadget FAIL; return 1; }
+	uvcfeeder -r 10 > /tmp/feeder.log 2>&1 &
+	FEEDER=$!
+	i=0; while ! UVC_NODE=$(find_node uvcvideo 0) && [ $i -lt 200 ]; do sleep 0.1; i=$((i+1)); done
+	[ -n "$UVC_NODE" ] || { cat /tmp/feeder.log; dmesg | tail -30; result uvc-gadget FAIL; return 1; }
+	result uvc-gadget PASS
+	ENV="$ENV VIDEO=$UVC_NODE UDC_FILE=/sys/kernel/config/usb_gadget/depthcam/UDC UDC_NAME=$UDC FEEDER_PID=$FEEDER"
+	FILTER="$FILTER:Uvc.*"
+}
+
+start_loopback() {
+	echo "--- v4l2loopback (patched for Z16)"
+	modprobe v4l2loopback devices=1 video_nr=10 exclusive_caps=1 card_label=loopdepth || { result loopback-load FAIL; return 1; }
+	loopwriter -d /dev/video10 -f 'Z16 ' -r 10 > /tmp/lw.log 2>&1 &
+	sleep 1
+	cat /tmp/lw.log
+	ENV="$ENV LOOP_NODE=/dev/video10"
+	FILTER="$FILTER:Loopback.*"
+}
+
+start_vivid() {
+	echo "--- vivid (Y16 as depth)"
+	modprobe vivid n_devs=1 node_types=0x1 input_types=0x0 || { result vivid-load FAIL; return 1; }
+	VIVID_NODE=$(find_node vivid 0) || { result vivid-load FAIL; return 1; }
+	# No on-screen text, so every frame of the test pattern is the same: a raw frame captured by
+	# v4l2-ctl is the independent reference for what our code reads.
+	in_host v4l2-ctl -d $VIVID_NODE -c osd_text_mode=2 &&
+	in_host v4l2-ctl -d $VIVID_NODE --set-fmt-video=width=640,height=480,pixelformat='Y16 ' --stream-mmap \
+		--stream-count=2 --stream-to=/tmp/vivid.raw && result vivid-reference PASS || result vivid-reference FAIL
+	ENV="$ENV VIVID_NODE=$VIVID_NODE VIVID_RAW=/tmp/vivid.raw"
+	FILTER="$FILTER:Vivid.*"
+}
+
+# `depthcloud devices` lists the camera with its identity and its Z16 mode.
+check_devices_command() {
+	in_host $DEPTHCLOUD devices > /tmp/devices.txt 2>&1; rc=$?
+	sed 's/^/  devices: /' /tmp/devices.txt
+	if [ $rc = 0 ] && grep -q "usb 8086:0b07" /tmp/devices.txt && grep -q "Virtual Z16 Depth Camera" /tmp/devices.txt &&
+		grep -q "depth    $UVC_NODE" /tmp/devices.txt && grep -q "'Z16 ' 640x480@30" /tmp/devices.txt &&
+		grep -q "serial \"VDC0001\"" /tmp/devices.txt; then result devices-command PASS; else result devices-command FAIL; fi
+}
+
+# The whole application, headless, on the USB camera.
+check_headless() {
+	in_host $DEPTHCLOUD --source usb:$VID:$PID --headless --frames 3 --out /tmp/headless; rc=$?
+	ls -l /host/tmp/headless 2>&1 | sed 's/^/  headless: /'
+	sed 's/^/  summary.json: /' /host/tmp/headless/summary.json 2>/dev/null
+	if [ $rc = 0 ] && [ -s /host/tmp/headless/cloud.png ] && [ -s /host/tmp/headless/depth.png ] &&
+		grep -q '"frames": 3' /host/tmp/headless/summary.json && grep -q '"depthWidth": 640' /host/tmp/headless/summary.json
+	then result headless-usb PASS; else result headless-usb FAIL; fi
+}
+
+# Everything is set up first and our programs start once each: under TCG, loading their libraries over
+# 9p is what takes longest.
+ENV="" FILTER=""
+UVC=0
+for t in $(echo $TESTS | tr , ' '); do
+	case $t in
+	uvc) start_uvc && UVC=1 ;;
+	loopback) start_loopback ;;
+	vivid) start_vivid ;;
+	shell) setsid cttyhack sh ;;
+	esac
+done
+[ $UVC = 1 ] && check_devices_command
+[ -n "$FILTER" ] && in_host /usr/bin/env $ENV $GUEST_TEST --gtest_filter="${FILTER#:}" --gtest_color=no
+[ $UVC = 1 ] && check_headless
+[ $UVC = 1 ] && tail -5 /tmp/feeder.log
+finish

@@ -1,0 +1,300 @@
+// Importers: the real ARKit capture in Stray layout, a TUM RGB-D frame, calibration override, and every
+// broken capture directory the issue lists.
+
+#include "devices/recording/frame_codec.h"
+#include "devices/replay/importers.h"
+#include "devices/replay/stray_format.h"
+#include "devices/replay/tum_format.h"
+#include "exporting/export.h"
+#include "tests/recording/recording_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+
+namespace dc::devices::replay {
+namespace {
+
+namespace fs = std::filesystem;
+using test::TempDir;
+
+const std::string kStray = "../shared/data/arkit_dance_stray";
+const std::string kTum = "../shared/data/tum_frame";
+
+void writeText(const std::string& path, const std::string& text) {
+    std::ofstream(path) << text;
+}
+
+TEST(StrayImport, RealArkitCaptureHasItsFramesSizesIntrinsicsPixelsAndPoses) {
+    auto source = openReplaySource(kStray);
+    ASSERT_TRUE(source) << source.error().message;
+    ASSERT_EQ((*source)->frameCount(), 626u);
+    const Capabilities caps = (*source)->capabilities();
+    EXPECT_TRUE(caps.sceneDepth && caps.confidence && caps.color && caps.pose);
+    EXPECT_EQ((*source)->timestampNs(300), 10'000'000'000);
+
+    auto f0 = loadFrame(**source, 0);
+    ASSERT_TRUE(f0) << f0.error().message;
+    // Portrait, read from the files: 192 wide, 256 tall depth; 720x960 video.
+    EXPECT_EQ(f0->sceneDepth->depthMeters.width, 192);
+    EXPECT_EQ(f0->sceneDepth->depthMeters.height, 256);
+    EXPECT_EQ(f0->capturedImage.width, 720);
+    EXPECT_EQ(f0->capturedImage.height, 960);
+    EXPECT_DOUBLE_EQ(f0->cameraIntrinsics.fx, 717.0636596679688);
+    EXPECT_DOUBLE_EQ(f0->cameraIntrinsics.cy, 485.18304443359375);
+    const Intrinsics depthK = f0->depthIntrinsics();
+    EXPECT_DOUBLE_EQ(depthK.fx, 717.0636596679688 * 192.0 / 720.0);
+    EXPECT_DOUBLE_EQ(depthK.cy, 485.18304443359375 * 256.0 / 960.0);
+    EXPECT_EQ(f0->sceneDepth->depthMeters.at(96, 128), recording::depthFromUnits(3283, 0.001));
+    EXPECT_EQ(f0->sceneDepth->confidence.at(96, 128), 1);
+
+    struct Known {
+        std::size_t frame;
+        int x, y;
+        std::uint16_t millimetres;
+        std::uint8_t confidence;
+    };
+    for (const Known k :
+         {Known{313, 50, 200, 2350, 1}, Known{625, 10, 10, 2229, 2}, Known{100, 150, 30, 1989, 2}}) {
+        auto f = loadFrame(**source, k.frame);
+        ASSERT_TRUE(f) << f.error().message;
+        EXPECT_FLOAT_EQ(f->sceneDepth->depthMeters.at(k.x, k.y), k.millimetres / 1000.0f) << k.frame;
+        EXPECT_EQ(f->sceneDepth->confidence.at(k.x, k.y), k.confidence) << k.frame;
+        EXPECT_EQ(f->replay, std::nullopt) << "only the replay device sets the position";
+    }
+
+    // odometry.csv row 300: t = (-0.654292464, -0.353809983, -0.403286695),
+    // q = (-0.999892203, 0.009902398, -0.003212839, 0.010353851): nearly a half turn about x.
+    auto f300 = loadFrame(**source, 300);
+    ASSERT_TRUE(f300 && f300->pose);
+    const auto& m = f300->pose->cameraToWorld;
+    EXPECT_DOUBLE_EQ(m[12], -0.654292464);
+    EXPECT_DOUBLE_EQ(m[13], -0.353809983);
+    EXPECT_DOUBLE_EQ(m[14], -0.403286695);
+    EXPECT_NEAR(m[0], 0.99978, 1e-4);   // 1 - 2(qy^2 + qz^2)
+    EXPECT_NEAR(m[5], -0.99959, 1e-4);  // 1 - 2(qx^2 + qz^2)
+    EXPECT_NEAR(m[10], -0.99976, 1e-4); // 1 - 2(qx^2 + qy^2)
+}
+
+TEST(StrayImport, SeekingTheVideoGivesTheSameImageAsReadingOn) {
+    auto source = openStraySource(kStray);
+    ASSERT_TRUE(source);
+    auto sequential = (*source)->frame(41);
+    auto back = (*source)->frame(3);   // backwards: a seek
+    auto far = (*source)->frame(400);  // far ahead: a seek
+    auto again = (*source)->frame(41); // backwards again
+    ASSERT_TRUE(sequential && back && far && again);
+    EXPECT_EQ(*sequential->capturedImage.bytes, *again->capturedImage.bytes);
+    EXPECT_NE(*back->capturedImage.bytes, *far->capturedImage.bytes);
+}
+
+// A small Stray capture (8 synthetic frames written by our exporter), which each test breaks in one way.
+class BrokenStray : public ::testing::Test {
+protected:
+    static constexpr std::size_t kFrames = 8;
+    void SetUp() override {
+        test::writeRecording(dir_.path("r.dcrec"), test::syntheticFrames(kFrames));
+        auto recording = openRecordingSource(dir_.path("r.dcrec"));
+        ASSERT_TRUE(recording);
+        auto written =
+            exporting::exportFrames(**recording, {exporting::ExportFormat::Stray, dir_.path("s"), {}, false});
+        ASSERT_TRUE(written) << written.error().message;
+    }
+    std::string path(const std::string& name) const { return dir_.path("s/" + name); }
+    std::string openError() {
+        auto source = openReplaySource(dir_.path("s"));
+        return source ? "" : source.error().message;
+    }
+    TempDir dir_;
+};
+
+TEST_F(BrokenStray, IntactCopyOpens) {
+    EXPECT_EQ(openError(), "");
+}
+
+TEST_F(BrokenStray, MissingDepthFileIsNamed) {
+    fs::remove(path("depth/000005.png"));
+    const std::string e = openError();
+    EXPECT_NE(e.find("depth/000005.png is missing"), std::string::npos) << e;
+}
+
+TEST_F(BrokenStray, MissingVideoIsNamed) {
+    fs::remove(path("rgb.mp4"));
+    const std::string e = openError();
+    EXPECT_NE(e.find("rgb.mp4 is missing"), std::string::npos) << e;
+}
+
+TEST_F(BrokenStray, DepthAndConfidenceCountsMustAgree) {
+    fs::remove(path("confidence/000007.png"));
+    const std::string e = openError();
+    EXPECT_NE(e.find("mismatched frame counts: depth/ has 8 frames, confidence/ has 7"), std::string::npos)
+        << e;
+}
+
+TEST_F(BrokenStray, DepthAndVideoCountsMustAgree) {
+    fs::remove(path("depth/000007.png"));
+    fs::remove(path("confidence/000007.png"));
+    std::ifstream in(path("odometry.csv"));
+    std::string text, line;
+    for (std::size_t i = 0; i < kFrames && std::getline(in, line); ++i) // header + 7 rows
+        text += line + "\n";
+    writeText(path("odometry.csv"), text);
+    const std::string e = openError();
+    EXPECT_NE(e.find("depth/ has 7 frames, rgb.mp4 has 8"), std::string::npos) << e;
+}
+
+TEST_F(BrokenStray, UnreadableVideoIsAnError) {
+    fs::remove(path("rgb.mp4"));
+    writeText(path("rgb.mp4"), "this is not an mp4 file");
+    const std::string e = openError();
+    EXPECT_NE(e.find("rgb.mp4 (unreadable video)"), std::string::npos) << e;
+}
+
+TEST_F(BrokenStray, CaptureWithoutConfidenceSaysSo) {
+    fs::remove_all(path("confidence"));
+    auto source = openReplaySource(dir_.path("s"));
+    ASSERT_TRUE(source) << source.error().message;
+    EXPECT_FALSE((*source)->capabilities().confidence);
+    EXPECT_TRUE((*source)->capabilities().sceneDepth);
+    auto f = loadFrame(**source, 0);
+    ASSERT_TRUE(f);
+    EXPECT_TRUE(f->sceneDepth->confidence.empty());
+}
+
+TEST_F(BrokenStray, ZeroFrameCaptureIsAnError) {
+    fs::remove_all(path("depth"));
+    fs::create_directories(path("depth"));
+    const std::string e = openError();
+    EXPECT_NE(e.find("holds no frames"), std::string::npos) << e;
+}
+
+TEST_F(BrokenStray, DepthFileThatIsNotADepthPngFailsThatFrameOnly) {
+    fs::copy_file(path("confidence/000005.png"), path("depth/000005.png"),
+                  fs::copy_options::overwrite_existing);
+    auto source = openReplaySource(dir_.path("s"));
+    ASSERT_TRUE(source);
+    auto bad = loadFrame(**source, 5);
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("frame 5"), std::string::npos) << bad.error().message;
+    EXPECT_NE(bad.error().message.find("depth/000005.png: expected a 16-bit"), std::string::npos);
+    EXPECT_TRUE(loadFrame(**source, 6));
+}
+
+TEST(StrayFormat, TextErrorsNameFileLineAndByteOffset) {
+    auto matrix = parseStrayCameraMatrix("1,0,2\n0,x,3\n0,0,1\n", "camera_matrix.csv");
+    ASSERT_FALSE(matrix);
+    EXPECT_EQ(matrix.error().message, "camera_matrix.csv: line 2 (byte offset 6): 'x' is not a number");
+    auto odometry =
+        parseStrayOdometry("timestamp, frame, x, y, z, qx, qy, qz, qw\n0, 0, 0, 0, 0, 0, 0, 0, 1\n"
+                           "0.03, 1, 0, 0, nan, 0, 0, 0, 1\n",
+                           "odometry.csv");
+    ASSERT_FALSE(odometry);
+    EXPECT_NE(odometry.error().message.find("odometry.csv: line 3 (byte offset 68): field 5"),
+              std::string::npos)
+        << odometry.error().message;
+    auto ok = parseStrayOdometry("0.5, 0, 1, 2, 3, 0, 0, 0, 1\n", "o.csv");
+    ASSERT_TRUE(ok);
+    ASSERT_EQ(ok->size(), 1u);
+    EXPECT_EQ((*ok)[0].pose.cameraToWorld[13], 2.0);
+    EXPECT_EQ((*ok)[0].pose.cameraToWorld[0], 1.0);
+}
+
+TEST(TumFormat, ListsSkipCommentsAndAssociationIsNearestOneToOne) {
+    auto list =
+        parseTumList("# color images\n# timestamp filename\n2.0 rgb/b.png\n1.0 rgb/a.png\n\n", "rgb.txt");
+    ASSERT_TRUE(list) << list.error().message;
+    ASSERT_EQ(list->size(), 2u);
+    EXPECT_EQ((*list)[0].file, "rgb/a.png") << "sorted by time";
+    auto bad = parseTumList("# ok\n1.0\n", "depth.txt");
+    ASSERT_FALSE(bad);
+    EXPECT_EQ(bad.error().message, "depth.txt: line 2 (byte offset 5): expected 'timestamp filename'");
+
+    using Pairs = std::vector<std::pair<std::size_t, std::size_t>>;
+    EXPECT_EQ(associateByTimestamp({1.0, 2.0, 3.0}, {1.01, 1.015, 2.5, 3.0}, 0.02), (Pairs{{0, 0}, {2, 3}}));
+    // Both depth images are near the one color image: the closer one gets it, the other none.
+    EXPECT_EQ(associateByTimestamp({1.000, 1.012}, {1.010}, 0.02), (Pairs{{1, 0}}));
+    EXPECT_TRUE(associateByTimestamp({1.0}, {1.5}, 0.02).empty());
+}
+
+class TumSequence : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const fs::path real = fs::absolute(kTum);
+        fs::create_directories(dir_.path("rgb"));
+        fs::create_directories(dir_.path("depth"));
+        for (const char* t : {"1.000", "1.033", "1.066", "1.200"})
+            fs::create_symlink(real / "TUM_color.png", dir_.path(std::string("rgb/") + t + ".png"));
+        for (const char* t : {"1.005", "1.040", "1.150", "1.199"})
+            fs::create_symlink(real / "TUM_depth.png", dir_.path(std::string("depth/") + t + ".png"));
+        writeText(dir_.path("rgb.txt"),
+                  "# color images\n# file: 'test'\n# timestamp filename\n1.000 rgb/1.000.png\n"
+                  "1.033 rgb/1.033.png\n1.066 rgb/1.066.png\n1.200 rgb/1.200.png\n");
+        writeText(dir_.path("depth.txt"),
+                  "# depth maps\n# timestamp filename\n1.005 depth/1.005.png\n"
+                  "1.040 depth/1.040.png\n1.150 depth/1.150.png\n1.199 depth/1.199.png\n");
+    }
+    TempDir dir_;
+};
+
+TEST_F(TumSequence, AssociatesByTimestampAndConvertsDepthWithDefaultIntrinsics) {
+    auto source = openReplaySource(dir_.path());
+    ASSERT_TRUE(source) << source.error().message;
+    ASSERT_EQ((*source)->frameCount(), 3u) << "1.150 has no color image within 0.02 s";
+    EXPECT_EQ((*source)->timestampNs(0), 1'005'000'000);
+    EXPECT_EQ((*source)->timestampNs(1), 1'040'000'000);
+    EXPECT_EQ((*source)->timestampNs(2), 1'199'000'000);
+    ASSERT_EQ((*source)->warnings().size(), 1u);
+    EXPECT_FALSE((*source)->capabilities().confidence);
+    EXPECT_FALSE((*source)->capabilities().pose);
+    auto f = loadFrame(**source, 1);
+    ASSERT_TRUE(f) << f.error().message;
+    EXPECT_EQ(f->sceneDepth->depthMeters.at(320, 240), recording::depthFromUnits(10920, 1.0 / 5000.0));
+    EXPECT_FLOAT_EQ(f->sceneDepth->depthMeters.at(100, 400), 8880 / 5000.0f);
+    EXPECT_TRUE(f->sceneDepth->confidence.empty());
+    EXPECT_EQ(f->capturedImage.width, 640);
+    EXPECT_EQ(f->cameraIntrinsics.fx, 525.0);
+    EXPECT_EQ(f->cameraIntrinsics.cx, 319.5);
+    EXPECT_EQ(f->cameraIntrinsics.cy, 239.5);
+    EXPECT_EQ(f->cameraIntrinsics.width, 640);
+}
+
+TEST_F(TumSequence, GroundTruthGivesPosesAndACalibrationOverridesTheIntrinsics) {
+    writeText(dir_.path("groundtruth.txt"),
+              "# timestamp tx ty tz qx qy qz qw\n1.004 1 2 3 0 0 0 1\n1.198 4 5 6 0 0 0 1\n");
+    writeText(dir_.path("calib.yaml"), "%YAML:1.0\n---\nimage_width: 1280\nimage_height: 960\n"
+                                       "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
+                                       "   data: [ 1000., 0., 640., 0., 1000., 480., 0., 0., 1. ]\n");
+    auto source = openReplaySource(dir_.path(), {dir_.path("calib.yaml")});
+    ASSERT_TRUE(source) << source.error().message;
+    EXPECT_TRUE((*source)->capabilities().pose);
+    auto first = loadFrame(**source, 0);
+    ASSERT_TRUE(first && first->pose);
+    EXPECT_EQ(first->pose->cameraToWorld[12], 1.0);
+    EXPECT_DOUBLE_EQ(first->cameraIntrinsics.fx, 500.0) << "made at 1280x960, applied at 640x480";
+    EXPECT_DOUBLE_EQ(first->cameraIntrinsics.cx, 320.0);
+    auto middle = loadFrame(**source, 1);
+    ASSERT_TRUE(middle);
+    EXPECT_FALSE(middle->pose) << "no ground truth within 0.02 s of 1.040";
+    auto bad = openReplaySource(dir_.path(), {dir_.path("missing.yaml")});
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("missing.yaml"), std::string::npos);
+}
+
+TEST(ReplaySource, UnknownPathsAreClearErrors) {
+    TempDir dir;
+    auto missing = openReplaySource(dir.path("nothing-here"));
+    ASSERT_FALSE(missing);
+    EXPECT_NE(missing.error().message.find("does not exist"), std::string::npos);
+    auto empty = openReplaySource(dir.path());
+    ASSERT_FALSE(empty);
+    EXPECT_NE(empty.error().message.find("not a recording, a Stray Scanner directory"), std::string::npos);
+    writeText(dir.path("notes.txt"), "hello");
+    auto text = openReplaySource(dir.path("notes.txt"));
+    ASSERT_FALSE(text);
+    EXPECT_NE(text.error().message.find("notes.txt: truncated file"), std::string::npos)
+        << text.error().message;
+}
+
+} // namespace
+} // namespace dc::devices::replay

@@ -1,0 +1,345 @@
+// The recording format: lossless round trip, crash recovery and every damaged input the issue lists.
+
+#include "devices/color.h"
+#include "devices/recording/recorder.h"
+#include "devices/recording/recording_reader.h"
+#include "devices/replay/importers.h"
+#include "devices/rgb_image.h"
+#include "tests/recording/recording_test_support.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <limits>
+
+namespace dc::devices::recording {
+namespace {
+
+using test::TempDir;
+
+void expectSameFrame(const Frame& a, const Frame& b) {
+    EXPECT_EQ(a.timestampNs, b.timestampNs);
+    EXPECT_EQ(a.sequence, b.sequence);
+    ASSERT_TRUE(a.sceneDepth && b.sceneDepth);
+    EXPECT_TRUE(test::sameBits(a.sceneDepth->depthMeters, b.sceneDepth->depthMeters));
+    EXPECT_EQ(a.sceneDepth->confidence.pixels, b.sceneDepth->confidence.pixels);
+    ASSERT_TRUE(a.pose && b.pose);
+    EXPECT_EQ(a.pose->cameraToWorld, b.pose->cameraToWorld);
+    EXPECT_EQ(a.cameraIntrinsics.fx, b.cameraIntrinsics.fx);
+    EXPECT_EQ(a.cameraIntrinsics.cy, b.cameraIntrinsics.cy);
+    EXPECT_EQ(a.cameraIntrinsics.width, b.cameraIntrinsics.width);
+    EXPECT_EQ(a.capturedImage.format, b.capturedImage.format);
+    ASSERT_FALSE(b.capturedImage.empty());
+    EXPECT_EQ(*a.capturedImage.bytes, *b.capturedImage.bytes);
+}
+
+TEST(RecordingFormat, RoundTripIsBitExactWithAndWithoutCompression) {
+    const auto frames = test::syntheticFrames(12);
+    for (const bool compress : {true, false}) {
+        TempDir dir;
+        WriterOptions options;
+        options.encode.compress = compress;
+        test::writeRecording(dir.path("r.dcrec"), frames, options);
+        EXPECT_FALSE(std::filesystem::exists(dir.path("r.dcrec.partial"))) << "renamed at close";
+        auto reader = RecordingReader::open(dir.path("r.dcrec"));
+        ASSERT_TRUE(reader) << reader.error().message;
+        EXPECT_TRUE(reader->openedThroughIndex());
+        EXPECT_TRUE(reader->warnings().empty());
+        ASSERT_EQ(reader->frameCount(), frames.size());
+        ASSERT_TRUE(reader->device());
+        EXPECT_EQ(reader->device()->description, "test camera");
+        EXPECT_TRUE(reader->device()->capabilities.confidence);
+        for (std::size_t i = 0; i < frames.size(); ++i) {
+            EXPECT_EQ(reader->timestampNs(i), frames[i]->timestampNs);
+            auto f = reader->frame(i);
+            ASSERT_TRUE(f) << f.error().message;
+            expectSameFrame(*frames[i], *f);
+        }
+    }
+}
+
+TEST(RecordingFormat, NanNegativeAndSmoothedDepthSurviveTheFileThenReplayZeroesInvalidDepth) {
+    Frame frame;
+    frame.timestampNs = 5;
+    frame.cameraIntrinsics = {100, 100, 2, 1, 4, 2};
+    Plane<float> depth(4, 2, 1.5f);
+    depth.pixels[1] = std::numeric_limits<float>::quiet_NaN();
+    depth.pixels[2] = -2.0f;
+    depth.pixels[3] = std::numeric_limits<float>::infinity();
+    frame.sceneDepth = DepthData{depth, {}};
+    frame.smoothedSceneDepth = DepthData{Plane<float>(4, 2, 0.25f), Plane<std::uint8_t>(4, 2, 1)};
+    TempDir dir;
+    test::writeRecording(dir.path("n.dcrec"), {std::make_shared<Frame>(frame)});
+    auto reader = RecordingReader::open(dir.path("n.dcrec"));
+    ASSERT_TRUE(reader);
+    auto stored = reader->frame(0);
+    ASSERT_TRUE(stored);
+    EXPECT_TRUE(test::sameBits(stored->sceneDepth->depthMeters, depth)) << "the file keeps what it was given";
+    EXPECT_TRUE(stored->sceneDepth->confidence.empty()) << "no confidence stays no confidence";
+    ASSERT_TRUE(stored->smoothedSceneDepth);
+    EXPECT_EQ(stored->smoothedSceneDepth->confidence.pixels, frame.smoothedSceneDepth->confidence.pixels);
+
+    auto source = replay::openRecordingSource(dir.path("n.dcrec"));
+    ASSERT_TRUE(source);
+    auto replayed = replay::loadFrame(**source, 0);
+    ASSERT_TRUE(replayed);
+    const auto& px = replayed->sceneDepth->depthMeters.pixels;
+    EXPECT_EQ(px[0], 1.5f);
+    EXPECT_EQ(px[1], 0.0f) << "NaN becomes no measurement";
+    EXPECT_EQ(px[2], 0.0f) << "negative becomes no measurement";
+    EXPECT_EQ(px[3], 0.0f) << "infinity becomes no measurement";
+}
+
+TEST(RecordingFormat, IntegerDepthIsStoredAsUint16WithItsScaleAndDecodesExactly) {
+    Plane<float> mm(64, 48);
+    for (std::size_t i = 0; i < mm.pixels.size(); ++i)
+        mm.pixels[i] = i % 7 == 0 ? 0.0f : depthFromUnits(static_cast<std::uint16_t>(400 + i), 0.001);
+    EXPECT_EQ(exactUint16Scale(mm), 0.001);
+    Plane<float> tum = mm;
+    for (std::size_t i = 0; i < tum.pixels.size(); ++i)
+        tum.pixels[i] = depthFromUnits(static_cast<std::uint16_t>(9000 + 3 * i), 1.0 / 5000.0);
+    EXPECT_EQ(exactUint16Scale(tum), 0.0002);
+    Plane<float> measured = mm;
+    measured.pixels[5] = 1.2345678f;
+    EXPECT_FALSE(exactUint16Scale(measured)) << "one sample that is not an integer keeps float32";
+
+    Frame frame;
+    frame.sceneDepth = DepthData{mm, {}};
+    FrameEncoder encoder;
+    auto payload = encoder.encode(frame);
+    ASSERT_TRUE(payload);
+    EXPECT_LT(payload->size(), mm.pixels.size() * 2 + 200) << "two bytes per sample at most";
+    FrameDecoder decoder;
+    auto decoded = decoder.decode(*payload, 0, "mem", 0);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    EXPECT_TRUE(test::sameBits(decoded->sceneDepth->depthMeters, mm));
+}
+
+TEST(RecordingFormat, JpegColorIsDecodedAsRgbOfTheCapturedSize) {
+    const auto frames = test::syntheticFrames(2);
+    TempDir dir;
+    WriterOptions options;
+    options.encode.color = ColorStorage::Jpeg;
+    test::writeRecording(dir.path("j.dcrec"), frames, options);
+    auto reader = RecordingReader::open(dir.path("j.dcrec"));
+    ASSERT_TRUE(reader);
+    auto f = reader->frame(1);
+    ASSERT_TRUE(f) << f.error().message;
+    EXPECT_EQ(f->capturedImage.format, PixelFormat::Rgb24);
+    EXPECT_EQ(f->capturedImage.width, frames[1]->capturedImage.width);
+    EXPECT_EQ(f->capturedImage.height, frames[1]->capturedImage.height);
+    EXPECT_TRUE(test::sameBits(f->sceneDepth->depthMeters, frames[1]->sceneDepth->depthMeters));
+}
+
+TEST(RgbImage, WholeImageConversionMatchesPixelRgbForEveryFormat) {
+    std::vector<std::uint8_t> bytes(CapturedImage::byteSize(PixelFormat::Nv12, 7, 5));
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = static_cast<std::uint8_t>(i * 37 + 11);
+    for (const PixelFormat format : {PixelFormat::Nv12, PixelFormat::Yuyv, PixelFormat::Rgb24}) {
+        auto data = bytes;
+        data.resize(CapturedImage::byteSize(format, 7, 5), 99);
+        const CapturedImage image{format, 7, 5, std::make_shared<const std::vector<std::uint8_t>>(data)};
+        const std::vector<std::uint8_t> rgb = toRgb24(image);
+        ASSERT_EQ(rgb.size(), 7u * 5u * 3u);
+        for (int y = 0; y < 5; ++y) {
+            for (int x = 0; x < 7; ++x) {
+                const Rgb c = pixelRgb(image, x, y);
+                const std::uint8_t* p = &rgb[(static_cast<std::size_t>(y) * 7 + x) * 3];
+                EXPECT_NEAR(p[0], toByte(c.r), 1) << toString(format) << " " << x << "," << y;
+                EXPECT_NEAR(p[1], toByte(c.g), 1) << toString(format) << " " << x << "," << y;
+                EXPECT_NEAR(p[2], toByte(c.b), 1) << toString(format) << " " << x << "," << y;
+            }
+        }
+    }
+}
+
+TEST(RecordingWriter, RefusesToOverwriteUnlessAskedAndKeepsAnInterruptedRecording) {
+    TempDir dir;
+    const auto frames = test::syntheticFrames(2);
+    test::writeRecording(dir.path("r.dcrec"), frames);
+    const auto good = test::readBytes(dir.path("r.dcrec"));
+    auto refused = RecordingWriter::create(dir.path("r.dcrec"), {});
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("already exists"), std::string::npos);
+    WriterOptions overwrite;
+    overwrite.overwrite = true;
+    {
+        auto writer = RecordingWriter::create(dir.path("r.dcrec"), {}, overwrite);
+        ASSERT_TRUE(writer);
+        ASSERT_TRUE(writer->append(*frames[0]));
+        EXPECT_EQ(test::readBytes(dir.path("r.dcrec")), good)
+            << "the old file stays until the new one closes";
+        // Dropped without finish(): the state a crash leaves.
+    }
+    EXPECT_EQ(test::readBytes(dir.path("r.dcrec")), good) << "a failed recording never replaces a good one";
+    auto again = RecordingWriter::create(dir.path("r.dcrec"), {}, overwrite);
+    ASSERT_FALSE(again) << "the partial file of an interrupted recording is never destroyed";
+    EXPECT_NE(again.error().message.find("r.dcrec.partial"), std::string::npos);
+}
+
+TEST(RecordingReader, RecoversAnUnclosedRecordingByScanningChunks) {
+    TempDir dir;
+    const auto frames = test::syntheticFrames(6);
+    {
+        auto writer = RecordingWriter::create(dir.path("k.dcrec"), {"killed", {.sceneDepth = true}});
+        ASSERT_TRUE(writer);
+        for (const auto& f : frames)
+            ASSERT_TRUE(writer->append(*f));
+    }
+    auto bytes = test::readBytes(dir.path("k.dcrec.partial"));
+    auto whole = RecordingReader::open(dir.path("k.dcrec.partial"));
+    ASSERT_TRUE(whole) << whole.error().message;
+    EXPECT_FALSE(whole->openedThroughIndex());
+    ASSERT_EQ(whole->frameCount(), 6u);
+    ASSERT_TRUE(whole->device());
+    EXPECT_EQ(whole->device()->description, "killed");
+    for (std::size_t i = 0; i < 6; ++i)
+        expectSameFrame(*frames[i], *whole->frame(i));
+
+    // Cut in the middle of the last frame's chunk, as a kill during a write leaves it.
+    bytes.resize(bytes.size() - 100);
+    auto cut = RecordingReader::fromBytes(bytes, "cut.dcrec");
+    ASSERT_TRUE(cut);
+    EXPECT_EQ(cut->frameCount(), 5u);
+    ASSERT_FALSE(cut->warnings().empty());
+    const std::string& w = cut->warnings().back();
+    EXPECT_NE(w.find("cut.dcrec"), std::string::npos) << w;
+    EXPECT_NE(w.find("frame 5"), std::string::npos) << w;
+    EXPECT_NE(w.find("byte offset"), std::string::npos) << w;
+    EXPECT_TRUE(cut->frame(4));
+}
+
+class DamagedRecording : public ::testing::Test {
+protected:
+    void SetUp() override {
+        frames_ = test::syntheticFrames(5);
+        test::writeRecording(dir_.path("d.dcrec"), frames_);
+        bytes_ = test::readBytes(dir_.path("d.dcrec"));
+        for (std::size_t i = 0; i < 5; ++i)
+            offsets_.push_back(offsetOf(i));
+    }
+    // The chunk offset of frame i, from the index the writer put at the end.
+    std::uint64_t offsetOf(std::size_t i) const {
+        const auto trailer = decodeTrailer({bytes_.data() + bytes_.size() - kTrailerSize, kTrailerSize});
+        const auto payload = std::span(bytes_).subspan(trailer->indexOffset + kChunkHeaderSize);
+        return (*decodeIndex(payload.first(payload.size() - kTrailerSize)))[i].offset;
+    }
+    Expected<RecordingReader> open() { return RecordingReader::fromBytes(bytes_, "d.dcrec"); }
+
+    TempDir dir_;
+    std::vector<FramePtr> frames_;
+    std::vector<std::uint8_t> bytes_;
+    std::vector<std::uint64_t> offsets_;
+};
+
+TEST_F(DamagedRecording, TruncatedHeaderWrongMagicAndFutureVersionAreClearErrors) {
+    auto truncated = RecordingReader::fromBytes(std::span(bytes_).first(20), "t.dcrec");
+    ASSERT_FALSE(truncated);
+    EXPECT_NE(truncated.error().message.find("t.dcrec: truncated file"), std::string::npos)
+        << truncated.error().message;
+    EXPECT_NE(truncated.error().message.find("byte offset 20"), std::string::npos);
+
+    auto magic = bytes_;
+    magic[0] = 'X';
+    auto wrong = RecordingReader::fromBytes(magic, "m.dcrec");
+    ASSERT_FALSE(wrong);
+    EXPECT_NE(wrong.error().message.find("wrong magic at byte offset 0"), std::string::npos);
+
+    auto future = bytes_;
+    future[8] = 2; // version major, little-endian u16 at offset 8
+    auto newer = RecordingReader::fromBytes(future, "f.dcrec");
+    ASSERT_FALSE(newer);
+    EXPECT_NE(newer.error().message.find("newer depthcloud (format version 2.0)"), std::string::npos)
+        << newer.error().message;
+}
+
+TEST_F(DamagedRecording, CorruptedChunkFailsItsChecksumAndOnlyThatFrameIsLost) {
+    bytes_[offsets_[2] + kChunkHeaderSize + 50] ^= 0x40;
+    auto reader = open();
+    ASSERT_TRUE(reader);
+    EXPECT_EQ(reader->frameCount(), 5u);
+    auto bad = reader->frame(2);
+    ASSERT_FALSE(bad);
+    EXPECT_NE(bad.error().message.find("d.dcrec: frame 2"), std::string::npos) << bad.error().message;
+    EXPECT_NE(bad.error().message.find("byte offset " + std::to_string(offsets_[2])), std::string::npos);
+    EXPECT_NE(bad.error().message.find("checksum"), std::string::npos);
+    for (const std::size_t i : {0u, 1u, 3u, 4u})
+        EXPECT_TRUE(reader->frame(i)) << i;
+}
+
+TEST_F(DamagedRecording, DamagedChunkHeaderIsSkippedByResynchronising) {
+    bytes_[offsets_[1] + 4] ^= 0xff; // the chunk type: the header checksum no longer matches
+    auto reader = open();
+    ASSERT_TRUE(reader);
+    EXPECT_EQ(reader->frameCount(), 4u) << "frame 1 is lost, the others are found";
+    bool named = false;
+    for (const auto& w : reader->warnings())
+        named = named || w.find("byte offset " + std::to_string(offsets_[1])) != std::string::npos;
+    EXPECT_TRUE(named);
+    auto third = reader->frame(1);
+    ASSERT_TRUE(third);
+    EXPECT_EQ(third->timestampNs, frames_[2]->timestampNs);
+}
+
+TEST_F(DamagedRecording, IndexThatDisagreesWithTheChunksIsReportedAndBypassed) {
+    // Swap the offsets of index entries 1 and 2 and fix the index checksum: a consistent-looking index
+    // that points at the wrong frames.
+    const auto trailer = decodeTrailer({bytes_.data() + bytes_.size() - kTrailerSize, kTrailerSize});
+    std::vector<IndexEntry> entries;
+    for (std::size_t i = 0; i < 5; ++i)
+        entries.push_back({offsets_[i], frames_[i]->timestampNs});
+    std::swap(entries[1].offset, entries[2].offset);
+    const auto payload = encodeIndex(entries);
+    std::vector<std::uint8_t> head;
+    appendChunkHeader(head, {ChunkType::Index, payload.size(), 0, 0, checksumOf(payload)});
+    std::copy(head.begin(), head.end(), bytes_.begin() + static_cast<std::ptrdiff_t>(trailer->indexOffset));
+    std::copy(payload.begin(), payload.end(),
+              bytes_.begin() + static_cast<std::ptrdiff_t>(trailer->indexOffset + head.size()));
+    auto reader = open();
+    ASSERT_TRUE(reader);
+    EXPECT_FALSE(reader->openedThroughIndex());
+    ASSERT_FALSE(reader->warnings().empty());
+    EXPECT_NE(reader->warnings()[0].find("disagrees with its chunks: entry 1 points at byte offset " +
+                                         std::to_string(offsets_[2])),
+              std::string::npos)
+        << reader->warnings()[0];
+    ASSERT_EQ(reader->frameCount(), 5u) << "nothing lost";
+    for (std::size_t i = 0; i < 5; ++i)
+        EXPECT_EQ(reader->frame(i)->timestampNs, frames_[i]->timestampNs);
+}
+
+TEST(RecordingReader, ZeroFrameRecordingOpensButIsRefusedForReplay) {
+    TempDir dir;
+    test::writeRecording(dir.path("z.dcrec"), {});
+    auto reader = RecordingReader::open(dir.path("z.dcrec"));
+    ASSERT_TRUE(reader);
+    EXPECT_EQ(reader->frameCount(), 0u);
+    auto source = replay::openReplaySource(dir.path("z.dcrec"));
+    ASSERT_FALSE(source);
+    EXPECT_NE(source.error().message.find("holds no frames"), std::string::npos);
+    EXPECT_NE(source.error().message.find("z.dcrec"), std::string::npos);
+}
+
+TEST(Recorder, WritesWhatItAcceptsAndCountsWhatItDrops) {
+    TempDir dir;
+    const auto frames = test::syntheticFrames(4);
+    RecorderOptions options;
+    options.queueFrames = 2;
+    auto recorder = Recorder::start(dir.path("q.dcrec"), {"queue", {}}, options);
+    ASSERT_TRUE(recorder);
+    int accepted = 0;
+    for (int i = 0; i < 200; ++i)
+        accepted += (*recorder)->push(frames[static_cast<std::size_t>(i) % frames.size()]) ? 1 : 0;
+    ASSERT_TRUE((*recorder)->stop());
+    const auto stats = (*recorder)->stats();
+    EXPECT_EQ(stats.framesWritten, static_cast<std::uint64_t>(accepted));
+    EXPECT_EQ(stats.framesWritten + stats.framesDropped, 200u);
+    EXPECT_FALSE((*recorder)->push(frames[0])) << "nothing is accepted after stop";
+    auto reader = RecordingReader::open(dir.path("q.dcrec"));
+    ASSERT_TRUE(reader);
+    EXPECT_EQ(reader->frameCount(), static_cast<std::size_t>(accepted));
+}
+
+} // namespace
+} // namespace dc::devices::recording

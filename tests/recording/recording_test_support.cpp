@@ -1,0 +1,76 @@
+#include "tests/recording/recording_test_support.h"
+
+#include "devices/synthetic_device.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <fstream>
+#include <unistd.h>
+
+namespace dc::test {
+
+TempDir::TempDir() {
+    static int counter = 0;
+    dir_ = std::filesystem::temp_directory_path() /
+           ("depthcloud-recording-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+}
+
+TempDir::~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(dir_, ec);
+}
+
+std::vector<devices::FramePtr> syntheticFrames(int count, int width, int height,
+                                               std::int64_t firstTimestampNs) {
+    devices::SyntheticConfig config;
+    config.depthWidth = width;
+    config.depthHeight = height;
+    config.cameraWidth = 2 * width;
+    config.cameraHeight = 2 * height;
+    config.motion = true;
+    config.paced = false;
+    devices::SyntheticDevice device(config);
+    EXPECT_TRUE(device.open());
+    EXPECT_TRUE(device.start());
+    std::vector<devices::FramePtr> frames;
+    while (static_cast<int>(frames.size()) < count) {
+        auto r = device.capture(std::chrono::seconds(1));
+        if (r.kind != devices::CaptureResult::Kind::Frame)
+            continue;
+        auto f = std::make_shared<devices::Frame>(*r.frame);
+        f->timestampNs = firstTimestampNs + static_cast<std::int64_t>(frames.size()) * 33'333'333;
+        frames.push_back(std::move(f));
+    }
+    return frames;
+}
+
+void writeRecording(const std::string& path, const std::vector<devices::FramePtr>& frames,
+                    devices::recording::WriterOptions options) {
+    auto writer = devices::recording::RecordingWriter::create(
+        path, {"test camera", {.sceneDepth = true, .confidence = true, .color = true, .pose = true}},
+        options);
+    ASSERT_TRUE(writer) << writer.error().message;
+    for (const auto& f : frames)
+        ASSERT_TRUE(writer->append(*f));
+    ASSERT_TRUE(writer->finish());
+}
+
+std::vector<std::uint8_t> readBytes(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes) {
+    std::ofstream out(path, std::ios::binary | std::ios::trunc);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
+}
+
+bool sameBits(const devices::Plane<float>& a, const devices::Plane<float>& b) {
+    return a.width == b.width && a.height == b.height &&
+           std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
+}
+
+} // namespace dc::test

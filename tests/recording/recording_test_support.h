@@ -1,0 +1,42 @@
+#pragma once
+
+#include "devices/frame.h"
+#include "devices/recording/recording_writer.h"
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace dc::test {
+
+// A fresh directory under the system temp dir, removed with everything in it.
+class TempDir {
+public:
+    TempDir();
+    ~TempDir();
+    TempDir(const TempDir&) = delete;
+    TempDir& operator=(const TempDir&) = delete;
+    std::string path(const std::string& name = {}) const {
+        return name.empty() ? dir_.string() : (dir_ / name).string();
+    }
+
+private:
+    std::filesystem::path dir_;
+};
+
+// `count` distinct frames of the moving synthetic camera (noisy depth, confidence, NV12 color, pose) at
+// depth w x h, with timestamps 1/30 s apart from `firstTimestampNs`.
+std::vector<devices::FramePtr> syntheticFrames(int count, int width = 32, int height = 24,
+                                               std::int64_t firstTimestampNs = 1'000'000'000);
+
+// Writes the frames as a finished recording.
+void writeRecording(const std::string& path, const std::vector<devices::FramePtr>& frames,
+                    devices::recording::WriterOptions options = {});
+
+std::vector<std::uint8_t> readBytes(const std::string& path);
+void writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes);
+
+// Bitwise equality of two float planes (NaN payloads included).
+bool sameBits(const devices::Plane<float>& a, const devices::Plane<float>& b);
+
+} // namespace dc::test

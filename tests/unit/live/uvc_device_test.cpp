@@ -1,0 +1,288 @@
+#include "devices/session.h"
+#include "devices/uvc_device.h"
+#include "tests/unit/live/fake_v4l2.h"
+
+#include <gtest/gtest.h>
+#include <linux/videodev2.h>
+
+#include <filesystem>
+
+namespace dc::devices {
+namespace {
+
+using std::chrono::milliseconds;
+using v4l2::testing::FakeFrame;
+using v4l2::testing::FakeV4l2;
+using v4l2::testing::z16Bytes;
+
+constexpr const char* kDepth = "/dev/video0";
+constexpr const char* kColor = "/dev/video1";
+constexpr int kW = 8;
+constexpr int kH = 6;
+
+// The raw value of pixel i of frame s: a pattern that changes every frame, with zeros (no measurement).
+std::uint16_t rawAt(int i, int s) {
+    return i % 5 == 0 ? 0 : static_cast<std::uint16_t>(1000 + 37 * i + s);
+}
+
+FakeFrame depthFrame(int s) {
+    std::vector<std::uint16_t> px(kW * kH);
+    for (int i = 0; i < kW * kH; ++i)
+        px[static_cast<std::size_t>(i)] = rawAt(i, s);
+    return {z16Bytes(px)};
+}
+
+class UvcDeviceTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        sysfs_ = std::filesystem::temp_directory_path() / ("dc-empty-sysfs-" + std::to_string(::getpid()));
+        std::filesystem::create_directories(sysfs_);
+        fake_.addNode(kDepth, {.modes = {{V4L2_PIX_FMT_Z16, kW, kH, {30}}, {V4L2_PIX_FMT_Z16, 4, 3, {30}}}});
+    }
+    void TearDown() override { std::filesystem::remove_all(sysfs_); }
+
+    UvcConfig config() const {
+        UvcConfig c;
+        c.depthNode = kDepth;
+        c.sysfsRoot = sysfs_.string();
+        c.depthScaleMeters = 0.001f;
+        c.watchdog = milliseconds(150);
+        return c;
+    }
+
+    // Captures until something other than a timeout comes back.
+    CaptureResult next(Device& d) {
+        for (int i = 0; i < 20; ++i) {
+            CaptureResult r = d.capture(milliseconds(20));
+            if (r.kind != CaptureResult::Kind::Timeout)
+                return r;
+        }
+        return {};
+    }
+
+    static void expectPattern(const Frame& f, int s) {
+        const auto& depth = f.sceneDepth->depthMeters;
+        ASSERT_EQ(depth.width, kW);
+        for (int i = 0; i < kW * kH; ++i)
+            ASSERT_EQ(depth.pixels[static_cast<std::size_t>(i)], static_cast<float>(rawAt(i, s)) * 0.001f)
+                << i;
+    }
+
+    FakeV4l2 fake_;
+    std::filesystem::path sysfs_;
+};
+
+TEST_F(UvcDeviceTest, ConvertsZ16ToMetersOnceWithTheDepthScale) {
+    UvcDevice d(config(), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    EXPECT_EQ(d.depthFormat().width, kW) << "the largest size up to 1280x720 is the default";
+    for (int s = 0; s < 3; ++s) {
+        fake_.pushFrame(kDepth, depthFrame(s));
+        const CaptureResult r = next(d);
+        ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+        expectPattern(*r.frame, s);
+        EXPECT_EQ(r.frame->sequence, static_cast<std::uint64_t>(s));
+        EXPECT_FALSE(r.frame->sceneDepth->confidenceEstimated);
+        EXPECT_TRUE(r.frame->sceneDepth->confidence.empty()) << "the sensor gave none";
+        EXPECT_TRUE(r.frame->depthIntrinsics().valid());
+    }
+    EXPECT_TRUE(d.capabilities().approximateIntrinsics);
+    d.close();
+    EXPECT_EQ(fake_.openFds(), 1) << "only the wake-up eventfd, which lives as long as the device";
+    EXPECT_EQ(fake_.mappings(), 0);
+}
+
+TEST_F(UvcDeviceTest, CalibrationIntrinsicsAreScaledToTheStream) {
+    UvcConfig c = config();
+    c.calibration = Calibration{{100.0, 100.0, 8.0, 6.0, 16, 12}, "OpenCV YAML"};
+    UvcDevice d(c, fake_);
+    ASSERT_TRUE(d.open());
+    EXPECT_FALSE(d.capabilities().approximateIntrinsics);
+    EXPECT_DOUBLE_EQ(d.depthIntrinsics().fx, 50.0);
+    EXPECT_DOUBLE_EQ(d.depthIntrinsics().cx, 4.0);
+}
+
+TEST_F(UvcDeviceTest, EintrStormsDoNotLoseFrames) {
+    UvcDevice d(config(), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    fake_.interruptIoctl(VIDIOC_DQBUF, 300);
+    fake_.interruptIoctl(VIDIOC_QBUF, 300);
+    fake_.interruptPolls(300);
+    fake_.pushFrame(kDepth, depthFrame(7));
+    const CaptureResult r = next(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    expectPattern(*r.frame, 7);
+    EXPECT_EQ(fake_.queued(kDepth), 4u);
+}
+
+TEST_F(UvcDeviceTest, CorruptShortAndGarbageBuffersAreErrorsNotCrashes) {
+    UvcDevice d(config(), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    FakeFrame flagged = depthFrame(0);
+    flagged.flags = V4L2_BUF_FLAG_ERROR;
+    FakeFrame shortFrame = depthFrame(0);
+    shortFrame.bytes.resize(10);
+    FakeFrame wrongBytesused = depthFrame(0);
+    wrongBytesused.bytesused = 5000;
+    FakeFrame garbage{std::vector<std::uint8_t>(3, 0xff)};
+    for (const FakeFrame& bad : {flagged, shortFrame, wrongBytesused, garbage}) {
+        fake_.pushFrame(kDepth, bad);
+        const CaptureResult r = next(d);
+        EXPECT_EQ(r.kind, CaptureResult::Kind::Error);
+        EXPECT_FALSE(r.message.empty());
+        EXPECT_EQ(d.state(), DeviceState::Streaming) << "a bad frame is dropped, the stream goes on";
+    }
+    fake_.pushFrame(kDepth, depthFrame(3));
+    const CaptureResult r = next(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    expectPattern(*r.frame, 3);
+    EXPECT_EQ(fake_.queued(kDepth), 4u) << "every dropped buffer went back to the driver";
+}
+
+TEST_F(UvcDeviceTest, AFormatChangeUnderUsRestartsTheStreamAtTheNewSize) {
+    UvcDevice d(config(), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    const double fxBefore = d.depthIntrinsics().fx;
+    fake_.changeFormat(kDepth, 4, 3);
+    const CaptureResult changed = next(d);
+    EXPECT_EQ(changed.kind, CaptureResult::Kind::Error);
+    EXPECT_NE(changed.message.find("format changed"), std::string::npos) << changed.message;
+    EXPECT_EQ(d.depthFormat().width, 4);
+    EXPECT_DOUBLE_EQ(d.depthIntrinsics().fx, fxBefore / 2);
+    fake_.pushFrame(kDepth, {z16Bytes(std::vector<std::uint16_t>(12, 2000))});
+    const CaptureResult r = next(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    EXPECT_EQ(r.frame->sceneDepth->depthMeters.width, 4);
+    EXPECT_FLOAT_EQ(r.frame->sceneDepth->depthMeters.pixels[0], 2.0f);
+    EXPECT_EQ(fake_.mappings(), 4) << "the old buffers were released";
+}
+
+TEST_F(UvcDeviceTest, UnplugIsDisconnectedWithNothingLeftOpenAndReplugReconnects) {
+    UvcDevice d(config(), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    fake_.unplug(kDepth);
+    const CaptureResult r = next(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Disconnected);
+    EXPECT_EQ(d.state(), DeviceState::Disconnected);
+    EXPECT_EQ(fake_.mappings(), 0);
+    EXPECT_EQ(fake_.openFds(), 1) << "only the wake-up eventfd stays";
+    EXPECT_FALSE(d.reconnect()) << "still unplugged";
+    EXPECT_EQ(d.state(), DeviceState::Disconnected);
+    fake_.replug(kDepth);
+    ASSERT_TRUE(d.reconnect());
+    EXPECT_EQ(d.state(), DeviceState::Streaming);
+    fake_.pushFrame(kDepth, depthFrame(11));
+    const CaptureResult again = next(d);
+    ASSERT_EQ(again.kind, CaptureResult::Kind::Frame) << again.message;
+    expectPattern(*again.frame, 11);
+}
+
+TEST_F(UvcDeviceTest, TheWatchdogReportsAStallAndAFrameEndsIt) {
+    UvcDevice d(config(), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    const CaptureResult stalled = next(d);
+    ASSERT_EQ(stalled.kind, CaptureResult::Kind::Stalled);
+    EXPECT_NE(stalled.message.find("watchdog"), std::string::npos);
+    EXPECT_EQ(d.state(), DeviceState::Stalled);
+    EXPECT_EQ(d.capture(milliseconds(5)).kind, CaptureResult::Kind::Timeout) << "reported once";
+    fake_.pushFrame(kDepth, depthFrame(1));
+    ASSERT_EQ(next(d).kind, CaptureResult::Kind::Frame);
+    EXPECT_EQ(d.state(), DeviceState::Streaming);
+}
+
+TEST_F(UvcDeviceTest, DepthAndColorNodesArePairedByTimestamp) {
+    fake_.addNode(kColor, {.modes = {{V4L2_PIX_FMT_YUYV, kW, kH, {30}}}});
+    UvcConfig c = config();
+    c.colorNode = kColor;
+    UvcDevice d(c, fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    ASSERT_EQ(d.colorNodePath(), kColor);
+    const std::int64_t t0 = monotonicNowNs() / 1000 * 1000; // V4L2 timestamps have microseconds
+    FakeFrame depth = depthFrame(0);
+    depth.timestampNs = t0;
+    FakeFrame color{std::vector<std::uint8_t>(kW * kH * 2, 0x55)};
+    color.timestampNs = t0 + 2'000'000; // 2 ms apart: the same moment at 30 fps
+    fake_.pushFrame(kDepth, depth);
+    fake_.pushFrame(kColor, color);
+    const CaptureResult r = next(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    ASSERT_FALSE(r.frame->capturedImage.empty());
+    EXPECT_EQ(r.frame->capturedImage.format, PixelFormat::Yuyv);
+    EXPECT_EQ((*r.frame->capturedImage.bytes)[0], 0x55);
+    EXPECT_EQ(r.frame->timestampNs, t0);
+    EXPECT_EQ(d.pairer().paired(), 1u);
+}
+
+TEST_F(UvcDeviceTest, ASessionReconnectsByItselfAndReportsEachState) {
+    Session session(std::make_unique<UvcDevice>(config(), fake_));
+    ASSERT_TRUE(session.start());
+    fake_.pushFrame(kDepth, depthFrame(0));
+    ASSERT_TRUE(session.waitForFrame(std::chrono::seconds(2)));
+    fake_.unplug(kDepth);
+    for (int i = 0; i < 100 && session.state() != DeviceState::Disconnected; ++i)
+        std::this_thread::sleep_for(milliseconds(10));
+    EXPECT_EQ(session.state(), DeviceState::Disconnected);
+    fake_.replug(kDepth);
+    for (int i = 0; i < 300 && session.state() != DeviceState::Streaming; ++i)
+        std::this_thread::sleep_for(milliseconds(10));
+    ASSERT_EQ(session.state(), DeviceState::Streaming) << "reconnected without a restart";
+    fake_.pushFrame(kDepth, depthFrame(5));
+    const auto frame = session.waitForFrame(std::chrono::seconds(2));
+    ASSERT_TRUE(frame.has_value());
+    std::vector<std::pair<DeviceState, std::string>> states;
+    for (const SessionEvent& e : session.drainEvents())
+        if (e.kind == SessionEvent::Kind::StateChanged)
+            states.emplace_back(e.state, e.message);
+    ASSERT_GE(states.size(), 3u);
+    EXPECT_EQ(states[0].first, DeviceState::Streaming);
+    EXPECT_EQ(states[0].second, kApproximateIntrinsicsMessage)
+        << "the UI learns that geometry is approximate";
+    EXPECT_EQ(states[1].first, DeviceState::Disconnected);
+    EXPECT_EQ(states.back().first, DeviceState::Streaming);
+    EXPECT_GT(session.stats().latencyMs, 0.0);
+    session.stop();
+    EXPECT_EQ(fake_.mappings(), 0);
+}
+
+TEST_F(UvcDeviceTest, ASessionShowsAStallAndItsEnd) {
+    Session session(std::make_unique<UvcDevice>(config(), fake_));
+    ASSERT_TRUE(session.start());
+    for (int i = 0; i < 100 && session.state() != DeviceState::Stalled; ++i)
+        std::this_thread::sleep_for(milliseconds(10));
+    EXPECT_EQ(session.state(), DeviceState::Stalled);
+    fake_.pushFrame(kDepth, depthFrame(0));
+    ASSERT_TRUE(session.waitForFrame(std::chrono::seconds(2)));
+    EXPECT_EQ(session.state(), DeviceState::Streaming);
+}
+
+TEST_F(UvcDeviceTest, StopWakesTheCaptureThreadAndLeavesNothingOpen) {
+    {
+        Session session(std::make_unique<UvcDevice>(config(), fake_));
+        ASSERT_TRUE(session.start());
+        session.stop();
+        EXPECT_EQ(session.state(), DeviceState::Closed);
+    }
+    EXPECT_EQ(fake_.openFds(), 0);
+    EXPECT_EQ(fake_.mappings(), 0);
+}
+
+TEST_F(UvcDeviceTest, ANodeWithoutDepthFormatsIsRefusedWithAReason) {
+    fake_.addNode(kColor, {.modes = {{V4L2_PIX_FMT_YUYV, kW, kH, {30}}}});
+    UvcConfig c = config();
+    c.depthNode = kColor;
+    UvcDevice d(c, fake_);
+    const Status s = d.open();
+    ASSERT_FALSE(s);
+    EXPECT_NE(s.error().message.find("Z16"), std::string::npos) << s.error().message;
+    EXPECT_EQ(fake_.openFds(), 1);
+}
+
+} // namespace
+} // namespace dc::devices

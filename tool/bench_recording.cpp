@@ -1,0 +1,192 @@
+// depthcloud bench replay / bench record: decode throughput of replay sources, and recording throughput,
+// drops and size at 1280x720 depth + color @30 fps.
+
+#include "devices/frame_list_device.h"
+#include "devices/log.h"
+#include "devices/recording/session_recording.h"
+#include "devices/replay/importers.h"
+#include "devices/session.h"
+#include "devices/synthetic_device.h"
+#include "tool/options.h"
+#include "tool/recording_commands.h"
+
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <sched.h>
+#include <thread>
+#include <unistd.h>
+
+namespace dc::tool {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point start) {
+    return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Decodes every frame of `source` once; prints frames per second and the multiple of real time.
+void decodeAll(const std::string& name, devices::replay::ReplaySource& source, bool color) {
+    source.setDecodeColor(color);
+    const std::size_t n = source.frameCount();
+    const double recordedSeconds = static_cast<double>(source.timestampNs(n - 1) - source.timestampNs(0)) *
+                                   1e-9 * static_cast<double>(n) /
+                                   static_cast<double>(std::max<std::size_t>(n - 1, 1));
+    std::size_t failed = 0;
+    const auto start = Clock::now();
+    for (std::size_t i = 0; i < n; ++i)
+        failed += devices::replay::loadFrame(source, i) ? 0 : 1;
+    const double seconds = secondsSince(start);
+    std::printf("  %-44s %5zu frames in %6.2f s: %7.1f fps = %6.1fx real time%s\n", name.c_str(), n, seconds,
+                static_cast<double>(n) / seconds, recordedSeconds / seconds,
+                failed ? (" (" + std::to_string(failed) + " failed)").c_str() : "");
+}
+
+// Frames of a synthetic camera, generated as fast as it can.
+std::vector<devices::FramePtr> syntheticFrames(devices::SyntheticConfig config, int count) {
+    config.paced = false;
+    devices::SyntheticDevice device(config);
+    std::vector<devices::FramePtr> frames;
+    if (!device.open() || !device.start())
+        return frames;
+    while (static_cast<int>(frames.size()) < count) {
+        auto r = device.capture(std::chrono::milliseconds(1000));
+        if (r.kind == devices::CaptureResult::Kind::Frame)
+            frames.push_back(r.frame);
+    }
+    return frames;
+}
+
+std::string tempPath(const std::string& directory, const std::string& name) {
+    const fs::path dir = directory.empty() ? fs::temp_directory_path() : fs::path(directory);
+    return (dir / ("depthcloud-bench-" + std::to_string(::getpid()) + "-" + name + ".dcrec")).string();
+}
+
+struct RecordCase {
+    const char* name;
+    bool compress;
+    int zstdLevel;
+    devices::recording::ColorStorage color;
+    int threads;
+};
+
+void runRecordCase(const RecordCase& c, const std::vector<devices::FramePtr>& frames,
+                   const BenchRecordOptions& o) {
+    const std::string path = tempPath(o.directory, c.name);
+    auto device =
+        std::make_unique<devices::FrameListDevice>(frames, 30.0, "synthetic 1280x720 + 1280x720 NV12");
+    devices::Session session(std::move(device));
+    devices::recording::RecorderOptions options;
+    options.writer.encode = {c.compress, c.zstdLevel, c.color, 90};
+    options.encoderThreads = c.threads;
+    options.writer.syncInterval = std::chrono::milliseconds(o.syncMs);
+    auto recording = devices::recording::SessionRecording::start(session, path, options);
+    if (!recording || !session.start()) {
+        std::printf("  %-8s cannot start: %s\n", c.name,
+                    recording ? "session" : recording.error().message.c_str());
+        return;
+    }
+    const auto start = Clock::now();
+    while (secondsSince(start) < o.seconds)
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    session.stop();
+    const auto closing = Clock::now();
+    const Status closed = (*recording)->stop();
+    const double drainSeconds = secondsSince(closing);
+    const auto s = (*recording)->stats();
+    const double elapsed = secondsSince(start);
+    std::printf("  %-8s %5llu offered %5llu written %4llu dropped  %6.1f MB/s written  %5.2f MB/frame  "
+                "encode %4.0f%% "
+                "write %3.0f%% of a core  close %.2f s%s\n",
+                c.name, static_cast<unsigned long long>((*recording)->framesOffered()),
+                static_cast<unsigned long long>(s.framesWritten),
+                static_cast<unsigned long long>(s.framesDropped),
+                static_cast<double>(s.bytesWritten) / 1e6 / elapsed,
+                static_cast<double>(s.bytesWritten) / 1e6 /
+                    static_cast<double>(std::max<std::uint64_t>(s.framesWritten, 1)),
+                100.0 * s.encodeSeconds / elapsed, 100.0 * s.writeSeconds / elapsed, drainSeconds,
+                closed ? "" : (" FAILED: " + closed.error().message).c_str());
+    std::error_code ec;
+    fs::remove(path, ec);
+    fs::remove(path + ".partial", ec);
+}
+
+void pinToCores(int cores) {
+    if (cores <= 0)
+        return;
+    cpu_set_t set;
+    CPU_ZERO(&set);
+    const int available = static_cast<int>(std::thread::hardware_concurrency());
+    for (int i = 0; i < std::min(cores, available); ++i)
+        CPU_SET(i, &set);
+    if (sched_setaffinity(0, sizeof(set), &set) != 0)
+        std::printf("(could not pin to %d cores)\n", cores);
+}
+
+} // namespace
+
+int runBenchReplay(const BenchReplayOptions& o) {
+    setLogQuiet(true);
+    std::printf("bench replay: decode throughput, headless, one thread (goal: >= 20x real time)\n");
+    if (auto stray = devices::replay::openStraySource(o.stray); stray) {
+        decodeAll("ARKit capture (Stray), depth+confidence+video", **stray, true);
+        decodeAll("ARKit capture (Stray), depth+confidence only", **stray, false);
+    } else {
+        std::printf("  ARKit capture: %s\n", stray.error().message.c_str());
+    }
+    devices::SyntheticConfig config;
+    config.depthWidth = config.cameraWidth = 640;
+    config.depthHeight = config.cameraHeight = 480;
+    config.fps = 30.0;
+    config.motion = true;
+    const auto frames = syntheticFrames(config, o.syntheticFrames);
+    const std::string path = tempPath({}, "replay");
+    {
+        auto writer = devices::recording::RecordingWriter::create(path, {"synthetic 640x480", {}});
+        for (std::size_t i = 0; writer && i < frames.size(); ++i) {
+            auto f = std::make_shared<devices::Frame>(*frames[i]);
+            f->timestampNs = static_cast<std::int64_t>(i) * 1'000'000'000 / 30; // recorded at exactly 30 fps
+            (void)writer->append(*f);
+        }
+        if (!writer || !writer->finish())
+            std::printf("  cannot write %s\n", path.c_str());
+    }
+    if (auto recording = devices::replay::openRecordingSource(path); recording) {
+        decodeAll("synthetic 640x480 recording (zstd, NV12)", **recording, true);
+        decodeAll("synthetic 640x480 recording, depth only", **recording, false);
+    }
+    std::error_code ec;
+    fs::remove(path, ec);
+    return kExitOk;
+}
+
+int runBenchRecord(const BenchRecordOptions& o) {
+    setLogQuiet(true);
+    pinToCores(o.cores);
+    std::printf(
+        "bench record: 1280x720 float depth + confidence + 1280x720 NV12 color @30 fps, %.0f s per case, "
+        "%d cores (goal: 0 dropped)\n",
+        o.seconds, o.cores);
+    devices::SyntheticConfig config;
+    config.depthWidth = config.cameraWidth = 1280;
+    config.depthHeight = config.cameraHeight = 720;
+    config.motion = true;
+    const auto frames = syntheticFrames(config, 30);
+    // Two encoder threads (the Recorder's default), and one case with a single one for comparison.
+    const RecordCase cases[] = {
+        {"raw", false, 1, devices::recording::ColorStorage::AsCaptured, 2},
+        {"zstd1", true, 1, devices::recording::ColorStorage::AsCaptured, 2},
+        {"zstd3", true, 3, devices::recording::ColorStorage::AsCaptured, 2},
+        {"jpeg", true, 1, devices::recording::ColorStorage::Jpeg, 2},
+        {"zstd1-1t", true, 1, devices::recording::ColorStorage::AsCaptured, 1},
+    };
+    for (const RecordCase& c : cases)
+        if (o.only.empty() || o.only == c.name)
+            runRecordCase(c, frames, o);
+    return kExitOk;
+}
+
+} // namespace dc::tool

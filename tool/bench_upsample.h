@@ -1,0 +1,83 @@
+#pragma once
+
+// Internals of `depthcloud bench upsample`, shared by its source files.
+
+#include "devices/expected.h"
+#include "devices/frame.h"
+#include "tool/bench_upsample_options.h"
+
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace dc::tool::upsample {
+
+// One upsampling problem: a low-resolution depth map and a guide image, to be brought to the output size.
+struct Problem {
+    std::string scene;
+    double factor = 1.0;         // output width / input width
+    devices::DepthData low;      // depth in the scene's units (meters, or 8-bit disparity levels)
+    cv::Mat guideGray;           // 8-bit luma at the guide's own size
+    cv::Mat guideColor;          // 8-bit BGR, same size
+    devices::Plane<float> truth; // ground truth at the output size
+    // Pixels that count (nonzero); empty = all pixels.
+    devices::Plane<std::uint8_t> evaluated;
+    float fitNoise = 0.0f; // the depth's noise floor in its units (our filter's fitNoise)
+    std::string units;
+};
+
+struct Method {
+    std::string name;
+    std::function<devices::Plane<float>(const Problem&)> run;
+};
+
+// nearest, bilinear, bicubic (Keys a = -0.5), OpenCV guided / joint bilateral / fast global smoother, ours.
+std::vector<Method> allMethods();
+// The bicubic used for the reference numbers (Keys a = -0.5, MATLAB/PIL's; OpenCV's INTER_CUBIC is a =
+// -0.75).
+devices::Plane<float> bicubic(const devices::Plane<float>& low, int width, int height);
+
+// The noisy-Middlebury scenes of `dataDir` (every <scene>/<scene>_big.png with its inputs).
+Expected<std::vector<Problem>> middleburyProblems(const std::string& dataDir,
+                                                  const std::vector<int>& factors);
+// The synthetic desk scene as an ARKit frame: sensor depth at depthWidth x depthHeight, camera image at
+// cameraWidth x cameraHeight, output and exact ground truth at half the camera size.
+Problem syntheticProblem(int depthWidth, int depthHeight, int cameraWidth, int cameraHeight);
+
+// Reference rows read from a PROVENANCE.txt: "<scene> x<f> MAD/RMSE" for bicubic, published MAD rows.
+struct Provenance {
+    std::vector<std::tuple<std::string, int, double, double>> bicubic;  // scene, factor, MAD, RMSE
+    std::vector<std::pair<std::string, std::vector<double>>> published; // method, 12 MADs (4 scenes x 3)
+    std::vector<std::string> publishedScenes;                           // art, book, dolls, laundry
+};
+Provenance readProvenance(const std::string& path);
+
+// Median wall time of `runs` calls after one warm-up call, milliseconds.
+double medianMilliseconds(int runs, const std::function<void()>& call);
+
+// A labelled point of the error-versus-time chart.
+struct ChartPoint {
+    std::string label;
+    double milliseconds = 0.0;
+    double error = 0.0;
+};
+struct ChartPanel {
+    std::string title;
+    std::string errorLabel;
+    std::vector<ChartPoint> points;
+};
+// Draws the panels side by side (log time axis) and writes them as PNG atomically.
+Status writeChart(const std::string& path, const std::vector<ChartPanel>& panels);
+
+// The ARKit case (`problem`: 256x192 depth, 1920x1440 guide, 960x720 output): ours against OpenCV's
+// guidedFilter at one thread and at all threads.
+nlohmann::json benchArkitFrame(const BenchUpsampleOptions& options, const Problem& problem);
+// The whole processing chain per ARKit frame: confidence filter, smoothing, upsampling, cloud preparation.
+nlohmann::json benchChain(const BenchUpsampleOptions& options);
+// Temporal noise reduction and step lag of the smoothing at its default settings.
+nlohmann::json benchSmoothing(const BenchUpsampleOptions& options);
+
+} // namespace dc::tool::upsample

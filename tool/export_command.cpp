@@ -1,0 +1,79 @@
+// depthcloud export: a recording or capture to PLY clouds, the Stray layout or 16-bit depth PNGs.
+
+#include "devices/log.h"
+#include "devices/replay/replay_spec.h"
+#include "exporting/export.h"
+#include "tool/options.h"
+#include "tool/recording_commands.h"
+
+#include <cstdio>
+
+namespace dc::tool {
+
+namespace {
+
+int fail(const std::string& message, int code) {
+    std::fprintf(stderr, "depthcloud export: error: %s\n", message.c_str());
+    return code;
+}
+
+// A one-line progress bar on stderr, redrawn when the percentage changes.
+class ProgressBar {
+public:
+    bool update(std::size_t done, std::size_t total) {
+        const int percent = static_cast<int>(100 * done / std::max<std::size_t>(total, 1));
+        if (percent == lastPercent_)
+            return true;
+        lastPercent_ = percent;
+        constexpr int kWidth = 40;
+        const int filled = percent * kWidth / 100;
+        std::fprintf(stderr, "\rexport [%.*s%*s] %3d%% %zu/%zu frames", filled,
+                     "########################################", kWidth - filled, "", percent, done, total);
+        if (done == total)
+            std::fprintf(stderr, "\n");
+        return true;
+    }
+
+private:
+    int lastPercent_ = -1;
+};
+
+exporting::ExportFormat formatOf(const std::string& name) {
+    if (name == "stray")
+        return exporting::ExportFormat::Stray;
+    if (name == "png16")
+        return exporting::ExportFormat::Png16;
+    return exporting::ExportFormat::Ply;
+}
+
+} // namespace
+
+int runExport(const ExportOptionsCli& o) {
+    setLogQuiet(true);
+    auto source = devices::replay::openReplaySpecSource(o.source);
+    if (!source)
+        return fail("--source: " + source.error().message, kExitBadArguments);
+    exporting::ExportOptions options;
+    options.format = formatOf(o.format);
+    options.outDirectory = o.out;
+    options.worldCoordinates = o.world;
+    if (!o.frames.empty()) {
+        auto range = exporting::parseFrameRange(o.frames, (*source)->frameCount());
+        if (!range)
+            return fail("--frames: " + range.error().message, kExitBadArguments);
+        options.frames = *range;
+    }
+    ProgressBar bar;
+    auto result = exporting::exportFrames(
+        **source, options, [&bar](std::size_t done, std::size_t total) { return bar.update(done, total); });
+    if (!result)
+        return fail(result.error().message, kExitFailure);
+    std::printf("depthcloud export: wrote %zu frames as %s to %s%s\n", result->framesWritten,
+                exporting::toString(options.format), o.out.c_str(),
+                result->framesSkipped
+                    ? (" (" + std::to_string(result->framesSkipped) + " unreadable frames skipped)").c_str()
+                    : "");
+    return kExitOk;
+}
+
+} // namespace dc::tool

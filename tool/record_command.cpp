@@ -1,0 +1,115 @@
+// depthcloud record: any source to a depthcloud recording, through the same Session as the viewer.
+
+#include "devices/log.h"
+#include "devices/recording/session_recording.h"
+#include "devices/source_spec.h"
+#include "tool/options.h"
+#include "tool/recording_commands.h"
+
+#include <atomic>
+#include <chrono>
+#include <csignal>
+#include <cstdio>
+#include <thread>
+
+namespace dc::tool {
+
+namespace {
+
+volatile std::sig_atomic_t gStopRequested = 0;
+
+void requestStop(int) {
+    gStopRequested = 1;
+}
+
+int fail(const std::string& message, int code = kExitFailure) {
+    std::fprintf(stderr, "depthcloud record: error: %s\n", message.c_str());
+    return code;
+}
+
+devices::recording::RecorderOptions recorderOptions(const RecordOptions& o) {
+    devices::recording::RecorderOptions r;
+    r.queueFrames = static_cast<std::size_t>(o.queueFrames);
+    r.writer.overwrite = o.overwrite;
+    r.writer.encode.compress = o.compression == "zstd";
+    r.writer.encode.zstdLevel = o.zstdLevel;
+    r.writer.encode.color = o.color == "jpeg" ? devices::recording::ColorStorage::Jpeg
+                                              : devices::recording::ColorStorage::AsCaptured;
+    r.writer.encode.jpegQuality = o.jpegQuality;
+    return r;
+}
+
+void printProgress(const devices::recording::RecorderStats& s, double seconds) {
+    std::fprintf(stderr, "\rrecording: %.1f s, %llu frames written, %llu dropped, %.1f MB   ", seconds,
+                 static_cast<unsigned long long>(s.framesWritten),
+                 static_cast<unsigned long long>(s.framesDropped), static_cast<double>(s.bytesWritten) / 1e6);
+}
+
+// Waits for the frame limit, the time limit, a signal or the source's end; the reason if it failed.
+std::string waitForEnd(devices::Session& session, const devices::recording::SessionRecording& recording,
+                       const RecordOptions& o) {
+    const auto start = std::chrono::steady_clock::now();
+    auto lastPrint = start;
+    for (;;) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(20));
+        const auto now = std::chrono::steady_clock::now();
+        const double seconds = std::chrono::duration<double>(now - start).count();
+        for (const devices::SessionEvent& e : session.drainEvents()) {
+            if (e.kind == devices::SessionEvent::Kind::EndOfStream)
+                return {};
+            if (e.kind == devices::SessionEvent::Kind::Error ||
+                (e.kind == devices::SessionEvent::Kind::StateChanged &&
+                 e.state == devices::DeviceState::Disconnected))
+                return "the source failed: " + e.message;
+        }
+        if (!recording.stats().error.empty())
+            return recording.stats().error;
+        if (gStopRequested || recording.reachedLimit() || (o.seconds && seconds >= *o.seconds))
+            return {};
+        if (now - lastPrint >= std::chrono::seconds(1)) {
+            printProgress(recording.stats(), seconds);
+            lastPrint = now;
+        }
+    }
+}
+
+} // namespace
+
+int runRecord(const RecordOptions& o) {
+    setLogQuiet(true);
+    auto device = devices::openSourceSpec(o.source);
+    if (!device)
+        return fail("--source: " + device.error().message, kExitBadArguments);
+    devices::Session session(std::move(*device));
+    std::optional<std::uint64_t> limit;
+    if (o.frames)
+        limit = static_cast<std::uint64_t>(*o.frames);
+    auto recording = devices::recording::SessionRecording::start(session, o.out, recorderOptions(o), limit);
+    if (!recording)
+        return fail(recording.error().message);
+    std::signal(SIGINT, requestStop);
+    std::signal(SIGTERM, requestStop);
+    if (Status s = session.start(); !s) {
+        (void)(*recording)->stop();
+        return fail(s.error().message);
+    }
+    const auto start = std::chrono::steady_clock::now();
+    const std::string problem = waitForEnd(session, **recording, o);
+    session.stop();
+    const Status closed = (*recording)->stop();
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    const auto stats = (*recording)->stats();
+    printProgress(stats, seconds);
+    std::fprintf(stderr, "\n");
+    if (!closed)
+        return fail(closed.error().message);
+    std::printf("depthcloud record: wrote %llu frames (%llu dropped, %.1f MB) to %s\n",
+                static_cast<unsigned long long>(stats.framesWritten),
+                static_cast<unsigned long long>(stats.framesDropped),
+                static_cast<double>(stats.bytesWritten) / 1e6, o.out.c_str());
+    if (!problem.empty())
+        return fail(problem + " (the frames before it are recorded)");
+    return kExitOk;
+}
+
+} // namespace dc::tool

@@ -1,0 +1,94 @@
+#include "tool/recording_commands.h"
+
+#include "devices/source_spec.h"
+#include "exporting/export.h"
+
+namespace dc::tool {
+
+namespace {
+
+void addRecord(CLI::App& app, RecordOptions& o, RecordingCommands& c) {
+    c.recordCmd = app.add_subcommand("record", "record a source to a depthcloud recording (.dcrec)");
+    c.recordCmd->add_option("--source", o.source, std::string("what to record: ") + devices::kSourceSpecHelp)
+        ->capture_default_str();
+    auto* frames =
+        c.recordCmd->add_option("--frames", o.frames, "stop after N frames")->check(CLI::PositiveNumber);
+    c.recordCmd->add_option("--seconds", o.seconds, "stop after S seconds")
+        ->check(CLI::PositiveNumber)
+        ->excludes(frames);
+    c.recordCmd->add_flag("--overwrite", o.overwrite, "replace OUT if it exists");
+    c.recordCmd->add_option("--color", o.color, "camera image: raw (as captured) or jpeg")
+        ->check(CLI::IsMember({"raw", "jpeg"}))
+        ->capture_default_str();
+    c.recordCmd->add_option("--jpeg-quality", o.jpegQuality, "JPEG quality")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    c.recordCmd
+        ->add_option("--compression", o.compression, "lossless compression of depth, confidence, raw color")
+        ->check(CLI::IsMember({"zstd", "none"}))
+        ->capture_default_str();
+    c.recordCmd->add_option("--zstd-level", o.zstdLevel, "zstd level")
+        ->check(CLI::Range(1, 19))
+        ->capture_default_str();
+    c.recordCmd->add_option("--queue", o.queueFrames, "frames the writer may fall behind before dropping")
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    c.recordCmd->add_option("OUT", o.out, "the recording to write")->required();
+}
+
+void addExport(CLI::App& app, ExportOptionsCli& o, RecordingCommands& c) {
+    c.exportCmd = app.add_subcommand(
+        "export", "export a recording or capture as PLY clouds, Stray layout or depth PNGs");
+    c.exportCmd->add_option("--source", o.source, "replay:PATH (a recording, Stray or TUM directory)")
+        ->required();
+    c.exportCmd->add_option("--out", o.out, "output directory")->required();
+    c.exportCmd->add_option("--frames", o.frames, "frames A:B (B excluded; A: and :B too)");
+    c.exportCmd->add_option("--format", o.format, "ply | stray | png16")
+        ->check(CLI::IsMember({"ply", "stray", "png16"}))
+        ->capture_default_str();
+    c.exportCmd->add_flag("--world", o.world, "PLY points in world coordinates (through each frame's pose)");
+}
+
+} // namespace
+
+void addRecordingCommands(CLI::App& app, CLI::App& bench, RecordingCommands& c) {
+    addRecord(app, c.record, c);
+    addExport(app, c.exportOptions, c);
+    c.benchReplayCmd = bench.add_subcommand("replay", "replay decode throughput, headless");
+    c.benchReplayCmd->add_option("--stray", c.benchReplay.stray, "a Stray Scanner capture to decode")
+        ->capture_default_str();
+    c.benchReplayCmd
+        ->add_option("--synthetic-frames", c.benchReplay.syntheticFrames, "frames of the synthetic recording")
+        ->check(CLI::Range(10, 10000))
+        ->capture_default_str();
+    c.benchRecordCmd =
+        bench.add_subcommand("record", "recording throughput and drops at 1280x720 depth + color @30 fps");
+    c.benchRecordCmd->add_option("--seconds", c.benchRecord.seconds, "seconds per case")
+        ->check(CLI::Range(1.0, 3600.0))
+        ->capture_default_str();
+    c.benchRecordCmd->add_option("--case", c.benchRecord.only,
+                                 "run only this case (raw, zstd1, zstd3, jpeg, zstd1-1t)");
+    c.benchRecordCmd->add_option("--dir", c.benchRecord.directory,
+                                 "where to write the recordings (removed after)");
+    c.benchRecordCmd
+        ->add_option("--sync-ms", c.benchRecord.syncMs, "write-back interval in ms (0: only at close)")
+        ->check(CLI::Range(0, 60000))
+        ->capture_default_str();
+    c.benchRecordCmd->add_option("--cores", c.benchRecord.cores, "run on this many CPUs (0: all)")
+        ->check(CLI::Range(0, 1024))
+        ->capture_default_str();
+}
+
+std::optional<int> runRecordingCommands(const RecordingCommands& c) {
+    if (c.recordCmd->parsed())
+        return runRecord(c.record);
+    if (c.exportCmd->parsed())
+        return runExport(c.exportOptions);
+    if (c.benchReplayCmd->parsed())
+        return runBenchReplay(c.benchReplay);
+    if (c.benchRecordCmd->parsed())
+        return runBenchRecord(c.benchRecord);
+    return std::nullopt;
+}
+
+} // namespace dc::tool

@@ -1,0 +1,66 @@
+#pragma once
+
+#include <CLI/CLI.hpp>
+
+#include <optional>
+#include <string>
+
+// depthcloud record / export / bench replay / bench record: headless commands on the recording format
+// and the replay sources (no GL).
+namespace dc::tool {
+
+struct RecordOptions {
+    std::string source = "synthetic";
+    std::optional<int> frames;
+    std::optional<double> seconds;
+    bool overwrite = false;
+    std::string color = "raw"; // raw (as captured) | jpeg
+    int jpegQuality = 90;
+    std::string compression = "zstd"; // zstd | none
+    int zstdLevel = 1;
+    int queueFrames = 30;
+    std::string out;
+};
+
+struct ExportOptionsCli {
+    std::string source;
+    std::string out;
+    std::string frames; // "A:B"
+    std::string format = "ply";
+    bool world = false;
+};
+
+struct BenchReplayOptions {
+    std::string stray = "../shared/data/arkit_dance_stray";
+    int syntheticFrames = 150;
+};
+
+struct BenchRecordOptions {
+    double seconds = 10.0;
+    std::string only;      // run one case by name
+    std::string directory; // where the recordings are written (and removed); default: the temp dir
+    int cores = 2;         // pin the process to this many CPUs (0: leave as is)
+    int syncMs = 1000;     // the recorder's write-back interval (0: only at close)
+};
+
+struct RecordingCommands {
+    RecordOptions record;
+    ExportOptionsCli exportOptions;
+    BenchReplayOptions benchReplay;
+    BenchRecordOptions benchRecord;
+    CLI::App* recordCmd = nullptr;
+    CLI::App* exportCmd = nullptr;
+    CLI::App* benchReplayCmd = nullptr;
+    CLI::App* benchRecordCmd = nullptr;
+};
+
+void addRecordingCommands(CLI::App& app, CLI::App& bench, RecordingCommands& commands);
+// The exit code of whichever of these commands was parsed; empty when none was.
+std::optional<int> runRecordingCommands(const RecordingCommands& commands);
+
+int runRecord(const RecordOptions& options);
+int runExport(const ExportOptionsCli& options);
+int runBenchReplay(const BenchReplayOptions& options);
+int runBenchRecord(const BenchRecordOptions& options);
+
+} // namespace dc::tool
