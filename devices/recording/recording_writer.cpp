@@ -23,6 +23,11 @@ Status renameInto(const std::string& from, const std::string& to, bool overwrite
     const unsigned flags = overwrite ? 0u : RENAME_NOREPLACE;
     if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), flags) == 0)
         return {};
+    // Some filesystems refuse the flag (EINVAL); link() gives the same no-replace guarantee there.
+    if (errno == EINVAL && flags != 0 && ::link(from.c_str(), to.c_str()) == 0) {
+        ::unlink(from.c_str());
+        return {};
+    }
     if (errno == EEXIST)
         return Error{to + " appeared while recording; the recording is kept at " + from};
     return Error{"cannot rename " + from + " to " + to + ": " + std::strerror(errno)};
