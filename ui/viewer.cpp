@@ -420,6 +420,9 @@ Status Viewer::savePanels(const std::string& directory) const {
         {"confidence.png", &confidenceTarget_},
         {"camera.png", &cameraTarget_}};
     for (const auto& [name, target] : panels) {
+        // A depth-only camera has no image to show: its camera panel is simply not written.
+        if (target == &cameraTarget_ && target->width() == 0 && frame_ && frame_->capturedImage.empty())
+            continue;
         if (target->width() == 0)
             return Error{std::string("cannot write ") + name + ": the panel has not been rendered"};
         if (Status s = target->savePng(directory + "/" + name); !s)
