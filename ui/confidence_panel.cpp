@@ -13,8 +13,8 @@ void legendEntry(const char* label, ImVec4 color) {
 
 } // namespace
 
-PanelResult drawConfidencePanel(const PanelImage& image, bool available, const ProbeSource& probe,
-                                bool* open) {
+PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool estimated,
+                                const ProbeSource& probe, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kConfidenceTitle, open, result)) {
         ImGui::End();
@@ -34,6 +34,12 @@ PanelResult drawConfidencePanel(const PanelImage& image, bool available, const P
     legendEntry("medium", ImVec4(0, 1, 0, 1));
     ImGui::SameLine();
     legendEntry("high", ImVec4(0, 0, 1, 1));
+    if (estimated) {
+        ImGui::SameLine();
+        ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "estimated");
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("The camera reports none: estimated from holes, local variance and stability.");
+    }
     ImGui::End();
     return result;
 }

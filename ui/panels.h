@@ -77,9 +77,10 @@ struct DepthLegend {
 PanelResult drawDepthPanel(const PanelImage& image, const DepthLegend& legend, const ProbeSource& probe,
                            bool* open);
 
-// Confidence as red (low), green (medium), blue (high); `available` false says the source has none.
-PanelResult drawConfidencePanel(const PanelImage& image, bool available, const ProbeSource& probe,
-                                bool* open);
+// Confidence as red (low), green (medium), blue (high); `available` false says the source has none,
+// `estimated` that it was estimated from the depth because the camera reports none.
+PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool estimated,
+                                const ProbeSource& probe, bool* open);
 
 struct CameraPanelResult {
     PanelResult panel;

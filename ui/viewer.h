@@ -139,6 +139,7 @@ private:
     void updateLegend();
     void renderEffects(double timeSeconds);
     const devices::DepthData* shownDepth() const;
+    bool estimatedConfidence() const;
     void accumulate();
     ProbeSource probeSource() const;
     void placePanel(const char* title, float x, float y, float w, float h);

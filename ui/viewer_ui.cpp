@@ -160,8 +160,9 @@ void Viewer::drawSidePanels(float x, float w, float h) {
     if (show.confidence) {
         placePanel(kConfidenceTitle, x, h, w, h);
         afterPanel(kConfidenceTitle,
-                   drawConfidencePanel(imageOf(confidenceTarget_), session_->capabilities().confidence, probe,
-                                       &show.confidence));
+                   drawConfidencePanel(imageOf(confidenceTarget_),
+                                       session_->capabilities().confidence || estimatedConfidence(),
+                                       estimatedConfidence(), probe, &show.confidence));
     }
     if (show.camera) {
         placePanel(kCameraTitle, x, 2.0f * h, w, h);
@@ -258,6 +259,11 @@ void Viewer::onCloudPointer(const CloudPanelResult& r) {
         anchors_.add(picked->point, frame_->pose);
         lastAnchorTime_ = now;
     }
+}
+
+bool Viewer::estimatedConfidence() const {
+    const devices::DepthData* depth = shownDepth();
+    return depth && depth->confidenceEstimated;
 }
 
 // The last frame stays on screen, marked, while a live camera is away (seed 003's interruption).
