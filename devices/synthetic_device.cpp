@@ -18,7 +18,8 @@ std::string SyntheticDevice::description() const {
 }
 
 Capabilities SyntheticDevice::capabilities() const {
-    return {.sceneDepth = true, .smoothedSceneDepth = false, .confidence = true, .color = true, .pose = true};
+    return {.sceneDepth = true, .smoothedSceneDepth = false, .confidence = true, .color = true, .pose = true,
+            .monotonicTimestamps = true};
 }
 
 Status SyntheticDevice::doOpen() {

@@ -15,7 +15,7 @@ namespace dc::processing {
 namespace {
 
 constexpr int kMaxMatteWidth = 480;
-constexpr double kWorkScale = 0.5; // working resolution relative to the output image
+constexpr double kWorkScale = 0.25; // working resolution relative to the output image
 constexpr double kPi = 3.14159265358979323846;
 
 bool measured(float d) {
@@ -100,7 +100,7 @@ devices::Plane<std::uint8_t> subjectMatte(const devices::DepthData& depth, const
 RgbaImage renderAura(const devices::Frame& frame, const AuraSettings& settings, DepthSource source,
                      double timeSeconds) {
     const auto [width, height] = halfCameraSize(frame.capturedImage);
-    const std::vector<std::uint8_t> rgb = cameraRgb(frame.capturedImage, width, height);
+    std::vector<std::uint8_t> rgb = cameraRgb(frame.capturedImage, width, height);
     if (rgb.empty())
         return {};
     const cv::Size work(std::max(1, static_cast<int>(width * kWorkScale)),
@@ -118,22 +118,26 @@ RgbaImage renderAura(const devices::Frame& frame, const AuraSettings& settings, 
     const double phase = 2.0 * kPi * settings.pulseHz * timeSeconds;
     tentBlur(white, static_cast<int>(pulsingWidth(30.0, phase) * kWorkScale));
     tentBlur(yellow, static_cast<int>(pulsingWidth(100.0, phase) * kWorkScale));
-    const cv::Mat whiteOut = resized(white, {width, height}), yellowOut = resized(yellow, {width, height});
+    const RowSampler whiteAt(white, width, height), yellowAt(yellow, width, height);
+    const std::array<cv::Mat, 3> camera = rgbPlanes(rgb, width, height);
     RgbaImage out{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
     parallelRanges(height, 32, [&](int begin, int end) {
+        std::vector<float> w(static_cast<std::size_t>(width)), yl(w.size()), warm(w.size()), scratch;
+        std::array<std::vector<std::uint8_t>, 3> lit;
+        for (auto& plane : lit)
+            plane.resize(w.size());
         for (int y = begin; y < end; ++y) {
-            const float* w = whiteOut.ptr<float>(y);
-            const float* yl = yellowOut.ptr<float>(y);
+            whiteAt.sample(y, w.data(), scratch);
+            yellowAt.sample(y, yl.data(), scratch);
             for (int x = 0; x < width; ++x) {
-                const std::size_t i = static_cast<std::size_t>(y) * width + x;
-                const float glowWhite = 255.0f * settings.whiteGain * w[x];
-                const float glowYellow = 255.0f * settings.yellowGain * yl[x];
-                const float added[3] = {glowWhite + glowYellow, glowWhite + glowYellow, glowWhite};
-                for (int k = 0; k < 3; ++k)
-                    out.pixels[4 * i + k] =
-                        static_cast<std::uint8_t>(std::min(rgb[3 * i + k] + added[k], 255.0f) + 0.5f);
-                out.pixels[4 * i + 3] = 255;
+                w[x] *= 255.0f * settings.whiteGain;
+                warm[x] = w[x] + 255.0f * settings.yellowGain * yl[x]; // white plus yellow (red + green)
             }
+            addRow(camera[0].ptr<std::uint8_t>(y), warm.data(), lit[0].data(), width);
+            addRow(camera[1].ptr<std::uint8_t>(y), warm.data(), lit[1].data(), width);
+            addRow(camera[2].ptr<std::uint8_t>(y), w.data(), lit[2].data(), width);
+            mergeRgba(lit[0].data(), lit[1].data(), lit[2].data(),
+                      out.pixels.data() + static_cast<std::size_t>(y) * width * 4, width);
         }
     });
     return out;

@@ -20,8 +20,9 @@ devices::Plane<std::uint8_t> subjectMatte(const devices::DepthData& depth, const
 // oscillating over time as the article's, and both are added to the camera color.
 //
 // The image has half the camera image's size (960x720 for 1920x1440, the article's half-resolution matte);
-// matte, ring and blurs work at half of that again, since the blurs span 15 to 150 of those pixels; the
-// sizes in AuraSettings are in output pixels. Empty without a camera image; the camera image without depth.
+// matte, ring and blurs work at a quarter of that (240x180), since the ring is 15 and the blurs 31 to 301
+// output pixels wide and the result is blurred anyway; the sizes in AuraSettings are in output pixels. Empty
+// without a camera image; the camera image without depth.
 RgbaImage renderAura(const devices::Frame& frame, const AuraSettings& settings, DepthSource source,
                      double timeSeconds);
 

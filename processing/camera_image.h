@@ -33,7 +33,8 @@ struct RgbaImage {
 GrayView lumaView(const devices::CapturedImage& image, std::vector<std::uint8_t>& scratch);
 
 // The image resampled to width x height (area-averaged when shrinking) as packed 8-bit RGB, converted with
-// the sample's YCbCr matrix (devices::ycbcrToRgb). Empty for an empty or malformed image.
+// full-range BT.601 as the sample's matrix (devices::ycbcrToRgb, to 0.2 levels). Empty for an empty or
+// malformed image.
 std::vector<std::uint8_t> cameraRgb(const devices::CapturedImage& image, int width, int height);
 
 // Half the camera image's size, rounded up: the resolution of the fog and aura images (960x720 for ARKit's

@@ -6,6 +6,8 @@
 
 #include <opencv2/core.hpp>
 
+#include <array>
+#include <cstdint>
 #include <vector>
 
 namespace dc::processing {
@@ -33,5 +35,30 @@ struct BilinearTaps {
     std::vector<float> weight;
 };
 BilinearTaps bilinearTaps(int sourceSize, int destinationSize);
+
+// Per-row colour arithmetic on 8-bit planes, written so that the compiler vectorises it (restrict, no
+// branches): dst = src + (target - src) * t, and dst = min(src + add, 255), rounded.
+void mixRow(const std::uint8_t* __restrict src, float target, const float* __restrict t,
+            std::uint8_t* __restrict dst, int n);
+void addRow(const std::uint8_t* __restrict src, const float* __restrict add, std::uint8_t* __restrict dst,
+            int n);
+
+// Packed RGB as three planes, and three planes (plus opaque alpha) back into one RGBA row.
+std::array<cv::Mat, 3> rgbPlanes(std::vector<std::uint8_t>& rgb, int width, int height);
+void mergeRgba(const std::uint8_t* r, const std::uint8_t* g, const std::uint8_t* b, std::uint8_t* rgba,
+               int n);
+
+// Bilinear samples of a small CV_32F image along the rows of a larger output, one row at a time, so that a
+// per-pixel loop can use them without an output-sized temporary.
+class RowSampler {
+public:
+    RowSampler(const cv::Mat& source, int outputWidth, int outputHeight);
+    // `row` (outputWidth values) = the source sampled along output row y; `scratch` is the caller's buffer.
+    void sample(int y, float* row, std::vector<float>& scratch) const;
+
+private:
+    cv::Mat source_;
+    BilinearTaps x_, y_;
+};
 
 } // namespace dc::processing

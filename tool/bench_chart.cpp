@@ -39,6 +39,15 @@ struct Axes {
     }
 };
 
+// 1, 2 or 5 times a power of ten, about a fifth of `range`.
+double niceStep(double range) {
+    const double raw = range / 5.0, decade = std::pow(10.0, std::floor(std::log10(raw)));
+    for (double m : {1.0, 2.0, 5.0})
+        if (m * decade >= raw)
+            return m * decade;
+    return 10.0 * decade;
+}
+
 Axes axesFor(const ChartPanel& panel, cv::Rect area) {
     double lo = 1e9, hi = 1e-9, errorMax = 1e-9;
     for (const ChartPoint& p : panel.points) {
@@ -48,7 +57,8 @@ Axes axesFor(const ChartPanel& panel, cv::Rect area) {
     }
     const double logMin = std::floor(std::log10(std::max(lo, 1e-3)));
     const double logMax = std::max(std::ceil(std::log10(std::max(hi, 1e-3))), logMin + 1.0);
-    return {logMin, logMax, errorMax * 1.15, area};
+    const double step = niceStep(errorMax * 1.1);
+    return {logMin, logMax, std::ceil(errorMax * 1.1 / step) * step, area};
 }
 
 void drawAxes(cv::Mat& image, const Axes& axes, const ChartPanel& panel) {
@@ -59,40 +69,63 @@ void drawAxes(cv::Mat& image, const Axes& axes, const ChartPanel& panel) {
         std::snprintf(label, sizeof label, "%g", std::pow(10.0, decade));
         cv::putText(image, label, {x - 10, axes.area.y + axes.area.height + 20}, kFont, 0.45, kInk);
     }
-    for (int i = 0; i <= 5; ++i) {
-        const double e = axes.errorMax * i / 5.0;
+    const double step = niceStep(axes.errorMax);
+    for (double e = 0.0; e <= axes.errorMax + 1e-9; e += step) {
         const int y = axes.at(1.0, e).y;
         cv::line(image, {axes.area.x, y}, {axes.area.x + axes.area.width, y}, kGrid);
         char label[32];
-        std::snprintf(label, sizeof label, "%.2f", e);
-        cv::putText(image, label, {axes.area.x - 55, y + 5}, kFont, 0.45, kInk);
+        std::snprintf(label, sizeof label, "%g", e);
+        cv::putText(image, label, {axes.area.x - 45, y + 5}, kFont, 0.45, kInk);
     }
     cv::rectangle(image, axes.area, kInk);
-    cv::putText(image, panel.title, {axes.area.x, 30}, kFont, 0.6, kInk, 1, cv::LINE_AA);
+    cv::putText(image, panel.title + "  (" + panel.errorLabel + " against time)", {axes.area.x, 30}, kFont,
+                0.55, kInk, 1, cv::LINE_AA);
     cv::putText(image, "median time per frame, ms (log)",
                 {axes.area.x + axes.area.width / 2 - 130, kPanelHeight - 12}, kFont, 0.5, kInk, 1,
                 cv::LINE_AA);
-    cv::putText(image, panel.errorLabel, {8, axes.area.y - 10}, kFont, 0.5, kInk, 1, cv::LINE_AA);
+}
+
+bool overlaps(const std::vector<cv::Rect>& taken, const cv::Rect& box, const cv::Rect& area) {
+    return (box & area) != box ||
+           std::any_of(taken.begin(), taken.end(), [&](const cv::Rect& r) { return (r & box).area() > 0; });
+}
+
+// The label's place: beside its marker if free, else above or below it, else further out with a leader.
+cv::Rect placeLabel(const cv::Point c, cv::Size text, const std::vector<cv::Rect>& taken,
+                    const cv::Rect& area) {
+    const int h = text.height + 4;
+    for (int distance = 0; distance < 6; ++distance)
+        for (int side : {1, -1})
+            for (int row : {0, -1, 1}) {
+                const int dy = row * (h + 2) * (distance + 1) - h / 2;
+                const cv::Rect box(side > 0 ? c.x + 9 + 20 * distance : c.x - 9 - 20 * distance - text.width,
+                                   c.y + dy, text.width, h);
+                if (!overlaps(taken, box, area))
+                    return box;
+            }
+    return {c.x + 9, c.y - h / 2, text.width, h};
 }
 
 void drawPanel(cv::Mat& image, const ChartPanel& panel) {
     const Axes axes =
         axesFor(panel, {kLeft, kTop, kPanelWidth - kLeft - kRight, kPanelHeight - kTop - kBottom});
     drawAxes(image, axes, panel);
-    std::vector<cv::Rect> labels; // placed labels, so later ones move down instead of overprinting
+    std::vector<cv::Rect> taken; // markers and placed labels
+    for (const ChartPoint& p : panel.points) {
+        const cv::Point c = axes.at(p.milliseconds, p.error);
+        taken.emplace_back(c.x - 7, c.y - 7, 15, 15);
+    }
     for (const ChartPoint& p : panel.points) {
         const cv::Point c = axes.at(p.milliseconds, p.error);
         cv::circle(image, c, 6, colorOf(p.label), cv::FILLED, cv::LINE_AA);
         int baseline = 0;
-        const cv::Size size = cv::getTextSize(p.label, kFont, 0.42, 1, &baseline);
-        cv::Rect box(c.x + 9, c.y - size.height / 2 - 2, size.width, size.height + 4);
-        if (box.x + box.width > image.cols - 2)
-            box.x = c.x - 9 - size.width;
-        while (std::any_of(labels.begin(), labels.end(),
-                           [&](const cv::Rect& r) { return (r & box).area() > 0; }))
-            box.y += size.height + 2;
-        labels.push_back(box);
-        cv::putText(image, p.label, {box.x, box.y + size.height + 1}, kFont, 0.42, colorOf(p.label), 1,
+        const cv::Size text = cv::getTextSize(p.label, kFont, 0.42, 1, &baseline);
+        const cv::Rect box = placeLabel(c, text, taken, axes.area);
+        taken.push_back(box);
+        const cv::Point anchor(box.x < c.x ? box.x + box.width : box.x, box.y + box.height / 2);
+        if (std::abs(anchor.x - c.x) > 12 || std::abs(anchor.y - c.y) > 8)
+            cv::line(image, c, anchor, colorOf(p.label), 1, cv::LINE_AA);
+        cv::putText(image, p.label, {box.x, box.y + text.height + 1}, kFont, 0.42, colorOf(p.label), 1,
                     cv::LINE_AA);
     }
 }

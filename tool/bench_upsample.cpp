@@ -226,6 +226,7 @@ int runBenchUpsample(const BenchUpsampleOptions& options) {
     report["synthetic"] = rowsJson(synRows);
     report["arkitFrame"] = upsample::benchArkitFrame(options, synthetic);
     report["chain"] = upsample::benchChain(options);
+    report["effects"] = upsample::benchEffects(options);
     std::vector<Row> allRows = mbRows;
     allRows.insert(allRows.end(), synRows.begin(), synRows.end());
     report["dominance"] = checkDominance(allRows);

@@ -77,6 +77,8 @@ Status writeChart(const std::string& path, const std::vector<ChartPanel>& panels
 nlohmann::json benchArkitFrame(const BenchUpsampleOptions& options, const Problem& problem);
 // The whole processing chain per ARKit frame: confidence filter, smoothing, upsampling, cloud preparation.
 nlohmann::json benchChain(const BenchUpsampleOptions& options);
+// Cost of the fog and aura images on the ARKit frame, from sensor and from upsampled depth.
+nlohmann::json benchEffects(const BenchUpsampleOptions& options);
 // Temporal noise reduction and step lag of the smoothing at its default settings.
 nlohmann::json benchSmoothing(const BenchUpsampleOptions& options);
 

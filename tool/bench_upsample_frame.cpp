@@ -2,7 +2,9 @@
 // whole processing chain, and the temporal smoothing.
 
 #include "devices/synthetic_scene.h"
+#include "processing/aura.h"
 #include "processing/confidence_filter.h"
+#include "processing/fog.h"
 #include "processing/pipeline.h"
 #include "processing/quality.h"
 #include "processing/rolling_stats.h"
@@ -153,6 +155,27 @@ nlohmann::json benchChain(const BenchUpsampleOptions& options) {
             {"cpuMedianMs", cpu.median()},
             {"targetMs", kChainTargetMs},
             {"partsMedianMs", partsJson}};
+}
+
+nlohmann::json benchEffects(const BenchUpsampleOptions& options) {
+    const devices::FramePtr raw = syntheticFrames(options, 1).front();
+    processing::Pipeline pipeline = processing::makeDefaultPipeline();
+    processing::ProcessingSettings settings;
+    settings.upsampling = true;
+    const devices::FramePtr upsampled = pipeline.run(raw, settings, {});
+    const auto source = processing::DepthSource::Raw;
+    nlohmann::json out = nlohmann::json::object();
+    std::printf("\nfog and aura images (half the camera size), median of %d:\n", options.runs);
+    for (const auto& [name, frame] :
+         {std::pair{"sensor depth", raw}, std::pair{"upsampled depth", upsampled}}) {
+        const double fogMs =
+            medianMilliseconds(options.runs, [&] { processing::renderFog(*frame, {}, source); });
+        const double auraMs =
+            medianMilliseconds(options.runs, [&] { processing::renderAura(*frame, {}, source, 0.5); });
+        std::printf("  from %-16s fog %.2f ms, aura %.2f ms\n", name, fogMs, auraMs);
+        out[name] = {{"fogMs", fogMs}, {"auraMs", auraMs}};
+    }
+    return out;
 }
 
 nlohmann::json benchSmoothing(const BenchUpsampleOptions& options) {

@@ -4,6 +4,7 @@
 #include <GLFW/glfw3.h>
 
 #include "devices/image_io.h"
+#include "devices/live_device_watcher.h"
 #include "devices/log.h"
 #include "devices/source_spec.h"
 #include "tool/options.h"
@@ -60,6 +61,13 @@ struct ImGuiScope {
     bool glfwReady = false;
     bool glReady = false;
 };
+
+// Ctrl+Q quits. Handled as an event rather than polled through ImGui 1.86, whose key state misses a press
+// and release that both fall between two frames. ImGui's backend chains to this callback.
+void quitOnCtrlQ(GLFWwindow* window, int key, int, int action, int mods) {
+    if (key == GLFW_KEY_Q && action == GLFW_PRESS && (mods & GLFW_MOD_CONTROL))
+        glfwSetWindowShouldClose(window, GLFW_TRUE);
+}
 
 WindowPtr openWindow() {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
@@ -119,6 +127,15 @@ void drawFrame(GLFWwindow* window, ui::Viewer& viewer, double t) {
     viewer.recordUiMilliseconds(std::chrono::duration<double, std::milli>(Clock::now() - uiStart).count());
 }
 
+// The picker's "Cameras" entries: the depth-capable devices, each opened by its --source value.
+std::vector<ui::SourceEntry> cameraEntries(const devices::LiveDeviceListing& listing) {
+    std::vector<ui::SourceEntry> entries;
+    for (const devices::LiveDeviceInfo& d : listing.devices)
+        if (d.depthCapable())
+            entries.push_back({d.label(), d.sourceSpec});
+    return entries;
+}
+
 int writeOutputs(GLFWwindow* window, const ui::Viewer& viewer, const std::string& dir) {
     Status s = saveScreenshot(window, dir + "/screenshot.png");
     if (s)
@@ -150,6 +167,7 @@ int runGui(const ViewerOptions& options) {
                      "depthcloud: error: no OpenGL 3.3 context available for a window; use --headless\n");
         return kExitFailure;
     }
+    glfwSetKeyCallback(window.get(), quitOnCtrlQ);
     glfwMakeContextCurrent(window.get());
     glfwSwapInterval(1);
 
@@ -179,10 +197,15 @@ int runGui(const ViewerOptions& options) {
             std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
             return kExitFailure;
         }
+        devices::LiveDeviceWatcher cameras;
         const auto start = Clock::now();
-        for (int frame = 0; !glfwWindowShouldClose(window.get()); ++frame) {
+        for (int frame = 0;; ++frame) {
+            if (auto listing = cameras.takeUpdate())
+                viewer.setLiveSources(cameraEntries(*listing));
             drawFrame(window.get(), viewer, std::chrono::duration<double>(Clock::now() - start).count());
-            const bool last = options.frames && frame + 1 >= *options.frames;
+            // Closing the window ends the run like the last of --frames: --out still gets its files.
+            const bool last =
+                glfwWindowShouldClose(window.get()) || (options.frames && frame + 1 >= *options.frames);
             if (last && !options.outDirectory.empty())
                 status = writeOutputs(window.get(), viewer, options.outDirectory);
             glfwSwapBuffers(window.get());

@@ -8,17 +8,19 @@ std::string summaryJson(const ui::ViewerSummary& s, const std::string& renderer,
     nlohmann::json stages = nlohmann::json::object();
     for (const auto& t : s.stageMedians)
         stages[t.name] = t.milliseconds;
-    const nlohmann::json j{{"mode", mode},
-                           {"source", s.source},
-                           {"renderer", renderer},
-                           {"frames", s.framesShown},
-                           {"framesDropped", s.framesDropped},
-                           {"deviceFps", s.deviceFps},
-                           {"viewerFps", s.viewerFps},
-                           {"pointsDrawn", s.pointsDrawn},
-                           {"depthWidth", s.depthWidth},
-                           {"depthHeight", s.depthHeight},
-                           {"stageMedianMs", stages}};
+    nlohmann::json j{{"mode", mode},
+                     {"source", s.source},
+                     {"renderer", renderer},
+                     {"frames", s.framesShown},
+                     {"framesDropped", s.framesDropped},
+                     {"deviceFps", s.deviceFps},
+                     {"viewerFps", s.viewerFps},
+                     {"pointsDrawn", s.pointsDrawn},
+                     {"depthWidth", s.depthWidth},
+                     {"depthHeight", s.depthHeight},
+                     {"stageMedianMs", stages}};
+    // null, not 0, for a source whose timestamps are not comparable with the clock (a recording).
+    j["latencyMs"] = s.latencyMs ? nlohmann::json(*s.latencyMs) : nlohmann::json(nullptr);
     return j.dump(2) + "\n";
 }
 

@@ -139,6 +139,7 @@ struct StatusLine {
     std::uint64_t framesDropped = 0;
     std::uint64_t pointsDrawn = 0;
     std::vector<processing::StageTiming> stageMedians;
+    std::optional<double> latencyMs; // median device timestamp to screen; none when clocks differ
 };
 
 struct StageHistory {

@@ -17,6 +17,10 @@ float drawStatusBar(const StatusLine& s) {
                     s.source.c_str(), s.state.c_str(), s.deviceFps, s.viewerFps,
                     static_cast<unsigned long long>(s.framesDropped),
                     static_cast<unsigned long long>(s.pointsDrawn));
+        if (s.latencyMs) {
+            ImGui::SameLine();
+            ImGui::Text("| latency %.1f ms", *s.latencyMs);
+        }
         for (const auto& stage : s.stageMedians) {
             ImGui::SameLine();
             ImGui::TextDisabled("| %s %.2f ms", stage.name.c_str(), stage.milliseconds);

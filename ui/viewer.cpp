@@ -295,10 +295,12 @@ void Viewer::acceptFrame(devices::FramePtr frame) {
     renderEffects(ImGui::GetCurrentContext() ? ImGui::GetTime() : 0.0);
     countPoints();
     accumulate();
-    // Live sources stamp frames with the monotonic clock; a recording's own clock gives no latency.
-    const double latency = static_cast<double>(devices::monotonicNowNs() - frame_->timestampNs) * 1e-6;
-    if (latency >= 0.0 && latency < 10'000.0)
-        latencyMs_.add(latency);
+    // Only sources stamping frames with the monotonic clock have a latency; a recording's clock has none.
+    if (session_->capabilities().monotonicTimestamps) {
+        const double latency = static_cast<double>(devices::monotonicNowNs() - frame_->timestampNs) * 1e-6;
+        if (latency >= 0.0)
+            latencyMs_.add(latency);
+    }
 }
 
 void Viewer::countPoints() {
@@ -459,9 +461,12 @@ StatusLine Viewer::statusLine() const {
                     updates_.perSecond(),
                     stats.framesDropped,
                     pointsDrawn_,
-                    {}};
+                    {},
+                    std::nullopt};
     for (const auto& [name, samples] : stages_)
         line.stageMedians.push_back({name, samples.median()});
+    if (latencyMs_.count() > 0)
+        line.latencyMs = latencyMs_.median();
     return line;
 }
 
@@ -495,7 +500,8 @@ ViewerSummary Viewer::summary() const {
                     line.pointsDrawn,
                     0,
                     0,
-                    line.stageMedians};
+                    line.stageMedians,
+                    line.latencyMs};
     if (const devices::DepthData* depth = shownDepth()) {
         s.depthWidth = depth->depthMeters.width;
         s.depthHeight = depth->depthMeters.height;

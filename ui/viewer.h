@@ -34,6 +34,7 @@ struct ViewerSummary {
     int depthWidth = 0;
     int depthHeight = 0;
     std::vector<processing::StageTiming> stageMedians;
+    std::optional<double> latencyMs; // device timestamp to screen, median; none for recordings
 };
 
 // The viewer's engine: one session, the processing pipeline, the frame's textures and a render target per

@@ -45,6 +45,7 @@ void Viewer::placePanel(const char* title, float x, float y, float w, float h) {
         ImGui::SetNextWindowPos(workOrigin_, ImGuiCond_Always);
         ImGui::SetNextWindowSize(workSize_, ImGuiCond_Always);
         ImGui::SetNextWindowFocus();
+        ImGui::SetNextWindowBgAlpha(1.0f); // the panels behind must not show through
         return;
     }
     if (restoring_ == title) {

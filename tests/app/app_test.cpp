@@ -5,12 +5,15 @@
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
+#include <vector>
 
 namespace {
 
@@ -79,6 +82,9 @@ TEST(AppHeadless, WritesEveryPanelAndASummary) {
     EXPECT_GT(summary["deviceFps"].get<double>(), 1.0);
     EXPECT_TRUE(summary["stageMedianMs"].contains("cloud"));
     EXPECT_EQ(summary["depthWidth"], 256);
+    // The synthetic source stamps frames with the monotonic clock, so device-to-screen latency is known.
+    ASSERT_TRUE(summary["latencyMs"].is_number()) << summary.dump();
+    EXPECT_GT(summary["latencyMs"].get<double>(), 0.0);
 }
 
 TEST(AppHeadless, ConfidenceFlagRemovesPoints) {
@@ -142,6 +148,58 @@ cv::Mat region(const cv::Mat& image, double x0, double y0, double x1, double y1)
                           static_cast<int>((y1 - y0) * image.rows)));
 }
 
+// The jet colormap as its formula: the legend strip is drawn from the same piecewise-linear map.
+cv::Vec3f jet(float f) {
+    const auto ramp = [&](float centre) {
+        return std::clamp(1.5f - std::abs(4.0f * f - centre), 0.0f, 1.0f);
+    };
+    return {ramp(1.0f) * 255.0f, ramp(2.0f) * 255.0f, ramp(3.0f) * 255.0f}; // B, G, R as OpenCV stores them
+}
+
+// Where a pixel lies along the jet map (0..1), or -1 when it is not a jet colour; looked up in a table of
+// 32 levels per channel, filled once.
+float jetPosition(const cv::Vec3b& pixel) {
+    constexpr int kLevels = 32, kStep = 256 / kLevels, kSamples = 256;
+    static const std::vector<float> table = [] {
+        std::vector<float> t(kLevels * kLevels * kLevels, -1.0f);
+        for (std::size_t i = 0; i < t.size(); ++i) {
+            const cv::Vec3f colour((i / (kLevels * kLevels) + 0.5f) * kStep,
+                                   (i / kLevels % kLevels + 0.5f) * kStep, (i % kLevels + 0.5f) * kStep);
+            float bestDistance = 30.0f;
+            for (int s = 0; s < kSamples; ++s) {
+                const float f = static_cast<float>(s) / (kSamples - 1);
+                const float d = static_cast<float>(cv::norm(colour - jet(f)));
+                if (d < bestDistance)
+                    bestDistance = d, t[i] = f;
+            }
+        }
+        return t;
+    }();
+    return table[(pixel[0] / kStep * kLevels + pixel[1] / kStep) * kLevels + pixel[2] / kStep];
+}
+
+// The longest horizontal run of pixels that walks the whole jet map from its blue end to its red end in
+// order: the depth legend. Depth images are jet-coloured too, but never a full monotonic sweep.
+int longestJetLegend(const cv::Mat& image) {
+    int longest = 0;
+    for (int y = 0; y < image.rows; ++y) {
+        int start = -1;
+        float previous = -1.0f, first = -1.0f;
+        for (int x = 0; x <= image.cols; ++x) {
+            const float f = x < image.cols ? jetPosition(image.at<cv::Vec3b>(y, x)) : -1.0f;
+            const bool continues = start >= 0 && f >= 0.0f && f >= previous - 0.02f;
+            if (!continues) {
+                if (start >= 0 && first < 0.05f && previous > 0.95f)
+                    longest = std::max(longest, x - start);
+                start = f >= 0.0f ? x : -1;
+                first = f;
+            }
+            previous = f;
+        }
+    }
+    return longest;
+}
+
 TEST(AppWindow, RunsUnderXvfbAndShowsCloudDepthAndConfidence) {
     TempDir out, home;
     const RunResult r = run("XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1280x800x24' " +
@@ -156,7 +214,39 @@ TEST(AppWindow, RunsUnderXvfbAndShowsCloudDepthAndConfidence) {
     EXPECT_GT(contrast(region(shot, 0.76, 0.08, 0.98, 0.25)), 15.0) << "the depth panel shows depth";
     const cv::Mat confidence = region(shot, 0.76, 0.4, 0.98, 0.58);
     EXPECT_GT(contrast(confidence), 15.0) << "the confidence panel shows levels";
+    EXPECT_GT(longestJetLegend(shot), shot.cols / 8) << "the depth panel shows its colormap legend";
     EXPECT_TRUE(fs::exists(home.str() + "/depthcloud/settings.json")) << "settings are saved on exit";
+}
+
+// Real X input through xdotool: a click on the depth panel zooms it over the window, P saves a snapshot,
+// Ctrl+Q quits, and the screenshot written at exit shows the zoomed panel with its full-width legend.
+TEST(AppWindow, ClicksAndKeysGoThroughTheRealWindow) {
+    TempDir out, home, work;
+    const std::string script = work.str() + "/drive.sh";
+    std::ofstream(script)
+        << "cd " << work.str() << "\n"
+        << binary() << " --out " << out.str() << " &\n"
+        << "app=$!\n"
+        << "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\n"
+        << "sleep 3\n"
+        << "xdotool mousemove --window \"$w\" 1113 119 click 1\n"
+        << "sleep 2\n"
+        << "xdotool windowfocus --sync \"$w\" keydown p sleep 0.3 keyup p\n"
+        << "sleep 2\n"
+        << "xdotool mousemove --window \"$w\" 640 300 key ctrl+q\n"
+        << "wait $app\n";
+    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
+                            " timeout 180 xvfb-run -a -s '-screen 0 1280x800x24' sh " + script);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    ASSERT_FALSE(shot.empty()) << "Ctrl+Q ends the run like --frames: the screenshot is written";
+    EXPECT_GT(longestJetLegend(shot), shot.cols * 6 / 10) << "the zoomed depth panel spans the window";
+    EXPECT_GT(contrast(region(shot, 0.3, 0.2, 0.7, 0.7)), 15.0) << "the zoomed panel shows depth";
+    bool snapshot = false;
+    for (const auto& e : fs::recursive_directory_iterator(work.str() + "/depthcloud-snapshots"))
+        snapshot = snapshot ||
+                   (e.path().filename() == "cloud.ply" && fs::exists(e.path().parent_path() / "depth.png"));
+    EXPECT_TRUE(snapshot) << "P saved the panels and the cloud";
 }
 
 } // namespace

@@ -4,11 +4,15 @@
 #include "devices/source_spec.h"
 #include "ui_fixture.h"
 
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <vector>
 
 namespace dc::ui::test {
 namespace {
@@ -110,11 +114,20 @@ TEST_F(TimelineTest, TheTimelineButtonsDriveTheReplay) {
 TEST_F(TimelineTest, ExportFromTheUiWritesWhatTheCliWrites) {
     const fs::path ui = dir_ / "ui", cli = dir_ / "cli";
     ASSERT_TRUE(viewer_->startExport(exporting::ExportFormat::Ply, ui.string(), 4, 9).ok());
+    // The UI keeps drawing while the export runs on its worker: count and time the frames drawn meanwhile.
+    std::vector<double> frameMs;
     for (int i = 0; i < 600 && !viewer_->exportJob()->finished(); ++i) {
+        const auto start = std::chrono::steady_clock::now();
         viewer_->update(0.0, std::chrono::milliseconds(10));
-        frame(0.0); // the UI keeps drawing while the export runs
+        frame(0.0);
+        frameMs.push_back(
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count());
     }
     ASSERT_TRUE(viewer_->exportJob()->finished());
+    ASSERT_FALSE(frameMs.empty()) << "the export blocked the UI: it was finished before a frame was drawn";
+    std::sort(frameMs.begin(), frameMs.end());
+    std::printf("UI frames during the export: %zu, median %.1f ms, max %.1f ms\n", frameMs.size(),
+                frameMs[frameMs.size() / 2], frameMs.back());
     const auto result = viewer_->exportJob()->result();
     ASSERT_TRUE(result && result->ok()) << (result ? result->error().message : "no result");
     EXPECT_EQ((*result)->framesWritten, 5u);

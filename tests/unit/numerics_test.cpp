@@ -38,28 +38,33 @@ DepthData hostileDepth(int w, int h) {
     return d;
 }
 
-void expectUsable(const std::optional<DepthData>& d) {
-    ASSERT_TRUE(d);
-    for (float v : d->depthMeters.pixels)
+void expectUsable(const DepthData& d) {
+    for (float v : d.depthMeters.pixels)
         ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << v;
 }
 
+// Every stage's output (smoothing and upsampling of the shown map, fog, aura) for both shown maps and both
+// upsampling methods. The map that is not shown passes through unprocessed, as the source delivered it.
 void runEverything(const devices::FramePtr& frame) {
-    for (UpsamplingMethod method : {UpsamplingMethod::Full, UpsamplingMethod::Fast}) {
-        Pipeline pipeline = makeDefaultPipeline();
-        ProcessingSettings settings;
-        settings.smoothing = settings.upsampling = true;
-        settings.upsamplingParams.method = method;
-        for (int i = 0; i < 3; ++i) {
-            auto f = std::make_shared<devices::Frame>(*frame);
-            f->timestampNs = i * 16'000'000;
-            const devices::FramePtr out = pipeline.run(f, settings, {});
-            expectUsable(out->sceneDepth);
-            expectUsable(out->smoothedSceneDepth);
-            EXPECT_FALSE(renderFog(*out, {}, DepthSource::Smoothed).empty());
-            EXPECT_FALSE(renderAura(*out, {}, DepthSource::Smoothed, i / 60.0).empty());
+    for (DepthSource source : {DepthSource::Smoothed, DepthSource::Raw})
+        for (UpsamplingMethod method : {UpsamplingMethod::Full, UpsamplingMethod::Fast}) {
+            Pipeline pipeline = makeDefaultPipeline();
+            ProcessingSettings settings;
+            settings.smoothing = settings.upsampling = true;
+            settings.depthSource = source;
+            settings.upsamplingParams.method = method;
+            for (int i = 0; i < 3; ++i) {
+                auto f = std::make_shared<devices::Frame>(*frame);
+                f->timestampNs = i * 16'000'000;
+                const devices::FramePtr out = pipeline.run(f, settings, {});
+                const DepthData* shown = shownDepth(*out, source);
+                ASSERT_NE(shown, nullptr);
+                expectUsable(*shown);
+                EXPECT_EQ(showsSmoothed(*out, source), source == DepthSource::Smoothed);
+                EXPECT_FALSE(renderFog(*out, {}, source).empty());
+                EXPECT_FALSE(renderAura(*out, {}, source, i / 60.0).empty());
+            }
         }
-    }
 }
 
 TEST(Numerics, HostileDepthNeverBecomesNonFiniteOutput) {

@@ -135,7 +135,8 @@ check_headless() {
 	ls -l /host/tmp/headless 2>&1 | sed 's/^/  headless: /'
 	sed 's/^/  summary.json: /' /host/tmp/headless/summary.json 2>/dev/null
 	if [ $rc = 0 ] && [ -s /host/tmp/headless/cloud.png ] && [ -s /host/tmp/headless/depth.png ] &&
-		grep -q '"frames": 3' /host/tmp/headless/summary.json && grep -q '"depthWidth": 640' /host/tmp/headless/summary.json
+		grep -q '"frames": 3' /host/tmp/headless/summary.json && grep -q '"depthWidth": 640' /host/tmp/headless/summary.json &&
+		grep -q '"latencyMs": [0-9]' /host/tmp/headless/summary.json
 	then result headless-usb PASS; else result headless-usb FAIL; fi
 }
 
