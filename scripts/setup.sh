@@ -11,7 +11,7 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     libcli11-dev nlohmann-json3-dev
     libzstd-dev libxxhash-dev clang libclang-rt-14-dev
-    xvfb xauth xdotool
+    xvfb xauth xdotool python3-open3d
     qemu-system-x86 busybox-static cpio kmod v4l-utils xz-utils patch
 )
 

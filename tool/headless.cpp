@@ -1,5 +1,6 @@
 #include "devices/image_io.h"
 #include "devices/log.h"
+#include "devices/replay/replay_device.h"
 #include "devices/source_spec.h"
 #include "render/gl_context.h"
 #include "tool/options.h"
@@ -25,6 +26,24 @@ int fail(const std::string& message) {
     return kExitFailure;
 }
 
+bool replayEnded(const ui::Viewer& viewer) {
+    const auto& replay = viewer.replayControl();
+    return replay && replay->status().atEnd && !replay->status().loop;
+}
+
+// Waits up to kFrameTimeout for the next frame, in short slices so that the end of a recording is noticed
+// at once rather than after the whole timeout.
+bool waitForFrame(ui::Viewer& viewer, double timeSeconds) {
+    constexpr std::chrono::milliseconds kSlice{50};
+    for (auto waited = std::chrono::milliseconds(0); waited < kFrameTimeout; waited += kSlice) {
+        if (viewer.update(timeSeconds, kSlice))
+            return true;
+        if (replayEnded(viewer)) // the last frame may have arrived just before the end was flagged
+            return viewer.update(timeSeconds, std::chrono::milliseconds(0));
+    }
+    return false;
+}
+
 } // namespace
 
 int runHeadless(const ViewerOptions& options) {
@@ -48,10 +67,15 @@ int runHeadless(const ViewerOptions& options) {
     const int frames = options.frames.value_or(60);
     int shown = 0;
     while (shown < frames) {
-        const double t = shown * kHeadlessFrameSeconds;
-        if (viewer.update(t, std::chrono::duration_cast<std::chrono::milliseconds>(kFrameTimeout))) {
+        if (waitForFrame(viewer, shown * kHeadlessFrameSeconds)) {
             ++shown;
             continue;
+        }
+        if (replayEnded(viewer) && shown > 0) {
+            std::fprintf(stderr,
+                         "depthcloud: note: the recording ended after %d frames (--frames asked for %d)\n",
+                         shown, frames);
+            break;
         }
         return fail("no frame from " + viewer.statusLine().source + " within " +
                     std::to_string(kFrameTimeout.count()) + " s" +

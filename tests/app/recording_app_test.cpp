@@ -10,6 +10,8 @@
 #include <fcntl.h>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <regex>
 #include <sstream>
 #include <sys/wait.h>
 #include <thread>
@@ -71,6 +73,21 @@ TEST_F(RecordingApp, RecordsExportsAndReplaysThroughTheViewer) {
         run("--headless --frames 5 --source replay:" + path("a.dcrec") + " --out " + path("snap"));
     ASSERT_EQ(viewer.exitCode, 0) << viewer.output;
     EXPECT_TRUE(fs::exists(path("snap/cloud.png")));
+
+    // Asking for more frames than the recording has: the run ends with a note at the recording's end
+    // (frames replaced in the latest-wins mailbox by a slow consumer are not shown, so at most 20).
+    const RunResult beyond =
+        run("--headless --frames 50 --source replay:" + path("a.dcrec") + " --out " + path("all"));
+    ASSERT_EQ(beyond.exitCode, 0) << beyond.output;
+    std::smatch ended;
+    ASSERT_TRUE(
+        std::regex_search(beyond.output, ended, std::regex("the recording ended after ([0-9]+) frames")))
+        << beyond.output;
+    EXPECT_LE(std::stoi(ended[1]), 20);
+    std::ifstream summary(path("all/summary.json"));
+    const std::string text{std::istreambuf_iterator<char>(summary), {}};
+    EXPECT_NE(text.find("\"frames\": " + ended[1].str() + ","), std::string::npos) << text;
+    EXPECT_NE(text.find("\"latencyMs\": null"), std::string::npos) << "a recording's clock gives no latency";
 }
 
 TEST_F(RecordingApp, RefusesToOverwriteUnlessAsked) {

@@ -9,6 +9,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <sstream>
 
@@ -96,6 +97,37 @@ TEST_F(Export, PlyPerFrameParsesBackToTheCloudOfThatFrame) {
         EXPECT_EQ(ply.points[i].g, expected[i].g);
         EXPECT_EQ(ply.points[i].confidence, expected[i].confidence);
     }
+}
+
+std::string readText(const std::string& path) {
+    const auto bytes = test::readBytes(path);
+    return {bytes.begin(), bytes.end()};
+}
+
+// Open3D (Debian's python3-open3d for Debian's /usr/bin/python3, installed by scripts/setup.sh) reads what CloudCompare and other tools
+// will read: the same points with the same colours.
+TEST_F(Export, OpenThreeDLoadsThePly) {
+    ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Ply, dir_.path("o3d"), {3, 4}, false}));
+    const std::string ply = dir_.path("o3d/000003.ply"), out = dir_.path("o3d.txt");
+    const std::string command =
+        "/usr/bin/python3 -c 'import sys, open3d as o3d; p = o3d.io.read_point_cloud(sys.argv[1]); "
+        "print(len(p.points)); print(*p.points[41]); print(*p.colors[41])' " +
+        ply + " > " + out + " 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << readText(out);
+    std::istringstream read(readText(out));
+    std::size_t count = 0;
+    double x = 0, y = 0, z = 0, r = 0, g = 0, b = 0;
+    read >> count >> x >> y >> z >> r >> g >> b;
+    ASSERT_TRUE(read) << readText(out);
+    const auto expected = processing::buildPointCloud(*frames_[3], devices::Confidence::Low, 0.0f);
+    ASSERT_EQ(count, expected.size());
+    const auto& p = expected[41];
+    EXPECT_FLOAT_EQ(static_cast<float>(x), p.x);
+    EXPECT_FLOAT_EQ(static_cast<float>(y), p.y);
+    EXPECT_FLOAT_EQ(static_cast<float>(z), p.z);
+    EXPECT_NEAR(r * 255.0, p.r, 1e-3);
+    EXPECT_NEAR(g * 255.0, p.g, 1e-3);
+    EXPECT_NEAR(b * 255.0, p.b, 1e-3);
 }
 
 TEST_F(Export, PlyInWorldCoordinatesAppliesThePose) {
