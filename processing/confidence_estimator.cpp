@@ -1,5 +1,7 @@
 #include "processing/confidence_estimator.h"
 
+#include "processing/parallel.h"
+
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -82,15 +84,10 @@ void classifyRow(const float* depth, const float* before, const RowSums* const r
     }
 }
 
-} // namespace
-
-devices::Plane<std::uint8_t> estimateConfidence(const devices::Plane<float>& depth,
-                                                const devices::Plane<float>* previous,
-                                                const ConfidenceEstimatorParams& params) {
-    devices::Plane<std::uint8_t> out(depth.width, depth.height, static_cast<std::uint8_t>(Confidence::Low));
-    if (depth.empty())
-        return out;
-    const bool temporal = previous && previous->width == depth.width && previous->height == depth.height;
+// Levels of rows [begin, end); each band keeps its own ring of horizontal sums, so bands run in parallel.
+void estimateRows(const devices::Plane<float>& depth, const devices::Plane<float>* previous,
+                  const ConfidenceEstimatorParams& params, int begin, int end,
+                  devices::Plane<std::uint8_t>& out) {
     const int w = depth.width;
     const auto rowOf = [&](const devices::Plane<float>& plane, int y) {
         return &plane.pixels[static_cast<std::size_t>(y) * w];
@@ -107,12 +104,27 @@ devices::Plane<std::uint8_t> estimateConfidence(const devices::Plane<float>& dep
         }
         return &slot;
     };
-    for (int y = 0; y < depth.height; ++y) {
+    for (int y = begin; y < end; ++y) {
         const RowSums* rows[3] = {sumsOf(mirror(y - 1, depth.height)), sumsOf(y),
                                   sumsOf(mirror(y + 1, depth.height))};
-        classifyRow(rowOf(depth, y), temporal ? rowOf(*previous, y) : nullptr, rows, w, params,
+        classifyRow(rowOf(depth, y), previous ? rowOf(*previous, y) : nullptr, rows, w, params,
                     &out.pixels[static_cast<std::size_t>(y) * w]);
     }
+}
+
+} // namespace
+
+devices::Plane<std::uint8_t> estimateConfidence(const devices::Plane<float>& depth,
+                                                const devices::Plane<float>* previous,
+                                                const ConfidenceEstimatorParams& params) {
+    devices::Plane<std::uint8_t> out(depth.width, depth.height, static_cast<std::uint8_t>(Confidence::Low));
+    if (depth.empty())
+        return out;
+    const bool temporal = previous && previous->width == depth.width && previous->height == depth.height;
+    constexpr int kMinRowsPerBand = 32;
+    parallelRanges(depth.height, kMinRowsPerBand, [&](int begin, int end) {
+        estimateRows(depth, temporal ? previous : nullptr, params, begin, end, out);
+    });
     return out;
 }
 

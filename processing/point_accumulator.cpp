@@ -2,15 +2,28 @@
 
 #include "devices/color.h"
 #include "processing/confidence_filter.h"
+#include "processing/parallel.h"
 #include "processing/point_cloud.h"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstdlib>
+#include <new>
+
+#include <sys/mman.h>
 
 namespace dc::processing {
 
 namespace {
+
+// Candidates whose memory is requested together: enough misses in flight to hide memory latency, few
+// enough that the lines stay in the first-level cache until they are used.
+constexpr std::size_t kChunk = 256;
+// Depth rows per thread below which gathering runs on one thread.
+constexpr int kMinRowsPerThread = 32;
+constexpr std::size_t kInitialTable = 4096;
+constexpr std::uint64_t kCellMask = 0x1fffff;
 
 std::uint32_t packRgba(const devices::Rgb& c) {
     return static_cast<std::uint32_t>(devices::toByte(c.r)) |
@@ -30,7 +43,108 @@ std::array<float, 12> rowMajor(const devices::Pose& pose) {
     return r;
 }
 
+// MurmurHash3's finaliser. The blocks of a surface form a lattice of keys, which a plain multiplicative
+// hash maps onto long probe runs.
+std::uint64_t mix(std::uint64_t k) {
+    k ^= k >> 33;
+    k *= 0xff51afd7ed558ccdull;
+    k ^= k >> 33;
+    k *= 0xc4ceb9fe1a85ec53ull;
+    return k ^ (k >> 33);
+}
+
+// A voxel's cell along one axis: 21 bits, offset so that +-1 km at 1 mm stays in range; points beyond
+// wrap harmlessly.
+std::uint64_t cellOf(float v, float voxelMeters) {
+    constexpr std::int64_t kOffset = 1 << 20;
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / voxelMeters)) + kOffset) &
+           kCellMask;
+}
+
+devices::CapturedImage tinyImage(devices::PixelFormat format, int width, std::vector<std::uint8_t> bytes) {
+    return {format, width, 1, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
+}
+
 } // namespace
+
+template <class T> T* HugePageAllocator<T>::allocate(std::size_t n) {
+    constexpr std::size_t kHugePage = std::size_t{2} << 20;
+    const std::size_t bytes = n * sizeof(T);
+    if (bytes < kHugePage)
+        return std::allocator<T>().allocate(n);
+    void* p = std::aligned_alloc(kHugePage, (bytes + kHugePage - 1) / kHugePage * kHugePage);
+    if (!p)
+        throw std::bad_alloc();
+    madvise(p, bytes, MADV_HUGEPAGE); // only advice: without huge pages the memory works the same
+    return static_cast<T*>(p);
+}
+
+template <class T> void HugePageAllocator<T>::deallocate(T* p, std::size_t n) {
+    if (n * sizeof(T) < (std::size_t{2} << 20))
+        std::allocator<T>().deallocate(p, n);
+    else
+        std::free(p);
+}
+
+CameraColourTable::CameraColourTable()
+    : ycbcr_(new std::uint32_t[std::size_t{1} << 24]), pairsFilled_((std::size_t{1} << 16) / 64) {
+    for (int v = 0; v < 256; ++v) {
+        const auto b = static_cast<std::uint8_t>(v);
+        rgbByte_[static_cast<std::size_t>(v)] =
+            packRgba(devices::pixelRgb(tinyImage(devices::PixelFormat::Rgb24, 1, {b, b, b}), 0, 0)) & 0xffu;
+    }
+}
+
+bool CameraColourTable::use(const devices::CapturedImage& image) {
+    if (image.empty() || image.width <= 0 || image.height <= 0 ||
+        image.bytes->size() < devices::CapturedImage::byteSize(image.format, image.width, image.height))
+        return false;
+    bytes_ = image.bytes->data();
+    format_ = image.format;
+    width_ = static_cast<std::size_t>(image.width);
+    height_ = static_cast<std::size_t>(image.height);
+    return true;
+}
+
+// The same addressing as devices::pixelRgb; the conversion itself is pixelRgb's, through the table.
+std::uint32_t CameraColourTable::rgba(int xi, int yi) {
+    const auto x = static_cast<std::size_t>(xi), y = static_cast<std::size_t>(yi);
+    switch (format_) {
+    case devices::PixelFormat::Nv12: {
+        const std::uint8_t* chroma = bytes_ + width_ * height_ + ((y / 2) * ((width_ + 1) / 2) + x / 2) * 2;
+        return ycbcr(bytes_[y * width_ + x], chroma[0], chroma[1]);
+    }
+    case devices::PixelFormat::Yuyv: {
+        const std::uint8_t* pair = bytes_ + y * 4 * ((width_ + 1) / 2) + (x / 2) * 4;
+        return ycbcr(pair[(x & 1) * 2], pair[1], pair[3]);
+    }
+    case devices::PixelFormat::Rgb24: {
+        const std::uint8_t* p = bytes_ + (y * width_ + x) * 3;
+        return rgbByte_[p[0]] | rgbByte_[p[1]] << 8 | rgbByte_[p[2]] << 16 | 0xff000000u;
+    }
+    }
+    return 0xff808080u;
+}
+
+std::uint32_t CameraColourTable::ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr) {
+    const std::uint32_t pair = static_cast<std::uint32_t>(cb) << 8 | cr;
+    if (!(pairsFilled_[pair / 64] >> (pair % 64) & 1))
+        fillPair(pair);
+    return ycbcr_[std::size_t{pair} << 8 | y];
+}
+
+// pixelRgb of a 2x1 NV12 image for each luma, so the table holds exactly what pixelRgb computes.
+void CameraColourTable::fillPair(std::uint32_t pair) {
+    auto bytes = std::make_shared<std::vector<std::uint8_t>>(4);
+    (*bytes)[2] = static_cast<std::uint8_t>(pair >> 8);
+    (*bytes)[3] = static_cast<std::uint8_t>(pair & 0xff);
+    const devices::CapturedImage image{devices::PixelFormat::Nv12, 2, 1, bytes};
+    for (std::uint32_t y = 0; y < 256; ++y) {
+        (*bytes)[0] = static_cast<std::uint8_t>(y);
+        ycbcr_[std::size_t{pair} << 8 | y] = packRgba(devices::pixelRgb(image, 0, 0));
+    }
+    pairsFilled_[pair / 64] |= std::uint64_t{1} << (pair % 64);
+}
 
 PointAccumulator::PointAccumulator(std::size_t budget, float voxelMeters) : voxelMeters_(voxelMeters) {
     configure(budget, voxelMeters);
@@ -44,79 +158,190 @@ void PointAccumulator::configure(std::size_t budget, float voxelMeters) {
         return;
     voxelMeters_ = voxelMeters;
     points_.assign(budget, {});
-    pointKeys_.assign(budget, kEmpty);
-    keys_.assign(std::bit_ceil(budget * 2), kEmpty);
-    slotOf_.assign(keys_.size(), 0);
+    slotVoxels_.assign(budget, kEmpty);
+    resetBlocks();
     next_ = count_ = dirtyBegin_ = dirtyCount_ = 0;
     ++generation_;
 }
 
 void PointAccumulator::clear() {
-    std::fill(pointKeys_.begin(), pointKeys_.end(), kEmpty);
-    std::fill(keys_.begin(), keys_.end(), kEmpty);
+    std::fill(slotVoxels_.begin(), slotVoxels_.end(), kEmpty);
+    resetBlocks();
     next_ = count_ = dirtyBegin_ = dirtyCount_ = 0;
     ++generation_;
 }
 
-// 21 bits per axis, offset so that +-5 km at 5 mm stays in range; points beyond wrap harmlessly.
-std::uint64_t PointAccumulator::voxelKey(float x, float y, float z) const {
-    constexpr std::int64_t kOffset = 1 << 20;
-    const auto cell = [&](float v) {
-        return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(v / voxelMeters_)) + kOffset) &
-               0x1fffffu;
-    };
-    return cell(x) | cell(y) << 21 | cell(z) << 42;
+void PointAccumulator::resetBlocks() {
+    table_.assign(kInitialTable, TableEntry{});
+    tableShift_ = 64 - std::countr_zero(kInitialTable);
+    tableCount_ = 0;
+    pool_.clear();
+    poolKeys_.clear();
+    freeBlocks_.clear();
 }
 
-std::size_t PointAccumulator::bucketOf(std::uint64_t key) const {
-    // Fibonacci hashing spreads neighbouring voxels over the table.
-    return static_cast<std::size_t>((key * 0x9e3779b97f4a7c15ull) >> (64 - std::countr_zero(keys_.size())));
+std::size_t PointAccumulator::homeOf(std::uint64_t blockKey) const {
+    return homeOfHash(mix(blockKey));
 }
 
-std::size_t PointAccumulator::find(std::uint64_t key) const {
-    const std::size_t mask = keys_.size() - 1;
-    std::size_t i = bucketOf(key);
-    while (keys_[i] != kEmpty && keys_[i] != key)
+std::size_t PointAccumulator::findEntry(std::uint64_t blockKey, std::size_t home) const {
+    const std::size_t mask = table_.size() - 1;
+    std::size_t i = home;
+    while (table_[i].key != kEmpty && table_[i].key != blockKey)
         i = (i + 1) & mask;
     return i;
 }
 
+// Takes a block from the pool for `blockKey`, entered at the empty table entry `at`; returns its index.
+std::uint32_t PointAccumulator::addBlock(std::size_t at, std::uint64_t blockKey) {
+    std::uint32_t block = 0;
+    if (freeBlocks_.empty()) {
+        block = static_cast<std::uint32_t>(pool_.size());
+        pool_.emplace_back();
+        poolKeys_.push_back(blockKey);
+    } else {
+        block = freeBlocks_.back();
+        freeBlocks_.pop_back();
+        poolKeys_[block] = blockKey;
+    }
+    table_[at] = {blockKey, block};
+    if (++tableCount_ * 2 <= table_.size())
+        return block;
+    // Keep the table at most half full, so that probe runs stay short.
+    decltype(table_) old(table_.size() * 2);
+    old.swap(table_);
+    tableShift_ -= 1;
+    for (const TableEntry& e : old)
+        if (e.key != kEmpty)
+            table_[findEntry(e.key, homeOf(e.key))] = e;
+    return block;
+}
+
 // Linear-probing deletion by backward shift: later entries of the same probe run move up, so lookups
 // never stop early at a hole.
-void PointAccumulator::erase(std::uint64_t key) {
-    const std::size_t mask = keys_.size() - 1;
-    std::size_t hole = find(key);
-    if (keys_[hole] == kEmpty)
-        return;
+void PointAccumulator::eraseEntry(std::size_t hole) {
+    const std::size_t mask = table_.size() - 1;
     std::size_t i = hole;
     while (true) {
         i = (i + 1) & mask;
-        if (keys_[i] == kEmpty)
+        if (table_[i].key == kEmpty)
             break;
-        const std::size_t home = bucketOf(keys_[i]);
+        const std::size_t home = homeOf(table_[i].key);
         // Move the entry into the hole unless its home lies cyclically in (hole, i].
         const bool homeBetween = hole <= i ? (home > hole && home <= i) : (home > hole || home <= i);
         if (!homeBetween) {
-            keys_[hole] = keys_[i];
-            slotOf_[hole] = slotOf_[i];
+            table_[hole] = table_[i];
             hole = i;
         }
     }
-    keys_[hole] = kEmpty;
+    table_[hole] = TableEntry{};
+    --tableCount_;
 }
 
-void PointAccumulator::store(const WorldPoint& point, std::uint64_t key) {
-    if (pointKeys_[next_] != kEmpty)
-        erase(pointKeys_[next_]); // the oldest point leaves
-    const std::size_t bucket = find(key);
-    keys_[bucket] = key;
-    slotOf_[bucket] = static_cast<std::uint32_t>(next_);
-    pointKeys_[next_] = key;
+// Frees the oldest slot's voxel; true if that emptied its block, which then left the table.
+bool PointAccumulator::evictOldest() {
+    const std::uint64_t voxel = slotVoxels_[next_];
+    if (voxel == kEmpty)
+        return false;
+    const auto block = static_cast<std::uint32_t>(voxel >> 9);
+    auto& bits = pool_[block].bits;
+    bits[voxel >> 6 & 7] &= ~(std::uint64_t{1} << (voxel & 63));
+    if (std::any_of(bits.begin(), bits.end(), [](std::uint64_t w) { return w != 0; }))
+        return false;
+    eraseEntry(findEntry(poolKeys_[block], homeOf(poolKeys_[block])));
+    freeBlocks_.push_back(block);
+    return true;
+}
+
+// Row v's samples as candidates at out[0, width): kept ones in world coordinates with their voxel, the
+// others marked unkept. Touches nothing else, so rows may run on several threads.
+void PointAccumulator::gatherRow(const devices::Frame& frame, const std::array<float, 12>& m, int v,
+                                 devices::Confidence minLevel, float nearMeters, Candidate* out) const {
+    const devices::DepthData& depth = *frame.sceneDepth;
+    const devices::Intrinsics k = frame.depthIntrinsics();
+    for (int u = 0; u < depth.depthMeters.width; ++u) {
+        Candidate& c = out[u];
+        const float z = depth.depthMeters.at(u, v);
+        const std::uint8_t conf = depth.confidence.empty() ? 2 : depth.confidence.at(u, v);
+        c.kept = keepSample(z, conf, minLevel, nearMeters);
+        if (!c.kept)
+            continue;
+        const auto [x, y, zz] = unproject(u, v, z, k);
+        c.point = {m[0] * x + m[1] * y + m[2] * zz + m[3], m[4] * x + m[5] * y + m[6] * zz + m[7],
+                   m[8] * x + m[9] * y + m[10] * zz + m[11], 0};
+        const std::uint64_t cx = cellOf(c.point.x, voxelMeters_), cy = cellOf(c.point.y, voxelMeters_),
+                            cz = cellOf(c.point.z, voxelMeters_);
+        c.blockKey = cx >> 3 | (cy >> 3) << 18 | (cz >> 3) << 36;
+        c.hash = mix(c.blockKey);
+        c.bit = static_cast<std::uint32_t>((cx & 7) | (cy & 7) << 3 | (cz & 7) << 6);
+        c.u = u;
+        c.v = v;
+    }
+}
+
+// Loads what candidates [begin, end) will touch, in passes whose loads do not wait on one another, so
+// that their cache misses overlap: the table entries, then the blocks those entries name, and the blocks
+// that the evictions they may cause will clear (slots leave in ring order). Plain loads rather than
+// prefetch hints, which the processor drops when many misses are already in flight.
+std::uint64_t PointAccumulator::touchFor(std::size_t begin, std::size_t end) const {
+    std::uint64_t sink = 0;
+    for (std::size_t i = begin; i < end; ++i)
+        if (candidates_[i].kept)
+            sink ^= table_[homeOfHash(candidates_[i].hash)].key;
+    for (std::size_t i = begin; i < end; ++i) {
+        const Candidate& c = candidates_[i];
+        if (!c.kept)
+            continue;
+        if (const TableEntry& e = table_[findEntry(c.blockKey, homeOfHash(c.hash))]; e.key == c.blockKey)
+            sink ^= pool_[e.block].bits[0];
+    }
+    std::size_t slot = next_;
+    for (std::size_t i = begin; i < end; ++i) {
+        if (slotVoxels_[slot] != kEmpty)
+            sink ^= pool_[slotVoxels_[slot] >> 9].bits[0];
+        slot = slot + 1 == points_.size() ? 0 : slot + 1;
+    }
+    return sink;
+}
+
+std::size_t PointAccumulator::insertCandidates(const devices::Frame& frame) {
+    const int w = frame.sceneDepth->depthMeters.width, h = frame.sceneDepth->depthMeters.height;
+    const bool imageUsable = colours_.use(frame.capturedImage);
+    const std::uint32_t fallback = imageUsable ? 0 : packRgba(devices::pixelRgb(frame.capturedImage, 0, 0));
+    std::size_t added = 0;
+    for (std::size_t i = 0; i < candidates_.size(); ++i) {
+        if (i % kChunk == 0)
+            touched_ ^= touchFor(i, std::min(candidates_.size(), i + kChunk));
+        const Candidate& c = candidates_[i];
+        if (!c.kept)
+            continue;
+        std::size_t at = findEntry(c.blockKey, homeOfHash(c.hash));
+        const std::uint64_t bit = std::uint64_t{1} << (c.bit & 63);
+        if (table_[at].key == c.blockKey && (pool_[table_[at].block].bits[c.bit >> 6] & bit))
+            continue; // the voxel already holds a point
+        if (evictOldest())
+            at = findEntry(c.blockKey, homeOfHash(c.hash)); // the table changed under `at`
+        const std::uint32_t block =
+            table_[at].key == c.blockKey ? table_[at].block : addBlock(at, c.blockKey);
+        pool_[block].bits[c.bit >> 6] |= bit;
+        const auto [ix, iy] = cameraPixelOf(c.u, c.v, w, h, frame.capturedImage);
+        const std::uint32_t rgba = imageUsable
+                                       ? colours_.rgba(std::clamp(ix, 0, frame.capturedImage.width - 1),
+                                                       std::clamp(iy, 0, frame.capturedImage.height - 1))
+                                       : fallback;
+        store({c.point.x, c.point.y, c.point.z, rgba}, std::uint64_t{block} << 9 | c.bit);
+        ++added;
+    }
+    return added;
+}
+
+void PointAccumulator::store(const WorldPoint& point, std::uint64_t voxel) {
+    slotVoxels_[next_] = voxel;
     points_[next_] = point;
     if (dirtyCount_ == 0)
         dirtyBegin_ = next_;
     dirtyCount_ = std::min(dirtyCount_ + 1, points_.size());
-    next_ = (next_ + 1) % points_.size();
+    next_ = next_ + 1 == points_.size() ? 0 : next_ + 1;
     count_ = std::min(count_ + 1, points_.size());
 }
 
@@ -124,29 +349,14 @@ std::size_t PointAccumulator::add(const devices::Frame& frame, devices::Confiden
                                   float nearMeters) {
     if (!frame.pose || !frame.sceneDepth || !frame.cameraIntrinsics.valid())
         return 0;
-    const devices::DepthData& depth = *frame.sceneDepth;
-    const devices::Intrinsics k = frame.depthIntrinsics();
+    const int w = frame.sceneDepth->depthMeters.width, h = frame.sceneDepth->depthMeters.height;
     const std::array<float, 12> m = rowMajor(*frame.pose);
-    const int w = depth.depthMeters.width, h = depth.depthMeters.height;
-    std::size_t added = 0;
-    for (int v = 0; v < h; ++v) {
-        for (int u = 0; u < w; ++u) {
-            const float z = depth.depthMeters.at(u, v);
-            const std::uint8_t c = depth.confidence.empty() ? 2 : depth.confidence.at(u, v);
-            if (!keepSample(z, c, minLevel, nearMeters))
-                continue;
-            const auto [x, y, zz] = unproject(u, v, z, k);
-            const WorldPoint p{m[0] * x + m[1] * y + m[2] * zz + m[3], m[4] * x + m[5] * y + m[6] * zz + m[7],
-                               m[8] * x + m[9] * y + m[10] * zz + m[11], 0};
-            const std::uint64_t key = voxelKey(p.x, p.y, p.z);
-            if (keys_[find(key)] == key)
-                continue;
-            const auto [ix, iy] = cameraPixelOf(u, v, w, h, frame.capturedImage);
-            store({p.x, p.y, p.z, packRgba(devices::pixelRgb(frame.capturedImage, ix, iy))}, key);
-            ++added;
-        }
-    }
-    return added;
+    candidates_.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(std::max(h, 0)));
+    parallelRanges(h, kMinRowsPerThread, [&](int begin, int end) {
+        for (int v = begin; v < end; ++v)
+            gatherRow(frame, m, v, minLevel, nearMeters, &candidates_[static_cast<std::size_t>(v) * w]);
+    });
+    return insertCandidates(frame);
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> PointAccumulator::takeDirty() {
@@ -162,5 +372,8 @@ std::vector<std::pair<std::size_t, std::size_t>> PointAccumulator::takeDirty() {
     dirtyCount_ = 0;
     return ranges;
 }
+
+template struct HugePageAllocator<PointAccumulator::TableEntry>;
+template struct HugePageAllocator<PointAccumulator::Block>;
 
 } // namespace dc::processing

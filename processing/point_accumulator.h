@@ -2,8 +2,10 @@
 
 #include "devices/frame.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
+#include <memory>
 #include <utility>
 #include <vector>
 
@@ -16,13 +18,52 @@ struct WorldPoint {
     std::uint32_t rgba = 0;
 };
 
+// Allocates on transparent huge pages where the kernel grants them: a random access anywhere in a table of
+// megabytes then costs a cache miss but not also a page walk, and a prefetch is not dropped for want of a
+// translation.
+template <class T> struct HugePageAllocator {
+    using value_type = T;
+    HugePageAllocator() = default;
+    template <class U> HugePageAllocator(const HugePageAllocator<U>&) {}
+    T* allocate(std::size_t n);
+    void deallocate(T* p, std::size_t n);
+    template <class U> bool operator==(const HugePageAllocator<U>&) const { return true; }
+};
+
+// The packed RGBA colour of camera-image pixels, exactly as packing devices::pixelRgb's result gives it,
+// at the cost of a table look-up: the table holds pixelRgb's own results for every YCbCr triplet, filled
+// one chroma pair (256 lumas) at a time when a pair is first met, so only the colours a scene uses take
+// memory.
+class CameraColourTable {
+public:
+    CameraColourTable();
+    // Prepares for the pixels of `image`; false when the image is empty or malformed.
+    bool use(const devices::CapturedImage& image);
+    // The colour of pixel (x, y), which must lie inside the image last passed to use().
+    std::uint32_t rgba(int x, int y);
+
+private:
+    std::uint32_t ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr);
+    void fillPair(std::uint32_t pair);
+
+    std::unique_ptr<std::uint32_t[]> ycbcr_;   // [cb][cr][y], rows valid where pairsFilled_ says so
+    std::vector<std::uint64_t> pairsFilled_;   // one bit per (cb, cr)
+    std::array<std::uint32_t, 256> rgbByte_{}; // RGB24: each channel's byte as pixelRgb and packing give it
+    const std::uint8_t* bytes_ = nullptr;
+    devices::PixelFormat format_ = devices::PixelFormat::Nv12;
+    std::size_t width_ = 0, height_ = 0;
+};
+
 // The WWDC20 "accumulate" mode: every posed frame adds its points, in world coordinates, to a bounded
 // budget. The oldest points leave first when the budget is full, and a point whose voxel already holds
 // one is not added again, so a camera dwelling on a surface does not fill the budget with copies of it.
 //
-// Storage is a ring of `budget` slots plus a flat open-addressing hash from voxel to slot: adding a frame
-// costs one unprojection, one transform and one probe per sample, and colour conversion only for the
-// samples that are new.
+// Storage is a ring of `budget` slots plus a sparse bitmap of the occupied voxels: a voxel holds at most one
+// point, so eviction only clears the evicted point's bit, found through the slot without any search.
+// The bitmap is a pool of blocks of 8 x 8 x 8 voxels (one cache line each) found through a hash of block
+// coordinates; a block returns to the pool when its last point leaves. Adding works in chunks of rows whose
+// hash probes and evictions are prefetched first, so that their cache misses overlap. Colours come from a
+// CameraColourTable and are looked up only for the samples that are new.
 class PointAccumulator {
 public:
     static constexpr std::size_t kDefaultBudget = 1'000'000;
@@ -50,18 +91,51 @@ public:
 private:
     static constexpr std::uint64_t kEmpty = ~0ull;
 
-    std::uint64_t voxelKey(float x, float y, float z) const;
-    std::size_t bucketOf(std::uint64_t key) const;
-    // Index of the bucket holding `key`, or of the empty bucket where it would go.
-    std::size_t find(std::uint64_t key) const;
-    void erase(std::uint64_t key);
-    void store(const WorldPoint& point, std::uint64_t key);
+    // The occupancy of 8 x 8 x 8 voxels: word z % 8, bit x % 8 + 8 * (y % 8).
+    struct alignas(64) Block {
+        std::array<std::uint64_t, 8> bits{};
+    };
+    struct TableEntry {
+        std::uint64_t key = kEmpty; // block coordinates
+        std::uint32_t block = 0;    // index into pool_
+    };
+    // A sample of the frame being added; if kept, in world coordinates with its voxel.
+    struct Candidate {
+        WorldPoint point;
+        std::uint64_t blockKey = 0;
+        std::uint64_t hash = 0; // of the block key, for table_ at any size
+        std::uint32_t bit = 0;  // voxel within the block
+        int u = 0, v = 0;
+        bool kept = false;
+    };
+
+    std::size_t homeOf(std::uint64_t blockKey) const;
+    std::size_t homeOfHash(std::uint64_t hash) const { return static_cast<std::size_t>(hash >> tableShift_); }
+    // Index of the table entry holding `blockKey`, or of the empty entry where it would go.
+    std::size_t findEntry(std::uint64_t blockKey, std::size_t home) const;
+    std::uint32_t addBlock(std::size_t at, std::uint64_t blockKey);
+    void eraseEntry(std::size_t at);
+    void resetBlocks();
+    bool evictOldest();
+    void gatherRow(const devices::Frame& frame, const std::array<float, 12>& m, int v,
+                   devices::Confidence minLevel, float nearMeters, Candidate* out) const;
+    std::uint64_t touchFor(std::size_t begin, std::size_t end) const;
+    std::size_t insertCandidates(const devices::Frame& frame);
+    void store(const WorldPoint& point, std::uint64_t voxel);
 
     float voxelMeters_;
     std::vector<WorldPoint> points_;
-    std::vector<std::uint64_t> pointKeys_; // voxel of each slot, to free it when the slot is reused
-    std::vector<std::uint64_t> keys_;      // hash buckets: voxel key or kEmpty
-    std::vector<std::uint32_t> slotOf_;    // hash buckets: the slot holding that voxel's point
+    std::vector<std::uint64_t> slotVoxels_; // block << 9 | bit of each slot's voxel, or kEmpty
+    std::vector<TableEntry, HugePageAllocator<TableEntry>>
+        table_; // open addressing, linear probing, at most half full
+    int tableShift_ = 0;
+    std::size_t tableCount_ = 0;
+    std::vector<Block, HugePageAllocator<Block>> pool_;
+    std::vector<std::uint64_t> poolKeys_; // block coordinates of each pool block
+    std::vector<std::uint32_t> freeBlocks_;
+    std::vector<Candidate> candidates_; // scratch, kept to reuse its allocation
+    CameraColourTable colours_;
+    std::uint64_t touched_ = 0; // what touchFor loaded, kept so that its loads are not optimised away
     std::size_t next_ = 0;
     std::size_t count_ = 0;
     std::size_t dirtyBegin_ = 0;

@@ -1,10 +1,16 @@
 #include "processing/point_accumulator.h"
 
+#include "devices/color.h"
 #include "devices/synthetic_scene.h"
+#include "processing/confidence_filter.h"
+#include "processing/point_cloud.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstring>
+#include <map>
+#include <random>
 #include <set>
 #include <tuple>
 
@@ -119,6 +125,197 @@ TEST(PointAccumulator, InvalidAndFilteredSamplesAreSkipped) {
     d.at(3, 0) = std::numeric_limits<float>::infinity();
     f.sceneDepth->confidence.at(0, 1) = 0;
     EXPECT_EQ(acc.add(f, devices::Confidence::Medium, 0.0f), 11u);
+}
+
+// A w x h frame translated by (tx, ty, tz) whose depth is random in [0.5, 1.5) m with some invalid samples
+// and a random confidence per sample.
+devices::Frame randomFrame(int w, int h, std::mt19937& rng, double tx, double ty, double tz) {
+    devices::Frame f = wallFrame(w, h, 1.0f, translated(tx, ty, tz));
+    std::uniform_real_distribution<float> depth(0.5f, 1.5f);
+    std::uniform_int_distribution<int> level(0, 2), invalid(0, 19);
+    for (int v = 0; v < h; ++v) {
+        for (int u = 0; u < w; ++u) {
+            f.sceneDepth->depthMeters.at(u, v) = invalid(rng) == 0 ? std::nanf("") : depth(rng);
+            f.sceneDepth->confidence.at(u, v) = static_cast<std::uint8_t>(level(rng));
+        }
+    }
+    return f;
+}
+
+using Voxel = std::tuple<long, long, long>;
+
+Voxel voxelOf(float x, float y, float z, float voxelMeters) {
+    return {std::lround(std::floor(x / voxelMeters)), std::lround(std::floor(y / voxelMeters)),
+            std::lround(std::floor(z / voxelMeters))};
+}
+
+// The accumulate rule written as plainly as possible, for frames whose pose is a pure translation (the
+// world point is then the camera point plus the translation, exactly as the float transform computes it).
+class ReferenceAccumulator {
+public:
+    ReferenceAccumulator(std::size_t budget, float voxelMeters) : ring_(budget), voxelMeters_(voxelMeters) {}
+
+    std::size_t add(const devices::Frame& f, devices::Confidence minLevel, float nearMeters) {
+        const devices::DepthData& d = *f.sceneDepth;
+        const devices::Intrinsics k = f.depthIntrinsics();
+        const auto t = [&](int i) {
+            return static_cast<float>(f.pose->cameraToWorld[static_cast<std::size_t>(12 + i)]);
+        };
+        std::size_t added = 0;
+        for (int v = 0; v < d.depthMeters.height; ++v) {
+            for (int u = 0; u < d.depthMeters.width; ++u) {
+                if (!keepSample(d.depthMeters.at(u, v), d.confidence.at(u, v), minLevel, nearMeters))
+                    continue;
+                const auto [x, y, z] = unproject(u, v, d.depthMeters.at(u, v), k);
+                const Voxel voxel = voxelOf(x + t(0), y + t(1), z + t(2), voxelMeters_);
+                if (held_.count(voxel))
+                    continue;
+                if (count_ == ring_.size())
+                    held_.erase(ring_[next_]);
+                held_.insert(voxel);
+                ring_[next_] = voxel;
+                next_ = (next_ + 1) % ring_.size();
+                count_ = std::min(count_ + 1, ring_.size());
+                ++added;
+            }
+        }
+        return added;
+    }
+    const std::vector<Voxel>& ring() const { return ring_; }
+
+private:
+    std::vector<Voxel> ring_;
+    std::set<Voxel> held_;
+    float voxelMeters_;
+    std::size_t next_ = 0, count_ = 0;
+};
+
+// Runs `frames` random frames through both and checks every count and every slot's voxel.
+void expectSameAsReference(std::size_t budget, float voxelMeters, int w, int h, int frames, double drift) {
+    PointAccumulator acc(budget, voxelMeters);
+    ReferenceAccumulator ref(budget, voxelMeters);
+    std::mt19937 rng(7);
+    for (int i = 0; i < frames; ++i) {
+        const double s = drift * (i % 5);
+        const devices::Frame f = randomFrame(w, h, rng, s, -s, 0.0);
+        ASSERT_EQ(acc.add(f, devices::Confidence::Medium, 0.6f),
+                  ref.add(f, devices::Confidence::Medium, 0.6f))
+            << "frame " << i;
+        for (std::size_t slot = 0; slot < acc.size(); ++slot) {
+            const WorldPoint& p = acc.slots()[slot];
+            ASSERT_EQ(voxelOf(p.x, p.y, p.z, voxelMeters), ref.ring()[slot])
+                << "frame " << i << " slot " << slot;
+        }
+    }
+}
+
+TEST(PointAccumulator, MatchesThePlainRuleUnderChurnAndRevisits) {
+    // Coarse voxels and a small budget: many duplicates, evictions, and voxels freed then filled again.
+    expectSameAsReference(3000, 0.02f, 48, 36, 40, 0.01);
+}
+
+TEST(PointAccumulator, MatchesThePlainRuleWhileItsTablesGrow) {
+    // A fine voxel over many samples: the block table grows several times, then the ring churns.
+    expectSameAsReference(60'000, 0.001f, 160, 120, 6, 0.0);
+}
+
+TEST(PointAccumulator, AVoxelFreedByEvictionCanBeOccupiedAgain) {
+    PointAccumulator acc(16, 0.001f);
+    const devices::Frame a = wallFrame(4, 4, 1.0f, translated(0, 0, 0));
+    ASSERT_EQ(acc.add(a, devices::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(a, devices::Confidence::Low, 0.0f), 0u) << "all held";
+    // A far-away frame evicts every point of the first, so their voxels (and blocks) are free again.
+    ASSERT_EQ(acc.add(wallFrame(4, 4, 1.0f, translated(10, 0, 0)), devices::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(a, devices::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(a, devices::Confidence::Low, 0.0f), 0u) << "held again, so de-duplicated again";
+}
+
+TEST(PointAccumulator, PointsLandAtTheirWorldPositionThroughARotation) {
+    // Camera turned 90 degrees about the world y axis: camera +z looks along world +x, camera +x is world -z.
+    devices::Pose pose;
+    pose.cameraToWorld = {0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0.5, 0.25, -1, 1};
+    PointAccumulator acc(100, 0.001f);
+    ASSERT_EQ(acc.add(wallFrame(4, 4, 2.0f, pose), devices::Confidence::Low, 0.0f), 16u);
+    // Pixel (3, 1): camera point ((3 - 2) * 2 / 100, (1 - 2) * 2 / 100, 2) = (0.02, -0.02, 2).
+    const WorldPoint& p = acc.slots()[1 * 4 + 3];
+    EXPECT_NEAR(p.x, 0.5 + 2.0, 1e-6);
+    EXPECT_NEAR(p.y, 0.25 - 0.02, 1e-6);
+    EXPECT_NEAR(p.z, -1.0 - 0.02, 1e-6);
+}
+
+TEST(PointAccumulator, ClearAndConfigureForgetTheHeldVoxels) {
+    PointAccumulator acc(100, 0.001f);
+    const devices::Frame f = wallFrame(4, 4, 1.0f, {});
+    ASSERT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 16u);
+    acc.clear();
+    EXPECT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 16u);
+    acc.configure(50, 0.001f);
+    EXPECT_EQ(acc.size(), 0u);
+    EXPECT_EQ(acc.budget(), 50u);
+    EXPECT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 16u);
+    acc.configure(50, 0.5f);
+    EXPECT_EQ(acc.add(wallFrame(4, 4, 1.0f, translated(0.25, 0.25, 0)), devices::Confidence::Low, 0.0f), 1u)
+        << "the 4 cm wall fits one 50 cm voxel";
+}
+
+TEST(PointAccumulator, SamplesNearerThanTheNearLimitAreSkipped) {
+    PointAccumulator acc(100, 0.001f);
+    devices::Frame f = wallFrame(4, 4, 1.0f, {});
+    f.sceneDepth->depthMeters.at(0, 0) = 0.2f;
+    f.sceneDepth->depthMeters.at(1, 0) = 0.29f;
+    EXPECT_EQ(acc.add(f, devices::Confidence::Low, 0.3f), 14u);
+}
+
+// An image of random bytes in `format`.
+devices::CapturedImage randomImage(devices::PixelFormat format, int w, int h, std::mt19937& rng) {
+    std::vector<std::uint8_t> bytes(devices::CapturedImage::byteSize(format, w, h));
+    std::uniform_int_distribution<int> byte(0, 255);
+    for (auto& b : bytes)
+        b = static_cast<std::uint8_t>(byte(rng));
+    return {format, w, h, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
+}
+
+std::uint32_t packedPixelRgb(const devices::CapturedImage& image, int x, int y) {
+    const devices::Rgb c = devices::pixelRgb(image, x, y);
+    return static_cast<std::uint32_t>(devices::toByte(c.r)) |
+           static_cast<std::uint32_t>(devices::toByte(c.g)) << 8 |
+           static_cast<std::uint32_t>(devices::toByte(c.b)) << 16 | 0xff000000u;
+}
+
+TEST(CameraColourTable, GivesExactlyWhatPixelRgbGivesInEveryFormat) {
+    std::mt19937 rng(3);
+    CameraColourTable table;
+    for (const auto format :
+         {devices::PixelFormat::Nv12, devices::PixelFormat::Yuyv, devices::PixelFormat::Rgb24}) {
+        const devices::CapturedImage image = randomImage(format, 61, 47, rng);
+        ASSERT_TRUE(table.use(image));
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x)
+                ASSERT_EQ(table.rgba(x, y), packedPixelRgb(image, x, y))
+                    << devices::toString(format) << " pixel " << x << ", " << y;
+    }
+}
+
+TEST(CameraColourTable, RefusesEmptyAndTruncatedImages) {
+    CameraColourTable table;
+    EXPECT_FALSE(table.use({}));
+    EXPECT_FALSE(
+        table.use({devices::PixelFormat::Nv12, 4, 4, std::make_shared<const std::vector<std::uint8_t>>(10)}));
+}
+
+TEST(PointAccumulator, ColoursAreThoseOfTheMatchingCameraPixels) {
+    std::mt19937 rng(5);
+    devices::Frame f = wallFrame(8, 6, 1.0f, {});
+    f.capturedImage = randomImage(devices::PixelFormat::Nv12, 20, 15, rng);
+    PointAccumulator acc(100, 0.001f);
+    ASSERT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 48u);
+    for (int v = 0; v < 6; ++v) {
+        for (int u = 0; u < 8; ++u) {
+            const auto [ix, iy] = cameraPixelOf(u, v, 8, 6, f.capturedImage);
+            EXPECT_EQ(acc.slots()[static_cast<std::size_t>(v * 8 + u)].rgba,
+                      packedPixelRgb(f.capturedImage, ix, iy));
+        }
+    }
 }
 
 } // namespace

@@ -51,6 +51,22 @@ TEST(ConfidenceEstimator, ADepthEdgeIsLow) {
     EXPECT_EQ(c.at(13, 5), kHigh);
 }
 
+// Tall enough to be split into bands that run in parallel: every row still sees its true neighbours, so
+// exactly the rows next to each horizontal depth step are low, wherever the bands happen to be cut.
+TEST(ConfidenceEstimator, RowsNextToStepsAreLowWhereverTheImageIsSplit) {
+    constexpr int kStep = 25;
+    Plane<float> d = wall(16, 401);
+    for (int y = 0; y < d.height; ++y)
+        for (int x = 0; x < d.width; ++x)
+            d.at(x, y) += static_cast<float>(y / kStep % 2); // 2 m and 3 m bands
+    const Plane<std::uint8_t> c = estimateConfidence(d, nullptr);
+    for (int y = 0; y < d.height; ++y) {
+        const bool nextToStep = (y % kStep == 0 && y > 0) || (y % kStep == kStep - 1 && y + 1 < d.height);
+        for (int x = 0; x < d.width; ++x)
+            ASSERT_EQ(c.at(x, y), nextToStep ? kLow : kHigh) << x << "," << y;
+    }
+}
+
 TEST(ConfidenceEstimator, NoiseAtLargeDepthIsJudgedRelativeToTheDepth) {
     Plane<float> d(8, 8, 9.0f);
     for (int i = 0; i < 64; i += 2)
