@@ -175,9 +175,6 @@ void PointAccumulator::resetBlocks() {
     table_.assign(kInitialTable, TableEntry{});
     tableShift_ = 64 - std::countr_zero(kInitialTable);
     tableCount_ = 0;
-    pool_.clear();
-    poolKeys_.clear();
-    freeBlocks_.clear();
 }
 
 std::size_t PointAccumulator::homeOf(std::uint64_t blockKey) const {
@@ -192,21 +189,12 @@ std::size_t PointAccumulator::findEntry(std::uint64_t blockKey, std::size_t home
     return i;
 }
 
-// Takes a block from the pool for `blockKey`, entered at the empty table entry `at`; returns its index.
-std::uint32_t PointAccumulator::addBlock(std::size_t at, std::uint64_t blockKey) {
-    std::uint32_t block = 0;
-    if (freeBlocks_.empty()) {
-        block = static_cast<std::uint32_t>(pool_.size());
-        pool_.emplace_back();
-        poolKeys_.push_back(blockKey);
-    } else {
-        block = freeBlocks_.back();
-        freeBlocks_.pop_back();
-        poolKeys_[block] = blockKey;
-    }
-    table_[at] = {blockKey, block};
+// Enters an empty block for `blockKey` at the empty table entry `at`; returns where it is, which moves
+// if the table grew.
+std::size_t PointAccumulator::addBlock(std::size_t at, std::uint64_t blockKey) {
+    table_[at] = {blockKey, 0};
     if (++tableCount_ * 2 <= table_.size())
-        return block;
+        return at;
     // Keep the table at most half full, so that probe runs stay short.
     decltype(table_) old(table_.size() * 2);
     old.swap(table_);
@@ -214,7 +202,7 @@ std::uint32_t PointAccumulator::addBlock(std::size_t at, std::uint64_t blockKey)
     for (const TableEntry& e : old)
         if (e.key != kEmpty)
             table_[findEntry(e.key, homeOf(e.key))] = e;
-    return block;
+    return findEntry(blockKey, homeOf(blockKey));
 }
 
 // Linear-probing deletion by backward shift: later entries of the same probe run move up, so lookups
@@ -243,13 +231,11 @@ bool PointAccumulator::evictOldest() {
     const std::uint64_t voxel = slotVoxels_[next_];
     if (voxel == kEmpty)
         return false;
-    const auto block = static_cast<std::uint32_t>(voxel >> 9);
-    auto& bits = pool_[block].bits;
-    bits[voxel >> 6 & 7] &= ~(std::uint64_t{1} << (voxel & 63));
-    if (std::any_of(bits.begin(), bits.end(), [](std::uint64_t w) { return w != 0; }))
+    const std::size_t at = findEntry(voxel >> 6, homeOf(voxel >> 6));
+    table_[at].bits &= ~(std::uint64_t{1} << (voxel & 63));
+    if (table_[at].bits != 0)
         return false;
-    eraseEntry(findEntry(poolKeys_[block], homeOf(poolKeys_[block])));
-    freeBlocks_.push_back(block);
+    eraseEntry(at);
     return true;
 }
 
@@ -271,34 +257,27 @@ void PointAccumulator::gatherRow(const devices::Frame& frame, const std::array<f
                    m[8] * x + m[9] * y + m[10] * zz + m[11], 0};
         const std::uint64_t cx = cellOf(c.point.x, voxelMeters_), cy = cellOf(c.point.y, voxelMeters_),
                             cz = cellOf(c.point.z, voxelMeters_);
-        c.blockKey = cx >> 3 | (cy >> 3) << 18 | (cz >> 3) << 36;
+        c.blockKey = cx >> 2 | (cy >> 2) << 19 | (cz >> 2) << 38;
         c.hash = mix(c.blockKey);
-        c.bit = static_cast<std::uint32_t>((cx & 7) | (cy & 7) << 3 | (cz & 7) << 6);
+        c.bit = static_cast<std::uint32_t>((cx & 3) | (cy & 3) << 2 | (cz & 3) << 4);
         c.u = u;
         c.v = v;
     }
 }
 
 // Loads what candidates [begin, end) will touch, in passes whose loads do not wait on one another, so
-// that their cache misses overlap: the table entries, then the blocks those entries name, and the blocks
-// that the evictions they may cause will clear (slots leave in ring order). Plain loads rather than
-// prefetch hints, which the processor drops when many misses are already in flight.
+// that their cache misses overlap: their table entries, and those of the voxels that the evictions they
+// may cause will clear (slots leave in ring order). Plain loads rather than prefetch hints, which the
+// processor drops when many misses are already in flight.
 std::uint64_t PointAccumulator::touchFor(std::size_t begin, std::size_t end) const {
     std::uint64_t sink = 0;
     for (std::size_t i = begin; i < end; ++i)
         if (candidates_[i].kept)
             sink ^= table_[homeOfHash(candidates_[i].hash)].key;
-    for (std::size_t i = begin; i < end; ++i) {
-        const Candidate& c = candidates_[i];
-        if (!c.kept)
-            continue;
-        if (const TableEntry& e = table_[findEntry(c.blockKey, homeOfHash(c.hash))]; e.key == c.blockKey)
-            sink ^= pool_[e.block].bits[0];
-    }
     std::size_t slot = next_;
     for (std::size_t i = begin; i < end; ++i) {
         if (slotVoxels_[slot] != kEmpty)
-            sink ^= pool_[slotVoxels_[slot] >> 9].bits[0];
+            sink ^= table_[homeOf(slotVoxels_[slot] >> 6)].key;
         slot = slot + 1 == points_.size() ? 0 : slot + 1;
     }
     return sink;
@@ -316,20 +295,20 @@ std::size_t PointAccumulator::insertCandidates(const devices::Frame& frame) {
         if (!c.kept)
             continue;
         std::size_t at = findEntry(c.blockKey, homeOfHash(c.hash));
-        const std::uint64_t bit = std::uint64_t{1} << (c.bit & 63);
-        if (table_[at].key == c.blockKey && (pool_[table_[at].block].bits[c.bit >> 6] & bit))
+        const std::uint64_t bit = std::uint64_t{1} << c.bit;
+        if (table_[at].key == c.blockKey && (table_[at].bits & bit))
             continue; // the voxel already holds a point
         if (evictOldest())
             at = findEntry(c.blockKey, homeOfHash(c.hash)); // the table changed under `at`
-        const std::uint32_t block =
-            table_[at].key == c.blockKey ? table_[at].block : addBlock(at, c.blockKey);
-        pool_[block].bits[c.bit >> 6] |= bit;
+        if (table_[at].key != c.blockKey)
+            at = addBlock(at, c.blockKey);
+        table_[at].bits |= bit;
         const auto [ix, iy] = cameraPixelOf(c.u, c.v, w, h, frame.capturedImage);
         const std::uint32_t rgba = imageUsable
                                        ? colours_.rgba(std::clamp(ix, 0, frame.capturedImage.width - 1),
                                                        std::clamp(iy, 0, frame.capturedImage.height - 1))
                                        : fallback;
-        store({c.point.x, c.point.y, c.point.z, rgba}, std::uint64_t{block} << 9 | c.bit);
+        store({c.point.x, c.point.y, c.point.z, rgba}, c.blockKey << 6 | c.bit);
         ++added;
     }
     return added;
@@ -374,6 +353,5 @@ std::vector<std::pair<std::size_t, std::size_t>> PointAccumulator::takeDirty() {
 }
 
 template struct HugePageAllocator<PointAccumulator::TableEntry>;
-template struct HugePageAllocator<PointAccumulator::Block>;
 
 } // namespace dc::processing

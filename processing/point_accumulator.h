@@ -91,13 +91,10 @@ public:
 private:
     static constexpr std::uint64_t kEmpty = ~0ull;
 
-    // The occupancy of 8 x 8 x 8 voxels: word z % 8, bit x % 8 + 8 * (y % 8).
-    struct alignas(64) Block {
-        std::array<std::uint64_t, 8> bits{};
-    };
+    // A block of 4 x 4 x 4 voxels: its coordinates and its occupancy, bit x % 4 + 4 * (y % 4) + 16 * (z % 4).
     struct TableEntry {
-        std::uint64_t key = kEmpty; // block coordinates
-        std::uint32_t block = 0;    // index into pool_
+        std::uint64_t key = kEmpty;
+        std::uint64_t bits = 0;
     };
     // A sample of the frame being added; if kept, in world coordinates with its voxel.
     struct Candidate {
@@ -113,7 +110,7 @@ private:
     std::size_t homeOfHash(std::uint64_t hash) const { return static_cast<std::size_t>(hash >> tableShift_); }
     // Index of the table entry holding `blockKey`, or of the empty entry where it would go.
     std::size_t findEntry(std::uint64_t blockKey, std::size_t home) const;
-    std::uint32_t addBlock(std::size_t at, std::uint64_t blockKey);
+    std::size_t addBlock(std::size_t at, std::uint64_t blockKey);
     void eraseEntry(std::size_t at);
     void resetBlocks();
     bool evictOldest();
@@ -125,14 +122,11 @@ private:
 
     float voxelMeters_;
     std::vector<WorldPoint> points_;
-    std::vector<std::uint64_t> slotVoxels_; // block << 9 | bit of each slot's voxel, or kEmpty
+    std::vector<std::uint64_t> slotVoxels_; // block key << 6 | bit of each slot's voxel, or kEmpty
     std::vector<TableEntry, HugePageAllocator<TableEntry>>
         table_; // open addressing, linear probing, at most half full
     int tableShift_ = 0;
     std::size_t tableCount_ = 0;
-    std::vector<Block, HugePageAllocator<Block>> pool_;
-    std::vector<std::uint64_t> poolKeys_; // block coordinates of each pool block
-    std::vector<std::uint32_t> freeBlocks_;
     std::vector<Candidate> candidates_; // scratch, kept to reuse its allocation
     CameraColourTable colours_;
     std::uint64_t touched_ = 0; // what touchFor loaded, kept so that its loads are not optimised away

@@ -2,6 +2,8 @@
 
 #include "ui_fixture.h"
 
+#include <iterator>
+
 namespace dc::ui::test {
 namespace {
 
@@ -15,15 +17,21 @@ TEST_F(UiTest, EveryPanelSurvivesHundredsOfFramesBeingShownAndHidden) {
         show.controls = i % 90 < 80;
         show.stats = i % 40 < 25;
         show.log = i % 60 < 45;
-        if (i % 25 == 0)
-            viewer_->setZoomedPanel(i % 50 == 0 ? kCloudTitle : "");
-        if (i % 35 == 0)
-            viewer_->setZoomedPanel(kDepthTitle);
+        show.source = i % 45 < 30;
+        show.fog = i % 55 < 35;
+        show.aura = i % 65 < 40;
+        static constexpr const char* kZoomed[] = {kCloudTitle,  "",        kDepthTitle, kConfidenceTitle,
+                                                  kCameraTitle, kFogTitle, "",          kAuraTitle};
+        if (i % 15 == 0)
+            viewer_->setZoomedPanel(kZoomed[i / 15 % std::size(kZoomed)]);
         frame(i / 60.0);
     }
+    viewer_->setZoomedPanel("");
     show = {};
+    show.fog = show.aura = show.source = true;
     frame(5.0);
-    for (const char* name : {kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle, kControlsTitle})
+    for (const char* name : {kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle, kControlsTitle,
+                             kFogTitle, kAuraTitle, kSourceTitle})
         EXPECT_NE(ImGui::FindWindowByName(name), nullptr) << name;
     EXPECT_GT(viewer_->summary().framesShown, 2u);
 }
