@@ -8,10 +8,6 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
-#include <cstdlib>
-#include <new>
-
-#include <sys/mman.h>
 
 namespace dc::processing {
 
@@ -66,25 +62,6 @@ devices::CapturedImage tinyImage(devices::PixelFormat format, int width, std::ve
 }
 
 } // namespace
-
-template <class T> T* HugePageAllocator<T>::allocate(std::size_t n) {
-    constexpr std::size_t kHugePage = std::size_t{2} << 20;
-    const std::size_t bytes = n * sizeof(T);
-    if (bytes < kHugePage)
-        return std::allocator<T>().allocate(n);
-    void* p = std::aligned_alloc(kHugePage, (bytes + kHugePage - 1) / kHugePage * kHugePage);
-    if (!p)
-        throw std::bad_alloc();
-    madvise(p, bytes, MADV_HUGEPAGE); // only advice: without huge pages the memory works the same
-    return static_cast<T*>(p);
-}
-
-template <class T> void HugePageAllocator<T>::deallocate(T* p, std::size_t n) {
-    if (n * sizeof(T) < (std::size_t{2} << 20))
-        std::allocator<T>().deallocate(p, n);
-    else
-        std::free(p);
-}
 
 CameraColourTable::CameraColourTable()
     : ycbcr_(new std::uint32_t[std::size_t{1} << 24]), pairsFilled_((std::size_t{1} << 16) / 64) {
@@ -329,8 +306,10 @@ std::size_t PointAccumulator::add(const devices::Frame& frame, devices::Confiden
     if (!frame.pose || !frame.sceneDepth || !frame.cameraIntrinsics.valid())
         return 0;
     const int w = frame.sceneDepth->depthMeters.width, h = frame.sceneDepth->depthMeters.height;
+    if (w <= 0 || h <= 0)
+        return 0;
     const std::array<float, 12> m = rowMajor(*frame.pose);
-    candidates_.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(std::max(h, 0)));
+    candidates_.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
     parallelRanges(h, kMinRowsPerThread, [&](int begin, int end) {
         for (int v = begin; v < end; ++v)
             gatherRow(frame, m, v, minLevel, nearMeters, &candidates_[static_cast<std::size_t>(v) * w]);
@@ -351,7 +330,5 @@ std::vector<std::pair<std::size_t, std::size_t>> PointAccumulator::takeDirty() {
     dirtyCount_ = 0;
     return ranges;
 }
-
-template struct HugePageAllocator<PointAccumulator::TableEntry>;
 
 } // namespace dc::processing

@@ -18,18 +18,6 @@ struct WorldPoint {
     std::uint32_t rgba = 0;
 };
 
-// Allocates on transparent huge pages where the kernel grants them: a random access anywhere in a table of
-// megabytes then costs a cache miss but not also a page walk, and a prefetch is not dropped for want of a
-// translation.
-template <class T> struct HugePageAllocator {
-    using value_type = T;
-    HugePageAllocator() = default;
-    template <class U> HugePageAllocator(const HugePageAllocator<U>&) {}
-    T* allocate(std::size_t n);
-    void deallocate(T* p, std::size_t n);
-    template <class U> bool operator==(const HugePageAllocator<U>&) const { return true; }
-};
-
 // The packed RGBA colour of camera-image pixels, exactly as packing devices::pixelRgb's result gives it,
 // at the cost of a table look-up: the table holds pixelRgb's own results for every YCbCr triplet, filled
 // one chroma pair (256 lumas) at a time when a pair is first met, so only the colours a scene uses take
@@ -58,12 +46,14 @@ private:
 // budget. The oldest points leave first when the budget is full, and a point whose voxel already holds
 // one is not added again, so a camera dwelling on a surface does not fill the budget with copies of it.
 //
-// Storage is a ring of `budget` slots plus a sparse bitmap of the occupied voxels: a voxel holds at most one
-// point, so eviction only clears the evicted point's bit, found through the slot without any search.
-// The bitmap is a pool of blocks of 8 x 8 x 8 voxels (one cache line each) found through a hash of block
-// coordinates; a block returns to the pool when its last point leaves. Adding works in chunks of rows whose
-// hash probes and evictions are prefetched first, so that their cache misses overlap. Colours come from a
-// CameraColourTable and are looked up only for the samples that are new.
+// Storage is a ring of `budget` slots plus a sparse bitmap of the occupied voxels: a voxel holds at most
+// one point, so eviction only clears the evicted point's bit. The bitmap is a hash table of blocks of
+// 4 x 4 x 4 voxels, each entry a block's coordinates and its 64 bits; a block leaves the table when its
+// last point does. At a fine voxel nearly every sample lands in a block far from the previous one in
+// memory, so the cost is cache misses: adding first computes the whole frame's voxels (on two threads),
+// then loads the entries a chunk of samples and its evictions will need in independent passes, so that
+// the misses overlap, before the sequential de-dup and eviction. Colours come from a CameraColourTable and
+// are looked up only for the samples that are new.
 class PointAccumulator {
 public:
     static constexpr std::size_t kDefaultBudget = 1'000'000;
@@ -123,8 +113,7 @@ private:
     float voxelMeters_;
     std::vector<WorldPoint> points_;
     std::vector<std::uint64_t> slotVoxels_; // block key << 6 | bit of each slot's voxel, or kEmpty
-    std::vector<TableEntry, HugePageAllocator<TableEntry>>
-        table_; // open addressing, linear probing, at most half full
+    std::vector<TableEntry> table_;         // open addressing, linear probing, at most half full
     int tableShift_ = 0;
     std::size_t tableCount_ = 0;
     std::vector<Candidate> candidates_; // scratch, kept to reuse its allocation

@@ -1,5 +1,7 @@
 #include "render/accumulated_points.h"
 
+#include "render/point_shaders.h"
+
 #include <glm/gtc/type_ptr.hpp>
 
 #include <cstddef>
@@ -22,19 +24,10 @@ void main() {
 }
 )glsl";
 
-constexpr const char* kFragmentShader = R"glsl(#version 330 core
-in vec3 pointColor;
-out vec4 fragColor;
-
-void main() {
-    fragColor = vec4(pointColor, 1.0);
-}
-)glsl";
-
 } // namespace
 
 Status AccumulatedPoints::init() {
-    Expected<gl::Program> program = gl::Program::link(kVertexShader, kFragmentShader);
+    Expected<gl::Program> program = gl::Program::link(kVertexShader, kPointColorFragmentShader);
     if (!program)
         return Error{"accumulated points shaders: " + program.error().message};
     program_ = std::move(program).value();

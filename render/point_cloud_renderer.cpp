@@ -1,5 +1,7 @@
 #include "render/point_cloud_renderer.h"
 
+#include "render/point_shaders.h"
+
 #include "render/render_pass.h"
 
 #include <glm/gtc/type_ptr.hpp>
@@ -40,15 +42,6 @@ void main() {
 }
 )glsl";
 
-constexpr const char* kFragmentShader = R"glsl(#version 330 core
-in vec3 pointColor;
-out vec4 fragColor;
-
-void main() {
-    fragColor = vec4(pointColor, 1.0);
-}
-)glsl";
-
 // A cube per instance, built from gl_VertexID (6 faces x 2 triangles), flat-lit from above the camera so
 // its faces read as a solid among the points, as the sample draws its anchors.
 constexpr const char* kAnchorVertexShader = R"glsl(#version 330 core
@@ -77,11 +70,11 @@ void main() {
 
 Status PointCloudRenderer::init() {
     const std::string vertexShader = std::string("#version 330 core\n") + kFrameTexturesGlsl + kVertexMain;
-    Expected<gl::Program> program = gl::Program::link(vertexShader, kFragmentShader);
+    Expected<gl::Program> program = gl::Program::link(vertexShader, kPointColorFragmentShader);
     if (!program)
         return Error{"point cloud shaders: " + program.error().message};
     program_ = std::move(program).value();
-    Expected<gl::Program> anchors = gl::Program::link(kAnchorVertexShader, kFragmentShader);
+    Expected<gl::Program> anchors = gl::Program::link(kAnchorVertexShader, kPointColorFragmentShader);
     if (!anchors)
         return Error{"anchor shaders: " + anchors.error().message};
     anchorProgram_ = std::move(anchors).value();

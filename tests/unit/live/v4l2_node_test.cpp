@@ -19,6 +19,15 @@ FakeV4l2& depthCamera(FakeV4l2& fake, int w = 4, int h = 2) {
     return fake;
 }
 
+// Opens the depth camera's node at 4x2 Z16 with four buffers and starts it.
+void startStreaming(V4l2Node& node) {
+    ASSERT_EQ(node.open(kNode), 0);
+    V4l2Format f{V4L2_PIX_FMT_Z16, 4, 2, 0, 0};
+    ASSERT_EQ(node.setFormat(f), 0);
+    ASSERT_EQ(node.allocateBuffers(), 4);
+    ASSERT_EQ(node.streamOn(), 0);
+}
+
 FakeFrame frameOf(std::uint16_t base, int count = 8) {
     std::vector<std::uint16_t> px(static_cast<std::size_t>(count));
     for (int i = 0; i < count; ++i)
@@ -76,11 +85,7 @@ TEST(V4l2Node, BadBuffersAreDroppedRequeuedAndDescribed) {
     FakeV4l2 fake;
     depthCamera(fake);
     V4l2Node node(fake);
-    ASSERT_EQ(node.open(kNode), 0);
-    V4l2Format f{V4L2_PIX_FMT_Z16, 4, 2, 0, 0};
-    ASSERT_EQ(node.setFormat(f), 0);
-    ASSERT_EQ(node.allocateBuffers(), 4);
-    ASSERT_EQ(node.streamOn(), 0);
+    ASSERT_NO_FATAL_FAILURE(startStreaming(node));
     FakeFrame error = frameOf(1);
     error.flags = V4L2_BUF_FLAG_ERROR;
     FakeFrame shortFrame = frameOf(1, 3);
@@ -110,11 +115,7 @@ TEST(V4l2Node, UnplugFailsWithEnodevAndCloseReleasesEverything) {
     depthCamera(fake);
     {
         V4l2Node node(fake);
-        ASSERT_EQ(node.open(kNode), 0);
-        V4l2Format f{V4L2_PIX_FMT_Z16, 4, 2, 0, 0};
-        ASSERT_EQ(node.setFormat(f), 0);
-        ASSERT_EQ(node.allocateBuffers(), 4);
-        ASSERT_EQ(node.streamOn(), 0);
+        ASSERT_NO_FATAL_FAILURE(startStreaming(node));
         fake.unplug(kNode);
         const DequeueResult d = node.dequeue();
         EXPECT_EQ(d.kind, DequeueResult::Kind::Failed);
@@ -128,11 +129,7 @@ TEST(WaitForNodes, AnEventFdSignalledFromAnotherThreadWakesThePoll) {
     FakeV4l2 fake;
     depthCamera(fake);
     V4l2Node node(fake);
-    ASSERT_EQ(node.open(kNode), 0);
-    V4l2Format f{V4L2_PIX_FMT_Z16, 4, 2, 0, 0};
-    ASSERT_EQ(node.setFormat(f), 0);
-    ASSERT_EQ(node.allocateBuffers(), 4);
-    ASSERT_EQ(node.streamOn(), 0);
+    ASSERT_NO_FATAL_FAILURE(startStreaming(node));
     EventFd stop;
     ASSERT_EQ(stop.create(fake), 0);
     std::vector<NodeReadiness> ready;
