@@ -3,6 +3,7 @@
 // the environment; a missing variable is a failure, never a skip.
 
 #include "devices/frame_age.h"
+#include "devices/live_device_watcher.h"
 #include "devices/live_devices.h"
 #include "devices/live_source_spec.h"
 #include "devices/session.h"
@@ -184,10 +185,22 @@ bool sawHotplug(const std::vector<usb::HotplugEvent>& events, usb::HotplugEvent:
     });
 }
 
+// Whether the device picker's camera list, as the watcher last published it, holds the camera.
+bool pickerShowsCamera(LiveDeviceWatcher& watcher, bool& shown) {
+    if (auto listing = watcher.takeUpdate())
+        shown = std::any_of(listing->devices.begin(), listing->devices.end(), [](const LiveDeviceInfo& d) {
+            return d.sourceSpec.starts_with("usb:8086:0b07");
+        });
+    return shown;
+}
+
 TEST(Uvc, UnplugDisconnectsAndReplugResumesWithoutARestart) {
     ASSERT_FALSE(env("UDC_FILE").empty());
     usb::HotplugMonitor hotplug;
     ASSERT_TRUE(hotplug.start());
+    LiveDeviceWatcher picker(std::chrono::hours(1)); // no polling: only hotplug can update it here
+    bool pickerShows = false;
+    EXPECT_TRUE(waitFor([&] { return pickerShowsCamera(picker, pickerShows); }, 20s)) << "listed at start";
     auto device = openLiveSourceSpec("usb:8086:0b07");
     ASSERT_TRUE(device);
     Session session(std::move(*device));
@@ -207,6 +220,8 @@ TEST(Uvc, UnplugDisconnectsAndReplugResumesWithoutARestart) {
         },
         20s))
         << "libusb reported the unplug";
+    EXPECT_TRUE(waitFor([&] { return !pickerShowsCamera(picker, pickerShows); }, 20s))
+        << "the device picker dropped the camera";
     (void)session.takeLatest(); // the view keeps its last frame; nothing new arrives now
     ASSERT_TRUE(writeSysfs(env("UDC_FILE"), env("UDC_NAME"))) << "binding it again";
     EXPECT_TRUE(waitFor(
@@ -216,6 +231,8 @@ TEST(Uvc, UnplugDisconnectsAndReplugResumesWithoutARestart) {
         },
         30s))
         << "libusb reported the replug";
+    EXPECT_TRUE(waitFor([&] { return pickerShowsCamera(picker, pickerShows); }, 30s))
+        << "the device picker lists the camera again";
     ASSERT_TRUE(waitFor([&] { return session.state() == DeviceState::Streaming; }, 60s)) << "reconnected";
     const auto frame = session.waitForFrame(20s);
     ASSERT_TRUE(frame.has_value()) << "frames flow again in the same process";
