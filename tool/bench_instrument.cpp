@@ -50,8 +50,8 @@ struct AccumulateResult {
 AccumulateResult benchAccumulate(const BenchInstrumentOptions& o,
                                  const std::vector<devices::FramePtr>& frames) {
     const std::size_t budget = static_cast<std::size_t>(o.budgetThousands) * 1000;
-    // A 1 mm voxel keeps most samples new, so the ring fills and then churns: the worst case per frame.
-    processing::PointAccumulator acc(budget, 0.001f);
+    // With the default 1 mm voxel most samples are new, so the ring fills and then churns: the worst case.
+    processing::PointAccumulator acc(budget, static_cast<float>(o.voxelMillimetres * 1e-3));
     render::AccumulatedPoints gpu;
     if (!gpu.init())
         return {};
@@ -112,6 +112,9 @@ CLI::App* addBenchInstrumentCommand(CLI::App& bench, BenchInstrumentOptions& o) 
     cmd->add_option("--budget", o.budgetThousands, "accumulate budget in thousands of points")
         ->check(CLI::Range(10, 4000))
         ->capture_default_str();
+    cmd->add_option("--voxel-mm", o.voxelMillimetres, "accumulate voxel size in millimetres")
+        ->check(CLI::Range(0.5, 100.0))
+        ->capture_default_str();
     cmd->add_option("--json", o.jsonPath, "also write the results as JSON to this file");
     return cmd;
 }
@@ -131,8 +134,9 @@ int runBenchInstrument(const BenchInstrumentOptions& o) {
     const AccumulateResult a = benchAccumulate(o, frames);
     std::printf("bench instrument on %s, 256x192 depth, %d frames\n", context->rendererName().c_str(),
                 o.frames);
-    std::printf("  accumulate add: median %.3f ms (max %.3f) at %zu points held, %.0f new points per frame\n",
-                a.addMedianMs, a.addMaxMs, a.held, a.newPerFrame);
+    std::printf("  accumulate add (%.1f mm voxels): median %.3f ms (max %.3f) at %zu points held, %.0f new "
+                "points per frame\n",
+                o.voxelMillimetres, a.addMedianMs, a.addMaxMs, a.held, a.newPerFrame);
     std::printf("  accumulate GPU upload: median %.3f ms (max %.3f)\n", a.syncMedianMs, a.syncMaxMs);
     const double total = a.addMedianMs + a.syncMedianMs;
     std::printf("  accumulate total: %.3f ms per frame; target %.1f ms: %s (%.2fx)\n", total, kTargetMs,
@@ -142,7 +146,8 @@ int runBenchInstrument(const BenchInstrumentOptions& o) {
                 kTargetMs, statsMedian <= kTargetMs ? "met" : "MISSED");
     if (o.jsonPath.empty())
         return kExitOk;
-    const nlohmann::json j{{"accumulateAddMedianMs", a.addMedianMs},
+    const nlohmann::json j{{"voxelMillimetres", o.voxelMillimetres},
+                           {"accumulateAddMedianMs", a.addMedianMs},
                            {"accumulateAddMaxMs", a.addMaxMs},
                            {"accumulateSyncMedianMs", a.syncMedianMs},
                            {"pointsHeld", a.held},

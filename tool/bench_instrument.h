@@ -7,8 +7,9 @@
 namespace dc::tool {
 
 struct BenchInstrumentOptions {
-    int frames = 200;           // measured frames
-    int budgetThousands = 1000; // accumulate budget
+    int frames = 200;              // measured frames
+    int budgetThousands = 1000;    // accumulate budget
+    double voxelMillimetres = 1.0; // 1 mm keeps nearly every sample new: the worst case
     std::string jsonPath;
 };
 
