@@ -3,6 +3,7 @@
 #include "devices/image_io.h"
 #include "devices/log.h"
 #include "devices/synthetic_device.h"
+#include "processing/accumulation_worker.h"
 #include "processing/point_accumulator.h"
 #include "processing/rolling_stats.h"
 #include "render/accumulated_points.h"
@@ -16,6 +17,7 @@
 
 #include <chrono>
 #include <cstdio>
+#include <thread>
 
 namespace dc::tool {
 
@@ -46,6 +48,47 @@ struct AccumulateResult {
     std::size_t held = 0;
     double newPerFrame = 0;
 };
+
+struct RenderThreadResult {
+    double medianMs = 0, maxMs = 0;
+    std::uint64_t skipped = 0;
+};
+
+// What the viewer's frame pays in accumulate mode: handing the frame to the worker and uploading what it
+// added, at a camera's 30 fps, with the worker adding on the other core.
+RenderThreadResult benchRenderThread(const BenchInstrumentOptions& o,
+                                     const std::vector<devices::FramePtr>& frames) {
+    processing::AccumulationWorker worker;
+    render::AccumulatedPoints gpu;
+    if (!gpu.init())
+        return {};
+    const processing::AccumulationWorker::Request request{nullptr, devices::Confidence::Low, 0.1f,
+                                                          static_cast<std::size_t>(o.budgetThousands) * 1000,
+                                                          static_cast<float>(o.voxelMillimetres * 1e-3)};
+    std::size_t next = 0;
+    for (; worker.size() < request.budget && next < 4 * frames.size(); ++next) {
+        auto fill = request;
+        fill.frame = frames[next % frames.size()];
+        worker.submit(fill);
+        worker.waitIdle();
+    }
+    const std::uint64_t skippedBefore = worker.skipped();
+    processing::RollingStats ms(static_cast<std::size_t>(o.frames));
+    const auto sync = [&](processing::PointAccumulator& points) { gpu.sync(points); };
+    auto due = Clock::now();
+    for (int i = 0; i < o.frames; ++i, ++next) {
+        std::this_thread::sleep_until(due += std::chrono::microseconds(33'333));
+        const auto start = Clock::now();
+        auto r = request;
+        r.frame = frames[next % frames.size()];
+        worker.submit(r);
+        worker.tryRead(sync);
+        glFinish();
+        ms.add(msSince(start));
+    }
+    worker.waitIdle();
+    return {ms.median(), ms.max(), worker.skipped() - skippedBefore};
+}
 
 AccumulateResult benchAccumulate(const BenchInstrumentOptions& o,
                                  const std::vector<devices::FramePtr>& frames) {
@@ -138,9 +181,14 @@ int runBenchInstrument(const BenchInstrumentOptions& o) {
                 "points per frame\n",
                 o.voxelMillimetres, a.addMedianMs, a.addMaxMs, a.held, a.newPerFrame);
     std::printf("  accumulate GPU upload: median %.3f ms (max %.3f)\n", a.syncMedianMs, a.syncMaxMs);
-    const double total = a.addMedianMs + a.syncMedianMs;
-    std::printf("  accumulate total: %.3f ms per frame; target %.1f ms: %s (%.2fx)\n", total, kTargetMs,
-                total <= kTargetMs ? "met" : "MISSED", total / kTargetMs);
+    std::printf("  add + upload: %.3f ms of CPU per frame (the work, now on the accumulation worker)\n",
+                a.addMedianMs + a.syncMedianMs);
+    const RenderThreadResult r = benchRenderThread(o, frames);
+    std::printf(
+        "  accumulate on the render thread at 30 fps (hand-over + upload): median %.3f ms (max %.3f), "
+        "%llu of %d frames skipped by the worker; target %.1f ms: %s (%.2fx)\n",
+        r.medianMs, r.maxMs, static_cast<unsigned long long>(r.skipped), o.frames, kTargetMs,
+        r.medianMs <= kTargetMs ? "met" : "MISSED", r.medianMs / kTargetMs);
     const auto [statsMedian, statsMax] = benchStatsPanel(o);
     std::printf("  stats panel: median %.3f ms (max %.3f); target %.1f ms: %s\n", statsMedian, statsMax,
                 kTargetMs, statsMedian <= kTargetMs ? "met" : "MISSED");
@@ -150,6 +198,9 @@ int runBenchInstrument(const BenchInstrumentOptions& o) {
                            {"accumulateAddMedianMs", a.addMedianMs},
                            {"accumulateAddMaxMs", a.addMaxMs},
                            {"accumulateSyncMedianMs", a.syncMedianMs},
+                           {"accumulateRenderThreadMedianMs", r.medianMs},
+                           {"accumulateRenderThreadMaxMs", r.maxMs},
+                           {"accumulateFramesSkipped", r.skipped},
                            {"pointsHeld", a.held},
                            {"newPointsPerFrame", a.newPerFrame},
                            {"statsPanelMedianMs", statsMedian},

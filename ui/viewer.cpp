@@ -236,7 +236,7 @@ void Viewer::switchSource(std::unique_ptr<devices::Device> device) {
     // Another source means another world: nothing measured in the old one carries over.
     pipeline_.reset();
     anchors_.clear();
-    accumulator_.clear();
+    accumulation_.clear();
     frame_.reset();
     stages_.clear();
     latencyMs_ = processing::RollingStats();
@@ -345,13 +345,19 @@ void Viewer::renderCloud(double timeSeconds) {
     params.pointSizePixels = settings_.cloud.pointSizePixels;
     params.anchors = anchors_.inCameraFrame(frame_->pose);
     if (accumulating()) {
-        accumulatedPoints_.sync(accumulator_);
+        // The worker may be adding right now: then the points uploaded last time are drawn again.
+        accumulation_.tryRead(
+            [this](processing::PointAccumulator& points) { accumulatedPoints_.sync(points); });
         params.accumulated = &accumulatedPoints_;
         params.worldToClip = params.viewProjection * glm::mat4(glm::inverse(toMatrix(*frame_->pose)));
     }
     cloudViewProjection_ = params.viewProjection;
     cloudRenderer_.render(cloudTarget_, textures_, params);
     stage("cloud").add(millisecondsSince(start));
+}
+
+std::uint64_t Viewer::pointsShown() const {
+    return accumulating() ? accumulation_.size() : pointsDrawn_;
 }
 
 bool Viewer::accumulating() const {
@@ -363,9 +369,8 @@ void Viewer::accumulate() {
         return;
     const auto start = Clock::now();
     const AccumulateSettings& a = settings_.accumulate;
-    accumulator_.configure(static_cast<std::size_t>(a.budgetThousands) * 1000, a.voxelMillimeters * 1e-3f);
-    accumulator_.add(*frame_, settings_.cloud.minConfidence, settings_.cloud.nearMeters);
-    pointsDrawn_ = accumulator_.size();
+    accumulation_.submit({frame_, settings_.cloud.minConfidence, settings_.cloud.nearMeters,
+                          static_cast<std::size_t>(a.budgetThousands) * 1000, a.voxelMillimeters * 1e-3f});
     stage("accumulate").add(millisecondsSince(start));
 }
 
@@ -460,7 +465,7 @@ StatusLine Viewer::statusLine() const {
                     stats.deviceFps,
                     updates_.perSecond(),
                     stats.framesDropped,
-                    pointsDrawn_,
+                    pointsShown(),
                     {},
                     std::nullopt};
     for (const auto& [name, samples] : stages_)
@@ -475,7 +480,7 @@ StatsView Viewer::statsView() const {
     StatsView v{stats.deviceFps,
                 updates_.perSecond(),
                 stats.framesDropped,
-                pointsDrawn_,
+                pointsShown(),
                 std::nullopt,
                 residentMebibytes(),
                 {}};

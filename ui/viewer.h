@@ -3,8 +3,8 @@
 #include "devices/rate_meter.h"
 #include "devices/recording/session_recording.h"
 #include "devices/session.h"
+#include "processing/accumulation_worker.h"
 #include "processing/pipeline.h"
-#include "processing/point_accumulator.h"
 #include "processing/rolling_stats.h"
 #include "render/frame_textures.h"
 #include "render/panel_renderer.h"
@@ -125,7 +125,7 @@ public:
     // disconnected or stalled (empty while all is well).
     std::string cloudMessage() const;
     const LogStore& log() const { return logs_; }
-    const processing::PointAccumulator& accumulator() const { return accumulator_; }
+    const processing::AccumulationWorker& accumulation() const { return accumulation_; }
     // Whether accumulate mode is on and the current frame carries a pose.
     bool accumulating() const;
     void setZoomedPanel(const std::string& title);
@@ -142,6 +142,8 @@ private:
     const devices::DepthData* shownDepth() const;
     bool estimatedConfidence() const;
     void accumulate();
+    // The points the cloud shows: the frame's, or in accumulate mode those gathered so far.
+    std::uint64_t pointsShown() const;
     ProbeSource probeSource() const;
     void placePanel(const char* title, float x, float y, float w, float h);
     void afterPanel(const char* title, const PanelResult& result);
@@ -191,7 +193,7 @@ private:
     bool sourceRunning_ = false;
     std::map<std::string, processing::RollingStats> stages_;
     processing::RollingStats latencyMs_;
-    processing::PointAccumulator accumulator_{10'000};
+    processing::AccumulationWorker accumulation_;
     render::AccumulatedPoints accumulatedPoints_;
     LogStore logs_;
     LogPanelState logPanel_;

@@ -92,7 +92,7 @@ void Viewer::drawUi() {
                                       pipeline_.hasStage(processing::kUpsamplingStage),
                                       anchors_.size(),
                                       frame_ && frame_->pose,
-                                      accumulator_.size(),
+                                      accumulation_.size(),
                                       recordView(),
                                       &recordState_};
         const ControlsResult r = drawControlsPanel(settings_, context, &show.controls);
@@ -101,7 +101,7 @@ void Viewer::drawUi() {
         if (r.toggleRecording)
             (void)(recording_ ? stopRecording() : startRecording(recordState_.path.data()));
         if (r.clearAccumulation)
-            accumulator_.clear();
+            accumulation_.clear();
         if (r.clearAnchors)
             anchors_.clear();
         if (r.undoAnchor)

@@ -276,13 +276,15 @@ TEST_F(InstrumentTest, AccumulateGathersWorldPointsWithinTheBudget) {
         frame(0.1 * i);
     }
     ASSERT_TRUE(viewer_->accumulating());
-    const std::size_t gathered = viewer_->accumulator().size();
+    viewer_->accumulation().waitIdle();
+    const std::size_t gathered = viewer_->accumulation().size();
     EXPECT_GT(gathered, onePose) << "frames from other poses add points";
     EXPECT_LE(gathered, 300'000u);
     EXPECT_EQ(viewer_->statusLine().pointsDrawn, gathered);
     viewer_->settings().accumulate.budgetThousands = 10;
     viewer_->update(2.0, std::chrono::milliseconds(500));
-    EXPECT_EQ(viewer_->accumulator().size(), 10'000u) << "a smaller budget keeps only the newest points";
+    viewer_->accumulation().waitIdle();
+    EXPECT_EQ(viewer_->accumulation().size(), 10'000u) << "a smaller budget keeps only the newest points";
     EXPECT_GT(litPixels(viewer_->cloudTarget().readRgba()), 1000u);
 }
 
@@ -341,7 +343,8 @@ TEST(InstrumentNoPose, AccumulateIsDisabledWithoutPoses) {
         gui.render();
     }
     EXPECT_FALSE(viewer.accumulating());
-    EXPECT_EQ(viewer.accumulator().size(), 0u);
+    viewer.accumulation().waitIdle();
+    EXPECT_EQ(viewer.accumulation().size(), 0u);
 }
 
 } // namespace

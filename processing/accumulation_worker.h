@@ -1,0 +1,68 @@
+#pragma once
+
+#include "devices/frame.h"
+#include "processing/point_accumulator.h"
+
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+namespace dc::processing {
+
+// Accumulate mode's work, off the render thread: adding a frame at a large budget costs milliseconds of
+// scattered memory access, which would otherwise come out of every viewer frame. Frames are handed over
+// latest-wins (one still waiting when the next comes is skipped, and counted); the render thread reads the
+// points between two adds and never waits for one.
+class AccumulationWorker {
+public:
+    struct Request {
+        devices::FramePtr frame;
+        devices::Confidence minLevel = devices::Confidence::Low;
+        float nearMeters = 0.0f;
+        std::size_t budget = PointAccumulator::kDefaultBudget;
+        float voxelMeters = PointAccumulator::kDefaultVoxelMeters;
+    };
+
+    AccumulationWorker();
+    ~AccumulationWorker();
+    AccumulationWorker(const AccumulationWorker&) = delete;
+    AccumulationWorker& operator=(const AccumulationWorker&) = delete;
+
+    void submit(Request request);
+    // Drops the waiting frame and every point; a frame being added right now is discarded too.
+    void clear();
+    // Calls `read` with the points unless the worker is adding to them right now; returns whether it did.
+    bool tryRead(const std::function<void(PointAccumulator&)>& read);
+    // Waits until every frame handed over so far has been added (tests, benchmarks).
+    void waitIdle() const;
+
+    std::size_t size() const { return size_.load(); }
+    std::uint64_t skipped() const { return skipped_.load(); }
+    // How long the worker took to add the last frame.
+    double lastAddMilliseconds() const { return addMilliseconds_.load(); }
+
+private:
+    void run();
+    void add(const Request& request, std::uint64_t generation);
+
+    mutable std::mutex mutex_; // guards pending_, busy_, stopping_, generation_
+    mutable std::condition_variable wake_, idle_;
+    std::optional<Request> pending_;
+    bool busy_ = false;
+    bool stopping_ = false;
+    std::uint64_t generation_ = 0; // counts clears, so a frame taken before one is not added after it
+
+    std::mutex pointsMutex_; // guards accumulator_
+    PointAccumulator accumulator_{10'000};
+
+    std::atomic<std::size_t> size_{0};
+    std::atomic<std::uint64_t> skipped_{0};
+    std::atomic<double> addMilliseconds_{0.0};
+    std::thread thread_;
+};
+
+} // namespace dc::processing

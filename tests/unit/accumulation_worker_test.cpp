@@ -1,0 +1,78 @@
+#include "processing/accumulation_worker.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <vector>
+
+namespace dc::processing {
+namespace {
+
+// A w x h wall `depth` meters in front of a camera at `x` meters along the world's x axis.
+devices::FramePtr wallAt(double x, float depth, int w = 16, int h = 12) {
+    auto f = std::make_shared<devices::Frame>();
+    f->cameraIntrinsics = {20.0, 20.0, w / 2.0, h / 2.0, w, h};
+    f->sceneDepth =
+        devices::DepthData{devices::Plane<float>(w, h, depth), devices::Plane<std::uint8_t>(w, h, 2)};
+    f->capturedImage = {
+        devices::PixelFormat::Rgb24, w, h,
+        std::make_shared<const std::vector<std::uint8_t>>(static_cast<std::size_t>(w) * h * 3, 90)};
+    devices::Pose pose;
+    pose.cameraToWorld[12] = x;
+    f->pose = pose;
+    return f;
+}
+
+AccumulationWorker::Request requestFor(devices::FramePtr frame, std::size_t budget = 1000) {
+    return {std::move(frame), devices::Confidence::Low, 0.0f, budget, 0.001f};
+}
+
+TEST(AccumulationWorker, AddsExactlyWhatTheAccumulatorItselfWouldAdd) {
+    AccumulationWorker worker;
+    PointAccumulator direct(1000, 0.001f);
+    for (int i = 0; i < 5; ++i) {
+        const devices::FramePtr frame = wallAt(0.5 * i, 1.0f + 0.1f * static_cast<float>(i));
+        worker.submit(requestFor(frame));
+        worker.waitIdle();
+        direct.add(*frame, devices::Confidence::Low, 0.0f);
+    }
+    EXPECT_EQ(worker.size(), direct.size());
+    EXPECT_EQ(worker.size(), 5u * 16 * 12);
+    std::vector<WorldPoint> read;
+    ASSERT_TRUE(worker.tryRead([&](PointAccumulator& points) { read = points.slots(); }))
+        << "an idle worker lets the render thread read";
+    ASSERT_EQ(read.size(), direct.slots().size());
+    for (std::size_t i = 0; i < read.size(); ++i) {
+        EXPECT_EQ(read[i].x, direct.slots()[i].x) << i;
+        EXPECT_EQ(read[i].z, direct.slots()[i].z) << i;
+        EXPECT_EQ(read[i].rgba, direct.slots()[i].rgba) << i;
+    }
+}
+
+TEST(AccumulationWorker, ABudgetChangeReachesTheWorkerAndClearEmptiesIt) {
+    AccumulationWorker worker;
+    worker.submit(requestFor(wallAt(0.0, 1.0f), 100));
+    worker.waitIdle();
+    EXPECT_EQ(worker.size(), 100u) << "only the budget is kept";
+    EXPECT_GE(worker.lastAddMilliseconds(), 0.0);
+    worker.clear();
+    EXPECT_EQ(worker.size(), 0u);
+    worker.waitIdle();
+    EXPECT_EQ(worker.size(), 0u);
+}
+
+TEST(AccumulationWorker, FramesHandedOverFasterThanAddedAreSkippedNotQueued) {
+    AccumulationWorker worker;
+    constexpr int kFrames = 200;
+    for (int i = 0; i < kFrames; ++i)
+        // Each wall 2 mm behind the last: no voxel is shared, so every frame added adds all its points.
+        worker.submit(requestFor(wallAt(0.0, 2.0f + 0.002f * static_cast<float>(i), 64, 48), 1'000'000));
+    worker.waitIdle();
+    const std::uint64_t added = worker.size() / (64 * 48);
+    EXPECT_EQ(added + worker.skipped(), static_cast<std::uint64_t>(kFrames))
+        << "every frame was either added or counted as skipped";
+    EXPECT_GE(added, 1u) << "the newest frame is always added";
+}
+
+} // namespace
+} // namespace dc::processing
