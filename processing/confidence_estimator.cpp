@@ -53,19 +53,9 @@ void horizontalSums(const float* row, int w, std::vector<double>& scratch, RowSu
     }
 }
 
-Confidence level(int invalid, double spread, double change, bool changeKnown,
-                 const ConfidenceEstimatorParams& p) {
-    const auto within = [&](int maxInvalid, float maxSpread, float maxChange) {
-        return invalid <= maxInvalid && spread <= maxSpread && (!changeKnown || change <= maxChange);
-    };
-    if (within(p.highInvalidNeighbours, p.highSpread, p.highChange))
-        return Confidence::High;
-    if (within(p.mediumInvalidNeighbours, p.mediumSpread, p.mediumChange))
-        return Confidence::Medium;
-    return Confidence::Low;
-}
-
-// Levels of one row from the 3x3 sums (three rows of horizontal sums).
+// Levels of one row from the 3x3 sums (three rows of horizontal sums). The limits are compared squared and
+// scaled by n, so that a pixel costs no square root or division: spread / centre <= s is
+// n * squares - sum^2 <= (n * s * centre)^2, and change / centre <= c is |change| <= c * centre.
 void classifyRow(const float* depth, const float* before, const RowSums* const rows[3], int w,
                  const ConfidenceEstimatorParams& params, std::uint8_t* levels) {
     for (int x = 0; x < w; ++x) {
@@ -75,12 +65,20 @@ void classifyRow(const float* depth, const float* before, const RowSums* const r
         const double n = rows[0]->count[x] + rows[1]->count[x] + rows[2]->count[x]; // >= 1: the pixel itself
         const double sum = rows[0]->sum[x] + rows[1]->sum[x] + rows[2]->sum[x];
         const double squares = rows[0]->squares[x] + rows[1]->squares[x] + rows[2]->squares[x];
-        const double mean = sum / n;
-        const double variance = std::max(0.0, squares / n - mean * mean);
-        const bool changeKnown = before && measured(before[x]);
-        const double change = changeKnown ? std::abs(centre - before[x]) / centre : 0.0;
-        levels[x] = static_cast<std::uint8_t>(
-            level(9 - static_cast<int>(n + 0.5), std::sqrt(variance) / centre, change, changeKnown, params));
+        const double scatter = std::max(0.0, n * squares - sum * sum); // n^2 times the variance
+        const int invalid = 9 - static_cast<int>(n + 0.5);
+        // Unknown on a first frame or where the previous one had no measurement: then it does not count.
+        const double change = before && measured(before[x]) ? std::abs(centre - before[x]) : 0.0;
+        const auto within = [&](int maxInvalid, float maxSpread, float maxChange) {
+            const double limit = n * maxSpread * centre;
+            return invalid <= maxInvalid && scatter <= limit * limit && change <= maxChange * centre;
+        };
+        const Confidence c =
+            within(params.highInvalidNeighbours, params.highSpread, params.highChange) ? Confidence::High
+            : within(params.mediumInvalidNeighbours, params.mediumSpread, params.mediumChange)
+                ? Confidence::Medium
+                : Confidence::Low;
+        levels[x] = static_cast<std::uint8_t>(c);
     }
 }
 
