@@ -10,12 +10,14 @@
 #include "tool/options.h"
 #include "tool/recording_commands.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <sched.h>
 #include <thread>
 #include <unistd.h>
+#include <vector>
 
 namespace dc::tool {
 
@@ -28,20 +30,26 @@ double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
 }
 
-// Decodes every frame of `source` once; prints frames per second and the multiple of real time.
-void decodeAll(const std::string& name, devices::replay::ReplaySource& source, bool color) {
+// Decodes every frame of `source` `passes` times; prints the median pass as frames per second and as a
+// multiple of real time (a single pass of a short recording lasts a fraction of a second: too noisy alone).
+void decodeAll(const std::string& name, devices::replay::ReplaySource& source, bool color, int passes) {
     source.setDecodeColor(color);
     const std::size_t n = source.frameCount();
     const double recordedSeconds = static_cast<double>(source.timestampNs(n - 1) - source.timestampNs(0)) *
                                    1e-9 * static_cast<double>(n) /
                                    static_cast<double>(std::max<std::size_t>(n - 1, 1));
     std::size_t failed = 0;
-    const auto start = Clock::now();
-    for (std::size_t i = 0; i < n; ++i)
-        failed += devices::replay::loadFrame(source, i) ? 0 : 1;
-    const double seconds = secondsSince(start);
-    std::printf("  %-44s %5zu frames in %6.2f s: %7.1f fps = %6.1fx real time%s\n", name.c_str(), n, seconds,
-                static_cast<double>(n) / seconds, recordedSeconds / seconds,
+    std::vector<double> seconds;
+    for (int pass = 0; pass < passes; ++pass) {
+        const auto start = Clock::now();
+        for (std::size_t i = 0; i < n; ++i)
+            failed += devices::replay::loadFrame(source, i) ? 0 : 1;
+        seconds.push_back(secondsSince(start));
+    }
+    std::sort(seconds.begin(), seconds.end());
+    const double median = seconds[seconds.size() / 2];
+    std::printf("  %-44s %5zu frames, median of %d passes %6.2f s: %7.1f fps = %6.1fx real time%s\n",
+                name.c_str(), n, passes, median, static_cast<double>(n) / median, recordedSeconds / median,
                 failed ? (" (" + std::to_string(failed) + " failed)").c_str() : "");
 }
 
@@ -132,8 +140,8 @@ int runBenchReplay(const BenchReplayOptions& o) {
     setLogQuiet(true);
     std::printf("bench replay: decode throughput, headless, one thread (goal: >= 20x real time)\n");
     if (auto stray = devices::replay::openStraySource(o.stray); stray) {
-        decodeAll("ARKit capture (Stray), depth+confidence+video", **stray, true);
-        decodeAll("ARKit capture (Stray), depth+confidence only", **stray, false);
+        decodeAll("ARKit capture (Stray), depth+confidence+video", **stray, true, o.passes);
+        decodeAll("ARKit capture (Stray), depth+confidence only", **stray, false, o.passes);
     } else {
         std::printf("  ARKit capture: %s\n", stray.error().message.c_str());
     }
@@ -155,8 +163,8 @@ int runBenchReplay(const BenchReplayOptions& o) {
             std::printf("  cannot write %s\n", path.c_str());
     }
     if (auto recording = devices::replay::openRecordingSource(path); recording) {
-        decodeAll("synthetic 640x480 recording (zstd, NV12)", **recording, true);
-        decodeAll("synthetic 640x480 recording, depth only", **recording, false);
+        decodeAll("synthetic 640x480 recording (zstd, NV12)", **recording, true, o.passes);
+        decodeAll("synthetic 640x480 recording, depth only", **recording, false, o.passes);
     }
     std::error_code ec;
     fs::remove(path, ec);

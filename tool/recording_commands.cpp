@@ -61,6 +61,9 @@ void addRecordingCommands(CLI::App& app, CLI::App& bench, RecordingCommands& c) 
         ->add_option("--synthetic-frames", c.benchReplay.syntheticFrames, "frames of the synthetic recording")
         ->check(CLI::Range(10, 10000))
         ->capture_default_str();
+    c.benchReplayCmd
+        ->add_option("--passes", c.benchReplay.passes, "passes over every case; the median is reported")
+        ->check(CLI::PositiveNumber);
     c.benchRecordCmd =
         bench.add_subcommand("record", "recording throughput and drops at 1280x720 depth + color @30 fps");
     c.benchRecordCmd->add_option("--seconds", c.benchRecord.seconds, "seconds per case")

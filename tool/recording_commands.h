@@ -33,6 +33,7 @@ struct ExportOptionsCli {
 struct BenchReplayOptions {
     std::string stray = "../shared/data/arkit_dance_stray";
     int syntheticFrames = 150;
+    int passes = 5; // decodes of every frame per case; the median pass is reported
 };
 
 struct BenchRecordOptions {

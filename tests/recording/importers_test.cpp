@@ -10,8 +10,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <limits>
+#include <vector>
 
 namespace dc::devices::replay {
 namespace {
@@ -294,6 +298,27 @@ TEST(ReplaySource, UnknownPathsAreClearErrors) {
     ASSERT_FALSE(text);
     EXPECT_NE(text.error().message.find("notes.txt: truncated file"), std::string::npos)
         << text.error().message;
+}
+
+// Sizes around the 4-sample blocks the check runs in, with every kind of bad sample in a block and in the
+// scalar tail.
+TEST(ReplaySource, SanitizeZeroesNanInfiniteAndNegativeDepthAndCountsThem) {
+    constexpr float kNan = std::numeric_limits<float>::quiet_NaN();
+    constexpr float kInf = std::numeric_limits<float>::infinity();
+    const std::vector<float> samples = {1.5f,  kNan,  -2.0f, kInf,    0.0f, -0.0f,
+                                        3.25f, -kInf, 1e30f, -1e-30f, kNan};
+    for (std::size_t n = 1; n <= samples.size(); ++n) {
+        Plane<float> depth(static_cast<int>(n), 1);
+        std::copy_n(samples.begin(), n, depth.pixels.begin());
+        std::size_t bad = 0;
+        for (std::size_t i = 0; i < n; ++i)
+            bad += std::isfinite(samples[i]) && samples[i] >= 0.0f ? 0 : 1;
+        EXPECT_EQ(sanitizeDepth(depth), bad) << n << " samples";
+        for (std::size_t i = 0; i < n; ++i) {
+            const bool good = std::isfinite(samples[i]) && samples[i] >= 0.0f;
+            EXPECT_EQ(depth.pixels[i], good ? samples[i] : 0.0f) << "sample " << i << " of " << n;
+        }
+    }
 }
 
 } // namespace

@@ -9,9 +9,13 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <limits>
+#include <utility>
+#include <vector>
 
 namespace dc::devices::recording {
 namespace {
@@ -114,6 +118,40 @@ TEST(RecordingFormat, IntegerDepthIsStoredAsUint16WithItsScaleAndDecodesExactly)
     auto decoded = decoder.decode(*payload, 0, "mem", 0);
     ASSERT_TRUE(decoded) << decoded.error().message;
     EXPECT_TRUE(test::sameBits(decoded->sceneDepth->depthMeters, mm));
+}
+
+// Sizes around the 16-sample blocks the byte shuffle moves at once, with every byte of a sample distinct,
+// so that a sample or a byte landing in the wrong place cannot go unnoticed.
+TEST(RecordingFormat, FloatDepthIsStoredAsByteplanesAndDecodesBitExactForAnySize) {
+    const auto byteOf = [](std::size_t i, int k) { return static_cast<std::uint8_t>(i * 4 + k * 61 + 7); };
+    for (const auto& [w, h] : {std::pair{1, 1}, {15, 1}, {16, 1}, {17, 1}, {16, 2}, {33, 3}, {640, 3}}) {
+        Plane<float> depth(w, h);
+        const std::size_t n = depth.pixels.size();
+        std::vector<std::uint8_t> plane0(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            const std::uint32_t bits = byteOf(i, 0) | byteOf(i, 1) << 8 | byteOf(i, 2) << 16 |
+                                       static_cast<std::uint32_t>(byteOf(i, 3)) << 24;
+            depth.pixels[i] = std::bit_cast<float>(bits);
+            plane0[i] = byteOf(i, 0);
+        }
+        Frame frame;
+        frame.sceneDepth = DepthData{depth, {}};
+        for (const bool compress : {false, true}) {
+            EncodeOptions options;
+            options.compress = compress;
+            auto payload = FrameEncoder(options).encode(frame);
+            ASSERT_TRUE(payload);
+            if (!compress) {
+                EXPECT_NE(std::search(payload->begin(), payload->end(), plane0.begin(), plane0.end()),
+                          payload->end())
+                    << w << "x" << h << ": the low bytes of all samples are stored together";
+            }
+            FrameDecoder decoder;
+            auto decoded = decoder.decode(*payload, 0, "mem", 0);
+            ASSERT_TRUE(decoded) << decoded.error().message;
+            EXPECT_TRUE(test::sameBits(decoded->sceneDepth->depthMeters, depth)) << w << "x" << h;
+        }
+    }
 }
 
 TEST(RecordingFormat, JpegColorIsDecodedAsRgbOfTheCapturedSize) {
