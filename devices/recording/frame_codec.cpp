@@ -12,10 +12,6 @@
 #include <cmath>
 #include <zstd.h>
 
-#if defined(__SSE2__)
-#include <emmintrin.h>
-#endif
-
 namespace dc::devices::recording {
 
 namespace {
@@ -51,33 +47,10 @@ struct SectionHeader {
     std::uint64_t rawSize = 0;
 };
 
-#if defined(__SSE2__)
-// One perfect shuffle of 64 bytes held in v[0..3]: the first 32 bytes interleaved with the last 32. Its
-// index map rotates a byte's 6-bit position left by one, so two of them take the shuffled layout (plane
-// k, sample i: position 16k + i) to the samples' own (4i + k), and four take the samples' back to planes.
-void interleave(__m128i v[4]) {
-    const __m128i a = _mm_unpacklo_epi8(v[0], v[2]), b = _mm_unpackhi_epi8(v[0], v[2]);
-    const __m128i c = _mm_unpacklo_epi8(v[1], v[3]), d = _mm_unpackhi_epi8(v[1], v[3]);
-    v[0] = a, v[1] = b, v[2] = c, v[3] = d;
-}
-#endif
-
-// Byte k of float i goes to plane k (the format is little-endian). SSE2, which every x86-64 has, moves 16
-// samples per step; the scalar loop does the rest and every sample elsewhere.
-void shuffleBytes(const float* samples, std::size_t n, std::uint8_t* planes) {
-    std::size_t i = 0;
-#if defined(__SSE2__)
-    for (; i + 16 <= n; i += 16) {
-        __m128i v[4];
-        for (int k = 0; k < 4; ++k)
-            v[k] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(samples + i + 4 * k));
-        for (int round = 0; round < 4; ++round)
-            interleave(v);
-        for (int k = 0; k < 4; ++k)
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(planes + k * n + i), v[k]);
-    }
-#endif
-    for (; i < n; ++i) {
+// Byte k of float i goes to plane k (the format is little-endian). Every recorded and replayed depth sample
+// passes through these two loops, so this file is built with -O3 (CMakeLists.txt): -O2 leaves them scalar.
+void shuffleBytes(const float* __restrict samples, std::size_t n, std::uint8_t* __restrict planes) {
+    for (std::size_t i = 0; i < n; ++i) {
         const auto v = std::bit_cast<std::uint32_t>(samples[i]);
         planes[i] = static_cast<std::uint8_t>(v);
         planes[n + i] = static_cast<std::uint8_t>(v >> 8);
@@ -86,20 +59,8 @@ void shuffleBytes(const float* samples, std::size_t n, std::uint8_t* planes) {
     }
 }
 
-void unshuffleBytes(const std::uint8_t* planes, std::size_t n, float* samples) {
-    std::size_t i = 0;
-#if defined(__SSE2__)
-    for (; i + 16 <= n; i += 16) {
-        __m128i v[4];
-        for (int k = 0; k < 4; ++k)
-            v[k] = _mm_loadu_si128(reinterpret_cast<const __m128i*>(planes + k * n + i));
-        interleave(v);
-        interleave(v);
-        for (int k = 0; k < 4; ++k)
-            _mm_storeu_si128(reinterpret_cast<__m128i*>(samples + i + 4 * k), v[k]);
-    }
-#endif
-    for (; i < n; ++i)
+void unshuffleBytes(const std::uint8_t* __restrict planes, std::size_t n, float* __restrict samples) {
+    for (std::size_t i = 0; i < n; ++i)
         samples[i] = std::bit_cast<float>(static_cast<std::uint32_t>(planes[i]) |
                                           static_cast<std::uint32_t>(planes[n + i]) << 8 |
                                           static_cast<std::uint32_t>(planes[2 * n + i]) << 16 |
