@@ -104,8 +104,8 @@ std::string readText(const std::string& path) {
     return {bytes.begin(), bytes.end()};
 }
 
-// Open3D (Debian's python3-open3d for Debian's /usr/bin/python3, installed by scripts/setup.sh) reads what CloudCompare and other tools
-// will read: the same points with the same colours.
+// Open3D (Debian's python3-open3d for Debian's /usr/bin/python3, installed by scripts/setup.sh) reads what
+// CloudCompare and other tools will read: the same points with the same colours.
 TEST_F(Export, OpenThreeDLoadsThePly) {
     ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Ply, dir_.path("o3d"), {3, 4}, false}));
     const std::string ply = dir_.path("o3d/000003.ply"), out = dir_.path("o3d.txt");
