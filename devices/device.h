@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "base/expected.h"
+#include "frame/frame.h"
 
 #include <chrono>
 #include <string>
@@ -37,8 +37,8 @@ struct CaptureResult {
     // Stalled: streaming, but no frame for longer than the device's dequeue watchdog allows.
     enum class Kind { Frame, Timeout, EndOfStream, Disconnected, Stalled, Error };
     Kind kind = Kind::Timeout;
-    FramePtr frame;      // set when kind == Frame
-    std::string message; // set for Disconnected, Stalled and Error
+    frame::FramePtr frame; // set when kind == Frame
+    std::string message;   // set for Disconnected, Stalled and Error
 };
 
 // A depth source. The public methods check the state machine and call the do*() hooks that a device

@@ -1,14 +1,15 @@
 #include "devices/frame_list_device.h"
+#include "base/clock.h"
 
 namespace dc::devices {
 
-FrameListDevice::FrameListDevice(std::vector<FramePtr> frames, double fps, std::string description)
+FrameListDevice::FrameListDevice(std::vector<frame::FramePtr> frames, double fps, std::string description)
     : frames_(std::move(frames)), fps_(fps), description_(std::move(description)) {}
 
 Capabilities FrameListDevice::capabilities() const {
     if (frames_.empty() || !frames_.front())
         return {};
-    const Frame& f = *frames_.front();
+    const frame::Frame& f = *frames_.front();
     return {.sceneDepth = f.sceneDepth.has_value(),
             .smoothedSceneDepth = f.smoothedSceneDepth.has_value(),
             .confidence = f.sceneDepth && !f.sceneDepth->confidence.empty(),
@@ -19,7 +20,7 @@ Capabilities FrameListDevice::capabilities() const {
 Status FrameListDevice::doOpen() {
     if (frames_.empty())
         return Error{description_ + ": no frames to play"};
-    for (const FramePtr& f : frames_)
+    for (const frame::FramePtr& f : frames_)
         if (!f)
             return Error{description_ + ": the frame list holds an empty frame"};
     if (!(fps_ > 0.0))
@@ -36,9 +37,9 @@ Status FrameListDevice::doStart() {
 CaptureResult FrameListDevice::doCapture(std::chrono::milliseconds timeout) {
     if (!pacer_.waitForNext(timeout))
         return {CaptureResult::Kind::Timeout, nullptr, {}};
-    auto frame = std::make_shared<Frame>(*frames_[sequence_ % frames_.size()]);
+    auto frame = std::make_shared<frame::Frame>(*frames_[sequence_ % frames_.size()]);
     frame->sequence = sequence_++;
-    frame->timestampNs = monotonicNowNs();
+    frame->timestampNs = base::monotonicNowNs();
     return {CaptureResult::Kind::Frame, std::move(frame), {}};
 }
 

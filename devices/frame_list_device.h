@@ -13,7 +13,7 @@ namespace dc::devices {
 // of the viewer, and tests that need exact, hand-made frames to flow through a real Session.
 class FrameListDevice final : public Device {
 public:
-    FrameListDevice(std::vector<FramePtr> frames, double fps, std::string description = "frame list");
+    FrameListDevice(std::vector<frame::FramePtr> frames, double fps, std::string description = "frame list");
 
     std::string description() const override { return description_; }
     Capabilities capabilities() const override;
@@ -25,7 +25,7 @@ protected:
     CaptureResult doCapture(std::chrono::milliseconds timeout) override;
 
 private:
-    std::vector<FramePtr> frames_;
+    std::vector<frame::FramePtr> frames_;
     double fps_;
     std::string description_;
     FramePacer pacer_;

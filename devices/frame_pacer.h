@@ -37,11 +37,4 @@ private:
     Clock::time_point next_{};
 };
 
-// CLOCK_MONOTONIC now, in nanoseconds: the timestamp of frames from sources without a clock of their own.
-inline std::int64_t monotonicNowNs() {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(
-               std::chrono::steady_clock::now().time_since_epoch())
-        .count();
-}
-
 } // namespace dc::devices

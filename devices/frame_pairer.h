@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <cstdint>
 #include <deque>
@@ -12,13 +12,13 @@ namespace dc::devices {
 struct StampedDepth {
     std::uint64_t sequence = 0;
     std::int64_t timestampNs = 0; // 0 = unknown: pair by sequence instead
-    Plane<float> depthMeters;
+    frame::Plane<float> depthMeters;
 };
 
 struct StampedImage {
     std::uint64_t sequence = 0;
     std::int64_t timestampNs = 0;
-    CapturedImage image;
+    frame::CapturedImage image;
 };
 
 struct PairedCapture {

@@ -1,6 +1,6 @@
 #include "devices/session.h"
 
-#include "devices/log.h"
+#include "base/log.h"
 
 namespace dc::devices {
 
@@ -109,18 +109,20 @@ void Session::onStalled(const std::string& message) {
     push({SessionEvent::Kind::StateChanged, DeviceState::Stalled, message});
 }
 
-std::optional<FramePtr> Session::noteAge(std::optional<FramePtr> frame) {
-    if (capabilities_.monotonicTimestamps && frame && *frame)
+std::optional<frame::FramePtr> Session::noteAge(std::optional<frame::FramePtr> frame) {
+    if (capabilities_.monotonicTimestamps && frame && *frame) {
+        std::lock_guard lock(agesMutex_);
         ages_.add(frameAgeMs(**frame));
+    }
     return frame;
 }
 
-void Session::setFrameTap(std::function<void(const FramePtr&)> tap) {
+void Session::setFrameTap(std::function<void(const frame::FramePtr&)> tap) {
     std::lock_guard lock(tapMutex_);
     tap_ = std::move(tap);
 }
 
-void Session::onFrame(FramePtr frame) {
+void Session::onFrame(frame::FramePtr frame) {
     {
         std::lock_guard lock(tapMutex_);
         if (tap_)
@@ -148,7 +150,8 @@ std::vector<SessionEvent> Session::drainEvents() {
 }
 
 SessionStats Session::stats() const {
-    return {mailbox_.posted(), mailbox_.dropped(), deviceFps_.load(), ages_.medianMs()};
+    std::lock_guard lock(agesMutex_);
+    return {mailbox_.posted(), mailbox_.dropped(), deviceFps_.load(), ages_.median()};
 }
 
 } // namespace dc::devices

@@ -1,9 +1,10 @@
 #pragma once
 
+#include "base/mailbox.h"
+#include "base/rate_meter.h"
+#include "base/rolling_stats.h"
 #include "devices/device.h"
 #include "devices/frame_age.h"
-#include "devices/mailbox.h"
-#include "devices/rate_meter.h"
 
 #include <atomic>
 #include <chrono>
@@ -49,8 +50,8 @@ public:
     Status start();
     void stop();
 
-    std::optional<FramePtr> takeLatest() { return noteAge(mailbox_.take()); }
-    std::optional<FramePtr> waitForFrame(std::chrono::milliseconds timeout) {
+    std::optional<frame::FramePtr> takeLatest() { return noteAge(mailbox_.take()); }
+    std::optional<frame::FramePtr> waitForFrame(std::chrono::milliseconds timeout) {
         return noteAge(mailbox_.waitTake(timeout));
     }
     std::vector<SessionEvent> drainEvents();
@@ -58,32 +59,33 @@ public:
     SessionStats stats() const;
     // Called on the capture thread with every frame before it is posted (a recorder's push). The tap
     // must return at once; an empty function removes it. Thread-safe.
-    void setFrameTap(std::function<void(const FramePtr&)> tap);
+    void setFrameTap(std::function<void(const frame::FramePtr&)> tap);
     DeviceState state() const { return state_.load(); }
     const std::string& description() const { return description_; }
     const Capabilities& capabilities() const { return capabilities_; }
 
 private:
     void run();
-    void onFrame(FramePtr frame);
+    void onFrame(frame::FramePtr frame);
     void onStalled(const std::string& message);
     // After a disconnect: retries reconnect() until it works (true) or the session stops (false).
     bool waitForReconnect();
-    std::optional<FramePtr> noteAge(std::optional<FramePtr> frame);
+    std::optional<frame::FramePtr> noteAge(std::optional<frame::FramePtr> frame);
     void push(SessionEvent event);
 
     std::unique_ptr<Device> device_;
     std::string description_;
     Capabilities capabilities_;
-    Mailbox<FramePtr> mailbox_;
+    base::Mailbox<frame::FramePtr> mailbox_;
     std::thread thread_;
     std::atomic<bool> stopRequested_{false};
     std::atomic<DeviceState> state_{DeviceState::Closed};
     std::atomic<double> deviceFps_{0.0};
-    RateMeter deliveries_; // capture thread only; published through deviceFps_
-    AgeMeter ages_;
+    base::RateMeter deliveries_; // capture thread only; published through deviceFps_
+    mutable std::mutex agesMutex_;
+    base::RollingStats ages_{31}; // ages of the frames consumers took, for latencyMs
     std::mutex tapMutex_;
-    std::function<void(const FramePtr&)> tap_;
+    std::function<void(const frame::FramePtr&)> tap_;
     mutable std::mutex eventsMutex_;
     std::vector<SessionEvent> events_;
 };

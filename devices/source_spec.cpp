@@ -1,8 +1,8 @@
 #include "devices/source_spec.h"
 
-#include "devices/live_source_spec.h"
 #include "devices/replay/replay_spec.h"
-#include "devices/synthetic_device.h"
+#include "devices/synthetic/synthetic_device.h"
+#include "devices/uvc/live_source_spec.h"
 
 #include <charconv>
 #include <sstream>

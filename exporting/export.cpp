@@ -1,9 +1,11 @@
 #include "exporting/export.h"
 
-#include "devices/image_io.h"
-#include "devices/log.h"
+#include "base/files.h"
+
+#include "base/log.h"
 #include "exporting/ply.h"
 #include "exporting/stray_writer.h"
+#include "frame/image_io.h"
 #include "processing/point_cloud.h"
 
 #include <algorithm>
@@ -27,8 +29,8 @@ bool parseIndex(const std::string& text, std::size_t& out) {
 }
 
 // The points of a frame, through its pose when world coordinates are asked for.
-std::vector<processing::CloudPoint> framePoints(const devices::Frame& frame, bool world) {
-    auto points = processing::buildPointCloud(frame, devices::Confidence::Low, 0.0f);
+std::vector<processing::CloudPoint> framePoints(const frame::Frame& frame, bool world) {
+    auto points = processing::buildPointCloud(frame, frame::Confidence::Low, 0.0f);
     if (!world || !frame.pose)
         return points;
     const auto& m = frame.pose->cameraToWorld;
@@ -41,7 +43,7 @@ std::vector<processing::CloudPoint> framePoints(const devices::Frame& frame, boo
     return points;
 }
 
-Status writePlyFrame(const devices::Frame& frame, std::size_t index, const ExportOptions& options) {
+Status writePlyFrame(const frame::Frame& frame, std::size_t index, const ExportOptions& options) {
     const bool world = options.worldCoordinates && frame.pose;
     const std::vector<std::string> comments = {
         "depthcloud export: frame " + std::to_string(index) + ", timestamp " +
@@ -50,7 +52,7 @@ Status writePlyFrame(const devices::Frame& frame, std::size_t index, const Expor
               : "camera coordinates, OpenCV axes (x right, y down, z forward), meters",
         "confidence: 0 low, 1 medium, 2 high"};
     const auto bytes = encodePly(framePoints(frame, world), comments);
-    return devices::writeFileAtomically(options.outDirectory + "/" + numberedName(index, "ply"), bytes);
+    return base::writeFileAtomically(options.outDirectory + "/" + numberedName(index, "ply"), bytes);
 }
 
 // The mean frame rate over the range, for the Stray video (30 when it cannot be told).

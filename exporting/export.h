@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/expected.h"
+#include "base/expected.h"
 #include "devices/replay/replay_source.h"
 
 #include <cstddef>

@@ -1,7 +1,9 @@
 #include "exporting/stray_writer.h"
 
-#include "devices/image_io.h"
-#include "devices/rgb_image.h"
+#include "base/files.h"
+
+#include "frame/image_io.h"
+#include "frame/rgb_image.h"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -29,11 +31,11 @@ Status writePng(const std::string& path, const cv::Mat& image) {
     } catch (const cv::Exception& e) {
         return Error{"cannot encode " + path + ": " + e.what()};
     }
-    return devices::writeFileAtomically(path, encoded);
+    return base::writeFileAtomically(path, encoded);
 }
 
 // Unit quaternion (x, y, z, w) of the rotation part of a column-major camera-to-world matrix.
-std::array<double, 4> quaternionOf(const devices::Pose& pose) {
+std::array<double, 4> quaternionOf(const frame::Pose& pose) {
     const auto m = [&](int row, int col) { return pose.cameraToWorld[col * 4 + row]; };
     const double trace = m(0, 0) + m(1, 1) + m(2, 2);
     std::array<double, 4> q{};
@@ -56,7 +58,7 @@ std::array<double, 4> quaternionOf(const devices::Pose& pose) {
 
 } // namespace
 
-Status writeDepthPng16(const std::string& path, const devices::Plane<float>& depthMeters) {
+Status writeDepthPng16(const std::string& path, const frame::Plane<float>& depthMeters) {
     cv::Mat mm(depthMeters.height, depthMeters.width, CV_16UC1);
     for (int y = 0; y < depthMeters.height; ++y) {
         auto* row = mm.ptr<std::uint16_t>(y);
@@ -70,7 +72,7 @@ Status writeDepthPng16(const std::string& path, const devices::Plane<float>& dep
     return writePng(path, mm);
 }
 
-Status StrayWriter::add(const devices::Frame& frame) {
+Status StrayWriter::add(const frame::Frame& frame) {
     if (!frame.sceneDepth)
         return Error{"frame " + std::to_string(frame.sequence) + " has no depth"};
     if (count_ == 0) {
@@ -100,7 +102,7 @@ Status StrayWriter::add(const devices::Frame& frame) {
     }
     if (Status s = addColor(frame); !s)
         return s;
-    const devices::Pose pose = frame.pose.value_or(devices::Pose{});
+    const frame::Pose pose = frame.pose.value_or(frame::Pose{});
     const auto q = quaternionOf(pose);
     char row[512];
     std::snprintf(row, sizeof(row),
@@ -113,11 +115,11 @@ Status StrayWriter::add(const devices::Frame& frame) {
     return {};
 }
 
-Status StrayWriter::addColor(const devices::Frame& frame) {
+Status StrayWriter::addColor(const frame::Frame& frame) {
     if (frame.capturedImage.empty())
         return {};
     const auto& image = frame.capturedImage;
-    std::vector<std::uint8_t> rgb = devices::toRgb24(image);
+    std::vector<std::uint8_t> rgb = frame::toRgb24(image);
     cv::Mat bgr;
     cv::cvtColor(cv::Mat(image.height, image.width, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
     if (!video_.isOpened()) {
@@ -150,9 +152,9 @@ Status StrayWriter::finish() {
     char matrix[256];
     std::snprintf(matrix, sizeof(matrix), "%.17g,0.0,%.17g\n0.0,%.17g,%.17g\n0.0,0.0,1.0\n", intrinsics_.fx,
                   intrinsics_.cx, intrinsics_.fy, intrinsics_.cy);
-    if (Status s = devices::writeTextFile(dir_ + "/camera_matrix.csv", matrix); !s)
+    if (Status s = base::writeTextFile(dir_ + "/camera_matrix.csv", matrix); !s)
         return s;
-    return devices::writeTextFile(dir_ + "/odometry.csv", odometry_);
+    return base::writeTextFile(dir_ + "/odometry.csv", odometry_);
 }
 
 } // namespace dc::exporting

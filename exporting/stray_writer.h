@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "base/expected.h"
+#include "frame/frame.h"
 
 #include <opencv2/videoio.hpp>
 
@@ -10,7 +10,7 @@
 namespace dc::exporting {
 
 // Writes 16-bit millimetre depth (0 = no measurement, clamped at 65.535 m) as a PNG, atomically.
-Status writeDepthPng16(const std::string& path, const devices::Plane<float>& depthMeters);
+Status writeDepthPng16(const std::string& path, const frame::Plane<float>& depthMeters);
 
 // Writes frames in the Stray Scanner layout: depth/ and confidence/ PNGs numbered from 0, rgb.mp4,
 // camera_matrix.csv (intrinsics of the video) and odometry.csv (camera-to-world per frame).
@@ -19,18 +19,18 @@ public:
     // `fps`: the video's frame rate (the capture's mean rate).
     StrayWriter(std::string directory, double fps) : dir_(std::move(directory)), fps_(fps) {}
 
-    Status add(const devices::Frame& frame);
+    Status add(const frame::Frame& frame);
     // Closes the video and writes the CSV files; the directory is complete only after this.
     Status finish();
 
 private:
-    Status addColor(const devices::Frame& frame);
+    Status addColor(const frame::Frame& frame);
 
     std::string dir_;
     double fps_;
     std::size_t count_ = 0;
     bool withConfidence_ = false; // decided by the first frame, so every frame has the same files
-    devices::Intrinsics intrinsics_;
+    frame::Intrinsics intrinsics_;
     std::string odometry_ = "timestamp, frame, x, y, z, qx, qy, qz, qw, fx, fy, cx, cy\n";
     cv::VideoWriter video_;
     cv::Size videoSize_;

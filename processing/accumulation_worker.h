@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "processing/point_accumulator.h"
 
 #include <atomic>
@@ -20,8 +20,8 @@ namespace dc::processing {
 class AccumulationWorker {
 public:
     struct Request {
-        devices::FramePtr frame;
-        devices::Confidence minLevel = devices::Confidence::Low;
+        frame::FramePtr frame;
+        frame::Confidence minLevel = frame::Confidence::Low;
         float nearMeters = 0.0f;
         std::size_t budget = PointAccumulator::kDefaultBudget;
         float voxelMeters = PointAccumulator::kDefaultVoxelMeters;

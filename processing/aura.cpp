@@ -22,25 +22,24 @@ bool measured(float d) {
     return std::isfinite(d) && d > 0.0f;
 }
 
-devices::Plane<float> matteDepth(const devices::Plane<float>& depth) {
+frame::Plane<float> matteDepth(const frame::Plane<float>& depth) {
     if (depth.width <= kMaxMatteWidth)
         return depth;
     const int w = kMaxMatteWidth, h = std::max(1, depth.height * kMaxMatteWidth / depth.width);
-    devices::Plane<float> small(w, h);
+    frame::Plane<float> small(w, h);
     cv::resize(asMat(depth), asMat(small), {w, h}, 0, 0, cv::INTER_NEAREST);
     return small;
 }
 
-void nearRange(const devices::Plane<float>& depth, const AuraSettings& s,
-               devices::Plane<std::uint8_t>& matte) {
+void nearRange(const frame::Plane<float>& depth, const AuraSettings& s, frame::Plane<std::uint8_t>& matte) {
     for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
         const float d = depth.pixels[i];
         matte.pixels[i] = measured(d) && d >= s.nearMeters && d <= s.farMeters;
     }
 }
 
-void nearestRegion(const devices::Plane<float>& depth, const AuraSettings& s,
-                   devices::Plane<std::uint8_t>& matte) {
+void nearestRegion(const frame::Plane<float>& depth, const AuraSettings& s,
+                   frame::Plane<std::uint8_t>& matte) {
     std::vector<float> valid;
     for (float d : depth.pixels)
         if (measured(d))
@@ -87,9 +86,9 @@ int pulsingWidth(double base, double phase) {
 
 } // namespace
 
-devices::Plane<std::uint8_t> subjectMatte(const devices::DepthData& depth, const AuraSettings& settings) {
-    const devices::Plane<float> d = matteDepth(depth.depthMeters);
-    devices::Plane<std::uint8_t> matte(d.width, d.height);
+frame::Plane<std::uint8_t> subjectMatte(const frame::DepthData& depth, const AuraSettings& settings) {
+    const frame::Plane<float> d = matteDepth(depth.depthMeters);
+    frame::Plane<std::uint8_t> matte(d.width, d.height);
     if (settings.matte == AuraMatte::NearRange)
         nearRange(d, settings, matte);
     else
@@ -97,7 +96,7 @@ devices::Plane<std::uint8_t> subjectMatte(const devices::DepthData& depth, const
     return matte;
 }
 
-RgbaImage renderAura(const devices::Frame& frame, const AuraSettings& settings, DepthSource source,
+RgbaImage renderAura(const frame::Frame& frame, const AuraSettings& settings, DepthSource source,
                      double timeSeconds) {
     const auto [width, height] = halfCameraSize(frame.capturedImage);
     std::vector<std::uint8_t> rgb = cameraRgb(frame.capturedImage, width, height);
@@ -106,7 +105,7 @@ RgbaImage renderAura(const devices::Frame& frame, const AuraSettings& settings, 
     const cv::Size work(std::max(1, static_cast<int>(width * kWorkScale)),
                         std::max(1, static_cast<int>(height * kWorkScale)));
     cv::Mat white(work, CV_32F, cv::Scalar(0.0f));
-    if (const devices::DepthData* depth = shownDepth(frame, source); depth && !depth->depthMeters.empty()) {
+    if (const frame::DepthData* depth = shownDepth(frame, source); depth && !depth->depthMeters.empty()) {
         cv::Mat matte;
         cv::resize(asMat(subjectMatte(*depth, settings)), matte, work, 0, 0, cv::INTER_NEAREST);
         const int ring = std::max(1, static_cast<int>(std::lround(settings.ringPixels * kWorkScale)));

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "processing/camera_image.h"
 #include "processing/settings.h"
 
@@ -13,7 +13,7 @@ namespace dc::processing {
 // measured depths within [nearMeters, farMeters]. NearestRegion: the 4-connected surface grown from the
 // nearest measurement (its 1st percentile, so one stray sample does not decide) over neighbour steps
 // below regionJumpMeters, at most regionDepthMeters behind its start.
-devices::Plane<std::uint8_t> subjectMatte(const devices::DepthData& depth, const AuraSettings& settings);
+frame::Plane<std::uint8_t> subjectMatte(const frame::DepthData& depth, const AuraSettings& settings);
 
 // The "super saiyan" aura: the matte dilated by a ringPixels-wide square window (separable) minus the matte
 // itself is a ring; a small tent blur of it adds white, a large one yellow (twice as strong), their sizes
@@ -23,7 +23,7 @@ devices::Plane<std::uint8_t> subjectMatte(const devices::DepthData& depth, const
 // matte, ring and blurs work at a quarter of that (240x180), since the ring is 15 and the blurs 31 to 301
 // output pixels wide and the result is blurred anyway; the sizes in AuraSettings are in output pixels. Empty
 // without a camera image; the camera image without depth.
-RgbaImage renderAura(const devices::Frame& frame, const AuraSettings& settings, DepthSource source,
+RgbaImage renderAura(const frame::Frame& frame, const AuraSettings& settings, DepthSource source,
                      double timeSeconds);
 
 } // namespace dc::processing

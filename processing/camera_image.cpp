@@ -8,14 +8,14 @@ namespace dc::processing {
 
 namespace {
 
-bool wellFormed(const devices::CapturedImage& image) {
+bool wellFormed(const frame::CapturedImage& image) {
     return !image.empty() && image.width > 0 && image.height > 0 &&
-           image.bytes->size() >= devices::CapturedImage::byteSize(image.format, image.width, image.height);
+           image.bytes->size() >= frame::CapturedImage::byteSize(image.format, image.width, image.height);
 }
 
 // Packed Y + interleaved CbCr at the output size to packed RGB. OpenCV's YCrCb conversion is full-range
 // BT.601 with coefficients (1.403, 0.714, 0.344, 1.773) that match the sample's (1.402, 0.7141, 0.3441,
-// 1.772, devices::ycbcrToRgb) to 0.2 levels, and it is vectorised: ten times faster than a call per pixel.
+// 1.772, frame::ycbcrToRgb) to 0.2 levels, and it is vectorised: ten times faster than a call per pixel.
 std::vector<std::uint8_t> ycbcrToRgb24(const cv::Mat& luma, const cv::Mat& chroma) {
     cv::Mat ycrcb(luma.size(), CV_8UC3);
     const cv::Mat sources[] = {luma, chroma};
@@ -32,7 +32,7 @@ std::size_t yuyvRowBytes(int width) {
 }
 
 // YUYV's luma into a packed width x height plane.
-void yuyvLuma(const devices::CapturedImage& image, std::uint8_t* out) {
+void yuyvLuma(const frame::CapturedImage& image, std::uint8_t* out) {
     const std::uint8_t* bytes = image.bytes->data();
     for (int y = 0; y < image.height; ++y) {
         const std::uint8_t* in = bytes + y * yuyvRowBytes(image.width);
@@ -42,7 +42,7 @@ void yuyvLuma(const devices::CapturedImage& image, std::uint8_t* out) {
 }
 
 // YUYV's Y and CbCr as two planes (CbCr at half width).
-void splitYuyv(const devices::CapturedImage& image, cv::Mat& luma, cv::Mat& chroma) {
+void splitYuyv(const frame::CapturedImage& image, cv::Mat& luma, cv::Mat& chroma) {
     const int pairs = (image.width + 1) / 2;
     luma.create(image.height, image.width, CV_8U);
     yuyvLuma(image, luma.ptr<std::uint8_t>(0));
@@ -59,19 +59,19 @@ void splitYuyv(const devices::CapturedImage& image, cv::Mat& luma, cv::Mat& chro
 
 } // namespace
 
-GrayView lumaView(const devices::CapturedImage& image, std::vector<std::uint8_t>& scratch) {
+GrayView lumaView(const frame::CapturedImage& image, std::vector<std::uint8_t>& scratch) {
     if (!wellFormed(image))
         return {};
     const std::uint8_t* bytes = image.bytes->data();
     const auto count = static_cast<std::size_t>(image.width) * image.height;
     switch (image.format) {
-    case devices::PixelFormat::Nv12:
+    case frame::PixelFormat::Nv12:
         return {bytes, image.width, image.height, image.width};
-    case devices::PixelFormat::Yuyv:
+    case frame::PixelFormat::Yuyv:
         scratch.resize(count);
         yuyvLuma(image, scratch.data());
         return {scratch.data(), image.width, image.height, image.width};
-    case devices::PixelFormat::Rgb24: {
+    case frame::PixelFormat::Rgb24: {
         const cv::Mat rgb(image.height, image.width, CV_8UC3, const_cast<std::uint8_t*>(bytes));
         scratch.resize(count);
         cv::Mat gray(image.height, image.width, CV_8U, scratch.data());
@@ -82,24 +82,24 @@ GrayView lumaView(const devices::CapturedImage& image, std::vector<std::uint8_t>
     return {};
 }
 
-std::vector<std::uint8_t> cameraRgb(const devices::CapturedImage& image, int width, int height) {
+std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width, int height) {
     if (!wellFormed(image) || width <= 0 || height <= 0)
         return {};
     const cv::Size size(width, height);
     auto* bytes = const_cast<std::uint8_t*>(image.bytes->data()); // cv::Mat wants non-const; only read
     switch (image.format) {
-    case devices::PixelFormat::Nv12: {
+    case frame::PixelFormat::Nv12: {
         const cv::Mat luma(image.height, image.width, CV_8U, bytes);
         const cv::Mat chroma((image.height + 1) / 2, (image.width + 1) / 2, CV_8UC2,
                              bytes + static_cast<std::size_t>(image.width) * image.height);
         return ycbcrToRgb24(resized(luma, size), resized(chroma, size));
     }
-    case devices::PixelFormat::Yuyv: {
+    case frame::PixelFormat::Yuyv: {
         cv::Mat luma, chroma;
         splitYuyv(image, luma, chroma);
         return ycbcrToRgb24(resized(luma, size), resized(chroma, size));
     }
-    case devices::PixelFormat::Rgb24: {
+    case frame::PixelFormat::Rgb24: {
         const cv::Mat rgb = resized(cv::Mat(image.height, image.width, CV_8UC3, bytes), size);
         const std::uint8_t* data = rgb.ptr<std::uint8_t>(0);
         return {data, data + static_cast<std::size_t>(width) * height * 3};

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <array>
 #include <cstddef>
@@ -30,16 +30,16 @@ struct RgbaImage {
 
 // The luma (full-range BT.601 Y) of a captured image: NV12's Y plane in place, YUYV and RGB24 converted
 // into `scratch`. Empty for an empty or malformed image.
-GrayView lumaView(const devices::CapturedImage& image, std::vector<std::uint8_t>& scratch);
+GrayView lumaView(const frame::CapturedImage& image, std::vector<std::uint8_t>& scratch);
 
 // The image resampled to width x height (area-averaged when shrinking) as packed 8-bit RGB, converted with
-// full-range BT.601 as the sample's matrix (devices::ycbcrToRgb, to 0.2 levels). Empty for an empty or
+// full-range BT.601 as the sample's matrix (frame::ycbcrToRgb, to 0.2 levels). Empty for an empty or
 // malformed image.
-std::vector<std::uint8_t> cameraRgb(const devices::CapturedImage& image, int width, int height);
+std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width, int height);
 
 // Half the camera image's size, rounded up: the resolution of the fog and aura images (960x720 for ARKit's
 // 1920x1440), which the point-cloud sample also uses for its depth texture.
-inline std::array<int, 2> halfCameraSize(const devices::CapturedImage& image) {
+inline std::array<int, 2> halfCameraSize(const frame::CapturedImage& image) {
     return {(image.width + 1) / 2, (image.height + 1) / 2};
 }
 

@@ -11,7 +11,7 @@ namespace dc::processing {
 
 namespace {
 
-using devices::Confidence;
+using frame::Confidence;
 
 bool measured(float d) {
     return d > 0.0f && d < std::numeric_limits<float>::infinity(); // also rejects NaN
@@ -83,11 +83,11 @@ void classifyRow(const float* depth, const float* before, const RowSums* const r
 }
 
 // Levels of rows [begin, end); each band keeps its own ring of horizontal sums, so bands run in parallel.
-void estimateRows(const devices::Plane<float>& depth, const devices::Plane<float>* previous,
+void estimateRows(const frame::Plane<float>& depth, const frame::Plane<float>* previous,
                   const ConfidenceEstimatorParams& params, int begin, int end,
-                  devices::Plane<std::uint8_t>& out) {
+                  frame::Plane<std::uint8_t>& out) {
     const int w = depth.width;
-    const auto rowOf = [&](const devices::Plane<float>& plane, int y) {
+    const auto rowOf = [&](const frame::Plane<float>& plane, int y) {
         return &plane.pixels[static_cast<std::size_t>(y) * w];
     };
     // Horizontal sums of three consecutive rows at a time: row i lives in slot i % 3.
@@ -112,10 +112,10 @@ void estimateRows(const devices::Plane<float>& depth, const devices::Plane<float
 
 } // namespace
 
-devices::Plane<std::uint8_t> estimateConfidence(const devices::Plane<float>& depth,
-                                                const devices::Plane<float>* previous,
-                                                const ConfidenceEstimatorParams& params) {
-    devices::Plane<std::uint8_t> out(depth.width, depth.height, static_cast<std::uint8_t>(Confidence::Low));
+frame::Plane<std::uint8_t> estimateConfidence(const frame::Plane<float>& depth,
+                                              const frame::Plane<float>* previous,
+                                              const ConfidenceEstimatorParams& params) {
+    frame::Plane<std::uint8_t> out(depth.width, depth.height, static_cast<std::uint8_t>(Confidence::Low));
     if (depth.empty())
         return out;
     const bool temporal = previous && previous->width == depth.width && previous->height == depth.height;
@@ -130,12 +130,12 @@ bool ConfidenceEstimatorStage::wanted(const ProcessingSettings&, const Needs& ne
     return needs.anyDepth();
 }
 
-devices::FramePtr ConfidenceEstimatorStage::process(devices::FramePtr frame, const ProcessingSettings&) {
+frame::FramePtr ConfidenceEstimatorStage::process(frame::FramePtr frame, const ProcessingSettings&) {
     if (!frame || !frame->sceneDepth || !frame->sceneDepth->confidence.empty() ||
         frame->sceneDepth->depthMeters.empty())
         return frame;
-    auto estimated = std::make_shared<devices::Frame>(*frame);
-    devices::DepthData& depth = *estimated->sceneDepth;
+    auto estimated = std::make_shared<frame::Frame>(*frame);
+    frame::DepthData& depth = *estimated->sceneDepth;
     depth.confidence =
         estimateConfidence(depth.depthMeters, previous_.empty() ? nullptr : &previous_, params_);
     depth.confidenceEstimated = true;

@@ -30,9 +30,9 @@ struct ConfidenceEstimatorParams {
 //    lowers it, which is acceptable for a hint). Unknown on the first frame, where it does not count.
 // High when all three are within the "high" limits, Medium within the "medium" limits, Low otherwise;
 // pixels without depth are Low. Image borders are mirrored, so they are not penalised.
-devices::Plane<std::uint8_t> estimateConfidence(const devices::Plane<float>& depthMeters,
-                                                const devices::Plane<float>* previousDepthMeters,
-                                                const ConfidenceEstimatorParams& params = {});
+frame::Plane<std::uint8_t> estimateConfidence(const frame::Plane<float>& depthMeters,
+                                              const frame::Plane<float>* previousDepthMeters,
+                                              const ConfidenceEstimatorParams& params = {});
 
 // The pipeline stage: fills sceneDepth.confidence with the estimate (and sets confidenceEstimated) when the
 // source gave none; frames with sensor confidence pass through untouched. Runs whenever depth is shown.
@@ -42,12 +42,12 @@ public:
 
     std::string_view name() const override { return kConfidenceEstimateStage; }
     bool wanted(const ProcessingSettings& settings, const Needs& needs) const override;
-    devices::FramePtr process(devices::FramePtr frame, const ProcessingSettings& settings) override;
+    frame::FramePtr process(frame::FramePtr frame, const ProcessingSettings& settings) override;
     void reset() override { previous_ = {}; }
 
 private:
     ConfidenceEstimatorParams params_;
-    devices::Plane<float> previous_;
+    frame::Plane<float> previous_;
 };
 
 } // namespace dc::processing

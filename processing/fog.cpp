@@ -18,7 +18,7 @@ constexpr int kMaxBlurWidth = 320;
 // Fog amount in [0, 1] at the depth map's resolution: depth / fogMax, clamped, then blurred. A pixel
 // without a measurement is beyond the sensor's range (the window in the desk scene, the sky outdoors), so
 // its amount is 1, never the 0 that its stored depth of 0 m would give.
-cv::Mat fogAmount(const devices::Plane<float>& depth, const FogSettings& settings) {
+cv::Mat fogAmount(const frame::Plane<float>& depth, const FogSettings& settings) {
     const float fogMax = std::max(settings.fogMaxMeters, 1e-6f);
     cv::Mat amount(depth.height, depth.width, CV_32F);
     for (int y = 0; y < depth.height; ++y)
@@ -38,7 +38,7 @@ cv::Mat fogAmount(const devices::Plane<float>& depth, const FogSettings& setting
 
 // The weight of the fogged color against the debug red per depth pixel: confidence / 2, at most 1; empty
 // (everywhere 1) without overlay or without a confidence map.
-std::vector<float> keptWeight(const devices::DepthData& depth, bool overlay) {
+std::vector<float> keptWeight(const frame::DepthData& depth, bool overlay) {
     if (!overlay || depth.confidence.empty() ||
         depth.confidence.pixels.size() != depth.depthMeters.pixels.size())
         return {};
@@ -50,15 +50,15 @@ std::vector<float> keptWeight(const devices::DepthData& depth, bool overlay) {
 
 } // namespace
 
-RgbaImage renderFog(const devices::Frame& frame, const FogSettings& settings, DepthSource source) {
+RgbaImage renderFog(const frame::Frame& frame, const FogSettings& settings, DepthSource source) {
     const auto [width, height] = halfCameraSize(frame.capturedImage);
     std::vector<std::uint8_t> rgb = cameraRgb(frame.capturedImage, width, height);
     if (rgb.empty())
         return {};
-    const devices::DepthData* depth = shownDepth(frame, source);
-    const devices::DepthData none{devices::Plane<float>(1, 1), {}};
+    const frame::DepthData* depth = shownDepth(frame, source);
+    const frame::DepthData none{frame::Plane<float>(1, 1), {}};
     const bool fogged = depth && !depth->depthMeters.empty();
-    const devices::DepthData& d = fogged ? *depth : none;
+    const frame::DepthData& d = fogged ? *depth : none;
     // No depth map: an amount of 0 everywhere, the plain camera image.
     const cv::Mat amount =
         fogged ? fogAmount(d.depthMeters, settings) : cv::Mat(1, 1, CV_32F, cv::Scalar(0.0f));

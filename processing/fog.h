@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "processing/camera_image.h"
 #include "processing/settings.h"
 
@@ -16,6 +16,6 @@ namespace dc::processing {
 // The image has half the camera image's size (960x720 for 1920x1440, halfCameraSize): fog is soft, and this
 // keeps it to a few milliseconds on two cores. Empty when the frame has no camera image; the plain camera
 // image when it has no depth.
-RgbaImage renderFog(const devices::Frame& frame, const FogSettings& settings, DepthSource source);
+RgbaImage renderFog(const frame::Frame& frame, const FogSettings& settings, DepthSource source);
 
 } // namespace dc::processing

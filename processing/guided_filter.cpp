@@ -16,7 +16,7 @@ namespace dc::processing {
 
 namespace {
 
-using devices::Plane;
+using frame::Plane;
 
 // Interpolated weights below this carry no usable measurement (a hole's neighbour far from any sample).
 constexpr float kMinWeight = 1e-3f;
@@ -359,11 +359,11 @@ void GuidedUpsampler::setGuide(GrayView guide, int outputWidth, int outputHeight
     resized(asMat(guideOutput_), {gridWidth, gridHeight}).convertTo(asMat(guideGrid_), CV_32F, 1.0 / 255.0);
 }
 
-devices::DepthData GuidedUpsampler::upsample(const devices::DepthData& depth) const {
+frame::DepthData GuidedUpsampler::upsample(const frame::DepthData& depth) const {
     const int width = guideOutput_.width, height = guideOutput_.height;
     if (guideOutput_.empty() || depth.depthMeters.empty())
         return depth;
-    devices::DepthData out{Plane<float>(width, height), {}, depth.confidenceEstimated};
+    frame::DepthData out{Plane<float>(width, height), {}, depth.confidenceEstimated};
     if (!depth.confidence.empty() && depth.confidence.pixels.size() == depth.depthMeters.pixels.size()) {
         out.confidence = Plane<std::uint8_t>(width, height);
         cv::resize(asMat(depth.confidence), asMat(out.confidence), {width, height}, 0, 0, cv::INTER_LINEAR);
@@ -382,8 +382,8 @@ devices::DepthData GuidedUpsampler::upsample(const devices::DepthData& depth) co
     return out;
 }
 
-devices::DepthData guidedUpsample(const devices::DepthData& depth, GrayView guide, int outputWidth,
-                                  int outputHeight, const GuidedFilterParams& params) {
+frame::DepthData guidedUpsample(const frame::DepthData& depth, GrayView guide, int outputWidth,
+                                int outputHeight, const GuidedFilterParams& params) {
     GuidedUpsampler upsampler;
     upsampler.setGuide(guide, outputWidth, outputHeight, params);
     return upsampler.upsample(depth);

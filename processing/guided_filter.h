@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "processing/camera_image.h"
 
 #include <cstdint>
@@ -29,10 +29,8 @@ struct GuidedFilterParams {
 // The filter on one grid. `guide` in [0, 1], `depth` and `weight` of the same size; weight 0 marks a
 // sample without measurement, as does a depth that is not finite and positive. The output has depth only
 // where the input sample has weight >= 0.5 (no hole filling); elsewhere 0.
-devices::Plane<float> maskedGuidedFilter(const devices::Plane<float>& guide,
-                                         const devices::Plane<float>& depth,
-                                         const devices::Plane<float>& weight,
-                                         const GuidedFilterParams& params);
+frame::Plane<float> maskedGuidedFilter(const frame::Plane<float>& guide, const frame::Plane<float>& depth,
+                                       const frame::Plane<float>& weight, const GuidedFilterParams& params);
 
 // Upsamples depth maps to an output size, guided by a camera image: depth and confidence are first scaled
 // bilinearly (masked: holes stay holes and do not pull their neighbours towards 0), then filtered with the
@@ -41,16 +39,16 @@ devices::Plane<float> maskedGuidedFilter(const devices::Plane<float>& guide,
 class GuidedUpsampler {
 public:
     void setGuide(GrayView guide, int outputWidth, int outputHeight, const GuidedFilterParams& params);
-    devices::DepthData upsample(const devices::DepthData& depth) const;
+    frame::DepthData upsample(const frame::DepthData& depth) const;
 
 private:
     GuidedFilterParams params_;
-    devices::Plane<std::uint8_t> guideOutput_; // 8-bit guide at the output size
-    devices::Plane<float> guideGrid_; // guide in [0, 1] on the coefficient grid (the output size for s = 1)
+    frame::Plane<std::uint8_t> guideOutput_; // 8-bit guide at the output size
+    frame::Plane<float> guideGrid_; // guide in [0, 1] on the coefficient grid (the output size for s = 1)
 };
 
 // One-shot form of GuidedUpsampler.
-devices::DepthData guidedUpsample(const devices::DepthData& depth, GrayView guide, int outputWidth,
-                                  int outputHeight, const GuidedFilterParams& params);
+frame::DepthData guidedUpsample(const frame::DepthData& depth, GrayView guide, int outputWidth,
+                                int outputHeight, const GuidedFilterParams& params);
 
 } // namespace dc::processing

@@ -24,8 +24,7 @@ bool Pipeline::hasStage(std::string_view name) const {
     return false;
 }
 
-devices::FramePtr Pipeline::run(devices::FramePtr frame, const ProcessingSettings& settings,
-                                const Needs& needs) {
+frame::FramePtr Pipeline::run(frame::FramePtr frame, const ProcessingSettings& settings, const Needs& needs) {
     timings_.clear();
     if (!frame)
         return frame;
@@ -47,13 +46,13 @@ devices::FramePtr Pipeline::run(devices::FramePtr frame, const ProcessingSetting
     return frame;
 }
 
-const devices::DepthData* shownDepth(const devices::Frame& frame, DepthSource source) {
+const frame::DepthData* shownDepth(const frame::Frame& frame, DepthSource source) {
     if (showsSmoothed(frame, source))
         return &*frame.smoothedSceneDepth;
     return frame.sceneDepth ? &*frame.sceneDepth : nullptr;
 }
 
-bool showsSmoothed(const devices::Frame& frame, DepthSource source) {
+bool showsSmoothed(const frame::Frame& frame, DepthSource source) {
     return source == DepthSource::Smoothed && frame.smoothedSceneDepth.has_value();
 }
 

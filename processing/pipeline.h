@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "processing/settings.h"
 
 #include <memory>
@@ -27,8 +27,8 @@ struct ProcessingSettings {
 
 // The depth map that `source` selects in `frame` (smoothed when asked for and present, else sceneDepth);
 // null when the frame has no depth. Consumers use it (or showsSmoothed) so they all show the same map.
-const devices::DepthData* shownDepth(const devices::Frame& frame, DepthSource source);
-bool showsSmoothed(const devices::Frame& frame, DepthSource source);
+const frame::DepthData* shownDepth(const frame::Frame& frame, DepthSource source);
+bool showsSmoothed(const frame::Frame& frame, DepthSource source);
 
 // What the visible panels and running exports need from a frame. A stage whose output nobody needs is
 // not run ("leave out what the scene does not need").
@@ -51,7 +51,7 @@ public:
     virtual std::string_view name() const = 0;
     // Whether the settings switch this stage on and a visible consumer needs its output.
     virtual bool wanted(const ProcessingSettings& settings, const Needs& needs) const = 0;
-    virtual devices::FramePtr process(devices::FramePtr frame, const ProcessingSettings& settings) = 0;
+    virtual frame::FramePtr process(frame::FramePtr frame, const ProcessingSettings& settings) = 0;
     // Drops temporal state (resolution change, seek, new source).
     virtual void reset() {}
 };
@@ -65,7 +65,7 @@ class Pipeline {
 public:
     void add(std::unique_ptr<Stage> stage);
     // Runs the wanted stages in order; the frame's resolution changing resets every stage first.
-    devices::FramePtr run(devices::FramePtr frame, const ProcessingSettings& settings, const Needs& needs);
+    frame::FramePtr run(frame::FramePtr frame, const ProcessingSettings& settings, const Needs& needs);
     void reset();
     bool hasStage(std::string_view name) const;
     // Timings of the stages that ran in the last run() (stages skipped are absent).

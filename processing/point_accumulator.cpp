@@ -1,6 +1,6 @@
 #include "processing/point_accumulator.h"
 
-#include "devices/color.h"
+#include "frame/color.h"
 #include "processing/confidence_filter.h"
 #include "processing/parallel.h"
 #include "processing/point_cloud.h"
@@ -21,15 +21,15 @@ constexpr int kMinRowsPerThread = 32;
 constexpr std::size_t kInitialTable = 4096;
 constexpr std::uint64_t kCellMask = 0x1fffff;
 
-std::uint32_t packRgba(const devices::Rgb& c) {
-    return static_cast<std::uint32_t>(devices::toByte(c.r)) |
-           static_cast<std::uint32_t>(devices::toByte(c.g)) << 8 |
-           static_cast<std::uint32_t>(devices::toByte(c.b)) << 16 | 0xff000000u;
+std::uint32_t packRgba(const frame::Rgb& c) {
+    return static_cast<std::uint32_t>(frame::toByte(c.r)) |
+           static_cast<std::uint32_t>(frame::toByte(c.g)) << 8 |
+           static_cast<std::uint32_t>(frame::toByte(c.b)) << 16 | 0xff000000u;
 }
 
 // The camera-to-world transform in float, row-major 3x4: enough precision for points within a few
 // kilometres of the origin at a millimetre voxel.
-std::array<float, 12> rowMajor(const devices::Pose& pose) {
+std::array<float, 12> rowMajor(const frame::Pose& pose) {
     const auto& m = pose.cameraToWorld; // column-major 4x4
     std::array<float, 12> r{};
     for (int row = 0; row < 3; ++row)
@@ -57,7 +57,7 @@ std::uint64_t cellOf(float v, float voxelMeters) {
            kCellMask;
 }
 
-devices::CapturedImage tinyImage(devices::PixelFormat format, int width, std::vector<std::uint8_t> bytes) {
+frame::CapturedImage tinyImage(frame::PixelFormat format, int width, std::vector<std::uint8_t> bytes) {
     return {format, width, 1, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
 }
 
@@ -68,13 +68,13 @@ CameraColourTable::CameraColourTable()
     for (int v = 0; v < 256; ++v) {
         const auto b = static_cast<std::uint8_t>(v);
         rgbByte_[static_cast<std::size_t>(v)] =
-            packRgba(devices::pixelRgb(tinyImage(devices::PixelFormat::Rgb24, 1, {b, b, b}), 0, 0)) & 0xffu;
+            packRgba(frame::pixelRgb(tinyImage(frame::PixelFormat::Rgb24, 1, {b, b, b}), 0, 0)) & 0xffu;
     }
 }
 
-bool CameraColourTable::use(const devices::CapturedImage& image) {
+bool CameraColourTable::use(const frame::CapturedImage& image) {
     if (image.empty() || image.width <= 0 || image.height <= 0 ||
-        image.bytes->size() < devices::CapturedImage::byteSize(image.format, image.width, image.height))
+        image.bytes->size() < frame::CapturedImage::byteSize(image.format, image.width, image.height))
         return false;
     bytes_ = image.bytes->data();
     format_ = image.format;
@@ -83,19 +83,19 @@ bool CameraColourTable::use(const devices::CapturedImage& image) {
     return true;
 }
 
-// The same addressing as devices::pixelRgb; the conversion itself is pixelRgb's, through the table.
+// The same addressing as frame::pixelRgb; the conversion itself is pixelRgb's, through the table.
 std::uint32_t CameraColourTable::rgba(int xi, int yi) {
     const auto x = static_cast<std::size_t>(xi), y = static_cast<std::size_t>(yi);
     switch (format_) {
-    case devices::PixelFormat::Nv12: {
+    case frame::PixelFormat::Nv12: {
         const std::uint8_t* chroma = bytes_ + width_ * height_ + ((y / 2) * ((width_ + 1) / 2) + x / 2) * 2;
         return ycbcr(bytes_[y * width_ + x], chroma[0], chroma[1]);
     }
-    case devices::PixelFormat::Yuyv: {
+    case frame::PixelFormat::Yuyv: {
         const std::uint8_t* pair = bytes_ + y * 4 * ((width_ + 1) / 2) + (x / 2) * 4;
         return ycbcr(pair[(x & 1) * 2], pair[1], pair[3]);
     }
-    case devices::PixelFormat::Rgb24: {
+    case frame::PixelFormat::Rgb24: {
         const std::uint8_t* p = bytes_ + (y * width_ + x) * 3;
         return rgbByte_[p[0]] | rgbByte_[p[1]] << 8 | rgbByte_[p[2]] << 16 | 0xff000000u;
     }
@@ -115,10 +115,10 @@ void CameraColourTable::fillPair(std::uint32_t pair) {
     auto bytes = std::make_shared<std::vector<std::uint8_t>>(4);
     (*bytes)[2] = static_cast<std::uint8_t>(pair >> 8);
     (*bytes)[3] = static_cast<std::uint8_t>(pair & 0xff);
-    const devices::CapturedImage image{devices::PixelFormat::Nv12, 2, 1, bytes};
+    const frame::CapturedImage image{frame::PixelFormat::Nv12, 2, 1, bytes};
     for (std::uint32_t y = 0; y < 256; ++y) {
         (*bytes)[0] = static_cast<std::uint8_t>(y);
-        ycbcr_[std::size_t{pair} << 8 | y] = packRgba(devices::pixelRgb(image, 0, 0));
+        ycbcr_[std::size_t{pair} << 8 | y] = packRgba(frame::pixelRgb(image, 0, 0));
     }
     pairsFilled_[pair / 64] |= std::uint64_t{1} << (pair % 64);
 }
@@ -218,10 +218,10 @@ bool PointAccumulator::evictOldest() {
 
 // Row v's samples as candidates at out[0, width): kept ones in world coordinates with their voxel, the
 // others marked unkept. Touches nothing else, so rows may run on several threads.
-void PointAccumulator::gatherRow(const devices::Frame& frame, const std::array<float, 12>& m, int v,
-                                 devices::Confidence minLevel, float nearMeters, Candidate* out) const {
-    const devices::DepthData& depth = *frame.sceneDepth;
-    const devices::Intrinsics k = frame.depthIntrinsics();
+void PointAccumulator::gatherRow(const frame::Frame& frame, const std::array<float, 12>& m, int v,
+                                 frame::Confidence minLevel, float nearMeters, Candidate* out) const {
+    const frame::DepthData& depth = *frame.sceneDepth;
+    const frame::Intrinsics k = frame.depthIntrinsics();
     for (int u = 0; u < depth.depthMeters.width; ++u) {
         Candidate& c = out[u];
         const float z = depth.depthMeters.at(u, v);
@@ -260,10 +260,10 @@ std::uint64_t PointAccumulator::touchFor(std::size_t begin, std::size_t end) con
     return sink;
 }
 
-std::size_t PointAccumulator::insertCandidates(const devices::Frame& frame) {
+std::size_t PointAccumulator::insertCandidates(const frame::Frame& frame) {
     const int w = frame.sceneDepth->depthMeters.width, h = frame.sceneDepth->depthMeters.height;
     const bool imageUsable = colours_.use(frame.capturedImage);
-    const std::uint32_t fallback = imageUsable ? 0 : packRgba(devices::pixelRgb(frame.capturedImage, 0, 0));
+    const std::uint32_t fallback = imageUsable ? 0 : packRgba(frame::pixelRgb(frame.capturedImage, 0, 0));
     std::size_t added = 0;
     for (std::size_t i = 0; i < candidates_.size(); ++i) {
         if (i % kChunk == 0)
@@ -301,8 +301,7 @@ void PointAccumulator::store(const WorldPoint& point, std::uint64_t voxel) {
     count_ = std::min(count_ + 1, points_.size());
 }
 
-std::size_t PointAccumulator::add(const devices::Frame& frame, devices::Confidence minLevel,
-                                  float nearMeters) {
+std::size_t PointAccumulator::add(const frame::Frame& frame, frame::Confidence minLevel, float nearMeters) {
     if (!frame.pose || !frame.sceneDepth || !frame.cameraIntrinsics.valid())
         return 0;
     const int w = frame.sceneDepth->depthMeters.width, h = frame.sceneDepth->depthMeters.height;

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <array>
 #include <cstddef>
@@ -18,7 +18,7 @@ struct WorldPoint {
     std::uint32_t rgba = 0;
 };
 
-// The packed RGBA colour of camera-image pixels, exactly as packing devices::pixelRgb's result gives it,
+// The packed RGBA colour of camera-image pixels, exactly as packing frame::pixelRgb's result gives it,
 // at the cost of a table look-up: the table holds pixelRgb's own results for every YCbCr triplet, filled
 // one chroma pair (256 lumas) at a time when a pair is first met, so only the colours a scene uses take
 // memory.
@@ -26,7 +26,7 @@ class CameraColourTable {
 public:
     CameraColourTable();
     // Prepares for the pixels of `image`; false when the image is empty or malformed.
-    bool use(const devices::CapturedImage& image);
+    bool use(const frame::CapturedImage& image);
     // The colour of pixel (x, y), which must lie inside the image last passed to use().
     std::uint32_t rgba(int x, int y);
 
@@ -38,7 +38,7 @@ private:
     std::vector<std::uint64_t> pairsFilled_;   // one bit per (cb, cr)
     std::array<std::uint32_t, 256> rgbByte_{}; // RGB24: each channel's byte as pixelRgb and packing give it
     const std::uint8_t* bytes_ = nullptr;
-    devices::PixelFormat format_ = devices::PixelFormat::Nv12;
+    frame::PixelFormat format_ = frame::PixelFormat::Nv12;
     std::size_t width_ = 0, height_ = 0;
 };
 
@@ -65,7 +65,7 @@ public:
     void configure(std::size_t budget, float voxelMeters);
     // Adds the frame's kept samples (confidence and near limit as the cloud draws them). A frame without
     // a pose or depth adds nothing. Returns the number of points added.
-    std::size_t add(const devices::Frame& frame, devices::Confidence minLevel, float nearMeters);
+    std::size_t add(const frame::Frame& frame, frame::Confidence minLevel, float nearMeters);
     void clear();
 
     std::size_t size() const { return count_; }
@@ -104,10 +104,10 @@ private:
     void eraseEntry(std::size_t at);
     void resetBlocks();
     bool evictOldest();
-    void gatherRow(const devices::Frame& frame, const std::array<float, 12>& m, int v,
-                   devices::Confidence minLevel, float nearMeters, Candidate* out) const;
+    void gatherRow(const frame::Frame& frame, const std::array<float, 12>& m, int v,
+                   frame::Confidence minLevel, float nearMeters, Candidate* out) const;
     std::uint64_t touchFor(std::size_t begin, std::size_t end) const;
-    std::size_t insertCandidates(const devices::Frame& frame);
+    std::size_t insertCandidates(const frame::Frame& frame);
     void store(const WorldPoint& point, std::uint64_t voxel);
 
     float voxelMeters_;

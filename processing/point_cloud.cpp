@@ -1,17 +1,17 @@
 #include "processing/point_cloud.h"
 
-#include "devices/color.h"
+#include "frame/color.h"
 #include "processing/confidence_filter.h"
 
 namespace dc::processing {
 
-std::vector<CloudPoint> buildPointCloud(const devices::Frame& frame, devices::Confidence minLevel,
+std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confidence minLevel,
                                         float nearMeters) {
     std::vector<CloudPoint> points;
     if (!frame.sceneDepth || !frame.cameraIntrinsics.valid())
         return points;
-    const devices::DepthData& depth = *frame.sceneDepth;
-    const devices::Intrinsics k = frame.depthIntrinsics();
+    const frame::DepthData& depth = *frame.sceneDepth;
+    const frame::Intrinsics k = frame.depthIntrinsics();
     const int w = depth.depthMeters.width, h = depth.depthMeters.height;
     const auto& image = frame.capturedImage;
     points.reserve(depth.depthMeters.pixels.size());
@@ -23,9 +23,8 @@ std::vector<CloudPoint> buildPointCloud(const devices::Frame& frame, devices::Co
                 continue;
             const auto [x, y, zz] = unproject(u, v, z, k);
             const auto [cx, cy] = cameraPixelOf(u, v, w, h, image);
-            const devices::Rgb rgb = devices::pixelRgb(image, cx, cy);
-            points.push_back(
-                {x, y, zz, devices::toByte(rgb.r), devices::toByte(rgb.g), devices::toByte(rgb.b), c});
+            const frame::Rgb rgb = frame::pixelRgb(image, cx, cy);
+            points.push_back({x, y, zz, frame::toByte(rgb.r), frame::toByte(rgb.g), frame::toByte(rgb.b), c});
         }
     }
     return points;

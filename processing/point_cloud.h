@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <array>
 #include <cstdint>
@@ -16,7 +16,7 @@ struct CloudPoint {
 };
 
 // Pixel (u, v) at depth z through intrinsics k, in float as the vertex shader computes it.
-inline std::array<float, 3> unproject(int u, int v, float depthMeters, const devices::Intrinsics& k) {
+inline std::array<float, 3> unproject(int u, int v, float depthMeters, const frame::Intrinsics& k) {
     return {(static_cast<float>(u) - static_cast<float>(k.cx)) * depthMeters / static_cast<float>(k.fx),
             (static_cast<float>(v) - static_cast<float>(k.cy)) * depthMeters / static_cast<float>(k.fy),
             depthMeters};
@@ -25,7 +25,7 @@ inline std::array<float, 3> unproject(int u, int v, float depthMeters, const dev
 // The camera-image pixel whose area matches depth pixel (u, v)'s centre, as the cloud's shader samples it:
 // depth and image cover the same field of view at their own resolutions.
 inline std::array<int, 2> cameraPixelOf(int u, int v, int depthWidth, int depthHeight,
-                                        const devices::CapturedImage& image) {
+                                        const frame::CapturedImage& image) {
     return {static_cast<int>((static_cast<float>(u) + 0.5f) * static_cast<float>(image.width) /
                              static_cast<float>(depthWidth)),
             static_cast<int>((static_cast<float>(v) + 0.5f) * static_cast<float>(image.height) /
@@ -34,7 +34,7 @@ inline std::array<int, 2> cameraPixelOf(int u, int v, int depthWidth, int depthH
 
 // The CPU twin of the rendered cloud: one point per kept depth sample (processing::keepSample), colored by
 // the camera image at the matching pixel. Empty when the frame has no depth or invalid intrinsics.
-std::vector<CloudPoint> buildPointCloud(const devices::Frame& frame, devices::Confidence minLevel,
+std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confidence minLevel,
                                         float nearMeters);
 
 } // namespace dc::processing

@@ -8,8 +8,8 @@
 
 namespace dc::processing {
 
-DepthError depthError(const devices::Plane<float>& estimate, const devices::Plane<float>& truth,
-                      const devices::Plane<std::uint8_t>* mask) {
+DepthError depthError(const frame::Plane<float>& estimate, const frame::Plane<float>& truth,
+                      const frame::Plane<std::uint8_t>* mask) {
     DepthError e;
     if (estimate.pixels.size() != truth.pixels.size())
         return e;
@@ -30,8 +30,8 @@ DepthError depthError(const devices::Plane<float>& estimate, const devices::Plan
     return e;
 }
 
-devices::Plane<std::uint8_t> measuredFootprint(const devices::Plane<float>& low, int width, int height) {
-    devices::Plane<std::uint8_t> mask(width, height);
+frame::Plane<std::uint8_t> measuredFootprint(const frame::Plane<float>& low, int width, int height) {
+    frame::Plane<std::uint8_t> mask(width, height);
     const BilinearTaps tx = bilinearTaps(low.width, width), ty = bilinearTaps(low.height, height);
     const auto ok = [&](int x, int y) {
         const float d = low.at(x, y);
@@ -46,13 +46,13 @@ devices::Plane<std::uint8_t> measuredFootprint(const devices::Plane<float>& low,
 
 namespace {
 
-constexpr auto kMedium = static_cast<std::uint8_t>(devices::Confidence::Medium);
+constexpr auto kMedium = static_cast<std::uint8_t>(frame::Confidence::Medium);
 
-std::vector<std::size_t> steadyPixels(const std::vector<devices::DepthData>& frames) {
+std::vector<std::size_t> steadyPixels(const std::vector<frame::DepthData>& frames) {
     std::vector<std::size_t> pixels;
     const std::size_t n = frames.front().depthMeters.pixels.size();
     for (std::size_t i = 0; i < n; ++i) {
-        const bool steady = std::all_of(frames.begin(), frames.end(), [&](const devices::DepthData& f) {
+        const bool steady = std::all_of(frames.begin(), frames.end(), [&](const frame::DepthData& f) {
             const bool confident = f.confidence.empty() || f.confidence.pixels[i] >= kMedium;
             return f.depthMeters.pixels[i] > 0.0f && confident;
         });
@@ -89,8 +89,8 @@ void noiseOf(const std::vector<std::vector<float>>& series, std::size_t first, d
 
 } // namespace
 
-TemporalNoise measureTemporalNoise(const std::vector<devices::DepthData>& frames,
-                                   const SmoothingParams& params, int warmupFrames) {
+TemporalNoise measureTemporalNoise(const std::vector<frame::DepthData>& frames, const SmoothingParams& params,
+                                   int warmupFrames) {
     TemporalNoise noise;
     const auto first = static_cast<std::size_t>(std::max(warmupFrames, 0));
     if (frames.size() < first + 3)
@@ -101,8 +101,8 @@ TemporalNoise measureTemporalNoise(const std::vector<devices::DepthData>& frames
         return noise;
     TemporalSmoother smoother;
     std::vector<std::vector<float>> raw, smoothed;
-    for (const devices::DepthData& f : frames) {
-        const devices::DepthData s = smoother.smooth(f, params);
+    for (const frame::DepthData& f : frames) {
+        const frame::DepthData s = smoother.smooth(f, params);
         raw.emplace_back();
         smoothed.emplace_back();
         for (std::size_t i : pixels) {
@@ -122,11 +122,11 @@ int measureStepLag(float stepMeters, const SmoothingParams& params) {
     TemporalSmoother smoother;
     std::vector<int> crossed(kWidth, -1); // frame at which each pixel's smoothed value passed the middle
     for (int frame = 0; frame < kWidth; ++frame) {
-        devices::DepthData d{devices::Plane<float>(kWidth, kHeight, kBackground), {}};
+        frame::DepthData d{frame::Plane<float>(kWidth, kHeight, kBackground), {}};
         for (int y = 0; y < kHeight; ++y)
             for (int x = 0; x < std::min(kStart + frame, kWidth); ++x)
                 d.depthMeters.at(x, y) = kBackground - stepMeters;
-        const devices::DepthData s = smoother.smooth(d, params);
+        const frame::DepthData s = smoother.smooth(d, params);
         for (int x = 0; x < kWidth; ++x)
             if (crossed[x] < 0 && s.depthMeters.at(x, kHeight / 2) < middle)
                 crossed[x] = frame;

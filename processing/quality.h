@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "processing/settings.h"
 
 #include <cstddef>
@@ -18,12 +18,12 @@ struct DepthError {
 
 // Over the pixels where `mask` is nonzero (all pixels without a mask). An estimate that is not a finite
 // depth there counts as 0, so a method cannot improve its score by leaving pixels out.
-DepthError depthError(const devices::Plane<float>& estimate, const devices::Plane<float>& truth,
-                      const devices::Plane<std::uint8_t>* mask = nullptr);
+DepthError depthError(const frame::Plane<float>& estimate, const frame::Plane<float>& truth,
+                      const frame::Plane<std::uint8_t>* mask = nullptr);
 
 // Pixels of a width x height upsampling of `low` whose bilinear footprint (all up to four neighbours) was
 // measured: there every method has data, so comparing methods there is not decided by how they fill holes.
-devices::Plane<std::uint8_t> measuredFootprint(const devices::Plane<float>& low, int width, int height);
+frame::Plane<std::uint8_t> measuredFootprint(const frame::Plane<float>& low, int width, int height);
 
 // Temporal noise of a static scene before and after smoothing, over the pixels measured with at least
 // medium confidence in every frame (edge pixels with mixed returns are excluded: they are not noise).
@@ -34,8 +34,8 @@ struct TemporalNoise {
     double smoothedSpread = 0.0;
     std::size_t pixels = 0;
 };
-TemporalNoise measureTemporalNoise(const std::vector<devices::DepthData>& frames,
-                                   const SmoothingParams& params, int warmupFrames);
+TemporalNoise measureTemporalNoise(const std::vector<frame::DepthData>& frames, const SmoothingParams& params,
+                                   int warmupFrames);
 
 // Frames by which the smoothed depth lags a depth step of stepMeters moving one pixel per frame across a
 // noise-free background: how many frames after the input a pixel's smoothed value passes the middle of

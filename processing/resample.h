@@ -2,7 +2,7 @@
 
 // OpenCV glue shared by the processing kernels; include only from processing/*.cpp.
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <opencv2/core.hpp>
 
@@ -13,13 +13,13 @@
 namespace dc::processing {
 
 // A cv::Mat header over a plane's pixels (no copy). The const overload must only be read through.
-inline cv::Mat asMat(devices::Plane<float>& plane) {
+inline cv::Mat asMat(frame::Plane<float>& plane) {
     return {plane.height, plane.width, CV_32F, plane.pixels.data()};
 }
-inline cv::Mat asMat(const devices::Plane<float>& plane) {
+inline cv::Mat asMat(const frame::Plane<float>& plane) {
     return {plane.height, plane.width, CV_32F, const_cast<float*>(plane.pixels.data())};
 }
-inline cv::Mat asMat(const devices::Plane<std::uint8_t>& plane) {
+inline cv::Mat asMat(const frame::Plane<std::uint8_t>& plane) {
     return {plane.height, plane.width, CV_8U, const_cast<std::uint8_t*>(plane.pixels.data())};
 }
 

@@ -11,14 +11,14 @@ void SmoothingStage::reset() {
     lastTimestampNs_.reset();
 }
 
-devices::FramePtr SmoothingStage::process(devices::FramePtr frame, const ProcessingSettings& settings) {
+frame::FramePtr SmoothingStage::process(frame::FramePtr frame, const ProcessingSettings& settings) {
     if (!frame || !frame->sceneDepth || frame->smoothedSceneDepth)
         return frame;
     const std::int64_t t = frame->timestampNs;
     if (lastTimestampNs_ && (t < *lastTimestampNs_ || t - *lastTimestampNs_ > kMaxGapNs))
         smoother_.reset();
     lastTimestampNs_ = t;
-    auto out = std::make_shared<devices::Frame>(*frame);
+    auto out = std::make_shared<frame::Frame>(*frame);
     out->smoothedSceneDepth = smoother_.smooth(*frame->sceneDepth, settings.smoothingParams);
     return out;
 }

@@ -18,7 +18,7 @@ public:
 
     std::string_view name() const override { return kSmoothingStage; }
     bool wanted(const ProcessingSettings& settings, const Needs& needs) const override;
-    devices::FramePtr process(devices::FramePtr frame, const ProcessingSettings& settings) override;
+    frame::FramePtr process(frame::FramePtr frame, const ProcessingSettings& settings) override;
     void reset() override;
 
 private:

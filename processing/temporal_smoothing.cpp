@@ -7,7 +7,7 @@ namespace dc::processing {
 
 namespace {
 
-constexpr auto kHigh = static_cast<std::uint8_t>(devices::Confidence::High);
+constexpr auto kHigh = static_cast<std::uint8_t>(frame::Confidence::High);
 
 } // namespace
 
@@ -17,12 +17,12 @@ void TemporalSmoother::reset() {
     missed_ = {};
 }
 
-devices::DepthData TemporalSmoother::smooth(const devices::DepthData& depth, const SmoothingParams& params) {
-    const devices::Plane<float>& in = depth.depthMeters;
+frame::DepthData TemporalSmoother::smooth(const frame::DepthData& depth, const SmoothingParams& params) {
+    const frame::Plane<float>& in = depth.depthMeters;
     if (value_.width != in.width || value_.height != in.height) {
-        value_ = devices::Plane<float>(in.width, in.height);
-        confidence_ = devices::Plane<std::uint8_t>(in.width, in.height);
-        missed_ = devices::Plane<std::uint16_t>(in.width, in.height);
+        value_ = frame::Plane<float>(in.width, in.height);
+        confidence_ = frame::Plane<std::uint8_t>(in.width, in.height);
+        missed_ = frame::Plane<std::uint16_t>(in.width, in.height);
     }
     const bool hasConfidence = depth.confidence.pixels.size() == in.pixels.size();
     const float alpha = std::clamp(params.alpha, 0.0f, 1.0f);
@@ -43,7 +43,7 @@ devices::DepthData TemporalSmoother::smooth(const devices::DepthData& depth, con
             confidence_.pixels[i] = 0;
         }
     }
-    devices::DepthData out{value_, {}, depth.confidenceEstimated};
+    frame::DepthData out{value_, {}, depth.confidenceEstimated};
     if (hasConfidence)
         out.confidence = confidence_;
     return out;

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "processing/settings.h"
 
 #include <cstdint>
@@ -13,13 +13,13 @@ namespace dc::processing {
 // Invalid input (0, NaN, inf, negative) is a dropout, never averaged in. A size change restarts it.
 class TemporalSmoother {
 public:
-    devices::DepthData smooth(const devices::DepthData& depth, const SmoothingParams& params);
+    frame::DepthData smooth(const frame::DepthData& depth, const SmoothingParams& params);
     void reset();
 
 private:
-    devices::Plane<float> value_;             // smoothed depth, 0 = none
-    devices::Plane<std::uint8_t> confidence_; // of the last measurement that fed the pixel
-    devices::Plane<std::uint16_t> missed_;    // frames since the pixel was last measured
+    frame::Plane<float> value_;             // smoothed depth, 0 = none
+    frame::Plane<std::uint8_t> confidence_; // of the last measurement that fed the pixel
+    frame::Plane<std::uint16_t> missed_;    // frames since the pixel was last measured
 };
 
 } // namespace dc::processing

@@ -24,7 +24,7 @@ bool UpsamplingStage::wanted(const ProcessingSettings& settings, const Needs& ne
     return settings.upsampling && needs.anyDepth();
 }
 
-devices::FramePtr UpsamplingStage::process(devices::FramePtr frame, const ProcessingSettings& settings) {
+frame::FramePtr UpsamplingStage::process(frame::FramePtr frame, const ProcessingSettings& settings) {
     if (!frame || !frame->sceneDepth)
         return frame;
     const GrayView luma = lumaView(frame->capturedImage, lumaScratch_);
@@ -32,7 +32,7 @@ devices::FramePtr UpsamplingStage::process(devices::FramePtr frame, const Proces
         return frame;
     const auto [width, height] = upsamplingOutputSize(luma.width, luma.height, settings.upsamplingParams);
     upsampler_.setGuide(luma, width, height, guidedFilterParams(settings.upsamplingParams));
-    auto out = std::make_shared<devices::Frame>(*frame);
+    auto out = std::make_shared<frame::Frame>(*frame);
     if (showsSmoothed(*frame, settings.depthSource))
         out->smoothedSceneDepth = upsampler_.upsample(*frame->smoothedSceneDepth);
     else

@@ -19,7 +19,7 @@ class UpsamplingStage final : public Stage {
 public:
     std::string_view name() const override { return kUpsamplingStage; }
     bool wanted(const ProcessingSettings& settings, const Needs& needs) const override;
-    devices::FramePtr process(devices::FramePtr frame, const ProcessingSettings& settings) override;
+    frame::FramePtr process(frame::FramePtr frame, const ProcessingSettings& settings) override;
 
 private:
     GuidedUpsampler upsampler_;

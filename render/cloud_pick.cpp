@@ -18,9 +18,9 @@ struct Candidate {
 };
 
 // Samples of the cloud drawn within the radius of the cursor.
-std::vector<Candidate> candidatesNearCursor(const devices::DepthData& depth, const devices::Intrinsics& k,
+std::vector<Candidate> candidatesNearCursor(const frame::DepthData& depth, const frame::Intrinsics& k,
                                             const PickQuery& query) {
-    const devices::Plane<float>& d = depth.depthMeters;
+    const frame::Plane<float>& d = depth.depthMeters;
     const bool hasConfidence = !depth.confidence.empty();
     const float radiusSquared = query.radiusPixels * query.radiusPixels;
     std::vector<Candidate> out;
@@ -48,8 +48,8 @@ std::vector<Candidate> candidatesNearCursor(const devices::DepthData& depth, con
 
 } // namespace
 
-std::optional<PickedSample> pickCloudSample(const devices::DepthData& depth,
-                                            const devices::Intrinsics& depthIntrinsics,
+std::optional<PickedSample> pickCloudSample(const frame::DepthData& depth,
+                                            const frame::Intrinsics& depthIntrinsics,
                                             const PickQuery& query) {
     if (!depthIntrinsics.valid() || depth.depthMeters.empty() || query.imageSize.x <= 0.0f ||
         query.imageSize.y <= 0.0f)

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <glm/glm.hpp>
 
@@ -20,7 +20,7 @@ struct PickQuery {
     glm::vec2 cursorPixels{0.0f};   // in the cloud image, (0, 0) at its top-left corner
     glm::vec2 imageSize{1.0f};      // the cloud image's size in pixels
     float radiusPixels = 4.0f;      // how far from the cursor a point's centre may be
-    devices::Confidence minConfidence = devices::Confidence::Low;
+    frame::Confidence minConfidence = frame::Confidence::Low;
     float nearMeters = 0.0f;
 };
 
@@ -28,8 +28,7 @@ struct PickQuery {
 // on the front-most surface (within 2% + 1 cm of the nearest), and of these the one nearest the cursor.
 // Applies the cloud's own culling (confidence, near limit, invalid depth), so a hidden point can never be
 // picked. Nothing for invalid intrinsics or an empty neighbourhood.
-std::optional<PickedSample> pickCloudSample(const devices::DepthData& depth,
-                                            const devices::Intrinsics& depthIntrinsics,
-                                            const PickQuery& query);
+std::optional<PickedSample> pickCloudSample(const frame::DepthData& depth,
+                                            const frame::Intrinsics& depthIntrinsics, const PickQuery& query);
 
 } // namespace dc::render

@@ -1,6 +1,6 @@
 #include "render/frame_textures.h"
 
-#include "devices/color.h"
+#include "frame/color.h"
 
 #include <utility>
 
@@ -25,7 +25,7 @@ constexpr PlaneFormat kConfidenceFormat{GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYT
 constexpr PlaneFormat kLumaFormat{GL_R8, GL_RED, GL_UNSIGNED_BYTE, GL_LINEAR};
 constexpr PlaneFormat kChromaFormat{GL_RG8, GL_RG, GL_UNSIGNED_BYTE, GL_LINEAR};
 
-constexpr std::uint8_t kHighConfidence = static_cast<std::uint8_t>(devices::Confidence::High);
+constexpr std::uint8_t kHighConfidence = static_cast<std::uint8_t>(frame::Confidence::High);
 constexpr std::uint8_t kMidGray = 128;              // Y = 0.5 and neutral chroma: mid-gray
 constexpr std::uint8_t kGrayChroma[2] = {128, 128}; // Cb = Cr = 0.5: no color
 
@@ -38,15 +38,15 @@ struct YcbcrPlanes {
 };
 
 // A known format with positive size and at least the bytes it needs (byteSize() is 0 for unknown formats).
-bool wellFormed(const devices::CapturedImage& image) {
+bool wellFormed(const frame::CapturedImage& image) {
     if (image.empty() || image.width <= 0 || image.height <= 0)
         return false;
-    const std::size_t needed = devices::CapturedImage::byteSize(image.format, image.width, image.height);
+    const std::size_t needed = frame::CapturedImage::byteSize(image.format, image.width, image.height);
     return needed > 0 && image.bytes->size() >= needed;
 }
 
 // YUYV carries one Cb/Cr pair per horizontal pixel pair: chroma at half width, full height.
-void splitYuyv(const devices::CapturedImage& image, std::vector<std::uint8_t>& luma,
+void splitYuyv(const frame::CapturedImage& image, std::vector<std::uint8_t>& luma,
                std::vector<std::uint8_t>& chroma) {
     const int pairs = (image.width + 1) / 2;
     luma.resize(static_cast<std::size_t>(image.width) * image.height);
@@ -67,32 +67,32 @@ void splitYuyv(const devices::CapturedImage& image, std::vector<std::uint8_t>& l
 
 // RGB is converted to full-resolution YCbCr so every format takes the shaders' one color path. The
 // round trip through 8-bit YCbCr costs about 1/255 per channel.
-void convertRgb24(const devices::CapturedImage& image, std::vector<std::uint8_t>& luma,
+void convertRgb24(const frame::CapturedImage& image, std::vector<std::uint8_t>& luma,
                   std::vector<std::uint8_t>& chroma) {
     const std::size_t count = static_cast<std::size_t>(image.width) * image.height;
     luma.resize(count);
     chroma.resize(count * 2);
     const std::uint8_t* rgb = image.bytes->data();
     for (std::size_t i = 0; i < count; ++i) {
-        const devices::Rgb color{rgb[i * 3] / 255.0f, rgb[i * 3 + 1] / 255.0f, rgb[i * 3 + 2] / 255.0f};
-        const devices::Ycbcr ycbcr = devices::rgbToYcbcr(color);
-        luma[i] = devices::toByte(ycbcr.y);
-        chroma[i * 2] = devices::toByte(ycbcr.cb);
-        chroma[i * 2 + 1] = devices::toByte(ycbcr.cr);
+        const frame::Rgb color{rgb[i * 3] / 255.0f, rgb[i * 3 + 1] / 255.0f, rgb[i * 3 + 2] / 255.0f};
+        const frame::Ycbcr ycbcr = frame::rgbToYcbcr(color);
+        luma[i] = frame::toByte(ycbcr.y);
+        chroma[i * 2] = frame::toByte(ycbcr.cb);
+        chroma[i * 2 + 1] = frame::toByte(ycbcr.cr);
     }
 }
 
-YcbcrPlanes ycbcrPlanes(const devices::CapturedImage& image, std::vector<std::uint8_t>& lumaScratch,
+YcbcrPlanes ycbcrPlanes(const frame::CapturedImage& image, std::vector<std::uint8_t>& lumaScratch,
                         std::vector<std::uint8_t>& chromaScratch) {
     const std::uint8_t* bytes = image.bytes->data();
     switch (image.format) {
-    case devices::PixelFormat::Nv12: // already the shaders' layout: upload the planes in place
+    case frame::PixelFormat::Nv12: // already the shaders' layout: upload the planes in place
         return {bytes, bytes + static_cast<std::size_t>(image.width) * image.height, (image.width + 1) / 2,
                 (image.height + 1) / 2};
-    case devices::PixelFormat::Yuyv:
+    case frame::PixelFormat::Yuyv:
         splitYuyv(image, lumaScratch, chromaScratch);
         return {lumaScratch.data(), chromaScratch.data(), (image.width + 1) / 2, image.height};
-    case devices::PixelFormat::Rgb24:
+    case frame::PixelFormat::Rgb24:
         convertRgb24(image, lumaScratch, chromaScratch);
         return {lumaScratch.data(), chromaScratch.data(), image.width, image.height};
     }
@@ -100,24 +100,23 @@ YcbcrPlanes ycbcrPlanes(const devices::CapturedImage& image, std::vector<std::ui
 }
 
 // A depth map the shaders can index: non-empty, with as many samples as its size claims.
-bool usable(const devices::Plane<float>& depth) {
+bool usable(const frame::Plane<float>& depth) {
     return depth.width > 0 && depth.height > 0 &&
            depth.pixels.size() == static_cast<std::size_t>(depth.width) * depth.height;
 }
 
 } // namespace
 
-void FrameTextures::upload(const devices::Frame& frame, bool preferSmoothed) {
+void FrameTextures::upload(const frame::Frame& frame, bool preferSmoothed) {
     // Rows of R8 and RG8 planes with odd widths are not 4-byte multiples, GL's default row alignment.
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     const bool smoothed = preferSmoothed && frame.smoothedSceneDepth.has_value();
-    const std::optional<devices::DepthData>& depth = smoothed ? frame.smoothedSceneDepth : frame.sceneDepth;
+    const std::optional<frame::DepthData>& depth = smoothed ? frame.smoothedSceneDepth : frame.sceneDepth;
     uploadDepth(depth ? &*depth : nullptr, frame.cameraIntrinsics);
     uploadCamera(frame.capturedImage);
 }
 
-void FrameTextures::uploadDepth(const devices::DepthData* depth,
-                                const devices::Intrinsics& cameraIntrinsics) {
+void FrameTextures::uploadDepth(const frame::DepthData* depth, const frame::Intrinsics& cameraIntrinsics) {
     if (!depth || !usable(depth->depthMeters)) {
         // hasDepth() reads the size, so forget it; the next frame with depth reallocates the storage.
         depth_.width = depth_.height = 0;
@@ -131,7 +130,7 @@ void FrameTextures::uploadDepth(const devices::DepthData* depth,
     depthIntrinsics_ = cameraIntrinsics.scaledTo(width, height);
     uploadPlane(depth_, kDepthFormat, width, height, depth->depthMeters.pixels.data());
 
-    const devices::Plane<std::uint8_t>& confidence = depth->confidence;
+    const frame::Plane<std::uint8_t>& confidence = depth->confidence;
     hasConfidence_ = confidence.width == width && confidence.height == height &&
                      confidence.pixels.size() == depth->depthMeters.pixels.size();
     if (hasConfidence_) {
@@ -142,7 +141,7 @@ void FrameTextures::uploadDepth(const devices::DepthData* depth,
     uploadPlane(confidence_, kConfidenceFormat, width, height, confidenceScratch_.data());
 }
 
-void FrameTextures::uploadCamera(const devices::CapturedImage& image) {
+void FrameTextures::uploadCamera(const frame::CapturedImage& image) {
     if (!wellFormed(image)) {
         cameraWidth_ = cameraHeight_ = 0;
         uploadPlane(luma_, kLumaFormat, 1, 1, &kMidGray);
@@ -209,7 +208,7 @@ bool validDepth(float meters) {
     return meters > 0.0 && !isinf(meters); // NaN fails the comparison
 }
 
-// Full-range BT.601 with the coefficients of devices::ycbcrToRgb (and of the Depth Cloud sample).
+// Full-range BT.601 with the coefficients of frame::ycbcrToRgb (and of the Depth Cloud sample).
 vec3 cameraColor(vec2 uv) {
     float y = texture(lumaMap, uv).r;
     vec2 c = texture(chromaMap, uv).rg - 0.5;

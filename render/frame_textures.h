@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "render/gl_objects.h"
 
 #include <cstdint>
@@ -29,7 +29,7 @@ public:
     // Uses the frame's smoothedSceneDepth when asked for and present, otherwise its sceneDepth. Every camera
     // format is uploaded as luma + chroma: NV12 directly, YUYV and RGB24 converted on the CPU. A frame
     // without an image (or with a malformed one) gets a mid-gray 1x1 image.
-    void upload(const devices::Frame& frame, bool preferSmoothed);
+    void upload(const frame::Frame& frame, bool preferSmoothed);
     // Binds the four textures to their units.
     void bind() const;
     // Sets the program's depthMap/confidenceMap/lumaMap/chromaMap samplers to the units above; leaves the
@@ -45,7 +45,7 @@ public:
     int cameraWidth() const { return cameraWidth_; }
     int cameraHeight() const { return cameraHeight_; }
     // The camera intrinsics scaled to the uploaded depth map (Frame::depthIntrinsics() for sceneDepth).
-    const devices::Intrinsics& depthIntrinsics() const { return depthIntrinsics_; }
+    const frame::Intrinsics& depthIntrinsics() const { return depthIntrinsics_; }
 
     GLuint depthTexture() const { return depth_.texture.id(); }
     GLuint confidenceTexture() const { return confidence_.texture.id(); }
@@ -60,8 +60,8 @@ private:
     };
     static void uploadPlane(PlaneTexture& plane, const detail::PlaneFormat& format, int width, int height,
                             const void* pixels);
-    void uploadDepth(const devices::DepthData* depth, const devices::Intrinsics& cameraIntrinsics);
-    void uploadCamera(const devices::CapturedImage& image);
+    void uploadDepth(const frame::DepthData* depth, const frame::Intrinsics& cameraIntrinsics);
+    void uploadCamera(const frame::CapturedImage& image);
 
     PlaneTexture depth_;
     PlaneTexture confidence_;
@@ -70,7 +70,7 @@ private:
     bool hasConfidence_ = false;
     int cameraWidth_ = 0;
     int cameraHeight_ = 0;
-    devices::Intrinsics depthIntrinsics_;
+    frame::Intrinsics depthIntrinsics_;
     // Reused between frames: the all-High confidence map and the planes of converted camera images.
     std::vector<std::uint8_t> confidenceScratch_;
     std::vector<std::uint8_t> lumaScratch_;

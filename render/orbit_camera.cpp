@@ -41,7 +41,7 @@ glm::mat4 cloudViewProjection(const OrbitView& view, float pivotDepthMeters, flo
     return projection * m * flip;
 }
 
-float verticalFovRadians(const devices::Intrinsics& k) {
+float verticalFovRadians(const frame::Intrinsics& k) {
     if (!k.valid())
         return glm::radians(60.0f);
     return static_cast<float>(2.0 * std::atan(0.5 * k.height / k.fy));

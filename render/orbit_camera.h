@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <glm/glm.hpp>
 
@@ -33,6 +33,6 @@ OrbitView autoOffset(const AutoMotion& motion, double timeSeconds);
 glm::mat4 cloudViewProjection(const OrbitView& view, float pivotDepthMeters, float fovYRadians, float aspect);
 
 // The depth camera's vertical field of view, or 60 degrees for invalid intrinsics.
-float verticalFovRadians(const devices::Intrinsics& k);
+float verticalFovRadians(const frame::Intrinsics& k);
 
 } // namespace dc::render

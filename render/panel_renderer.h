@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/expected.h"
+#include "base/expected.h"
 #include "render/colormap.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"

@@ -125,7 +125,7 @@ void PointCloudRenderer::drawAnchors(const CloudParams& params) const {
 }
 
 void PointCloudRenderer::setUniforms(const FrameTextures& textures, const CloudParams& params) const {
-    const devices::Intrinsics& k = textures.depthIntrinsics();
+    const frame::Intrinsics& k = textures.depthIntrinsics();
     glUniformMatrix4fv(uniforms_.viewProjection, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
     glUniform4f(uniforms_.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy),
                 static_cast<float>(k.cx), static_cast<float>(k.cy));

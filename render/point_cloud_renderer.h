@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "base/expected.h"
+#include "frame/frame.h"
 #include "render/accumulated_points.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"
@@ -19,7 +19,7 @@ struct CloudParams {
     // space, e.g. cloudViewProjection() of orbit_camera.h.
     glm::mat4 viewProjection{1.0f};
     // Samples below this level are not drawn (the sample's confidence selection).
-    devices::Confidence minConfidence = devices::Confidence::Low;
+    frame::Confidence minConfidence = frame::Confidence::Low;
     // Samples closer than this are not drawn, like the sample's fragment shader does below 1 m.
     float nearMeters = 0.1f;
     float pointSizePixels = 2.0f;

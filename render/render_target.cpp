@@ -1,6 +1,6 @@
 #include "render/render_target.h"
 
-#include "devices/image_io.h"
+#include "frame/image_io.h"
 
 #include <algorithm>
 
@@ -44,6 +44,13 @@ void RenderTarget::bind() const {
     glViewport(0, 0, width_, height_);
 }
 
+void RenderTarget::bindAndClear(float r, float g, float b, float a) const {
+    bind();
+    glClearColor(r, g, b, a);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+}
+
 void RenderTarget::setSampling(Sampling sampling) {
     sampling_ = sampling;
     if (color_) {
@@ -82,7 +89,7 @@ Status RenderTarget::savePng(const std::string& path) const {
     if (empty())
         return Error{"cannot save " + path + ": nothing has been rendered"};
     const std::vector<std::uint8_t> rgba = readRgba();
-    return devices::writeRgbaPng(path, width_, height_, rgba.data());
+    return frame::writeRgbaPng(path, width_, height_, rgba.data());
 }
 
 } // namespace dc::render

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/expected.h"
+#include "base/expected.h"
 #include "render/gl_objects.h"
 
 #include <cstdint>
@@ -26,6 +26,8 @@ public:
     Status resize(int width, int height);
     // Binds the framebuffer for drawing and sets the viewport to cover it.
     void bind() const;
+    // Binds it and clears colour and depth (colour components in [0, 1]).
+    void bindAndClear(float r, float g, float b, float a = 1.0f) const;
     void setSampling(Sampling sampling);
 
     int width() const { return width_; }

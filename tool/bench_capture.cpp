@@ -1,8 +1,9 @@
-#include "devices/frame.h"
-#include "devices/image_io.h"
-#include "devices/v4l2/pixel_formats.h"
+#include "base/files.h"
+#include "base/rolling_stats.h"
+#include "devices/uvc/v4l2/pixel_formats.h"
+#include "frame/frame.h"
+#include "frame/image_io.h"
 #include "processing/confidence_estimator.h"
-#include "processing/rolling_stats.h"
 #include "tool/live_commands.h"
 #include "tool/options.h"
 
@@ -74,22 +75,22 @@ int runBenchCapture(const BenchCaptureOptions& o) {
     const std::vector<std::uint8_t> z16[2] = {z16Frame(w, h, 0), z16Frame(w, h, 1)};
     const std::vector<std::uint8_t> yuyv = yuyvFrame(w, h);
     const auto bpl = static_cast<std::uint32_t>(2 * w);
-    processing::RollingStats depthMs(static_cast<std::size_t>(o.frames)),
+    base::RollingStats depthMs(static_cast<std::size_t>(o.frames)),
         colorMs(static_cast<std::size_t>(o.frames)), frameMs(static_cast<std::size_t>(o.frames)),
         totalMs(static_cast<std::size_t>(o.frames)), estimateMs(static_cast<std::size_t>(o.frames));
     std::uint64_t checksum = 0;
-    devices::FramePtr last;
+    frame::FramePtr last;
     for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
         // Exactly the capture thread's work per depth+color pair (UvcDevice::takeBuffer, makeFrame).
         const double t0 = threadCpuMs();
-        devices::Plane<float> meters;
+        frame::Plane<float> meters;
         devices::v4l2::depthToMeters(z16[i % 2], w, h, bpl, 0.001f, meters);
         const double t1 = threadCpuMs();
         auto image = devices::v4l2::toCapturedImage(V4L2_PIX_FMT_YUYV, yuyv, w, h, bpl);
         const double t2 = threadCpuMs();
-        auto frame = std::make_shared<devices::Frame>();
-        frame->capturedImage = image ? std::move(*image) : devices::CapturedImage{};
-        frame->sceneDepth = devices::DepthData{std::move(meters), {}};
+        auto frame = std::make_shared<frame::Frame>();
+        frame->capturedImage = image ? std::move(*image) : frame::CapturedImage{};
+        frame->sceneDepth = frame::DepthData{std::move(meters), {}};
         last = frame;
         const double t3 = threadCpuMs();
         if (i < kWarmupFrames)
@@ -103,7 +104,7 @@ int runBenchCapture(const BenchCaptureOptions& o) {
     processing::ConfidenceEstimatorStage estimator;
     for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
         const double t0 = threadCpuMs();
-        const devices::FramePtr estimated = estimator.process(last, {});
+        const frame::FramePtr estimated = estimator.process(last, {});
         const double t1 = threadCpuMs();
         checksum += estimated->sceneDepth->confidence
                         .pixels[static_cast<std::size_t>(i) % (static_cast<std::size_t>(w) * h)];
@@ -128,7 +129,7 @@ int runBenchCapture(const BenchCaptureOptions& o) {
                                {"frameAssemblyMs", m.frameMs},
                                {"captureTotalMs", m.totalMs},
                                {"confidenceEstimateMs", m.estimateMs}};
-        if (Status s = devices::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s) {
+        if (Status s = base::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s) {
             std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
             return kExitFailure;
         }

@@ -1,7 +1,7 @@
 // The error-versus-time chart of `depthcloud bench upsample`: one panel per scene group, a log time axis,
 // one labelled marker per method, so the Pareto front (down and to the left) shows at a glance.
 
-#include "devices/image_io.h"
+#include "frame/image_io.h"
 #include "tool/bench_upsample.h"
 
 #include <opencv2/imgproc.hpp>
@@ -141,7 +141,7 @@ Status writeChart(const std::string& path, const std::vector<ChartPanel>& panels
     }
     cv::Mat rgba;
     cv::cvtColor(image, rgba, cv::COLOR_BGR2RGBA);
-    return devices::writeRgbaPng(path, rgba.cols, rgba.rows, rgba.ptr<std::uint8_t>(0));
+    return frame::writeRgbaPng(path, rgba.cols, rgba.rows, rgba.ptr<std::uint8_t>(0));
 }
 
 } // namespace dc::tool::upsample

@@ -1,11 +1,12 @@
 #include "tool/bench_instrument.h"
 
-#include "devices/image_io.h"
-#include "devices/log.h"
-#include "devices/synthetic_device.h"
+#include "base/files.h"
+#include "base/log.h"
+#include "base/rolling_stats.h"
+#include "devices/synthetic/synthetic_device.h"
+#include "frame/image_io.h"
 #include "processing/accumulation_worker.h"
 #include "processing/point_accumulator.h"
-#include "processing/rolling_stats.h"
 #include "render/accumulated_points.h"
 #include "render/gl_context.h"
 #include "tool/options.h"
@@ -31,13 +32,13 @@ double msSince(Clock::time_point start) {
 }
 
 // Frames of the swaying synthetic camera, a quarter second apart, so consecutive poses differ.
-std::vector<devices::FramePtr> movingFrames(int count) {
+std::vector<frame::FramePtr> movingFrames(int count) {
     devices::SyntheticConfig c;
     c.motion = true;
     c.cameraWidth = 640;
     c.cameraHeight = 480;
     const devices::SyntheticDevice device(c);
-    std::vector<devices::FramePtr> frames;
+    std::vector<frame::FramePtr> frames;
     for (int i = 0; i < count; ++i)
         frames.push_back(device.makeFrame(static_cast<std::uint64_t>(i), 0.25 * i));
     return frames;
@@ -57,12 +58,12 @@ struct RenderThreadResult {
 // What the viewer's frame pays in accumulate mode: handing the frame to the worker and uploading what it
 // added, at a camera's 30 fps, with the worker adding on the other core.
 RenderThreadResult benchRenderThread(const BenchInstrumentOptions& o,
-                                     const std::vector<devices::FramePtr>& frames) {
+                                     const std::vector<frame::FramePtr>& frames) {
     processing::AccumulationWorker worker;
     render::AccumulatedPoints gpu;
     if (!gpu.init())
         return {};
-    const processing::AccumulationWorker::Request request{nullptr, devices::Confidence::Low, 0.1f,
+    const processing::AccumulationWorker::Request request{nullptr, frame::Confidence::Low, 0.1f,
                                                           static_cast<std::size_t>(o.budgetThousands) * 1000,
                                                           static_cast<float>(o.voxelMillimetres * 1e-3)};
     std::size_t next = 0;
@@ -73,7 +74,7 @@ RenderThreadResult benchRenderThread(const BenchInstrumentOptions& o,
         worker.waitIdle();
     }
     const std::uint64_t skippedBefore = worker.skipped();
-    processing::RollingStats ms(static_cast<std::size_t>(o.frames));
+    base::RollingStats ms(static_cast<std::size_t>(o.frames));
     const auto sync = [&](processing::PointAccumulator& points) { gpu.sync(points); };
     auto due = Clock::now();
     for (int i = 0; i < o.frames; ++i, ++next) {
@@ -91,7 +92,7 @@ RenderThreadResult benchRenderThread(const BenchInstrumentOptions& o,
 }
 
 AccumulateResult benchAccumulate(const BenchInstrumentOptions& o,
-                                 const std::vector<devices::FramePtr>& frames) {
+                                 const std::vector<frame::FramePtr>& frames) {
     const std::size_t budget = static_cast<std::size_t>(o.budgetThousands) * 1000;
     // With the default 1 mm voxel most samples are new, so the ring fills and then churns: the worst case.
     processing::PointAccumulator acc(budget, static_cast<float>(o.voxelMillimetres * 1e-3));
@@ -100,15 +101,13 @@ AccumulateResult benchAccumulate(const BenchInstrumentOptions& o,
         return {};
     std::size_t fill = 0;
     while (acc.size() < budget && fill < 4 * frames.size())
-        acc.add(*frames[fill++ % frames.size()], devices::Confidence::Low, 0.1f);
+        acc.add(*frames[fill++ % frames.size()], frame::Confidence::Low, 0.1f);
     gpu.sync(acc);
-    processing::RollingStats add(static_cast<std::size_t>(o.frames)),
-        sync(static_cast<std::size_t>(o.frames));
+    base::RollingStats add(static_cast<std::size_t>(o.frames)), sync(static_cast<std::size_t>(o.frames));
     std::size_t added = 0;
     for (int i = 0; i < o.frames; ++i) {
         auto start = Clock::now();
-        added +=
-            acc.add(*frames[static_cast<std::size_t>(i) % frames.size()], devices::Confidence::Low, 0.1f);
+        added += acc.add(*frames[static_cast<std::size_t>(i) % frames.size()], frame::Confidence::Low, 0.1f);
         add.add(msSince(start));
         start = Clock::now();
         gpu.sync(acc);
@@ -130,7 +129,7 @@ std::pair<double, double> benchStatsPanel(const BenchInstrumentOptions& o) {
     ui::Viewer viewer(std::make_unique<devices::SyntheticDevice>(c), ui::Settings{});
     if (!viewer.init())
         return {0, 0};
-    processing::RollingStats ms(static_cast<std::size_t>(o.frames));
+    base::RollingStats ms(static_cast<std::size_t>(o.frames));
     for (int i = 0; i < o.frames + 20; ++i) {
         gui.newFrame(1.0f / 60.0f);
         viewer.update(i / 60.0, std::chrono::milliseconds(50));
@@ -205,7 +204,7 @@ int runBenchInstrument(const BenchInstrumentOptions& o) {
                            {"newPointsPerFrame", a.newPerFrame},
                            {"statsPanelMedianMs", statsMedian},
                            {"statsPanelMaxMs", statsMax}};
-    if (Status s = devices::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s) {
+    if (Status s = base::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s) {
         std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
         return kExitFailure;
     }

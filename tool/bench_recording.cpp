@@ -1,12 +1,12 @@
 // depthcloud bench replay / bench record: decode throughput of replay sources, and recording throughput,
 // drops and size at 1280x720 depth + color @30 fps.
 
+#include "base/log.h"
 #include "devices/frame_list_device.h"
-#include "devices/log.h"
 #include "devices/recording/session_recording.h"
 #include "devices/replay/importers.h"
 #include "devices/session.h"
-#include "devices/synthetic_device.h"
+#include "devices/synthetic/synthetic_device.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
 
@@ -54,10 +54,10 @@ void decodeAll(const std::string& name, devices::replay::ReplaySource& source, b
 }
 
 // Frames of a synthetic camera, generated as fast as it can.
-std::vector<devices::FramePtr> syntheticFrames(devices::SyntheticConfig config, int count) {
+std::vector<frame::FramePtr> syntheticFrames(devices::SyntheticConfig config, int count) {
     config.paced = false;
     devices::SyntheticDevice device(config);
-    std::vector<devices::FramePtr> frames;
+    std::vector<frame::FramePtr> frames;
     if (!device.open() || !device.start())
         return frames;
     while (static_cast<int>(frames.size()) < count) {
@@ -81,7 +81,7 @@ struct RecordCase {
     int threads;
 };
 
-void runRecordCase(const RecordCase& c, const std::vector<devices::FramePtr>& frames,
+void runRecordCase(const RecordCase& c, const std::vector<frame::FramePtr>& frames,
                    const BenchRecordOptions& o) {
     const std::string path = tempPath(o.directory, c.name);
     auto device =
@@ -155,7 +155,7 @@ int runBenchReplay(const BenchReplayOptions& o) {
     {
         auto writer = devices::recording::RecordingWriter::create(path, {"synthetic 640x480", {}});
         for (std::size_t i = 0; writer && i < frames.size(); ++i) {
-            auto f = std::make_shared<devices::Frame>(*frames[i]);
+            auto f = std::make_shared<frame::Frame>(*frames[i]);
             f->timestampNs = static_cast<std::int64_t>(i) * 1'000'000'000 / 30; // recorded at exactly 30 fps
             (void)writer->append(*f);
         }

@@ -1,8 +1,9 @@
+#include "base/files.h"
+#include "base/log.h"
+#include "base/rolling_stats.h"
 #include "devices/frame_list_device.h"
-#include "devices/image_io.h"
-#include "devices/log.h"
-#include "devices/synthetic_device.h"
-#include "processing/rolling_stats.h"
+#include "devices/synthetic/synthetic_device.h"
+#include "frame/image_io.h"
 #include "render/gl_context.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
@@ -37,13 +38,13 @@ struct CaseResult {
 
 // Eight distinct noisy frames, made before timing starts so the capture thread costs nothing while the
 // viewer is measured; every viewer frame gets a new device frame (upload + panels + cloud each time).
-std::vector<devices::FramePtr> makeFrames(const BenchCase& c) {
+std::vector<frame::FramePtr> makeFrames(const BenchCase& c) {
     devices::SyntheticConfig config;
     config.depthWidth = c.depthWidth;
     config.depthHeight = c.depthHeight;
     config.paced = false;
     devices::SyntheticDevice device(config);
-    std::vector<devices::FramePtr> frames;
+    std::vector<frame::FramePtr> frames;
     if (!device.open() || !device.start())
         return frames;
     for (int i = 0; i < 8; ++i)
@@ -62,7 +63,7 @@ Expected<CaseResult> runCase(const BenchCase& c, const BenchOptions& o) {
     ui::Viewer viewer(std::move(device), ui::Settings{});
     if (Status s = viewer.init(); !s)
         return s.error();
-    processing::RollingStats frameMs(static_cast<std::size_t>(o.frames));
+    base::RollingStats frameMs(static_cast<std::size_t>(o.frames));
     for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
         const auto start = Clock::now();
         gui.newFrame(1.0f / 60.0f);
@@ -120,7 +121,7 @@ int runBenchRender(const BenchOptions& options) {
                            {"stageMedianMs", stages}});
     }
     if (!options.jsonPath.empty()) {
-        if (Status s = devices::writeTextFile(options.jsonPath, results.dump(2) + "\n"); !s) {
+        if (Status s = base::writeTextFile(options.jsonPath, results.dump(2) + "\n"); !s) {
             std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
             return kExitFailure;
         }

@@ -3,9 +3,10 @@
 
 #include "tool/bench_upsample.h"
 
-#include "devices/image_io.h"
-#include "devices/log.h"
-#include "devices/synthetic_scene.h"
+#include "base/files.h"
+#include "base/log.h"
+#include "devices/synthetic/synthetic_scene.h"
+#include "frame/image_io.h"
 #include "processing/confidence_filter.h"
 #include "processing/pipeline.h"
 #include "processing/quality.h"
@@ -30,7 +31,7 @@ struct Row {
 };
 
 Row measure(const Method& method, const Problem& p, int runs) {
-    devices::Plane<float> out = method.run(p);
+    frame::Plane<float> out = method.run(p);
     const processing::DepthError e =
         processing::depthError(out, p.truth, p.evaluated.empty() ? nullptr : &p.evaluated);
     const double ms = upsample::medianMilliseconds(runs, [&] { out = method.run(p); });
@@ -242,7 +243,7 @@ int runBenchUpsample(const BenchUpsampleOptions& options) {
         }
     }
     if (!options.jsonPath.empty()) {
-        if (Status s = devices::writeTextFile(options.jsonPath, report.dump(2) + "\n"); !s) {
+        if (Status s = base::writeTextFile(options.jsonPath, report.dump(2) + "\n"); !s) {
             std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
             return kExitFailure;
         }

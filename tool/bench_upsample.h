@@ -2,8 +2,8 @@
 
 // Internals of `depthcloud bench upsample`, shared by its source files.
 
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "base/expected.h"
+#include "frame/frame.h"
 #include "tool/bench_upsample_options.h"
 
 #include <nlohmann/json.hpp>
@@ -18,27 +18,27 @@ namespace dc::tool::upsample {
 // One upsampling problem: a low-resolution depth map and a guide image, to be brought to the output size.
 struct Problem {
     std::string scene;
-    double factor = 1.0;         // output width / input width
-    devices::DepthData low;      // depth in the scene's units (meters, or 8-bit disparity levels)
-    cv::Mat guideGray;           // 8-bit luma at the guide's own size
-    cv::Mat guideColor;          // 8-bit BGR, same size
-    devices::Plane<float> truth; // ground truth at the output size
+    double factor = 1.0;       // output width / input width
+    frame::DepthData low;      // depth in the scene's units (meters, or 8-bit disparity levels)
+    cv::Mat guideGray;         // 8-bit luma at the guide's own size
+    cv::Mat guideColor;        // 8-bit BGR, same size
+    frame::Plane<float> truth; // ground truth at the output size
     // Pixels that count (nonzero); empty = all pixels.
-    devices::Plane<std::uint8_t> evaluated;
+    frame::Plane<std::uint8_t> evaluated;
     float fitNoise = 0.0f; // the depth's noise floor in its units (our filter's fitNoise)
     std::string units;
 };
 
 struct Method {
     std::string name;
-    std::function<devices::Plane<float>(const Problem&)> run;
+    std::function<frame::Plane<float>(const Problem&)> run;
 };
 
 // nearest, bilinear, bicubic (Keys a = -0.5), OpenCV guided / joint bilateral / fast global smoother, ours.
 std::vector<Method> allMethods();
 // The bicubic used for the reference numbers (Keys a = -0.5, MATLAB/PIL's; OpenCV's INTER_CUBIC is a =
 // -0.75).
-devices::Plane<float> bicubic(const devices::Plane<float>& low, int width, int height);
+frame::Plane<float> bicubic(const frame::Plane<float>& low, int width, int height);
 
 // The noisy-Middlebury scenes of `dataDir` (every <scene>/<scene>_big.png with its inputs).
 Expected<std::vector<Problem>> middleburyProblems(const std::string& dataDir,

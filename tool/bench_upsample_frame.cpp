@@ -1,13 +1,13 @@
 // The per-frame figures of `depthcloud bench upsample`: the ARKit case against OpenCV's guided filter, the
 // whole processing chain, and the temporal smoothing.
 
-#include "devices/synthetic_scene.h"
+#include "base/rolling_stats.h"
+#include "devices/synthetic/synthetic_scene.h"
 #include "processing/aura.h"
 #include "processing/confidence_filter.h"
 #include "processing/fog.h"
 #include "processing/pipeline.h"
 #include "processing/quality.h"
-#include "processing/rolling_stats.h"
 #include "tool/bench_upsample.h"
 
 #include <chrono>
@@ -34,7 +34,7 @@ struct Timed {
 };
 
 Timed timeMethod(const Method& m, const Problem& p, int runs) {
-    devices::Plane<float> out = m.run(p);
+    frame::Plane<float> out = m.run(p);
     const double mad = processing::depthError(out, p.truth, &p.evaluated).mad * 1000.0;
     return {medianMilliseconds(runs, [&] { out = m.run(p); }), mad};
 }
@@ -51,16 +51,16 @@ double millisecondsSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
 }
 
-std::vector<devices::FramePtr> syntheticFrames(const BenchUpsampleOptions& o, int count) {
+std::vector<frame::FramePtr> syntheticFrames(const BenchUpsampleOptions& o, int count) {
     const devices::SyntheticScene scene;
-    const devices::Pose pose = devices::SyntheticScene::cameraPose(0.0, false);
+    const frame::Pose pose = devices::SyntheticScene::cameraPose(0.0, false);
     const int cw = o.quick ? 320 : 1920, ch = o.quick ? 240 : 1440, dw = o.quick ? 64 : 256,
               dh = o.quick ? 48 : 192;
-    const devices::Intrinsics camera = devices::SyntheticScene::cameraIntrinsics(cw, ch);
-    const devices::CapturedImage image = scene.renderImage(camera, pose);
-    std::vector<devices::FramePtr> frames;
+    const frame::Intrinsics camera = devices::SyntheticScene::cameraIntrinsics(cw, ch);
+    const frame::CapturedImage image = scene.renderImage(camera, pose);
+    std::vector<frame::FramePtr> frames;
     for (int i = 0; i < count; ++i) {
-        auto f = std::make_shared<devices::Frame>();
+        auto f = std::make_shared<frame::Frame>();
         f->sequence = static_cast<std::uint64_t>(i);
         f->capturedImage = image;
         f->cameraIntrinsics = camera;
@@ -107,26 +107,25 @@ nlohmann::json benchArkitFrame(const BenchUpsampleOptions& options, const Proble
 }
 
 nlohmann::json benchChain(const BenchUpsampleOptions& options) {
-    const std::vector<devices::FramePtr> frames = syntheticFrames(options, 8);
+    const std::vector<frame::FramePtr> frames = syntheticFrames(options, 8);
     processing::Pipeline pipeline = processing::makeDefaultPipeline();
     processing::ProcessingSettings settings;
     settings.smoothing = settings.upsampling = true;
     const int measured = options.quick ? 10 : std::max(options.runs, 100), warmup = 10;
-    std::map<std::string, processing::RollingStats> parts;
-    processing::RollingStats total(static_cast<std::size_t>(measured)),
-        cpu(static_cast<std::size_t>(measured));
+    std::map<std::string, base::RollingStats> parts;
+    base::RollingStats total(static_cast<std::size_t>(measured)), cpu(static_cast<std::size_t>(measured));
     for (int i = 0; i < warmup + measured; ++i) {
-        auto frame = std::make_shared<devices::Frame>(*frames[static_cast<std::size_t>(i) % frames.size()]);
+        auto frame = std::make_shared<frame::Frame>(*frames[static_cast<std::size_t>(i) % frames.size()]);
         frame->timestampNs = i * kFrameNs;
         const double cpuStart = processCpuMilliseconds();
         const auto start = Clock::now();
         frame->sceneDepth->depthMeters =
-            processing::filterByConfidence(*frame->sceneDepth, devices::Confidence::Medium);
+            processing::filterByConfidence(*frame->sceneDepth, frame::Confidence::Medium);
         const double filterMs = millisecondsSince(start);
-        const devices::FramePtr out = pipeline.run(frame, settings, {});
+        const frame::FramePtr out = pipeline.run(frame, settings, {});
         const auto cloudStart = Clock::now();
         const std::size_t points = processing::countDrawablePoints(
-            *processing::shownDepth(*out, settings.depthSource), devices::Confidence::Medium, 0.0f);
+            *processing::shownDepth(*out, settings.depthSource), frame::Confidence::Medium, 0.0f);
         const double cloudMs = millisecondsSince(cloudStart), totalMs = millisecondsSince(start);
         if (i < warmup || points == 0)
             continue;
@@ -158,11 +157,11 @@ nlohmann::json benchChain(const BenchUpsampleOptions& options) {
 }
 
 nlohmann::json benchEffects(const BenchUpsampleOptions& options) {
-    const devices::FramePtr raw = syntheticFrames(options, 1).front();
+    const frame::FramePtr raw = syntheticFrames(options, 1).front();
     processing::Pipeline pipeline = processing::makeDefaultPipeline();
     processing::ProcessingSettings settings;
     settings.upsampling = true;
-    const devices::FramePtr upsampled = pipeline.run(raw, settings, {});
+    const frame::FramePtr upsampled = pipeline.run(raw, settings, {});
     const auto source = processing::DepthSource::Raw;
     nlohmann::json out = nlohmann::json::object();
     std::printf("\nfog and aura images (half the camera size), median of %d:\n", options.runs);
@@ -179,8 +178,8 @@ nlohmann::json benchEffects(const BenchUpsampleOptions& options) {
 }
 
 nlohmann::json benchSmoothing(const BenchUpsampleOptions& options) {
-    std::vector<devices::DepthData> depths;
-    for (const devices::FramePtr& f : syntheticFrames(options, options.quick ? 12 : 40))
+    std::vector<frame::DepthData> depths;
+    for (const frame::FramePtr& f : syntheticFrames(options, options.quick ? 12 : 40))
         depths.push_back(*f->sceneDepth);
     const processing::SmoothingParams params;
     const processing::TemporalNoise noise =

@@ -1,6 +1,6 @@
 // The methods and scenes of `depthcloud bench upsample`.
 
-#include "devices/synthetic_scene.h"
+#include "devices/synthetic/synthetic_scene.h"
 #include "processing/camera_image.h"
 #include "processing/guided_filter.h"
 #include "processing/quality.h"
@@ -22,7 +22,7 @@ namespace dc::tool::upsample {
 
 namespace {
 
-using devices::Plane;
+using frame::Plane;
 
 cv::Mat asMat(const Plane<float>& p) {
     return {p.height, p.width, CV_32F, const_cast<float*>(p.pixels.data())};
@@ -231,14 +231,14 @@ Expected<std::vector<Problem>> middleburyProblems(const std::string& dataDir,
 
 Problem syntheticProblem(int depthWidth, int depthHeight, int cameraWidth, int cameraHeight) {
     const devices::SyntheticScene scene;
-    const devices::Pose pose = devices::SyntheticScene::cameraPose(0.0, false);
-    const devices::Intrinsics camera = devices::SyntheticScene::cameraIntrinsics(cameraWidth, cameraHeight);
+    const frame::Pose pose = devices::SyntheticScene::cameraPose(0.0, false);
+    const frame::Intrinsics camera = devices::SyntheticScene::cameraIntrinsics(cameraWidth, cameraHeight);
     const int outWidth = (cameraWidth + 1) / 2, outHeight = (cameraHeight + 1) / 2;
     Problem p;
     p.scene = "synthetic";
     p.factor = static_cast<double>(outWidth) / depthWidth;
     p.low = scene.sensorDepth(camera.scaledTo(depthWidth, depthHeight), pose, 1);
-    const devices::CapturedImage image = scene.renderImage(camera, pose);
+    const frame::CapturedImage image = scene.renderImage(camera, pose);
     std::vector<std::uint8_t> scratch;
     const processing::GrayView luma = processing::lumaView(image, scratch);
     p.guideGray = cv::Mat(luma.height, luma.width, CV_8U, const_cast<std::uint8_t*>(luma.pixels)).clone();

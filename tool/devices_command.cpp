@@ -1,5 +1,5 @@
-#include "devices/live_devices.h"
-#include "devices/usb/hotplug_monitor.h"
+#include "devices/uvc/live_devices.h"
+#include "devices/uvc/usb/hotplug_monitor.h"
 #include "tool/live_commands.h"
 #include "tool/options.h"
 

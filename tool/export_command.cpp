@@ -1,6 +1,6 @@
 // depthcloud export: a recording or capture to PLY clouds, the Stray layout or 16-bit depth PNGs.
 
-#include "devices/log.h"
+#include "base/log.h"
 #include "devices/replay/replay_spec.h"
 #include "exporting/export.h"
 #include "tool/options.h"

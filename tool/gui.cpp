@@ -3,10 +3,11 @@
 #define GLFW_INCLUDE_NONE
 #include <GLFW/glfw3.h>
 
-#include "devices/image_io.h"
-#include "devices/live_device_watcher.h"
-#include "devices/log.h"
+#include "base/files.h"
+#include "base/log.h"
 #include "devices/source_spec.h"
+#include "devices/uvc/live_device_watcher.h"
+#include "frame/image_io.h"
 #include "tool/options.h"
 #include "tool/summary.h"
 #include "ui/viewer.h"
@@ -105,7 +106,7 @@ Status saveScreenshot(GLFWwindow* window, const std::string& path) {
     const std::size_t row = static_cast<std::size_t>(w) * 4;
     for (int y = 0; y < h; ++y)
         std::copy_n(pixels.data() + static_cast<std::size_t>(h - 1 - y) * row, row, flipped.data() + y * row);
-    return devices::writeRgbaPng(path, w, h, flipped.data());
+    return frame::writeRgbaPng(path, w, h, flipped.data());
 }
 
 void drawFrame(GLFWwindow* window, ui::Viewer& viewer, double t) {
@@ -142,8 +143,8 @@ int writeOutputs(GLFWwindow* window, const ui::Viewer& viewer, const std::string
         s = viewer.savePanels(dir);
     if (s) {
         const auto renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-        s = devices::writeTextFile(dir + "/summary.json",
-                                   summaryJson(viewer.summary(), renderer ? renderer : "unknown", "gui"));
+        s = base::writeTextFile(dir + "/summary.json",
+                                summaryJson(viewer.summary(), renderer ? renderer : "unknown", "gui"));
     }
     if (!s) {
         std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
@@ -212,7 +213,7 @@ int runGui(const ViewerOptions& options) {
             if (last)
                 break;
         }
-        if (Status s = devices::writeTextFile(settingsPath, ui::settingsToJson(viewer.settings())); !s)
+        if (Status s = base::writeTextFile(settingsPath, ui::settingsToJson(viewer.settings())); !s)
             logWarning("settings not saved: " + s.error().message);
     }
     return status;

@@ -1,7 +1,8 @@
-#include "devices/image_io.h"
-#include "devices/log.h"
+#include "base/files.h"
+#include "base/log.h"
 #include "devices/replay/replay_device.h"
 #include "devices/source_spec.h"
+#include "frame/image_io.h"
 #include "render/gl_context.h"
 #include "tool/options.h"
 #include "tool/summary.h"
@@ -84,7 +85,7 @@ int runHeadless(const ViewerOptions& options) {
     if (Status s = viewer.savePanels(options.outDirectory); !s)
         return fail(s.error().message);
     const std::string summary = summaryJson(viewer.summary(), context->rendererName(), "headless");
-    if (Status s = devices::writeTextFile(options.outDirectory + "/summary.json", summary); !s)
+    if (Status s = base::writeTextFile(options.outDirectory + "/summary.json", summary); !s)
         return fail(s.error().message);
     std::printf("depthcloud: wrote cloud.png depth.png confidence.png camera.png summary.json to %s\n",
                 options.outDirectory.c_str());

@@ -1,6 +1,6 @@
 // depthcloud: see a depth camera's data as a live point cloud with depth and confidence panels.
 
-#include "devices/log.h"
+#include "base/log.h"
 #include "devices/source_spec.h"
 #include "tool/bench_instrument.h"
 #include "tool/bench_upsample_options.h"
@@ -52,9 +52,9 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
                  "no window: render offscreen and write PNGs + summary.json to --out");
     app.add_option("--frames", o.frames, "stop after N frames (headless default 60)");
     app.add_option("--out", o.outDirectory, "output directory (headless default: depthcloud-snapshots)");
-    const std::map<std::string, dc::devices::Confidence> levels{{"low", dc::devices::Confidence::Low},
-                                                                {"medium", dc::devices::Confidence::Medium},
-                                                                {"high", dc::devices::Confidence::High}};
+    const std::map<std::string, dc::frame::Confidence> levels{{"low", dc::frame::Confidence::Low},
+                                                              {"medium", dc::frame::Confidence::Medium},
+                                                              {"high", dc::frame::Confidence::High}};
     app.add_option("--confidence", o.confidence, "lowest confidence drawn in the cloud: low|medium|high")
         ->transform(CLI::CheckedTransformer(levels, CLI::ignore_case));
     app.add_flag("--reset", o.reset, "start with default settings and layout");

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <optional>
 #include <string>
@@ -17,7 +17,7 @@ struct ViewerOptions {
     bool headless = false;
     std::optional<int> frames; // stop after this many frames (headless default: 60)
     std::string outDirectory;  // where headless runs (and GUI runs given --out) write their files
-    std::optional<devices::Confidence> confidence;
+    std::optional<frame::Confidence> confidence;
     bool reset = false; // ignore saved settings and layout
 };
 

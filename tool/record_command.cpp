@@ -1,6 +1,6 @@
 // depthcloud record: any source to a depthcloud recording, through the same Session as the viewer.
 
-#include "devices/log.h"
+#include "base/log.h"
 #include "devices/recording/session_recording.h"
 #include "devices/source_spec.h"
 #include "tool/options.h"

@@ -4,7 +4,7 @@
 
 namespace dc::ui {
 
-glm::dmat4 toMatrix(const devices::Pose& pose) {
+glm::dmat4 toMatrix(const frame::Pose& pose) {
     glm::dmat4 m(1.0);
     for (int c = 0; c < 4; ++c)
         for (int r = 0; r < 4; ++r)
@@ -12,7 +12,7 @@ glm::dmat4 toMatrix(const devices::Pose& pose) {
     return m;
 }
 
-void Anchors::add(const glm::vec3& cameraPoint, const std::optional<devices::Pose>& pose) {
+void Anchors::add(const glm::vec3& cameraPoint, const std::optional<frame::Pose>& pose) {
     if (world_.size() >= kMaxAnchors)
         return;
     const glm::dvec4 p =
@@ -25,7 +25,7 @@ void Anchors::undo() {
         world_.pop_back();
 }
 
-std::vector<glm::vec3> Anchors::inCameraFrame(const std::optional<devices::Pose>& pose) const {
+std::vector<glm::vec3> Anchors::inCameraFrame(const std::optional<frame::Pose>& pose) const {
     const glm::dmat4 worldToCamera = pose ? glm::inverse(toMatrix(*pose)) : glm::dmat4(1.0);
     std::vector<glm::vec3> out;
     out.reserve(world_.size());

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <glm/glm.hpp>
 
@@ -17,7 +17,7 @@ public:
     static constexpr std::size_t kMaxAnchors = 32;
 
     // Adds a point given in the camera frame of `pose` (identity when the frame has none).
-    void add(const glm::vec3& cameraPoint, const std::optional<devices::Pose>& pose);
+    void add(const glm::vec3& cameraPoint, const std::optional<frame::Pose>& pose);
     void undo();
     void clear() { world_.clear(); }
 
@@ -25,7 +25,7 @@ public:
     bool empty() const { return world_.empty(); }
     const std::vector<glm::vec3>& world() const { return world_; }
     // The anchors in the camera frame of `pose`, where the cloud is drawn.
-    std::vector<glm::vec3> inCameraFrame(const std::optional<devices::Pose>& pose) const;
+    std::vector<glm::vec3> inCameraFrame(const std::optional<frame::Pose>& pose) const;
 
     // Straight-line distance from anchor i to anchor i + 1, meters.
     double segmentMeters(std::size_t i) const;
@@ -37,7 +37,7 @@ private:
     std::vector<glm::vec3> world_;
 };
 
-glm::dmat4 toMatrix(const devices::Pose& pose);
+glm::dmat4 toMatrix(const frame::Pose& pose);
 
 // "734 mm" / "1.234 m"; "0.12 m²" style for areas.
 std::string formatLength(double meters);

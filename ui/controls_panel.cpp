@@ -10,7 +10,7 @@ bool confidenceSection(CloudSettings& cloud) {
     bool changed = ImGui::RadioButton("All [1]", &level, 0);
     changed |= ImGui::RadioButton("Medium and high [2]", &level, 1);
     changed |= ImGui::RadioButton("High only [3]", &level, 2);
-    cloud.minConfidence = static_cast<devices::Confidence>(level);
+    cloud.minConfidence = static_cast<frame::Confidence>(level);
     return changed;
 }
 
@@ -207,7 +207,7 @@ bool handleShortcuts(Settings& settings) {
     }
     for (int level = 0; level < 3; ++level) {
         if (ImGui::IsKeyPressed('1' + level, false)) {
-            settings.cloud.minConfidence = static_cast<devices::Confidence>(level);
+            settings.cloud.minConfidence = static_cast<frame::Confidence>(level);
             fired = true;
         }
     }

@@ -1,6 +1,6 @@
 #include "ui/export_job.h"
 
-#include "devices/log.h"
+#include "base/log.h"
 #include "devices/replay/replay_spec.h"
 
 namespace dc::ui {

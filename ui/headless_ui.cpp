@@ -1,7 +1,6 @@
 #include "ui/headless_ui.h"
 
 #include <backends/imgui_impl_opengl3.h>
-#include <epoxy/gl.h>
 
 #include <GLFW/glfw3.h>
 
@@ -48,9 +47,7 @@ void HeadlessUi::newFrame(float deltaSeconds) {
 
 void HeadlessUi::render() {
     ImGui::Render();
-    target_.bind();
-    glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT);
+    target_.bindAndClear(0.1f, 0.1f, 0.12f);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 

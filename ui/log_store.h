@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/log.h"
+#include "base/log.h"
 
 #include <chrono>
 #include <cstdint>

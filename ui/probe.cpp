@@ -11,14 +11,14 @@ namespace dc::ui {
 std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
     if (source.empty())
         return std::nullopt;
-    const devices::DepthData& depth = *source.depth;
+    const frame::DepthData& depth = *source.depth;
     if (u < 0 || v < 0 || u >= depth.depthMeters.width || v >= depth.depthMeters.height)
         return std::nullopt;
     Probe probe{u, v, depth.depthMeters.at(u, v), std::nullopt, {}};
     if (!std::isfinite(probe.depthMeters) || probe.depthMeters < 0.0f)
         probe.depthMeters = 0.0f;
     if (!depth.confidence.empty())
-        probe.confidence = static_cast<devices::Confidence>(std::min<int>(depth.confidence.at(u, v), 2));
+        probe.confidence = static_cast<frame::Confidence>(std::min<int>(depth.confidence.at(u, v), 2));
     if (probe.depthMeters > 0.0f && source.intrinsics.valid())
         probe.point = processing::unproject(u, v, probe.depthMeters, source.intrinsics);
     return probe;
@@ -44,13 +44,13 @@ std::string formatDepth(float meters) {
     return text;
 }
 
-const char* confidenceName(devices::Confidence level) {
+const char* confidenceName(frame::Confidence level) {
     switch (level) {
-    case devices::Confidence::Low:
+    case frame::Confidence::Low:
         return "low";
-    case devices::Confidence::Medium:
+    case frame::Confidence::Medium:
         return "medium";
-    case devices::Confidence::High:
+    case frame::Confidence::High:
         return "high";
     }
     return "low";

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "ui/panel_image.h"
 
 #include <array>
@@ -13,15 +13,15 @@ namespace dc::ui {
 struct Probe {
     int u = 0; // depth-map pixel
     int v = 0;
-    float depthMeters = 0.0f;                      // 0 when the sample holds no measurement
-    std::optional<devices::Confidence> confidence; // none when the source provides no confidence
-    std::array<float, 3> point{};                  // camera frame (OpenCV axes), meters; zero without depth
+    float depthMeters = 0.0f;                    // 0 when the sample holds no measurement
+    std::optional<frame::Confidence> confidence; // none when the source provides no confidence
+    std::array<float, 3> point{};                // camera frame (OpenCV axes), meters; zero without depth
 };
 
 // The depth the panels show, with the intrinsics that place it.
 struct ProbeSource {
-    const devices::DepthData* depth = nullptr;
-    devices::Intrinsics intrinsics;
+    const frame::DepthData* depth = nullptr;
+    frame::Intrinsics intrinsics;
 
     bool empty() const { return depth == nullptr || depth->depthMeters.empty(); }
 };
@@ -35,7 +35,7 @@ std::optional<Probe> probeAtFraction(const ProbeSource& source, ImVec2 fraction)
 
 // Millimetres below a metre, where they are the natural unit; meters above; "no depth" for none.
 std::string formatDepth(float meters);
-const char* confidenceName(devices::Confidence level);
+const char* confidenceName(frame::Confidence level);
 
 // The readout as a tooltip next to the mouse.
 void showProbeTooltip(const Probe& probe);

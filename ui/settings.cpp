@@ -207,7 +207,7 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     const json& c = j.contains("cloud") ? j["cloud"] : none;
     int level = static_cast<int>(s.cloud.minConfidence);
     read(c, "minConfidence", level);
-    s.cloud.minConfidence = static_cast<devices::Confidence>(std::clamp(level, 0, 2));
+    s.cloud.minConfidence = static_cast<frame::Confidence>(std::clamp(level, 0, 2));
     read(c, "pointSizePixels", s.cloud.pointSizePixels);
     read(c, "nearMeters", s.cloud.nearMeters);
     read(c, "autoRotate", s.cloud.motion.enabled);

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "base/expected.h"
+#include "frame/frame.h"
 #include "processing/pipeline.h"
 #include "render/colormap.h"
 #include "render/orbit_camera.h"
@@ -26,7 +26,7 @@ struct PanelVisibility {
 };
 
 struct CloudSettings {
-    devices::Confidence minConfidence = devices::Confidence::Low; // points below are not drawn
+    frame::Confidence minConfidence = frame::Confidence::Low; // points below are not drawn
     float pointSizePixels = 2.0f;
     float nearMeters = 0.1f; // points nearer than this are not drawn (the sample drops the nearest too)
     render::AutoMotion motion;

@@ -1,11 +1,14 @@
 #include "ui/viewer.h"
 
+#include "base/clock.h"
+#include "base/files.h"
+#include "base/log.h"
+#include "base/rolling_stats.h"
 #include "devices/frame_pacer.h"
-#include "devices/image_io.h"
-#include "devices/log.h"
 #include "devices/replay/replay_device.h"
 #include "devices/source_spec.h"
 #include "exporting/ply.h"
+#include "frame/image_io.h"
 #include "processing/aura.h"
 #include "processing/confidence_filter.h"
 #include "processing/fog.h"
@@ -29,7 +32,7 @@ double millisecondsSince(Clock::time_point start) {
 }
 
 // The orbit pivot: the median valid depth, so the swing turns the cloud about the middle of the scene.
-float medianDepth(const devices::DepthData& depth) {
+float medianDepth(const frame::DepthData& depth) {
     std::vector<float> valid;
     const auto& pixels = depth.depthMeters.pixels;
     valid.reserve(pixels.size() / 4 + 1);
@@ -54,7 +57,7 @@ int cameraPanelWidth(int imageWidth, int shownWidth) {
 
 // The automatic colormap range: the 2nd to 98th percentile of the valid depth, so a few outliers do not
 // flatten the ramp; at least a centimetre wide.
-std::optional<std::pair<float, float>> percentileRange(const devices::DepthData& depth) {
+std::optional<std::pair<float, float>> percentileRange(const frame::DepthData& depth) {
     std::vector<float> valid;
     const auto& pixels = depth.depthMeters.pixels;
     valid.reserve(pixels.size() / 2 + 1);
@@ -239,7 +242,7 @@ void Viewer::switchSource(std::unique_ptr<devices::Device> device) {
     accumulation_.clear();
     frame_.reset();
     stages_.clear();
-    latencyMs_ = processing::RollingStats();
+    latencyMs_ = base::RollingStats();
     startSession();
     logInfo("source: " + session_->description());
 }
@@ -251,7 +254,7 @@ void Viewer::resizeCloud(int width, int height) {
 bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     updates_.tick();
     drainEvents();
-    std::optional<devices::FramePtr> next;
+    std::optional<frame::FramePtr> next;
     if (sourceRunning_)
         next = wait.count() > 0 ? session_->waitForFrame(wait) : session_->takeLatest();
     // After a seek, frames decoded before it are still in flight: the first one shown is the one asked for.
@@ -275,7 +278,7 @@ void Viewer::drainEvents() {
     }
 }
 
-void Viewer::acceptFrame(devices::FramePtr frame) {
+void Viewer::acceptFrame(frame::FramePtr frame) {
     auto start = Clock::now();
     frame = pipeline_.run(std::move(frame), settings_.processing, needs());
     stage("process").add(millisecondsSince(start));
@@ -297,7 +300,7 @@ void Viewer::acceptFrame(devices::FramePtr frame) {
     accumulate();
     // Only sources stamping frames with the monotonic clock have a latency; a recording's clock has none.
     if (session_->capabilities().monotonicTimestamps) {
-        const double latency = static_cast<double>(devices::monotonicNowNs() - frame_->timestampNs) * 1e-6;
+        const double latency = static_cast<double>(base::monotonicNowNs() - frame_->timestampNs) * 1e-6;
         if (latency >= 0.0)
             latencyMs_.add(latency);
     }
@@ -386,7 +389,7 @@ void Viewer::updateLegend() {
 }
 
 ProbeSource Viewer::probeSource() const {
-    const devices::DepthData* depth = shownDepth();
+    const frame::DepthData* depth = shownDepth();
     if (!depth)
         return {};
     return {depth, frame_->cameraIntrinsics.scaledTo(depth->depthMeters.width, depth->depthMeters.height)};
@@ -397,7 +400,7 @@ processing::Needs Viewer::needs() const {
     return {show.cloud, show.depth, show.confidence, show.camera, show.fog, show.aura};
 }
 
-const devices::DepthData* Viewer::shownDepth() const {
+const frame::DepthData* Viewer::shownDepth() const {
     return frame_ ? processing::shownDepth(*frame_, settings_.processing.depthSource) : nullptr;
 }
 
@@ -451,7 +454,7 @@ Expected<std::string> Viewer::saveSnapshot(const std::string& parent) const {
     const auto points =
         processing::buildPointCloud(*frame_, settings_.cloud.minConfidence, settings_.cloud.nearMeters);
     const auto ply = exporting::encodePly(points, {"depthcloud snapshot of " + session_->description()});
-    if (Status s = devices::writeFileAtomically(dir + "/cloud.ply", ply); !s)
+    if (Status s = base::writeFileAtomically(dir + "/cloud.ply", ply); !s)
         return s.error();
     logInfo("snapshot: " + dir);
     return dir;
@@ -507,7 +510,7 @@ ViewerSummary Viewer::summary() const {
                     0,
                     line.stageMedians,
                     line.latencyMs};
-    if (const devices::DepthData* depth = shownDepth()) {
+    if (const frame::DepthData* depth = shownDepth()) {
         s.depthWidth = depth->depthMeters.width;
         s.depthHeight = depth->depthMeters.height;
     }

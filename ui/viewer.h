@@ -1,11 +1,11 @@
 #pragma once
 
-#include "devices/rate_meter.h"
+#include "base/rate_meter.h"
+#include "base/rolling_stats.h"
 #include "devices/recording/session_recording.h"
 #include "devices/session.h"
 #include "processing/accumulation_worker.h"
 #include "processing/pipeline.h"
-#include "processing/rolling_stats.h"
 #include "render/frame_textures.h"
 #include "render/panel_renderer.h"
 #include "render/point_cloud_renderer.h"
@@ -75,7 +75,7 @@ public:
     ViewerSummary summary() const;
     const std::string& sourceMessage() const { return sourceMessage_; }
     bool sourceRunning() const { return sourceRunning_; }
-    const devices::FramePtr& currentFrame() const { return frame_; }
+    const frame::FramePtr& currentFrame() const { return frame_; }
     const render::RenderTarget& cloudTarget() const { return cloudTarget_; }
     const render::RenderTarget& depthTarget() const { return depthTarget_; }
     const render::RenderTarget& confidenceTarget() const { return confidenceTarget_; }
@@ -133,13 +133,13 @@ public:
 private:
     void startSession();
     void drainEvents();
-    void acceptFrame(devices::FramePtr frame);
+    void acceptFrame(frame::FramePtr frame);
     void renderPanels();
     void renderCloud(double timeSeconds);
     void countPoints();
     void updateLegend();
     void renderEffects(double timeSeconds);
-    const devices::DepthData* shownDepth() const;
+    const frame::DepthData* shownDepth() const;
     bool estimatedConfidence() const;
     void accumulate();
     // The points the cloud shows: the frame's, or in accumulate mode those gathered so far.
@@ -157,7 +157,7 @@ private:
     void onCloudPointer(const CloudPanelResult& r);
     CloudOverlay cloudOverlay() const;
     processing::Needs needs() const;
-    processing::RollingStats& stage(const std::string& name) { return stages_[name]; }
+    base::RollingStats& stage(const std::string& name) { return stages_[name]; }
 
     std::unique_ptr<devices::Session> session_;
     Settings settings_;
@@ -172,7 +172,7 @@ private:
     render::RgbaTexture fogTexture_;
     render::RgbaTexture auraTexture_;
     int cameraShownWidth_ = kDefaultCameraWidth;
-    devices::FramePtr frame_;
+    frame::FramePtr frame_;
     std::uint64_t framesShown_ = 0;
     std::uint64_t pointsDrawn_ = 0;
     std::uint64_t countedSequence_ = ~0ull;
@@ -191,8 +191,8 @@ private:
     std::string state_ = "closed";
     std::string sourceMessage_;
     bool sourceRunning_ = false;
-    std::map<std::string, processing::RollingStats> stages_;
-    processing::RollingStats latencyMs_;
+    std::map<std::string, base::RollingStats> stages_;
+    base::RollingStats latencyMs_;
     processing::AccumulationWorker accumulation_;
     render::AccumulatedPoints accumulatedPoints_;
     LogStore logs_;
@@ -206,7 +206,7 @@ private:
     std::unique_ptr<devices::recording::SessionRecording> recording_;
     std::vector<SourceEntry> liveSources_;
     std::string currentSpec_;
-    devices::RateMeter updates_;
+    base::RateMeter updates_;
 };
 
 } // namespace dc::ui

@@ -263,7 +263,7 @@ void Viewer::onCloudPointer(const CloudPanelResult& r) {
 }
 
 bool Viewer::estimatedConfidence() const {
-    const devices::DepthData* depth = shownDepth();
+    const frame::DepthData* depth = shownDepth();
     return depth && depth->confidenceEstimated;
 }
 

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/expected.h"
+#include "base/expected.h"
 
 #include <array>
 #include <cstdint>

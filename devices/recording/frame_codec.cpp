@@ -2,7 +2,7 @@
 
 #include "devices/recording/byte_io.h"
 #include "devices/recording/format.h"
-#include "devices/rgb_image.h"
+#include "frame/rgb_image.h"
 
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -104,7 +104,7 @@ std::optional<DeviceInfo> decodeDescription(std::span<const std::uint8_t> payloa
     return info;
 }
 
-std::optional<double> exactUint16Scale(const Plane<float>& depthMeters) {
+std::optional<double> exactUint16Scale(const frame::Plane<float>& depthMeters) {
     for (const double scale : kKnownScales) {
         bool exact = true;
         for (const float v : depthMeters.pixels) {
@@ -133,9 +133,9 @@ struct FrameEncoder::Impl {
 
     void section(std::vector<std::uint8_t>& out, SectionHeader h, std::span<const std::uint8_t> raw,
                  bool compressible);
-    void depth(std::vector<std::uint8_t>& out, Section kind, const Plane<float>& plane);
-    void plane8(std::vector<std::uint8_t>& out, Section kind, const Plane<std::uint8_t>& plane);
-    Status color(std::vector<std::uint8_t>& out, const CapturedImage& image);
+    void depth(std::vector<std::uint8_t>& out, Section kind, const frame::Plane<float>& plane);
+    void plane8(std::vector<std::uint8_t>& out, Section kind, const frame::Plane<std::uint8_t>& plane);
+    Status color(std::vector<std::uint8_t>& out, const frame::CapturedImage& image);
 };
 
 void FrameEncoder::Impl::section(std::vector<std::uint8_t>& out, SectionHeader h,
@@ -176,7 +176,8 @@ void FrameEncoder::Impl::section(std::vector<std::uint8_t>& out, SectionHeader h
     std::memcpy(out.data() + storedSizeAt, &stored, sizeof(stored));
 }
 
-void FrameEncoder::Impl::depth(std::vector<std::uint8_t>& out, Section kind, const Plane<float>& plane) {
+void FrameEncoder::Impl::depth(std::vector<std::uint8_t>& out, Section kind,
+                               const frame::Plane<float>& plane) {
     SectionHeader h{kind, Codec::Raw, kDepthFloat32Shuffled, plane.width, plane.height, 0.0, 0};
     const std::size_t n = plane.pixels.size();
     if (const auto scale = exactUint16Scale(plane)) {
@@ -195,16 +196,16 @@ void FrameEncoder::Impl::depth(std::vector<std::uint8_t>& out, Section kind, con
 }
 
 void FrameEncoder::Impl::plane8(std::vector<std::uint8_t>& out, Section kind,
-                                const Plane<std::uint8_t>& plane) {
+                                const frame::Plane<std::uint8_t>& plane) {
     section(out, {kind, Codec::Raw, kConfidenceUint8, plane.width, plane.height, 0.0, 0}, plane.pixels, true);
 }
 
-Status FrameEncoder::Impl::color(std::vector<std::uint8_t>& out, const CapturedImage& image) {
-    if (image.bytes->size() != CapturedImage::byteSize(image.format, image.width, image.height))
+Status FrameEncoder::Impl::color(std::vector<std::uint8_t>& out, const frame::CapturedImage& image) {
+    if (image.bytes->size() != frame::CapturedImage::byteSize(image.format, image.width, image.height))
         return Error{"camera image holds " + std::to_string(image.bytes->size()) + " bytes, " +
                      toString(image.format) + " " + std::to_string(image.width) + "x" +
                      std::to_string(image.height) + " needs " +
-                     std::to_string(CapturedImage::byteSize(image.format, image.width, image.height))};
+                     std::to_string(frame::CapturedImage::byteSize(image.format, image.width, image.height))};
     if (options.color == ColorStorage::AsCaptured) {
         section(out,
                 {Section::Color, Codec::Raw, static_cast<std::uint8_t>(image.format), image.width,
@@ -212,7 +213,7 @@ Status FrameEncoder::Impl::color(std::vector<std::uint8_t>& out, const CapturedI
                 *image.bytes, true);
         return {};
     }
-    std::vector<std::uint8_t> rgb = toRgb24(image);
+    std::vector<std::uint8_t> rgb = frame::toRgb24(image);
     cv::Mat bgr;
     cv::cvtColor(cv::Mat(image.height, image.width, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
     std::vector<std::uint8_t> jpeg;
@@ -229,12 +230,12 @@ FrameEncoder::~FrameEncoder() = default;
 FrameEncoder::FrameEncoder(FrameEncoder&&) noexcept = default;
 FrameEncoder& FrameEncoder::operator=(FrameEncoder&&) noexcept = default;
 
-Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const Frame& frame) {
+Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& frame) {
     std::vector<std::uint8_t> out;
     std::vector<std::uint8_t> meta;
     ByteWriter m(meta);
     m.put(frame.sequence);
-    const Intrinsics& k = frame.cameraIntrinsics;
+    const frame::Intrinsics& k = frame.cameraIntrinsics;
     for (const double v : {k.fx, k.fy, k.cx, k.cy})
         m.put(v);
     m.put(static_cast<std::int32_t>(k.width));
@@ -272,12 +273,12 @@ struct FrameDecoder::Impl {
         return Error{where + ": " + what + " (byte offset " + std::to_string(offset) + ")"};
     }
     Status unpack(const SectionHeader& h, std::span<const std::uint8_t> stored, std::uint64_t offset);
-    Status decodeMeta(ByteReader r, Frame& frame);
-    Expected<Plane<float>> decodeDepth(const SectionHeader& h, std::uint64_t offset);
-    Expected<Plane<std::uint8_t>> decodePlane8(const SectionHeader& h, std::uint64_t offset);
-    Expected<CapturedImage> decodeColor(const SectionHeader& h, std::uint64_t offset);
+    Status decodeMeta(ByteReader r, frame::Frame& frame);
+    Expected<frame::Plane<float>> decodeDepth(const SectionHeader& h, std::uint64_t offset);
+    Expected<frame::Plane<std::uint8_t>> decodePlane8(const SectionHeader& h, std::uint64_t offset);
+    Expected<frame::CapturedImage> decodeColor(const SectionHeader& h, std::uint64_t offset);
     Status apply(const SectionHeader& h, std::span<const std::uint8_t> stored, std::uint64_t offset,
-                 Frame& frame);
+                 frame::Frame& frame);
 };
 
 // Leaves the section's raw bytes in `scratch`.
@@ -308,9 +309,9 @@ Status FrameDecoder::Impl::unpack(const SectionHeader& h, std::span<const std::u
     return {};
 }
 
-Status FrameDecoder::Impl::decodeMeta(ByteReader r, Frame& frame) {
+Status FrameDecoder::Impl::decodeMeta(ByteReader r, frame::Frame& frame) {
     frame.sequence = r.get<std::uint64_t>();
-    Intrinsics& k = frame.cameraIntrinsics;
+    frame::Intrinsics& k = frame.cameraIntrinsics;
     k.fx = r.get<double>();
     k.fy = r.get<double>();
     k.cx = r.get<double>();
@@ -318,7 +319,7 @@ Status FrameDecoder::Impl::decodeMeta(ByteReader r, Frame& frame) {
     k.width = r.get<std::int32_t>();
     k.height = r.get<std::int32_t>();
     if (r.get<std::uint8_t>() != 0) {
-        Pose pose;
+        frame::Pose pose;
         for (double& v : pose.cameraToWorld)
             v = r.get<double>();
         frame.pose = pose;
@@ -328,8 +329,8 @@ Status FrameDecoder::Impl::decodeMeta(ByteReader r, Frame& frame) {
     return {};
 }
 
-Expected<Plane<float>> FrameDecoder::Impl::decodeDepth(const SectionHeader& h, std::uint64_t offset) {
-    Plane<float> plane(h.width, h.height);
+Expected<frame::Plane<float>> FrameDecoder::Impl::decodeDepth(const SectionHeader& h, std::uint64_t offset) {
+    frame::Plane<float> plane(h.width, h.height);
     const std::size_t n = plane.pixels.size();
     if (h.layout == kDepthUint16Scaled && std::isfinite(h.scale) && h.scale > 0.0 &&
         scratch.size() == 2 * n) {
@@ -347,15 +348,16 @@ Expected<Plane<float>> FrameDecoder::Impl::decodeDepth(const SectionHeader& h, s
     return error("depth section with unknown layout " + std::to_string(h.layout) + " or wrong size", offset);
 }
 
-Expected<Plane<std::uint8_t>> FrameDecoder::Impl::decodePlane8(const SectionHeader& h, std::uint64_t offset) {
-    Plane<std::uint8_t> plane(h.width, h.height);
+Expected<frame::Plane<std::uint8_t>> FrameDecoder::Impl::decodePlane8(const SectionHeader& h,
+                                                                      std::uint64_t offset) {
+    frame::Plane<std::uint8_t> plane(h.width, h.height);
     if (h.layout != kConfidenceUint8 || scratch.size() != plane.pixels.size())
         return error("confidence section with unknown layout or wrong size", offset);
     plane.pixels = scratch;
     return plane;
 }
 
-Expected<CapturedImage> FrameDecoder::Impl::decodeColor(const SectionHeader& h, std::uint64_t offset) {
+Expected<frame::CapturedImage> FrameDecoder::Impl::decodeColor(const SectionHeader& h, std::uint64_t offset) {
     if (h.layout == kColorJpeg) {
         cv::Mat bgr;
         try {
@@ -367,19 +369,19 @@ Expected<CapturedImage> FrameDecoder::Impl::decodeColor(const SectionHeader& h, 
             return error("cannot decode the JPEG camera image", offset);
         std::vector<std::uint8_t> rgb(static_cast<std::size_t>(h.width) * h.height * 3);
         cv::cvtColor(bgr, cv::Mat(h.height, h.width, CV_8UC3, rgb.data()), cv::COLOR_BGR2RGB);
-        return makeRgb24Image(h.width, h.height, std::move(rgb));
+        return frame::makeRgb24Image(h.width, h.height, std::move(rgb));
     }
-    if (h.layout > static_cast<std::uint8_t>(PixelFormat::Rgb24))
+    if (h.layout > static_cast<std::uint8_t>(frame::PixelFormat::Rgb24))
         return error("camera image in unknown format " + std::to_string(h.layout), offset);
-    const auto format = static_cast<PixelFormat>(h.layout);
-    if (scratch.size() != CapturedImage::byteSize(format, h.width, h.height))
+    const auto format = static_cast<frame::PixelFormat>(h.layout);
+    if (scratch.size() != frame::CapturedImage::byteSize(format, h.width, h.height))
         return error("camera image of the wrong size", offset);
-    return CapturedImage{format, h.width, h.height,
-                         std::make_shared<const std::vector<std::uint8_t>>(scratch)};
+    return frame::CapturedImage{format, h.width, h.height,
+                                std::make_shared<const std::vector<std::uint8_t>>(scratch)};
 }
 
 Status FrameDecoder::Impl::apply(const SectionHeader& h, std::span<const std::uint8_t> stored,
-                                 std::uint64_t offset, Frame& frame) {
+                                 std::uint64_t offset, frame::Frame& frame) {
     if (h.kind == Section::Meta)
         return decodeMeta(ByteReader(stored, offset), frame);
     if (h.kind < Section::SceneDepth || h.kind > Section::Color)
@@ -394,12 +396,12 @@ Status FrameDecoder::Impl::apply(const SectionHeader& h, std::span<const std::ui
     if (Status s = unpack(h, stored, offset); !s)
         return s;
     const bool smoothed = h.kind == Section::SmoothedDepth || h.kind == Section::SmoothedConfidence;
-    std::optional<DepthData>& target = smoothed ? frame.smoothedSceneDepth : frame.sceneDepth;
+    std::optional<frame::DepthData>& target = smoothed ? frame.smoothedSceneDepth : frame.sceneDepth;
     if (h.kind == Section::SceneDepth || h.kind == Section::SmoothedDepth) {
         auto plane = decodeDepth(h, offset);
         if (!plane)
             return plane.error();
-        target = DepthData{std::move(*plane), {}};
+        target = frame::DepthData{std::move(*plane), {}};
     } else if (h.kind == Section::SceneConfidence || h.kind == Section::SmoothedConfidence) {
         auto plane = decodePlane8(h, offset);
         if (!plane)
@@ -421,10 +423,11 @@ FrameDecoder::~FrameDecoder() = default;
 FrameDecoder::FrameDecoder(FrameDecoder&&) noexcept = default;
 FrameDecoder& FrameDecoder::operator=(FrameDecoder&&) noexcept = default;
 
-Expected<Frame> FrameDecoder::decode(std::span<const std::uint8_t> payload, std::uint64_t payloadOffset,
-                                     const std::string& file, std::uint64_t frameIndex) {
+Expected<frame::Frame> FrameDecoder::decode(std::span<const std::uint8_t> payload,
+                                            std::uint64_t payloadOffset, const std::string& file,
+                                            std::uint64_t frameIndex) {
     impl_->where = file + ": frame " + std::to_string(frameIndex);
-    Frame frame;
+    frame::Frame frame;
     ByteReader r(payload, payloadOffset);
     bool sawMeta = false;
     while (r.remaining() > 0) {

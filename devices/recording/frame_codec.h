@@ -1,8 +1,8 @@
 #pragma once
 
+#include "base/expected.h"
 #include "devices/device.h"
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <cstdint>
 #include <memory>
@@ -37,7 +37,7 @@ std::optional<DeviceInfo> decodeDescription(std::span<const std::uint8_t> payloa
 // The depth map as the integers it was made of, when every sample is exactly float(k * scale) for a
 // 16-bit k at one of the scales importers use (millimetres; TUM's 1/5000 m): that stores half the bytes
 // and decodes bit-exactly.
-std::optional<double> exactUint16Scale(const Plane<float>& depthMeters);
+std::optional<double> exactUint16Scale(const frame::Plane<float>& depthMeters);
 // The one conversion from integer depth units to meters, shared by importers and the decoder so that
 // exactUint16Scale recognises what they produce.
 inline float depthFromUnits(std::uint16_t units, double metersPerUnit) {
@@ -53,7 +53,7 @@ public:
     FrameEncoder(FrameEncoder&&) noexcept;
     FrameEncoder& operator=(FrameEncoder&&) noexcept;
 
-    Expected<std::vector<std::uint8_t>> encode(const Frame& frame);
+    Expected<std::vector<std::uint8_t>> encode(const frame::Frame& frame);
 
 private:
     struct Impl;
@@ -69,8 +69,8 @@ public:
     FrameDecoder(FrameDecoder&&) noexcept;
     FrameDecoder& operator=(FrameDecoder&&) noexcept;
 
-    Expected<Frame> decode(std::span<const std::uint8_t> payload, std::uint64_t payloadOffset,
-                           const std::string& file, std::uint64_t frameIndex);
+    Expected<frame::Frame> decode(std::span<const std::uint8_t> payload, std::uint64_t payloadOffset,
+                                  const std::string& file, std::uint64_t frameIndex);
 
 private:
     struct Impl;

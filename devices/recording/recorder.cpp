@@ -1,6 +1,6 @@
 #include "devices/recording/recorder.h"
 
-#include "devices/log.h"
+#include "base/log.h"
 
 #include <algorithm>
 #include <chrono>
@@ -36,7 +36,7 @@ Recorder::~Recorder() {
         logError(s.error().message);
 }
 
-bool Recorder::push(FramePtr frame) {
+bool Recorder::push(frame::FramePtr frame) {
     {
         std::lock_guard lock(mutex_);
         if (stopping_ || failed_ || inFlight_ >= capacity_) {

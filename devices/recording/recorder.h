@@ -45,7 +45,7 @@ public:
     Recorder& operator=(const Recorder&) = delete;
 
     // Thread-safe; false when the frame was dropped.
-    bool push(FramePtr frame);
+    bool push(frame::FramePtr frame);
     RecorderStats stats() const;
     // Writes what is queued, closes the file and renames it to its destination. Idempotent; call it from
     // the thread that owns the Recorder.
@@ -70,7 +70,7 @@ private:
     mutable std::mutex mutex_;
     std::condition_variable work_;    // encoders: a frame to encode, or stop
     std::condition_variable written_; // writer: an encoded frame, or the encoders ended
-    std::deque<std::pair<std::uint64_t, FramePtr>> pending_;
+    std::deque<std::pair<std::uint64_t, frame::FramePtr>> pending_;
     std::map<std::uint64_t, Encoded> encoded_;
     std::uint64_t nextSequence_ = 0;
     std::uint64_t nextToWrite_ = 0;

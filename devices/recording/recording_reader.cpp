@@ -5,7 +5,7 @@
 namespace dc::devices::recording {
 
 Expected<RecordingReader> RecordingReader::open(const std::string& path) {
-    auto file = MappedFile::open(path);
+    auto file = base::mapFile(path);
     if (!file)
         return file.error();
     RecordingReader reader;
@@ -152,7 +152,7 @@ void RecordingReader::scanChunks() {
                             " stray bytes at byte offset " + std::to_string(pos));
 }
 
-Expected<Frame> RecordingReader::frame(std::size_t i) {
+Expected<frame::Frame> RecordingReader::frame(std::size_t i) {
     if (i >= entries_.size())
         return Error{name_ + ": frame " + std::to_string(i) + " does not exist (" +
                      std::to_string(entries_.size()) + " frames)"};

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/recording/file_handle.h"
+#include "base/mapped_file.h"
 #include "devices/recording/format.h"
 #include "devices/recording/frame_codec.h"
 
@@ -34,7 +34,7 @@ public:
     const std::vector<std::string>& warnings() const { return warnings_; }
 
     // Decodes frame i (< frameCount()). A damaged chunk is an error naming file, frame and byte offset.
-    Expected<Frame> frame(std::size_t i);
+    Expected<frame::Frame> frame(std::size_t i);
 
 private:
     RecordingReader() = default;
@@ -51,7 +51,7 @@ private:
     }
 
     std::string name_;
-    MappedFile file_;
+    base::MappedRegion file_;
     std::span<const std::uint8_t> bytes_;
     FileHeader header_;
     std::optional<DeviceInfo> device_;

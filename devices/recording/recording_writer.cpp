@@ -1,5 +1,7 @@
 #include "devices/recording/recording_writer.h"
 
+#include "base/files.h"
+
 #include <cerrno>
 #include <chrono>
 #include <cstdio>
@@ -41,7 +43,7 @@ Expected<RecordingWriter> RecordingWriter::create(const std::string& path, const
     if (!options.overwrite && std::filesystem::exists(path, ec))
         return Error{path + " already exists (pass --overwrite to replace it)"};
     const std::string partial = partialPathFor(path);
-    UniqueFile file(::open(partial.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
+    base::UniqueFd file(::open(partial.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
     if (!file.valid()) {
         if (errno == EEXIST)
             return Error{partial +
@@ -56,7 +58,7 @@ Expected<RecordingWriter> RecordingWriter::create(const std::string& path, const
     writer.encoder_ = FrameEncoder(options.encode);
     writer.lastSync_ = std::chrono::steady_clock::now();
     const auto header = encodeFileHeader({kVersionMajor, kVersionMinor, unixNowNs()});
-    if (const int r = writeAll(writer.file_.get(), header); r < 0)
+    if (const int r = base::writeAll(writer.file_.get(), header); r < 0)
         return Error{"cannot write " + partial + ": " + std::strerror(-r)};
     writer.offset_ = header.size();
     if (Status s = writer.writeChunk({ChunkType::Description, 0, 0, 0, 0}, encodeDescription(device)); !s)
@@ -69,7 +71,7 @@ Status RecordingWriter::writeChunk(ChunkHeader header, std::span<const std::uint
     header.payloadChecksum = checksumOf(payload);
     std::vector<std::uint8_t> head;
     appendChunkHeader(head, header);
-    if (const int r = writeAll(file_.get(), head, payload); r < 0)
+    if (const int r = base::writeAll(file_.get(), head, payload); r < 0)
         return Error{"cannot write " + partialPath() + " at byte offset " + std::to_string(offset_) + ": " +
                      std::strerror(-r)};
     offset_ += head.size() + payload.size();
@@ -94,7 +96,7 @@ Status RecordingWriter::syncIfDue(bool force) {
     return {};
 }
 
-Status RecordingWriter::append(const Frame& frame) {
+Status RecordingWriter::append(const frame::Frame& frame) {
     auto payload = encoder_.encode(frame);
     if (!payload)
         return Error{path_ + ": frame " + std::to_string(index_.size()) + ": " + payload.error().message};
@@ -119,7 +121,7 @@ Status RecordingWriter::finish() {
     if (Status s = writeChunk({ChunkType::Index, 0, 0, 0, 0}, encodeIndex(index_)); !s)
         return s;
     const auto trailer = encodeTrailer({indexOffset, index_.size()});
-    if (const int r = writeAll(file_.get(), trailer); r < 0)
+    if (const int r = base::writeAll(file_.get(), trailer); r < 0)
         return Error{"cannot write " + partialPath() + ": " + std::strerror(-r)};
     offset_ += trailer.size();
     if (Status s = syncIfDue(true); !s)

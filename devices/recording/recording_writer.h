@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/recording/file_handle.h"
+#include "base/unique_fd.h"
 #include "devices/recording/format.h"
 #include "devices/recording/frame_codec.h"
 
@@ -36,7 +36,7 @@ public:
     RecordingWriter& operator=(RecordingWriter&&) noexcept = default;
     ~RecordingWriter() = default;
 
-    Status append(const Frame& frame);
+    Status append(const frame::Frame& frame);
     // Appends a frame that a FrameEncoder made elsewhere (the Recorder encodes on several threads).
     Status appendEncoded(std::span<const std::uint8_t> payload, std::int64_t timestampNs);
     // Writes the index and trailer, syncs and renames to the destination. Nothing may follow.
@@ -54,7 +54,7 @@ private:
 
     std::string path_;
     WriterOptions options_;
-    UniqueFile file_;
+    base::UniqueFd file_;
     FrameEncoder encoder_;
     std::vector<IndexEntry> index_;
     std::uint64_t offset_ = 0;

@@ -1,6 +1,6 @@
 #include "devices/recording/session_recording.h"
 
-#include "devices/log.h"
+#include "base/log.h"
 
 namespace dc::devices::recording {
 
@@ -12,7 +12,7 @@ Expected<std::unique_ptr<SessionRecording>> SessionRecording::start(Session& ses
         return recorder.error();
     std::unique_ptr<SessionRecording> recording(
         new SessionRecording(session, std::move(*recorder), maxFrames));
-    session.setFrameTap([r = recording.get()](const FramePtr& frame) { r->offer(frame); });
+    session.setFrameTap([r = recording.get()](const frame::FramePtr& frame) { r->offer(frame); });
     return recording;
 }
 
@@ -21,7 +21,7 @@ SessionRecording::~SessionRecording() {
         logError(s.error().message);
 }
 
-void SessionRecording::offer(const FramePtr& frame) {
+void SessionRecording::offer(const frame::FramePtr& frame) {
     if (maxFrames_ && offered_.load() >= *maxFrames_)
         return;
     ++offered_;

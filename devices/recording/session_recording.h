@@ -34,7 +34,7 @@ private:
     SessionRecording(Session& session, std::unique_ptr<Recorder> recorder,
                      std::optional<std::uint64_t> maxFrames)
         : session_(session), recorder_(std::move(recorder)), maxFrames_(maxFrames) {}
-    void offer(const FramePtr& frame);
+    void offer(const frame::FramePtr& frame);
 
     Session& session_;
     std::unique_ptr<Recorder> recorder_;

@@ -1,5 +1,5 @@
-#include "devices/calibration.h"
 #include "devices/replay/importers.h"
+#include "frame/calibration.h"
 
 namespace dc::devices::replay {
 
@@ -7,7 +7,7 @@ namespace {
 
 class CalibratedSource final : public ReplaySource {
 public:
-    CalibratedSource(std::unique_ptr<ReplaySource> inner, Intrinsics calibration, std::string path)
+    CalibratedSource(std::unique_ptr<ReplaySource> inner, frame::Intrinsics calibration, std::string path)
         : inner_(std::move(inner)), calibration_(calibration), path_(std::move(path)) {}
 
     std::string description() const override { return inner_->description() + ", calibration " + path_; }
@@ -17,7 +17,7 @@ public:
     std::vector<std::string> warnings() const override { return inner_->warnings(); }
     void setDecodeColor(bool decode) override { inner_->setDecodeColor(decode); }
 
-    Expected<Frame> frame(std::size_t i) override {
+    Expected<frame::Frame> frame(std::size_t i) override {
         auto frame = inner_->frame(i);
         if (!frame)
             return frame;
@@ -36,7 +36,7 @@ public:
 
 private:
     std::unique_ptr<ReplaySource> inner_;
-    Intrinsics calibration_;
+    frame::Intrinsics calibration_;
     std::string path_;
 };
 
@@ -44,7 +44,7 @@ private:
 
 Expected<std::unique_ptr<ReplaySource>> withCalibration(std::unique_ptr<ReplaySource> source,
                                                         const std::string& calibrationPath) {
-    auto calibration = loadCalibration(calibrationPath);
+    auto calibration = frame::loadCalibration(calibrationPath);
     if (!calibration)
         return calibration.error();
     return std::unique_ptr<ReplaySource>(

@@ -1,7 +1,7 @@
 #include "devices/replay/capture_files.h"
 
 #include "devices/recording/frame_codec.h"
-#include "devices/rgb_image.h"
+#include "frame/rgb_image.h"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
@@ -42,13 +42,13 @@ Expected<std::string> readTextFile(const std::string& path) {
     return text.str();
 }
 
-Expected<Plane<float>> readDepthPng(const std::string& path, double metersPerUnit) {
+Expected<frame::Plane<float>> readDepthPng(const std::string& path, double metersPerUnit) {
     const cv::Mat m = readImage(path, cv::IMREAD_UNCHANGED);
     if (m.empty())
         return Error{"cannot read " + path + " (missing or not an image)"};
     if (m.type() != CV_16UC1)
         return Error{path + ": expected a 16-bit single-channel depth PNG, found a " + describe(m)};
-    Plane<float> depth(m.cols, m.rows);
+    frame::Plane<float> depth(m.cols, m.rows);
     for (int y = 0; y < m.rows; ++y) {
         const auto* row = m.ptr<std::uint16_t>(y);
         for (int x = 0; x < m.cols; ++x)
@@ -57,25 +57,25 @@ Expected<Plane<float>> readDepthPng(const std::string& path, double metersPerUni
     return depth;
 }
 
-Expected<Plane<std::uint8_t>> readConfidencePng(const std::string& path) {
+Expected<frame::Plane<std::uint8_t>> readConfidencePng(const std::string& path) {
     const cv::Mat m = readImage(path, cv::IMREAD_UNCHANGED);
     if (m.empty())
         return Error{"cannot read " + path + " (missing or not an image)"};
     if (m.type() != CV_8UC1)
         return Error{path + ": expected an 8-bit single-channel confidence PNG, found a " + describe(m)};
-    Plane<std::uint8_t> confidence(m.cols, m.rows);
+    frame::Plane<std::uint8_t> confidence(m.cols, m.rows);
     for (int y = 0; y < m.rows; ++y)
         std::memcpy(&confidence.at(0, y), m.ptr<std::uint8_t>(y), static_cast<std::size_t>(m.cols));
     return confidence;
 }
 
-Expected<CapturedImage> readColorImage(const std::string& path) {
+Expected<frame::CapturedImage> readColorImage(const std::string& path) {
     const cv::Mat bgr = readImage(path, cv::IMREAD_COLOR);
     if (bgr.empty())
         return Error{"cannot read " + path + " (missing or not an image)"};
     std::vector<std::uint8_t> rgb(static_cast<std::size_t>(bgr.cols) * bgr.rows * 3);
     cv::cvtColor(bgr, cv::Mat(bgr.rows, bgr.cols, CV_8UC3, rgb.data()), cv::COLOR_BGR2RGB);
-    return makeRgb24Image(bgr.cols, bgr.rows, std::move(rgb));
+    return frame::makeRgb24Image(bgr.cols, bgr.rows, std::move(rgb));
 }
 
 } // namespace dc::devices::replay

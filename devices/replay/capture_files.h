@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "base/expected.h"
+#include "frame/frame.h"
 
 #include <string>
 
@@ -11,10 +11,10 @@ namespace dc::devices::replay {
 Expected<std::string> readTextFile(const std::string& path);
 
 // A 16-bit single-channel PNG (depth in integer units) converted to meters with depthFromUnits.
-Expected<Plane<float>> readDepthPng(const std::string& path, double metersPerUnit);
+Expected<frame::Plane<float>> readDepthPng(const std::string& path, double metersPerUnit);
 // An 8-bit single-channel PNG (confidence 0/1/2).
-Expected<Plane<std::uint8_t>> readConfidencePng(const std::string& path);
+Expected<frame::Plane<std::uint8_t>> readConfidencePng(const std::string& path);
 // Any color image OpenCV reads, as packed RGB.
-Expected<CapturedImage> readColorImage(const std::string& path);
+Expected<frame::CapturedImage> readColorImage(const std::string& path);
 
 } // namespace dc::devices::replay

@@ -48,7 +48,7 @@ public:
     Capabilities capabilities() const override { return capabilities_; }
     std::size_t frameCount() const override { return reader_.frameCount(); }
     std::int64_t timestampNs(std::size_t i) const override { return reader_.timestampNs(i); }
-    Expected<Frame> frame(std::size_t i) override { return reader_.frame(i); }
+    Expected<frame::Frame> frame(std::size_t i) override { return reader_.frame(i); }
     std::vector<std::string> warnings() const override { return warnings_; }
 
 private:

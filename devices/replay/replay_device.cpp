@@ -1,6 +1,6 @@
 #include "devices/replay/replay_device.h"
 
-#include "devices/log.h"
+#include "base/log.h"
 
 #include <algorithm>
 #include <cmath>
@@ -115,7 +115,7 @@ Status ReplayDevice::doStart() {
     return {};
 }
 
-std::optional<std::pair<std::size_t, Frame>> ReplayDevice::decodeFrom(std::size_t index) {
+std::optional<std::pair<std::size_t, frame::Frame>> ReplayDevice::decodeFrom(std::size_t index) {
     const std::size_t count = source_->frameCount();
     for (std::size_t tried = 0; tried < count; ++tried) {
         auto frame = loadFrame(*source_, index);
@@ -134,13 +134,13 @@ std::optional<std::pair<std::size_t, Frame>> ReplayDevice::decodeFrom(std::size_
     return std::nullopt;
 }
 
-CaptureResult ReplayDevice::deliver(std::size_t index, Frame frame, std::uint64_t generation) {
+CaptureResult ReplayDevice::deliver(std::size_t index, frame::Frame frame, std::uint64_t generation) {
     ReplayStatus& status = control_->status_;
     status.index = index;
     status.timestampNs = source_->timestampNs(index);
     frame.sequence = delivered_++;
-    frame.replay = ReplayPosition{index, source_->frameCount(), generation};
-    return {CaptureResult::Kind::Frame, std::make_shared<const Frame>(std::move(frame)), {}};
+    frame.replay = frame::ReplayPosition{index, source_->frameCount(), generation};
+    return {CaptureResult::Kind::Frame, std::make_shared<const frame::Frame>(std::move(frame)), {}};
 }
 
 ReplayDevice::Clock::time_point ReplayDevice::dueTime(std::size_t next, double speed) const {

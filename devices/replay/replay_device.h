@@ -91,8 +91,8 @@ private:
     using Clock = std::chrono::steady_clock;
 
     // Decodes `index` or, when it is damaged, the next readable frame after it (skips are counted).
-    std::optional<std::pair<std::size_t, Frame>> decodeFrom(std::size_t index);
-    CaptureResult deliver(std::size_t index, Frame frame, std::uint64_t generation);
+    std::optional<std::pair<std::size_t, frame::Frame>> decodeFrom(std::size_t index);
+    CaptureResult deliver(std::size_t index, frame::Frame frame, std::uint64_t generation);
     Clock::time_point dueTime(std::size_t next, double speed) const;
     std::optional<CaptureResult> playNext(std::unique_lock<std::mutex>& lock, Clock::time_point deadline);
 

@@ -1,6 +1,6 @@
 #include "devices/replay/replay_source.h"
 
-#include "devices/log.h"
+#include "base/log.h"
 #include "devices/replay/importers.h"
 
 #include <algorithm>
@@ -25,7 +25,7 @@ std::size_t ReplaySource::indexAtTime(std::int64_t ns) const {
 // Every replayed sample passes through here, so this file is built with -O3 (CMakeLists.txt) and the loop
 // is written to vectorise: two comparisons instead of isfinite (NaN fails both), combined bitwise, and a
 // select, not a branch.
-std::size_t sanitizeDepth(Plane<float>& depthMeters) {
+std::size_t sanitizeDepth(frame::Plane<float>& depthMeters) {
     constexpr float kLargest = std::numeric_limits<float>::max();
     std::uint32_t fixed = 0; // 32-bit lanes vectorise better; no image has 2^32 samples
     for (float& v : depthMeters.pixels) {
@@ -38,11 +38,11 @@ std::size_t sanitizeDepth(Plane<float>& depthMeters) {
 
 namespace {
 
-std::size_t sanitize(std::optional<DepthData>& depth) {
+std::size_t sanitize(std::optional<frame::DepthData>& depth) {
     if (!depth)
         return 0;
     for (std::uint8_t& c : depth->confidence.pixels)
-        c = std::min<std::uint8_t>(c, static_cast<std::uint8_t>(Confidence::High));
+        c = std::min<std::uint8_t>(c, static_cast<std::uint8_t>(frame::Confidence::High));
     return sanitizeDepth(depth->depthMeters);
 }
 
@@ -58,7 +58,7 @@ bool pathExists(const std::filesystem::path& p) {
 
 } // namespace
 
-Expected<Frame> loadFrame(ReplaySource& source, std::size_t i) {
+Expected<frame::Frame> loadFrame(ReplaySource& source, std::size_t i) {
     auto frame = source.frame(i);
     if (!frame)
         return frame;
@@ -73,7 +73,7 @@ std::int64_t secondsToNs(double seconds) {
     return std::llround(seconds * 1e9);
 }
 
-Pose poseFromQuaternion(const double t[3], const double q[4]) {
+frame::Pose poseFromQuaternion(const double t[3], const double q[4]) {
     double x = q[0], y = q[1], z = q[2], w = q[3];
     const double norm = std::sqrt(x * x + y * y + z * z + w * w);
     if (norm > 0.0) {
@@ -83,7 +83,7 @@ Pose poseFromQuaternion(const double t[3], const double q[4]) {
     const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
                             {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
                             {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
-    Pose pose;
+    frame::Pose pose;
     for (int col = 0; col < 3; ++col)
         for (int row = 0; row < 3; ++row)
             pose.cameraToWorld[col * 4 + row] = r[row][col];

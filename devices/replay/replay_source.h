@@ -1,8 +1,8 @@
 #pragma once
 
+#include "base/expected.h"
 #include "devices/device.h"
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -26,7 +26,7 @@ public:
     // Cheap: from the index or the file lists, without decoding.
     virtual std::int64_t timestampNs(std::size_t i) const = 0;
     // Decodes frame i (< frameCount()) with its recorded timestamp. Errors name file, frame and offset.
-    virtual Expected<Frame> frame(std::size_t i) = 0;
+    virtual Expected<frame::Frame> frame(std::size_t i) = 0;
     // Problems found at open that did not prevent it (a recovered recording, skipped list entries).
     virtual std::vector<std::string> warnings() const { return {}; }
     // Consumers that show no color (depth export, depth-only benchmarks) skip its decoding, often the
@@ -43,10 +43,10 @@ protected:
 
 // Frame i made safe to use: NaN, infinite and negative depth becomes 0 (no measurement) and confidence
 // above High becomes High, with a warning that counts them.
-Expected<Frame> loadFrame(ReplaySource& source, std::size_t i);
+Expected<frame::Frame> loadFrame(ReplaySource& source, std::size_t i);
 
 // NaN, infinite and negative samples set to 0; returns how many.
-std::size_t sanitizeDepth(Plane<float>& depthMeters);
+std::size_t sanitizeDepth(frame::Plane<float>& depthMeters);
 
 struct ReplayOpenOptions {
     std::string calibrationPath; // OpenCV YAML camera matrix that replaces the source's intrinsics
@@ -61,6 +61,6 @@ Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path
 std::int64_t secondsToNs(double seconds);
 
 // Camera-to-world from a translation and a unit quaternion (x, y, z, w), as Stray and TUM store poses.
-Pose poseFromQuaternion(const double translation[3], const double quaternion[4]);
+frame::Pose poseFromQuaternion(const double translation[3], const double quaternion[4]);
 
 } // namespace dc::devices::replay

@@ -1,7 +1,7 @@
 #pragma once
 
+#include "base/expected.h"
 #include "devices/device.h"
-#include "devices/expected.h"
 #include "devices/replay/replay_source.h"
 
 #include <memory>

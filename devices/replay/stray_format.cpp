@@ -7,7 +7,7 @@
 
 namespace dc::devices::replay {
 
-Expected<Intrinsics> parseStrayCameraMatrix(std::string_view text, const std::string& file) {
+Expected<frame::Intrinsics> parseStrayCameraMatrix(std::string_view text, const std::string& file) {
     std::vector<double> values;
     std::string problem;
     forEachLine(text, [&](const TextLine& line) {
@@ -33,7 +33,7 @@ Expected<Intrinsics> parseStrayCameraMatrix(std::string_view text, const std::st
     if (values.size() != 9)
         return Error{file + ": expected a 3x3 camera matrix, found " + std::to_string(values.size()) +
                      " numbers"};
-    Intrinsics k{values[0], values[4], values[2], values[5], 0, 0};
+    frame::Intrinsics k{values[0], values[4], values[2], values[5], 0, 0};
     if (!(k.fx > 0.0 && k.fy > 0.0))
         return Error{file + ": the camera matrix has non-positive focal lengths (fx " + std::to_string(k.fx) +
                      ", fy " + std::to_string(k.fy) + ")"};

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "base/expected.h"
+#include "frame/frame.h"
 
 #include <string>
 #include <string_view>
@@ -13,11 +13,11 @@ namespace dc::devices::replay {
 
 // camera_matrix.csv: three rows of three numbers, the intrinsics of the video frames. The returned
 // intrinsics have no size: the video provides it.
-Expected<Intrinsics> parseStrayCameraMatrix(std::string_view text, const std::string& file);
+Expected<frame::Intrinsics> parseStrayCameraMatrix(std::string_view text, const std::string& file);
 
 struct StrayOdometryRow {
     double timestampSeconds = 0.0;
-    Pose pose; // camera-to-world, OpenCV camera axes
+    frame::Pose pose; // camera-to-world, OpenCV camera axes
 };
 
 // odometry.csv: an optional header line, then "timestamp, frame, x, y, z, qx, qy, qz, qw[, ...]" per

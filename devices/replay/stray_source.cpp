@@ -1,7 +1,7 @@
 #include "devices/replay/capture_files.h"
 #include "devices/replay/importers.h"
 #include "devices/replay/stray_format.h"
-#include "devices/rgb_image.h"
+#include "frame/rgb_image.h"
 
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
@@ -67,19 +67,19 @@ public:
     std::int64_t timestampNs(std::size_t i) const override {
         return secondsToNs(odometry_[i].timestampSeconds);
     }
-    Expected<Frame> frame(std::size_t i) override;
+    Expected<frame::Frame> frame(std::size_t i) override;
     std::vector<std::string> warnings() const override { return warnings_; }
     void setDecodeColor(bool decode) override { decodeColor_ = decode; }
 
 private:
     Status openVideo();
-    Expected<CapturedImage> videoFrame(std::size_t i);
+    Expected<frame::CapturedImage> videoFrame(std::size_t i);
 
     fs::path dir_;
     std::size_t frames_ = 0;
     bool hasConfidence_ = false;
     bool decodeColor_ = true;
-    Intrinsics intrinsics_;
+    frame::Intrinsics intrinsics_;
     std::vector<StrayOdometryRow> odometry_;
     std::vector<std::string> warnings_;
     cv::VideoCapture video_;
@@ -150,7 +150,7 @@ Status StraySource::openVideo() {
     return {};
 }
 
-Expected<CapturedImage> StraySource::videoFrame(std::size_t i) {
+Expected<frame::CapturedImage> StraySource::videoFrame(std::size_t i) {
     const std::string file = (dir_ / "rgb.mp4").string();
     if (i < nextVideoFrame_ || i - nextVideoFrame_ > kMaxReadAhead) {
         video_.set(cv::CAP_PROP_POS_FRAMES, static_cast<double>(i));
@@ -169,11 +169,11 @@ Expected<CapturedImage> StraySource::videoFrame(std::size_t i) {
     ++nextVideoFrame_;
     std::vector<std::uint8_t> rgb(static_cast<std::size_t>(bgr.cols) * bgr.rows * 3);
     cv::cvtColor(bgr, cv::Mat(bgr.rows, bgr.cols, CV_8UC3, rgb.data()), cv::COLOR_BGR2RGB);
-    return makeRgb24Image(bgr.cols, bgr.rows, std::move(rgb));
+    return frame::makeRgb24Image(bgr.cols, bgr.rows, std::move(rgb));
 }
 
-Expected<Frame> StraySource::frame(std::size_t i) {
-    Frame frame;
+Expected<frame::Frame> StraySource::frame(std::size_t i) {
+    frame::Frame frame;
     frame.sequence = i;
     frame.timestampNs = timestampNs(i);
     frame.pose = odometry_[i].pose;
@@ -181,7 +181,7 @@ Expected<Frame> StraySource::frame(std::size_t i) {
     auto depth = readDepthPng((dir_ / "depth" / frameName(i)).string(), kMetersPerMillimeter);
     if (!depth)
         return Error{"frame " + std::to_string(i) + ": " + depth.error().message};
-    DepthData data{std::move(*depth), {}};
+    frame::DepthData data{std::move(*depth), {}};
     if (hasConfidence_) {
         const std::string file = (dir_ / "confidence" / frameName(i)).string();
         auto confidence = readConfidencePng(file);

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/expected.h"
-#include "devices/frame.h"
+#include "base/expected.h"
+#include "frame/frame.h"
 
 #include <string>
 #include <string_view>
@@ -21,7 +21,7 @@ Expected<std::vector<TumListEntry>> parseTumList(std::string_view text, const st
 
 struct TumPose {
     double timestampSeconds = 0.0;
-    Pose pose; // camera-to-world of the color camera's optical centre
+    frame::Pose pose; // camera-to-world of the color camera's optical centre
 };
 
 // groundtruth.txt: "timestamp tx ty tz qx qy qz qw" per line, '#' comments. Sorted by timestamp.

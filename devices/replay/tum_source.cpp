@@ -15,7 +15,7 @@ namespace fs = std::filesystem;
 // TUM stores depth as uint16 at 5000 units per meter.
 constexpr double kMetersPerUnit = 1.0 / 5000.0;
 // The benchmark's default intrinsics (PrimeSense defaults, ROS's "fr0"), used without a calibration.
-constexpr Intrinsics kDefaultIntrinsics{525.0, 525.0, 319.5, 239.5, 640, 480};
+constexpr frame::Intrinsics kDefaultIntrinsics{525.0, 525.0, 319.5, 239.5, 640, 480};
 
 class TumSource final : public ReplaySource {
 public:
@@ -35,7 +35,7 @@ public:
     std::int64_t timestampNs(std::size_t i) const override {
         return secondsToNs(depth_[pairs_[i].first].timestampSeconds);
     }
-    Expected<Frame> frame(std::size_t i) override;
+    Expected<frame::Frame> frame(std::size_t i) override;
     std::vector<std::string> warnings() const override { return warnings_; }
     void setDecodeColor(bool decode) override { decodeColor_ = decode; }
 
@@ -44,14 +44,14 @@ private:
     std::string resolve(const std::string& file) const {
         return fs::path(file).is_absolute() ? file : (dir_ / file).string();
     }
-    std::optional<Pose> poseAt(double seconds) const;
+    std::optional<frame::Pose> poseAt(double seconds) const;
 
     fs::path dir_;
     TumOptions options_;
     std::vector<TumListEntry> rgb_, depth_;
     std::vector<TumPose> groundTruth_;
     std::vector<std::pair<std::size_t, std::size_t>> pairs_; // (depth, rgb)
-    Intrinsics intrinsics_ = kDefaultIntrinsics;
+    frame::Intrinsics intrinsics_ = kDefaultIntrinsics;
     std::vector<std::string> warnings_;
     bool decodeColor_ = true;
 };
@@ -103,7 +103,7 @@ Status TumSource::open() {
     return {};
 }
 
-std::optional<Pose> TumSource::poseAt(double seconds) const {
+std::optional<frame::Pose> TumSource::poseAt(double seconds) const {
     if (groundTruth_.empty())
         return std::nullopt;
     const auto later = std::lower_bound(groundTruth_.begin(), groundTruth_.end(), seconds,
@@ -117,10 +117,10 @@ std::optional<Pose> TumSource::poseAt(double seconds) const {
     return best->pose;
 }
 
-Expected<Frame> TumSource::frame(std::size_t i) {
+Expected<frame::Frame> TumSource::frame(std::size_t i) {
     const TumListEntry& d = depth_[pairs_[i].first];
     const TumListEntry& c = rgb_[pairs_[i].second];
-    Frame frame;
+    frame::Frame frame;
     frame.sequence = i;
     frame.timestampNs = timestampNs(i);
     frame.cameraIntrinsics = intrinsics_;
@@ -128,7 +128,7 @@ Expected<Frame> TumSource::frame(std::size_t i) {
     auto depth = readDepthPng(resolve(d.file), kMetersPerUnit);
     if (!depth)
         return Error{"frame " + std::to_string(i) + ": " + depth.error().message};
-    frame.sceneDepth = DepthData{std::move(*depth), {}};
+    frame.sceneDepth = frame::DepthData{std::move(*depth), {}};
     if (decodeColor_) {
         auto image = readColorImage(resolve(c.file));
         if (!image)

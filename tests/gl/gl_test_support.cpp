@@ -31,12 +31,12 @@ Rgba pixelAt(const std::vector<std::uint8_t>& rgba, int width, int x, int y) {
     return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
 }
 
-Rgba toRgba(devices::Rgb c) {
-    return {devices::toByte(c.r), devices::toByte(c.g), devices::toByte(c.b), 255};
+Rgba toRgba(frame::Rgb c) {
+    return {frame::toByte(c.r), frame::toByte(c.g), frame::toByte(c.b), 255};
 }
 
 Rgba toRgba(const std::array<float, 3>& c) {
-    return toRgba(devices::Rgb{c[0], c[1], c[2]});
+    return toRgba(frame::Rgb{c[0], c[1], c[2]});
 }
 
 ::testing::AssertionResult near(Rgba actual, Rgba expected, int tolerance) {
@@ -52,83 +52,81 @@ ColorFunction blockColors(int blockPixels) {
     return [blockPixels](int x, int y) {
         const int bx = x / blockPixels, by = y / blockPixels;
         // Small co-prime cycles give neighbouring blocks different colors in every channel.
-        return devices::Rgb{0.1f + 0.8f * static_cast<float>((bx * 3 + by) % 5) / 4.0f,
-                            0.1f + 0.8f * static_cast<float>((bx + 2 * by) % 4) / 3.0f,
-                            0.1f + 0.8f * static_cast<float>((2 * bx + by) % 3) / 2.0f};
+        return frame::Rgb{0.1f + 0.8f * static_cast<float>((bx * 3 + by) % 5) / 4.0f,
+                          0.1f + 0.8f * static_cast<float>((bx + 2 * by) % 4) / 3.0f,
+                          0.1f + 0.8f * static_cast<float>((2 * bx + by) % 3) / 2.0f};
     };
 }
 
 namespace {
 
-devices::CapturedImage makeImage(devices::PixelFormat format, int width, int height,
-                                 std::vector<std::uint8_t> bytes) {
+frame::CapturedImage makeImage(frame::PixelFormat format, int width, int height,
+                               std::vector<std::uint8_t> bytes) {
     return {format, width, height, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
 }
 
-devices::Ycbcr ycbcrAt(const ColorFunction& color, int x, int y) {
-    return devices::rgbToYcbcr(color(x, y));
+frame::Ycbcr ycbcrAt(const ColorFunction& color, int x, int y) {
+    return frame::rgbToYcbcr(color(x, y));
 }
 
 } // namespace
 
-devices::CapturedImage nv12Image(int width, int height, const ColorFunction& color) {
-    std::vector<std::uint8_t> bytes(
-        devices::CapturedImage::byteSize(devices::PixelFormat::Nv12, width, height));
+frame::CapturedImage nv12Image(int width, int height, const ColorFunction& color) {
+    std::vector<std::uint8_t> bytes(frame::CapturedImage::byteSize(frame::PixelFormat::Nv12, width, height));
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
-            bytes[static_cast<std::size_t>(y) * width + x] = devices::toByte(ycbcrAt(color, x, y).y);
+            bytes[static_cast<std::size_t>(y) * width + x] = frame::toByte(ycbcrAt(color, x, y).y);
     const int chromaWidth = (width + 1) / 2, chromaHeight = (height + 1) / 2;
     std::uint8_t* chroma = bytes.data() + static_cast<std::size_t>(width) * height;
     for (int y = 0; y < chromaHeight; ++y) {
         for (int x = 0; x < chromaWidth; ++x) {
-            const devices::Ycbcr c = ycbcrAt(color, 2 * x, 2 * y);
-            chroma[(y * chromaWidth + x) * 2] = devices::toByte(c.cb);
-            chroma[(y * chromaWidth + x) * 2 + 1] = devices::toByte(c.cr);
+            const frame::Ycbcr c = ycbcrAt(color, 2 * x, 2 * y);
+            chroma[(y * chromaWidth + x) * 2] = frame::toByte(c.cb);
+            chroma[(y * chromaWidth + x) * 2 + 1] = frame::toByte(c.cr);
         }
     }
-    return makeImage(devices::PixelFormat::Nv12, width, height, std::move(bytes));
+    return makeImage(frame::PixelFormat::Nv12, width, height, std::move(bytes));
 }
 
-devices::CapturedImage yuyvImage(int width, int height, const ColorFunction& color) {
-    std::vector<std::uint8_t> bytes(
-        devices::CapturedImage::byteSize(devices::PixelFormat::Yuyv, width, height));
+frame::CapturedImage yuyvImage(int width, int height, const ColorFunction& color) {
+    std::vector<std::uint8_t> bytes(frame::CapturedImage::byteSize(frame::PixelFormat::Yuyv, width, height));
     const int pairs = (width + 1) / 2;
     for (int y = 0; y < height; ++y) {
         for (int pair = 0; pair < pairs; ++pair) {
             std::uint8_t* p = bytes.data() + (static_cast<std::size_t>(y) * pairs + pair) * 4;
-            const devices::Ycbcr left = ycbcrAt(color, 2 * pair, y);
-            const devices::Ycbcr right = ycbcrAt(color, std::min(2 * pair + 1, width - 1), y);
-            p[0] = devices::toByte(left.y);
-            p[1] = devices::toByte(left.cb);
-            p[2] = devices::toByte(right.y);
-            p[3] = devices::toByte(left.cr);
+            const frame::Ycbcr left = ycbcrAt(color, 2 * pair, y);
+            const frame::Ycbcr right = ycbcrAt(color, std::min(2 * pair + 1, width - 1), y);
+            p[0] = frame::toByte(left.y);
+            p[1] = frame::toByte(left.cb);
+            p[2] = frame::toByte(right.y);
+            p[3] = frame::toByte(left.cr);
         }
     }
-    return makeImage(devices::PixelFormat::Yuyv, width, height, std::move(bytes));
+    return makeImage(frame::PixelFormat::Yuyv, width, height, std::move(bytes));
 }
 
-devices::CapturedImage rgb24Image(int width, int height, const ColorFunction& color) {
+frame::CapturedImage rgb24Image(int width, int height, const ColorFunction& color) {
     std::vector<std::uint8_t> bytes;
-    bytes.reserve(devices::CapturedImage::byteSize(devices::PixelFormat::Rgb24, width, height));
+    bytes.reserve(frame::CapturedImage::byteSize(frame::PixelFormat::Rgb24, width, height));
     for (int y = 0; y < height; ++y) {
         for (int x = 0; x < width; ++x) {
-            const devices::Rgb c = color(x, y);
-            bytes.insert(bytes.end(), {devices::toByte(c.r), devices::toByte(c.g), devices::toByte(c.b)});
+            const frame::Rgb c = color(x, y);
+            bytes.insert(bytes.end(), {frame::toByte(c.r), frame::toByte(c.g), frame::toByte(c.b)});
         }
     }
-    return makeImage(devices::PixelFormat::Rgb24, width, height, std::move(bytes));
+    return makeImage(frame::PixelFormat::Rgb24, width, height, std::move(bytes));
 }
 
-devices::Frame makeFrame(devices::DepthData depth, devices::CapturedImage image,
-                         const devices::Intrinsics& cameraIntrinsics) {
-    devices::Frame frame;
+frame::Frame makeFrame(frame::DepthData depth, frame::CapturedImage image,
+                       const frame::Intrinsics& cameraIntrinsics) {
+    frame::Frame frame;
     frame.capturedImage = std::move(image);
     frame.cameraIntrinsics = cameraIntrinsics;
     frame.sceneDepth = std::move(depth);
     return frame;
 }
 
-glm::mat4 pinholeViewProjection(const devices::Intrinsics& k, int width, int height) {
+glm::mat4 pinholeViewProjection(const frame::Intrinsics& k, int width, int height) {
     const auto w = static_cast<float>(width), h = static_cast<float>(height);
     const float nearMeters = 0.1f, farMeters = 100.0f;
     glm::mat4 m(0.0f); // glm is column-major: m[column][row]

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/color.h"
-#include "devices/frame.h"
+#include "frame/color.h"
+#include "frame/frame.h"
 #include "render/gl_context.h"
 
 #include <epoxy/gl.h>
@@ -39,28 +39,28 @@ std::ostream& operator<<(std::ostream& out, const Rgba& c);
 
 Rgba pixelAt(const std::vector<std::uint8_t>& rgba, int width, int x, int y);
 // An opaque 8-bit color, clamped and rounded the way the GPU stores a float color in an RGBA8 target.
-Rgba toRgba(devices::Rgb c);
+Rgba toRgba(frame::Rgb c);
 Rgba toRgba(const std::array<float, 3>& c);
 // Every channel within `tolerance` steps of 255.
 ::testing::AssertionResult near(Rgba actual, Rgba expected, int tolerance);
 
-using ColorFunction = std::function<devices::Rgb(int x, int y)>;
+using ColorFunction = std::function<frame::Rgb(int x, int y)>;
 // Distinct colors, constant over `blockPixels`-wide squares aligned to multiples of the block size, so
 // that 2x2 chroma subsampling and bilinear sampling at block interiors reproduce them exactly.
 ColorFunction blockColors(int blockPixels);
 
-devices::CapturedImage nv12Image(int width, int height, const ColorFunction& color);
-devices::CapturedImage yuyvImage(int width, int height, const ColorFunction& color);
-devices::CapturedImage rgb24Image(int width, int height, const ColorFunction& color);
+frame::CapturedImage nv12Image(int width, int height, const ColorFunction& color);
+frame::CapturedImage yuyvImage(int width, int height, const ColorFunction& color);
+frame::CapturedImage rgb24Image(int width, int height, const ColorFunction& color);
 
 // A frame with the given depth (and confidence), and a camera image whose intrinsics scale to
 // `depthIntrinsics` at the depth map's resolution, as ARKit's do.
-devices::Frame makeFrame(devices::DepthData depth, devices::CapturedImage image,
-                         const devices::Intrinsics& cameraIntrinsics);
+frame::Frame makeFrame(frame::DepthData depth, frame::CapturedImage image,
+                       const frame::Intrinsics& cameraIntrinsics);
 
 // A pinhole projection through `k` into a `width` x `height` target: the centre of depth pixel (u, v)
 // lands on the centre of target pixel (u, v) counted from the top-left, as RenderTarget::readRgba()
 // returns them. Depth maps to clip space between 0.1 m and 100 m.
-glm::mat4 pinholeViewProjection(const devices::Intrinsics& k, int width, int height);
+glm::mat4 pinholeViewProjection(const frame::Intrinsics& k, int width, int height);
 
 } // namespace dc::render::test

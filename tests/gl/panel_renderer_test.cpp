@@ -14,7 +14,7 @@ constexpr int kWidth = 32;
 constexpr int kHeight = 8;
 constexpr float kMinMeters = 1.0f;
 constexpr float kMaxMeters = 4.0f;
-const devices::Intrinsics kIntrinsics{30.0, 30.0, 16.0, 4.0, kWidth, kHeight};
+const frame::Intrinsics kIntrinsics{30.0, 30.0, 16.0, 4.0, kWidth, kHeight};
 const Rgba kBlack{0, 0, 0, 255};
 
 class PanelRendererTest : public GlTest {
@@ -32,9 +32,9 @@ protected:
 };
 
 // Depth rising from 0.5 m to 4.5 m in reading order, so rows differ and an upside-down panel shows.
-devices::DepthData rampDepth() {
-    devices::DepthData depth{devices::Plane<float>(kWidth, kHeight),
-                             devices::Plane<std::uint8_t>(kWidth, kHeight, 2)};
+frame::DepthData rampDepth() {
+    frame::DepthData depth{frame::Plane<float>(kWidth, kHeight),
+                           frame::Plane<std::uint8_t>(kWidth, kHeight, 2)};
     for (int v = 0; v < kHeight; ++v)
         for (int u = 0; u < kWidth; ++u)
             depth.depthMeters.at(u, v) =
@@ -49,7 +49,7 @@ Rgba expectedDepthColor(float d) {
 }
 
 TEST_F(PanelRendererTest, DepthPanelIsTheJetColormapOfEachSample) {
-    devices::DepthData depth = rampDepth();
+    frame::DepthData depth = rampDepth();
     depth.depthMeters.at(3, 0) = 0.0f;
     depth.depthMeters.at(4, 2) = std::numeric_limits<float>::quiet_NaN();
     depth.depthMeters.at(5, 4) = -1.0f;
@@ -71,7 +71,7 @@ TEST_F(PanelRendererTest, DepthPanelIsTheJetColormapOfEachSample) {
 class DepthColormapTest : public PanelRendererTest, public ::testing::WithParamInterface<Colormap> {};
 
 TEST_P(DepthColormapTest, DepthPanelFollowsTheChosenColormap) {
-    const devices::DepthData depth = rampDepth();
+    const frame::DepthData depth = rampDepth();
     textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
     ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters, GetParam());
@@ -117,7 +117,7 @@ TEST(Colormap, RampsRunTheirWholeRangeAndClampOutside) {
 }
 
 TEST_F(PanelRendererTest, LargerDepthPanelRepeatsEachSampleWithoutBlending) {
-    const devices::DepthData depth = rampDepth();
+    const frame::DepthData depth = rampDepth();
     textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
     ASSERT_TRUE(target_.resize(kWidth * 3, kHeight * 3).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
@@ -142,7 +142,7 @@ TEST_F(PanelRendererTest, CollapsedDepthRangeDoesNotBreakTheShader) {
 }
 
 TEST_F(PanelRendererTest, ConfidencePanelIsRedGreenBlue) {
-    devices::DepthData depth = rampDepth();
+    frame::DepthData depth = rampDepth();
     for (int v = 0; v < kHeight; ++v)
         for (int u = 0; u < kWidth; ++u)
             depth.confidence.at(u, v) = static_cast<std::uint8_t>((u + 2 * v) % 4); // 3 is out of range
@@ -159,29 +159,28 @@ TEST_F(PanelRendererTest, ConfidencePanelIsRedGreenBlue) {
 }
 
 // Bilinear chroma blends neighbouring blocks at their borders; block interiors must be exact.
-void expectCameraPanel(const std::vector<std::uint8_t>& rgba, const devices::CapturedImage& image, int block,
+void expectCameraPanel(const std::vector<std::uint8_t>& rgba, const frame::CapturedImage& image, int block,
                        int tolerance) {
     for (int y = 0; y < image.height; ++y) {
         for (int x = 0; x < image.width; ++x) {
             if (x % block < 2 || x % block >= block - 2 || y % block < 2 || y % block >= block - 2)
                 continue;
-            const Rgba expected = toRgba(devices::pixelRgb(image, x, y));
+            const Rgba expected = toRgba(frame::pixelRgb(image, x, y));
             ASSERT_TRUE(near(pixelAt(rgba, image.width, x, y), expected, tolerance))
                 << "at " << x << ", " << y;
         }
     }
 }
 
-class CameraPanelTest : public PanelRendererTest,
-                        public ::testing::WithParamInterface<devices::PixelFormat> {};
+class CameraPanelTest : public PanelRendererTest, public ::testing::WithParamInterface<frame::PixelFormat> {};
 
 TEST_P(CameraPanelTest, CameraPanelShowsTheImage) {
     constexpr int kImageWidth = 64, kImageHeight = 48, kBlock = 8;
     const ColorFunction colors = blockColors(kBlock);
-    const devices::CapturedImage image =
-        GetParam() == devices::PixelFormat::Nv12   ? nv12Image(kImageWidth, kImageHeight, colors)
-        : GetParam() == devices::PixelFormat::Yuyv ? yuyvImage(kImageWidth, kImageHeight, colors)
-                                                   : rgb24Image(kImageWidth, kImageHeight, colors);
+    const frame::CapturedImage image =
+        GetParam() == frame::PixelFormat::Nv12   ? nv12Image(kImageWidth, kImageHeight, colors)
+        : GetParam() == frame::PixelFormat::Yuyv ? yuyvImage(kImageWidth, kImageHeight, colors)
+                                                 : rgb24Image(kImageWidth, kImageHeight, colors);
     textures_.upload(makeFrame(rampDepth(), image, kIntrinsics), false);
     EXPECT_EQ(textures_.cameraWidth(), kImageWidth);
     EXPECT_EQ(textures_.cameraHeight(), kImageHeight);
@@ -190,16 +189,16 @@ TEST_P(CameraPanelTest, CameraPanelShowsTheImage) {
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
     // RGB24 takes a round trip through 8-bit YCbCr on upload.
-    expectCameraPanel(rgba, image, kBlock, GetParam() == devices::PixelFormat::Rgb24 ? 3 : 2);
+    expectCameraPanel(rgba, image, kBlock, GetParam() == frame::PixelFormat::Rgb24 ? 3 : 2);
 }
 
 INSTANTIATE_TEST_SUITE_P(Formats, CameraPanelTest,
-                         ::testing::Values(devices::PixelFormat::Nv12, devices::PixelFormat::Yuyv,
-                                           devices::PixelFormat::Rgb24),
-                         [](const auto& info) { return std::string(devices::toString(info.param)); });
+                         ::testing::Values(frame::PixelFormat::Nv12, frame::PixelFormat::Yuyv,
+                                           frame::PixelFormat::Rgb24),
+                         [](const auto& info) { return std::string(frame::toString(info.param)); });
 
 TEST_F(PanelRendererTest, PanelsWithoutDepthAreBlackAndTheCameraPanelStillWorks) {
-    devices::Frame frame = makeFrame(rampDepth(), nv12Image(16, 16, blockColors(16)), kIntrinsics);
+    frame::Frame frame = makeFrame(rampDepth(), nv12Image(16, 16, blockColors(16)), kIntrinsics);
     frame.sceneDepth.reset();
     textures_.upload(frame, false);
     ASSERT_TRUE(target_.resize(16, 16).ok());
@@ -209,7 +208,7 @@ TEST_F(PanelRendererTest, PanelsWithoutDepthAreBlackAndTheCameraPanelStillWorks)
     EXPECT_EQ(pixelAt(target_.readRgba(), 16, 8, 8), kBlack);
     renderer_.renderCamera(target_, textures_);
     EXPECT_TRUE(
-        near(pixelAt(target_.readRgba(), 16, 8, 8), toRgba(devices::pixelRgb(frame.capturedImage, 8, 8)), 2));
+        near(pixelAt(target_.readRgba(), 16, 8, 8), toRgba(frame::pixelRgb(frame.capturedImage, 8, 8)), 2));
     EXPECT_TRUE(noGlError());
 }
 

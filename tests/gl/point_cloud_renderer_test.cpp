@@ -18,7 +18,7 @@ constexpr int kDepthWidth = 64;
 constexpr int kDepthHeight = 48;
 constexpr int kCameraScale = 2;
 // Depth intrinsics fx = fy = 60, cx = 32, cy = 24 after scaling to the depth resolution.
-const devices::Intrinsics kCameraIntrinsics{
+const frame::Intrinsics kCameraIntrinsics{
     120.0, 120.0, 64.0, 48.0, kDepthWidth* kCameraScale, kDepthHeight* kCameraScale};
 const glm::vec3 kBackground{0.2f, 0.4f, 0.6f};
 
@@ -35,7 +35,7 @@ protected:
 
     // Renders `depth` seen straight from the depth camera, so pixel (u, v) of the target shows depth
     // sample (u, v), and returns the target's pixels.
-    std::vector<std::uint8_t> renderStraightOn(devices::DepthData depth, devices::Confidence minConfidence) {
+    std::vector<std::uint8_t> renderStraightOn(frame::DepthData depth, frame::Confidence minConfidence) {
         textures_.upload(makeFrame(std::move(depth), image_, kCameraIntrinsics), false);
         CloudParams params;
         params.viewProjection = pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight);
@@ -46,26 +46,26 @@ protected:
         return target_.readRgba();
     }
 
-    Rgba background() const { return toRgba(devices::Rgb{kBackground.r, kBackground.g, kBackground.b}); }
+    Rgba background() const { return toRgba(frame::Rgb{kBackground.r, kBackground.g, kBackground.b}); }
     // The camera color at the centre of depth pixel (u, v); blocks are even-aligned, so any of the four
     // camera pixels under it has the same color.
     Rgba cameraColor(int u, int v) const {
-        return toRgba(devices::pixelRgb(image_, u * kCameraScale, v * kCameraScale));
+        return toRgba(frame::pixelRgb(image_, u * kCameraScale, v * kCameraScale));
     }
 
     PointCloudRenderer renderer_;
     FrameTextures textures_;
     RenderTarget target_;
-    devices::CapturedImage image_;
+    frame::CapturedImage image_;
 };
 
-devices::DepthData plane(float depthMeters) {
-    return {devices::Plane<float>(kDepthWidth, kDepthHeight, depthMeters),
-            devices::Plane<std::uint8_t>(kDepthWidth, kDepthHeight, 2)};
+frame::DepthData plane(float depthMeters) {
+    return {frame::Plane<float>(kDepthWidth, kDepthHeight, depthMeters),
+            frame::Plane<std::uint8_t>(kDepthWidth, kDepthHeight, 2)};
 }
 
 TEST_F(PointCloudRendererTest, EveryPointLandsOnItsPixelWithTheCameraColor) {
-    const std::vector<std::uint8_t> rgba = renderStraightOn(plane(1.0f), devices::Confidence::Low);
+    const std::vector<std::uint8_t> rgba = renderStraightOn(plane(1.0f), frame::Confidence::Low);
     ASSERT_TRUE(noGlError());
     EXPECT_EQ(renderer_.lastPointCount(), std::size_t{kDepthWidth * kDepthHeight});
     for (int v = 0; v < kDepthHeight; ++v)
@@ -75,14 +75,14 @@ TEST_F(PointCloudRendererTest, EveryPointLandsOnItsPixelWithTheCameraColor) {
 }
 
 TEST_F(PointCloudRendererTest, InvalidAndNearSamplesLeaveTheBackground) {
-    devices::DepthData depth = plane(1.0f);
+    frame::DepthData depth = plane(1.0f);
     const float invalid[] = {0.0f, -1.0f, std::numeric_limits<float>::quiet_NaN(),
                              std::numeric_limits<float>::infinity(), 0.05f /* nearer than nearMeters */};
     // One column per kind of missing sample.
     for (int v = 0; v < kDepthHeight; ++v)
         for (int i = 0; i < 5; ++i)
             depth.depthMeters.at(10 + i, v) = invalid[i];
-    const std::vector<std::uint8_t> rgba = renderStraightOn(std::move(depth), devices::Confidence::Low);
+    const std::vector<std::uint8_t> rgba = renderStraightOn(std::move(depth), frame::Confidence::Low);
     ASSERT_TRUE(noGlError());
     for (int v = 0; v < kDepthHeight; ++v) {
         for (int u = 0; u < kDepthWidth; ++u) {
@@ -117,12 +117,11 @@ TEST_F(PointCloudRendererTest, PointsAreUnprojectedWithTheirDepth) {
 
 // Confidence cycles low, medium, high across the map; each level keeps exactly the samples at or above it.
 TEST_F(PointCloudRendererTest, MinConfidenceRemovesExactlyTheLowerLevels) {
-    devices::DepthData depth = plane(1.0f);
+    frame::DepthData depth = plane(1.0f);
     for (int v = 0; v < kDepthHeight; ++v)
         for (int u = 0; u < kDepthWidth; ++u)
             depth.confidence.at(u, v) = static_cast<std::uint8_t>((u + v) % 3);
-    for (const auto level :
-         {devices::Confidence::Low, devices::Confidence::Medium, devices::Confidence::High}) {
+    for (const auto level : {frame::Confidence::Low, frame::Confidence::Medium, frame::Confidence::High}) {
         const std::vector<std::uint8_t> rgba = renderStraightOn(depth, level);
         ASSERT_TRUE(noGlError());
         std::array<int, 3> lit{};
@@ -138,9 +137,9 @@ TEST_F(PointCloudRendererTest, MinConfidenceRemovesExactlyTheLowerLevels) {
 }
 
 TEST_F(PointCloudRendererTest, WithoutConfidenceEverySampleCountsAsHigh) {
-    devices::DepthData depth = plane(1.0f);
+    frame::DepthData depth = plane(1.0f);
     depth.confidence = {};
-    const std::vector<std::uint8_t> rgba = renderStraightOn(std::move(depth), devices::Confidence::High);
+    const std::vector<std::uint8_t> rgba = renderStraightOn(std::move(depth), frame::Confidence::High);
     ASSERT_TRUE(noGlError());
     EXPECT_FALSE(textures_.hasConfidence());
     for (int v = 0; v < kDepthHeight; ++v)
@@ -151,14 +150,14 @@ TEST_F(PointCloudRendererTest, WithoutConfidenceEverySampleCountsAsHigh) {
 
 TEST_F(PointCloudRendererTest, WithoutCameraImageThePointsAreMidGray) {
     image_ = {};
-    const std::vector<std::uint8_t> rgba = renderStraightOn(plane(1.0f), devices::Confidence::Low);
+    const std::vector<std::uint8_t> rgba = renderStraightOn(plane(1.0f), frame::Confidence::Low);
     ASSERT_TRUE(noGlError());
     EXPECT_FALSE(textures_.hasCameraImage());
     EXPECT_TRUE(near(pixelAt(rgba, kDepthWidth, 5, 7), Rgba{128, 128, 128, 255}, 1));
 }
 
 TEST_F(PointCloudRendererTest, WithoutDepthOnlyTheBackgroundIsDrawn) {
-    devices::Frame frame = makeFrame(plane(1.0f), image_, kCameraIntrinsics);
+    frame::Frame frame = makeFrame(plane(1.0f), image_, kCameraIntrinsics);
     frame.sceneDepth.reset();
     textures_.upload(frame, false);
     CloudParams params;
@@ -174,7 +173,7 @@ TEST_F(PointCloudRendererTest, WithoutDepthOnlyTheBackgroundIsDrawn) {
 }
 
 TEST_F(PointCloudRendererTest, LargerPointsCoverTheirNeighbourhood) {
-    devices::DepthData depth = plane(0.0f);
+    frame::DepthData depth = plane(0.0f);
     depth.depthMeters.at(30, 20) = 1.0f;
     textures_.upload(makeFrame(std::move(depth), image_, kCameraIntrinsics), false);
     CloudParams params;

@@ -19,7 +19,7 @@ protected:
     }
 
     // Uploads `frame` and draws every view into targets of the given size.
-    ::testing::AssertionResult renderAll(const devices::Frame& frame, int width, int height) {
+    ::testing::AssertionResult renderAll(const frame::Frame& frame, int width, int height) {
         textures_.upload(frame, false);
         if (!target_.resize(width, height).ok())
             return ::testing::AssertionFailure() << "cannot size the target";
@@ -38,14 +38,14 @@ protected:
     RenderTarget target_;
 };
 
-devices::DepthData depthOf(int width, int height, float meters) {
-    return {devices::Plane<float>(width, height, meters), devices::Plane<std::uint8_t>(width, height, 1)};
+frame::DepthData depthOf(int width, int height, float meters) {
+    return {frame::Plane<float>(width, height, meters), frame::Plane<std::uint8_t>(width, height, 1)};
 }
 
-const devices::Intrinsics kIntrinsics{4.0, 4.0, 2.0, 2.0, 4, 4};
+const frame::Intrinsics kIntrinsics{4.0, 4.0, 2.0, 2.0, 4, 4};
 
 TEST_F(RobustnessTest, OnePixelFrame) {
-    const devices::Frame frame = makeFrame(depthOf(1, 1, 1.0f), nv12Image(1, 1, blockColors(1)), kIntrinsics);
+    const frame::Frame frame = makeFrame(depthOf(1, 1, 1.0f), nv12Image(1, 1, blockColors(1)), kIntrinsics);
     EXPECT_TRUE(renderAll(frame, 1, 1));
     EXPECT_EQ(textures_.depthWidth(), 1);
     EXPECT_EQ(cloud_.lastPointCount(), 1u);
@@ -58,24 +58,24 @@ TEST_F(RobustnessTest, OddSizedCameraImages) {
 }
 
 TEST_F(RobustnessTest, FramesWithoutDepthConfidenceOrImage) {
-    devices::Frame noDepth = makeFrame(depthOf(4, 4, 1.0f), nv12Image(4, 4, blockColors(2)), kIntrinsics);
+    frame::Frame noDepth = makeFrame(depthOf(4, 4, 1.0f), nv12Image(4, 4, blockColors(2)), kIntrinsics);
     noDepth.sceneDepth.reset();
     EXPECT_TRUE(renderAll(noDepth, 4, 4));
     EXPECT_FALSE(textures_.hasDepth());
 
-    devices::Frame noConfidence = makeFrame(depthOf(4, 4, 1.0f), {}, kIntrinsics);
+    frame::Frame noConfidence = makeFrame(depthOf(4, 4, 1.0f), {}, kIntrinsics);
     noConfidence.sceneDepth->confidence = {};
     EXPECT_TRUE(renderAll(noConfidence, 4, 4));
     EXPECT_FALSE(textures_.hasConfidence());
     EXPECT_FALSE(textures_.hasCameraImage());
 
-    EXPECT_TRUE(renderAll(devices::Frame{}, 2, 2));
+    EXPECT_TRUE(renderAll(frame::Frame{}, 2, 2));
 }
 
 TEST_F(RobustnessTest, MalformedInputsAreTreatedAsMissing) {
-    devices::Frame frame = makeFrame(depthOf(4, 4, 1.0f), nv12Image(4, 4, blockColors(2)), kIntrinsics);
-    frame.sceneDepth->confidence = devices::Plane<std::uint8_t>(3, 3, 2); // wrong size
-    frame.capturedImage.width = 400;                                      // more pixels than bytes
+    frame::Frame frame = makeFrame(depthOf(4, 4, 1.0f), nv12Image(4, 4, blockColors(2)), kIntrinsics);
+    frame.sceneDepth->confidence = frame::Plane<std::uint8_t>(3, 3, 2); // wrong size
+    frame.capturedImage.width = 400;                                    // more pixels than bytes
     EXPECT_TRUE(renderAll(frame, 4, 4));
     EXPECT_TRUE(textures_.hasDepth());
     EXPECT_FALSE(textures_.hasConfidence());
@@ -98,7 +98,7 @@ TEST_F(RobustnessTest, TexturesFollowChangingFrameSizes) {
 }
 
 TEST_F(RobustnessTest, SmoothedDepthIsUsedOnlyWhenPreferredAndPresent) {
-    devices::Frame frame = makeFrame(depthOf(4, 4, 1.0f), nv12Image(8, 8, blockColors(2)), kIntrinsics);
+    frame::Frame frame = makeFrame(depthOf(4, 4, 1.0f), nv12Image(8, 8, blockColors(2)), kIntrinsics);
     frame.smoothedSceneDepth = depthOf(2, 2, 1.0f);
     textures_.upload(frame, true);
     EXPECT_EQ(textures_.depthWidth(), 2);

@@ -69,7 +69,7 @@ protected:
         source_ = std::move(*source);
     }
     TempDir dir_;
-    std::vector<devices::FramePtr> frames_;
+    std::vector<frame::FramePtr> frames_;
     std::unique_ptr<devices::replay::ReplaySource> source_;
 };
 
@@ -88,7 +88,7 @@ TEST_F(Export, PlyPerFrameParsesBackToTheCloudOfThatFrame) {
     const PlyFile ply = parsePly(test::readBytes(dir_.path("ply/000003.ply")));
     EXPECT_EQ(ply.properties, (std::vector<std::string>{"float x", "float y", "float z", "uchar red",
                                                         "uchar green", "uchar blue", "uchar confidence"}));
-    const auto expected = processing::buildPointCloud(*frames_[3], devices::Confidence::Low, 0.0f);
+    const auto expected = processing::buildPointCloud(*frames_[3], frame::Confidence::Low, 0.0f);
     ASSERT_EQ(ply.vertices, expected.size());
     ASSERT_GT(expected.size(), 100u);
     for (std::size_t i = 0; i < expected.size(); i += 37) {
@@ -119,7 +119,7 @@ TEST_F(Export, OpenThreeDLoadsThePly) {
     double x = 0, y = 0, z = 0, r = 0, g = 0, b = 0;
     read >> count >> x >> y >> z >> r >> g >> b;
     ASSERT_TRUE(read) << readText(out);
-    const auto expected = processing::buildPointCloud(*frames_[3], devices::Confidence::Low, 0.0f);
+    const auto expected = processing::buildPointCloud(*frames_[3], frame::Confidence::Low, 0.0f);
     ASSERT_EQ(count, expected.size());
     const auto& p = expected[41];
     EXPECT_FLOAT_EQ(static_cast<float>(x), p.x);
@@ -133,7 +133,7 @@ TEST_F(Export, OpenThreeDLoadsThePly) {
 TEST_F(Export, PlyInWorldCoordinatesAppliesThePose) {
     ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Ply, dir_.path("w"), {1, 2}, true}));
     const PlyFile ply = parsePly(test::readBytes(dir_.path("w/000001.ply")));
-    const auto camera = processing::buildPointCloud(*frames_[1], devices::Confidence::Low, 0.0f);
+    const auto camera = processing::buildPointCloud(*frames_[1], frame::Confidence::Low, 0.0f);
     ASSERT_EQ(ply.vertices, camera.size());
     const auto& m = frames_[1]->pose->cameraToWorld;
     const auto& c = camera[10];
@@ -144,9 +144,9 @@ TEST_F(Export, PlyInWorldCoordinatesAppliesThePose) {
 TEST_F(Export, StrayLayoutImportsBackWithTheSameFrames) {
     // Stray stores orientation as a quaternion, so it carries rotations only; the synthetic scene's
     // y-up world makes its poses reflections (determinant -1). Give the frames proper rotations.
-    std::vector<devices::FramePtr> rotated;
+    std::vector<frame::FramePtr> rotated;
     for (std::size_t i = 0; i < frames_.size(); ++i) {
-        auto f = std::make_shared<devices::Frame>(*frames_[i]);
+        auto f = std::make_shared<frame::Frame>(*frames_[i]);
         const double t[3] = {0.1 * i, -0.2, 1.5};
         const double angle = 0.3 * static_cast<double>(i);
         const double q[4] = {std::sin(angle / 2) * 0.6, std::sin(angle / 2) * 0.8, 0.0, std::cos(angle / 2)};

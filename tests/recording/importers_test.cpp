@@ -47,7 +47,7 @@ TEST(StrayImport, RealArkitCaptureHasItsFramesSizesIntrinsicsPixelsAndPoses) {
     EXPECT_EQ(f0->capturedImage.height, 960);
     EXPECT_DOUBLE_EQ(f0->cameraIntrinsics.fx, 717.0636596679688);
     EXPECT_DOUBLE_EQ(f0->cameraIntrinsics.cy, 485.18304443359375);
-    const Intrinsics depthK = f0->depthIntrinsics();
+    const frame::Intrinsics depthK = f0->depthIntrinsics();
     EXPECT_DOUBLE_EQ(depthK.fx, 717.0636596679688 * 192.0 / 720.0);
     EXPECT_DOUBLE_EQ(depthK.cy, 485.18304443359375 * 256.0 / 960.0);
     EXPECT_EQ(f0->sceneDepth->depthMeters.at(96, 128), recording::depthFromUnits(3283, 0.001));
@@ -308,7 +308,7 @@ TEST(ReplaySource, SanitizeZeroesNanInfiniteAndNegativeDepthAndCountsThem) {
     const std::vector<float> samples = {1.5f,  kNan,  -2.0f, kInf,    0.0f, -0.0f,
                                         3.25f, -kInf, 1e30f, -1e-30f, kNan};
     for (std::size_t n = 1; n <= samples.size(); ++n) {
-        Plane<float> depth(static_cast<int>(n), 1);
+        frame::Plane<float> depth(static_cast<int>(n), 1);
         std::copy_n(samples.begin(), n, depth.pixels.begin());
         std::size_t bad = 0;
         for (std::size_t i = 0; i < n; ++i)

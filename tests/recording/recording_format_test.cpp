@@ -1,10 +1,10 @@
 // The recording format: lossless round trip, crash recovery and every damaged input the issue lists.
 
-#include "devices/color.h"
 #include "devices/recording/recorder.h"
 #include "devices/recording/recording_reader.h"
 #include "devices/replay/importers.h"
-#include "devices/rgb_image.h"
+#include "frame/color.h"
+#include "frame/rgb_image.h"
 #include "tests/recording/recording_test_support.h"
 
 #include <gtest/gtest.h>
@@ -22,7 +22,7 @@ namespace {
 
 using test::TempDir;
 
-void expectSameFrame(const Frame& a, const Frame& b) {
+void expectSameFrame(const frame::Frame& a, const frame::Frame& b) {
     EXPECT_EQ(a.timestampNs, b.timestampNs);
     EXPECT_EQ(a.sequence, b.sequence);
     ASSERT_TRUE(a.sceneDepth && b.sceneDepth);
@@ -64,17 +64,18 @@ TEST(RecordingFormat, RoundTripIsBitExactWithAndWithoutCompression) {
 }
 
 TEST(RecordingFormat, NanNegativeAndSmoothedDepthSurviveTheFileThenReplayZeroesInvalidDepth) {
-    Frame frame;
+    frame::Frame frame;
     frame.timestampNs = 5;
     frame.cameraIntrinsics = {100, 100, 2, 1, 4, 2};
-    Plane<float> depth(4, 2, 1.5f);
+    frame::Plane<float> depth(4, 2, 1.5f);
     depth.pixels[1] = std::numeric_limits<float>::quiet_NaN();
     depth.pixels[2] = -2.0f;
     depth.pixels[3] = std::numeric_limits<float>::infinity();
-    frame.sceneDepth = DepthData{depth, {}};
-    frame.smoothedSceneDepth = DepthData{Plane<float>(4, 2, 0.25f), Plane<std::uint8_t>(4, 2, 1)};
+    frame.sceneDepth = frame::DepthData{depth, {}};
+    frame.smoothedSceneDepth =
+        frame::DepthData{frame::Plane<float>(4, 2, 0.25f), frame::Plane<std::uint8_t>(4, 2, 1)};
     TempDir dir;
-    test::writeRecording(dir.path("n.dcrec"), {std::make_shared<Frame>(frame)});
+    test::writeRecording(dir.path("n.dcrec"), {std::make_shared<frame::Frame>(frame)});
     auto reader = RecordingReader::open(dir.path("n.dcrec"));
     ASSERT_TRUE(reader);
     auto stored = reader->frame(0);
@@ -96,20 +97,20 @@ TEST(RecordingFormat, NanNegativeAndSmoothedDepthSurviveTheFileThenReplayZeroesI
 }
 
 TEST(RecordingFormat, IntegerDepthIsStoredAsUint16WithItsScaleAndDecodesExactly) {
-    Plane<float> mm(64, 48);
+    frame::Plane<float> mm(64, 48);
     for (std::size_t i = 0; i < mm.pixels.size(); ++i)
         mm.pixels[i] = i % 7 == 0 ? 0.0f : depthFromUnits(static_cast<std::uint16_t>(400 + i), 0.001);
     EXPECT_EQ(exactUint16Scale(mm), 0.001);
-    Plane<float> tum = mm;
+    frame::Plane<float> tum = mm;
     for (std::size_t i = 0; i < tum.pixels.size(); ++i)
         tum.pixels[i] = depthFromUnits(static_cast<std::uint16_t>(9000 + 3 * i), 1.0 / 5000.0);
     EXPECT_EQ(exactUint16Scale(tum), 0.0002);
-    Plane<float> measured = mm;
+    frame::Plane<float> measured = mm;
     measured.pixels[5] = 1.2345678f;
     EXPECT_FALSE(exactUint16Scale(measured)) << "one sample that is not an integer keeps float32";
 
-    Frame frame;
-    frame.sceneDepth = DepthData{mm, {}};
+    frame::Frame frame;
+    frame.sceneDepth = frame::DepthData{mm, {}};
     FrameEncoder encoder;
     auto payload = encoder.encode(frame);
     ASSERT_TRUE(payload);
@@ -125,7 +126,7 @@ TEST(RecordingFormat, IntegerDepthIsStoredAsUint16WithItsScaleAndDecodesExactly)
 TEST(RecordingFormat, FloatDepthIsStoredAsByteplanesAndDecodesBitExactForAnySize) {
     const auto byteOf = [](std::size_t i, int k) { return static_cast<std::uint8_t>(i * 4 + k * 61 + 7); };
     for (const auto& [w, h] : {std::pair{1, 1}, {15, 1}, {16, 1}, {17, 1}, {16, 2}, {33, 3}, {640, 3}}) {
-        Plane<float> depth(w, h);
+        frame::Plane<float> depth(w, h);
         const std::size_t n = depth.pixels.size();
         std::vector<std::uint8_t> plane0(n);
         for (std::size_t i = 0; i < n; ++i) {
@@ -134,8 +135,8 @@ TEST(RecordingFormat, FloatDepthIsStoredAsByteplanesAndDecodesBitExactForAnySize
             depth.pixels[i] = std::bit_cast<float>(bits);
             plane0[i] = byteOf(i, 0);
         }
-        Frame frame;
-        frame.sceneDepth = DepthData{depth, {}};
+        frame::Frame frame;
+        frame.sceneDepth = frame::DepthData{depth, {}};
         for (const bool compress : {false, true}) {
             EncodeOptions options;
             options.compress = compress;
@@ -164,29 +165,31 @@ TEST(RecordingFormat, JpegColorIsDecodedAsRgbOfTheCapturedSize) {
     ASSERT_TRUE(reader);
     auto f = reader->frame(1);
     ASSERT_TRUE(f) << f.error().message;
-    EXPECT_EQ(f->capturedImage.format, PixelFormat::Rgb24);
+    EXPECT_EQ(f->capturedImage.format, frame::PixelFormat::Rgb24);
     EXPECT_EQ(f->capturedImage.width, frames[1]->capturedImage.width);
     EXPECT_EQ(f->capturedImage.height, frames[1]->capturedImage.height);
     EXPECT_TRUE(test::sameBits(f->sceneDepth->depthMeters, frames[1]->sceneDepth->depthMeters));
 }
 
 TEST(RgbImage, WholeImageConversionMatchesPixelRgbForEveryFormat) {
-    std::vector<std::uint8_t> bytes(CapturedImage::byteSize(PixelFormat::Nv12, 7, 5));
+    std::vector<std::uint8_t> bytes(frame::CapturedImage::byteSize(frame::PixelFormat::Nv12, 7, 5));
     for (std::size_t i = 0; i < bytes.size(); ++i)
         bytes[i] = static_cast<std::uint8_t>(i * 37 + 11);
-    for (const PixelFormat format : {PixelFormat::Nv12, PixelFormat::Yuyv, PixelFormat::Rgb24}) {
+    for (const frame::PixelFormat format :
+         {frame::PixelFormat::Nv12, frame::PixelFormat::Yuyv, frame::PixelFormat::Rgb24}) {
         auto data = bytes;
-        data.resize(CapturedImage::byteSize(format, 7, 5), 99);
-        const CapturedImage image{format, 7, 5, std::make_shared<const std::vector<std::uint8_t>>(data)};
-        const std::vector<std::uint8_t> rgb = toRgb24(image);
+        data.resize(frame::CapturedImage::byteSize(format, 7, 5), 99);
+        const frame::CapturedImage image{format, 7, 5,
+                                         std::make_shared<const std::vector<std::uint8_t>>(data)};
+        const std::vector<std::uint8_t> rgb = frame::toRgb24(image);
         ASSERT_EQ(rgb.size(), 7u * 5u * 3u);
         for (int y = 0; y < 5; ++y) {
             for (int x = 0; x < 7; ++x) {
-                const Rgb c = pixelRgb(image, x, y);
+                const frame::Rgb c = frame::pixelRgb(image, x, y);
                 const std::uint8_t* p = &rgb[(static_cast<std::size_t>(y) * 7 + x) * 3];
-                EXPECT_NEAR(p[0], toByte(c.r), 1) << toString(format) << " " << x << "," << y;
-                EXPECT_NEAR(p[1], toByte(c.g), 1) << toString(format) << " " << x << "," << y;
-                EXPECT_NEAR(p[2], toByte(c.b), 1) << toString(format) << " " << x << "," << y;
+                EXPECT_NEAR(p[0], frame::toByte(c.r), 1) << toString(format) << " " << x << "," << y;
+                EXPECT_NEAR(p[1], frame::toByte(c.g), 1) << toString(format) << " " << x << "," << y;
+                EXPECT_NEAR(p[2], frame::toByte(c.b), 1) << toString(format) << " " << x << "," << y;
             }
         }
     }
@@ -266,7 +269,7 @@ protected:
     Expected<RecordingReader> open() { return RecordingReader::fromBytes(bytes_, "d.dcrec"); }
 
     TempDir dir_;
-    std::vector<FramePtr> frames_;
+    std::vector<frame::FramePtr> frames_;
     std::vector<std::uint8_t> bytes_;
     std::vector<std::uint64_t> offsets_;
 };

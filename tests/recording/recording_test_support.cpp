@@ -1,6 +1,6 @@
 #include "tests/recording/recording_test_support.h"
 
-#include "devices/synthetic_device.h"
+#include "devices/synthetic/synthetic_device.h"
 
 #include <gtest/gtest.h>
 
@@ -23,8 +23,8 @@ TempDir::~TempDir() {
     std::filesystem::remove_all(dir_, ec);
 }
 
-std::vector<devices::FramePtr> syntheticFrames(int count, int width, int height,
-                                               std::int64_t firstTimestampNs) {
+std::vector<frame::FramePtr> syntheticFrames(int count, int width, int height,
+                                             std::int64_t firstTimestampNs) {
     devices::SyntheticConfig config;
     config.depthWidth = width;
     config.depthHeight = height;
@@ -35,19 +35,19 @@ std::vector<devices::FramePtr> syntheticFrames(int count, int width, int height,
     devices::SyntheticDevice device(config);
     EXPECT_TRUE(device.open());
     EXPECT_TRUE(device.start());
-    std::vector<devices::FramePtr> frames;
+    std::vector<frame::FramePtr> frames;
     while (static_cast<int>(frames.size()) < count) {
         auto r = device.capture(std::chrono::seconds(1));
         if (r.kind != devices::CaptureResult::Kind::Frame)
             continue;
-        auto f = std::make_shared<devices::Frame>(*r.frame);
+        auto f = std::make_shared<frame::Frame>(*r.frame);
         f->timestampNs = firstTimestampNs + static_cast<std::int64_t>(frames.size()) * 33'333'333;
         frames.push_back(std::move(f));
     }
     return frames;
 }
 
-void writeRecording(const std::string& path, const std::vector<devices::FramePtr>& frames,
+void writeRecording(const std::string& path, const std::vector<frame::FramePtr>& frames,
                     devices::recording::WriterOptions options) {
     auto writer = devices::recording::RecordingWriter::create(
         path, {"test camera", {.sceneDepth = true, .confidence = true, .color = true, .pose = true}},
@@ -68,7 +68,7 @@ void writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes)
     out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
-bool sameBits(const devices::Plane<float>& a, const devices::Plane<float>& b) {
+bool sameBits(const frame::Plane<float>& a, const frame::Plane<float>& b) {
     return a.width == b.width && a.height == b.height &&
            std::memcmp(a.pixels.data(), b.pixels.data(), a.pixels.size() * sizeof(float)) == 0;
 }

@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/frame.h"
 #include "devices/recording/recording_writer.h"
+#include "frame/frame.h"
 
 #include <filesystem>
 #include <string>
@@ -26,17 +26,17 @@ private:
 
 // `count` distinct frames of the moving synthetic camera (noisy depth, confidence, NV12 color, pose) at
 // depth w x h, with timestamps 1/30 s apart from `firstTimestampNs`.
-std::vector<devices::FramePtr> syntheticFrames(int count, int width = 32, int height = 24,
-                                               std::int64_t firstTimestampNs = 1'000'000'000);
+std::vector<frame::FramePtr> syntheticFrames(int count, int width = 32, int height = 24,
+                                             std::int64_t firstTimestampNs = 1'000'000'000);
 
 // Writes the frames as a finished recording.
-void writeRecording(const std::string& path, const std::vector<devices::FramePtr>& frames,
+void writeRecording(const std::string& path, const std::vector<frame::FramePtr>& frames,
                     devices::recording::WriterOptions options = {});
 
 std::vector<std::uint8_t> readBytes(const std::string& path);
 void writeBytes(const std::string& path, const std::vector<std::uint8_t>& bytes);
 
 // Bitwise equality of two float planes (NaN payloads included).
-bool sameBits(const devices::Plane<float>& a, const devices::Plane<float>& b);
+bool sameBits(const frame::Plane<float>& a, const frame::Plane<float>& b);
 
 } // namespace dc::test

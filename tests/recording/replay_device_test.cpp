@@ -28,7 +28,7 @@ protected:
         return std::make_unique<ReplayDevice>(std::move(*source), options);
     }
     // Captures until a frame of generation >= `generation` arrives, as a consumer after a seek does.
-    static FramePtr frameOfGeneration(Device& d, std::uint64_t generation) {
+    static frame::FramePtr frameOfGeneration(Device& d, std::uint64_t generation) {
         const auto deadline = std::chrono::steady_clock::now() + kWait;
         while (std::chrono::steady_clock::now() < deadline) {
             auto r = d.capture(std::chrono::milliseconds(50));
@@ -37,7 +37,7 @@ protected:
         }
         return nullptr;
     }
-    void expectFrame(const FramePtr& f, std::size_t index) {
+    void expectFrame(const frame::FramePtr& f, std::size_t index) {
         ASSERT_TRUE(f);
         ASSERT_TRUE(f->replay);
         EXPECT_EQ(f->replay->index, index);
@@ -48,7 +48,7 @@ protected:
 
     static constexpr std::size_t kFrames = 24;
     TempDir dir_;
-    std::vector<FramePtr> frames_;
+    std::vector<frame::FramePtr> frames_;
 };
 
 TEST_F(Replay, SeekToEveryIndexDeliversExactlyThatFrame) {

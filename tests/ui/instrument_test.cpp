@@ -1,9 +1,9 @@
 // Headless UI tests of the instrument features: hover readout, anchors and measurement, zoom on click,
 // colormaps and automatic range, the camera panel's fill and depth overlay, stats, log and toasts.
 
+#include "base/log.h"
 #include "devices/frame_list_device.h"
-#include "devices/log.h"
-#include "devices/synthetic_scene.h"
+#include "devices/synthetic/synthetic_scene.h"
 #include "processing/point_cloud.h"
 #include "render/colormap.h"
 #include "ui_fixture.h"
@@ -20,7 +20,7 @@ namespace {
 
 // The exact desk point seen through depth pixel (u, v) of the fixed camera, in the camera frame: the ray
 // through the pixel (the unprojection's own convention) meets the plane y = 0 of the world.
-glm::dvec3 analyticDeskPoint(const devices::Intrinsics& k, int u, int v) {
+glm::dvec3 analyticDeskPoint(const frame::Intrinsics& k, int u, int v) {
     const double pitch = devices::scene::kCameraPitchDegrees * std::numbers::pi / 180.0;
     const double xn = (u - k.cx) / k.fx, yn = (v - k.cy) / k.fy;
     const double worldDown = -std::cos(pitch) * yn - std::sin(pitch); // world y of the ray per unit camera z
@@ -79,8 +79,8 @@ protected:
     // Where depth pixel (u, v) appears on screen in the cloud panel, from the matrix the cloud was drawn
     // with and the panel's content origin.
     ImVec2 screenOfCloudSample(int u, int v) {
-        const devices::FramePtr& f = viewer_->currentFrame();
-        const devices::Intrinsics k = f->depthIntrinsics();
+        const frame::FramePtr& f = viewer_->currentFrame();
+        const frame::Intrinsics k = f->depthIntrinsics();
         const float z = f->sceneDepth->depthMeters.at(u, v);
         const glm::vec4 clip =
             viewer_->cloudViewProjection() * glm::vec4((u - k.cx) * z / k.fx, (v - k.cy) * z / k.fy, z, 1.0f);
@@ -99,11 +99,11 @@ TEST_F(InstrumentTest, HoverOnTheDepthPanelReadsTheKnownDepthAtAKnownPixel) {
     const auto at = mouseOverDepthPixel(kDepthTitle, kU, kV);
     ASSERT_TRUE(at.has_value()) << "the readout never reported the pixel";
     const Probe p = *viewer_->hoverProbe();
-    const devices::Intrinsics k = viewer_->currentFrame()->depthIntrinsics();
+    const frame::Intrinsics k = viewer_->currentFrame()->depthIntrinsics();
     const glm::dvec3 truth = analyticDeskPoint(k, kU, kV);
     EXPECT_NEAR(p.depthMeters, truth.z, 1e-5 * truth.z);
     ASSERT_TRUE(p.confidence.has_value());
-    EXPECT_EQ(*p.confidence, devices::Confidence::High);
+    EXPECT_EQ(*p.confidence, frame::Confidence::High);
     for (int i = 0; i < 3; ++i)
         EXPECT_NEAR(p.point[static_cast<std::size_t>(i)], truth[i], 1e-5) << "axis " << i;
     EXPECT_EQ(formatDepth(0.734f), "734 mm");
@@ -121,7 +121,7 @@ TEST_F(InstrumentTest, ConfidenceAndCameraPanelsReadOutTheSameSample) {
 }
 
 TEST_F(InstrumentTest, AnchorsOnTheDeskLandOnTheAnalyticPointsAndMeasureTheirDistance) {
-    const devices::Intrinsics k = viewer_->currentFrame()->depthIntrinsics();
+    const frame::Intrinsics k = viewer_->currentFrame()->depthIntrinsics();
     const int pixels[2][2] = {{110, 178}, {150, 186}};
     for (const auto& px : pixels)
         clickAt(screenOfCloudSample(px[0], px[1]));
@@ -316,7 +316,7 @@ TEST_F(InstrumentTest, SnapshotWritesEveryPanelAndThePointCloud) {
         EXPECT_GT(std::filesystem::file_size(std::filesystem::path(*dir) / name), 100u) << name;
     std::ifstream ply(std::filesystem::path(*dir) / "cloud.ply", std::ios::binary);
     std::string header((std::istreambuf_iterator<char>(ply)), {});
-    const auto points = processing::buildPointCloud(*viewer_->currentFrame(), devices::Confidence::Low,
+    const auto points = processing::buildPointCloud(*viewer_->currentFrame(), frame::Confidence::Low,
                                                     viewer_->settings().cloud.nearMeters);
     EXPECT_NE(header.find("element vertex " + std::to_string(points.size())), std::string::npos);
     std::filesystem::remove_all(parent);
@@ -327,12 +327,12 @@ TEST(InstrumentNoPose, AccumulateIsDisabledWithoutPoses) {
     ASSERT_TRUE(ctx.ok()) << ctx.error().message;
     HeadlessUi gui;
     ASSERT_TRUE(gui.init(1280, 720).ok());
-    devices::Frame f;
+    frame::Frame f;
     const devices::SyntheticScene scene;
     f.cameraIntrinsics = devices::SyntheticScene::cameraIntrinsics(64, 48);
     f.sceneDepth = scene.sensorDepth(f.cameraIntrinsics, devices::SyntheticScene::cameraPose(0.0, false), 1);
     Viewer viewer(std::make_unique<devices::FrameListDevice>(
-                      std::vector<devices::FramePtr>{std::make_shared<const devices::Frame>(f)}, 60.0),
+                      std::vector<frame::FramePtr>{std::make_shared<const frame::Frame>(f)}, 60.0),
                   Settings{});
     ASSERT_TRUE(viewer.init().ok());
     viewer.settings().accumulate.enabled = true;

@@ -12,7 +12,7 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     Settings s;
     s.panels.depth = false;
     s.panels.controls = false;
-    s.cloud.minConfidence = devices::Confidence::High;
+    s.cloud.minConfidence = frame::Confidence::High;
     s.cloud.pointSizePixels = 4.5f;
     s.cloud.nearMeters = 0.3f;
     s.cloud.motion.enabled = false;
@@ -36,7 +36,7 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     EXPECT_FALSE(r.panels.depth);
     EXPECT_FALSE(r.panels.controls);
     EXPECT_TRUE(r.panels.cloud);
-    EXPECT_EQ(r.cloud.minConfidence, devices::Confidence::High);
+    EXPECT_EQ(r.cloud.minConfidence, frame::Confidence::High);
     EXPECT_FLOAT_EQ(r.cloud.pointSizePixels, 4.5f);
     EXPECT_FLOAT_EQ(r.cloud.nearMeters, 0.3f);
     EXPECT_FALSE(r.cloud.motion.enabled);
@@ -81,7 +81,7 @@ TEST(Settings, MistypedAndOutOfRangeValuesFallBackOrClamp) {
                                         "nearMeters": 1e30}, "depthRange": {"minMeters": 5, "maxMeters": 1},
                                         "panels": 7, "unknown": true})");
     ASSERT_TRUE(r.ok());
-    EXPECT_EQ(r->cloud.minConfidence, devices::Confidence::High) << "9 clamps to the highest level";
+    EXPECT_EQ(r->cloud.minConfidence, frame::Confidence::High) << "9 clamps to the highest level";
     EXPECT_FLOAT_EQ(r->cloud.pointSizePixels, Settings{}.cloud.pointSizePixels)
         << "mistyped keeps the default";
     EXPECT_GT(r->cloud.orbit.zoom, 0.0f);

@@ -4,7 +4,7 @@
 // drawn with the OpenGL3 renderer into an offscreen target on Mesa llvmpipe, driven by injected mouse and
 // keyboard input.
 
-#include "devices/synthetic_device.h"
+#include "devices/synthetic/synthetic_device.h"
 #include "render/gl_context.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"

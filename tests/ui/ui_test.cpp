@@ -43,7 +43,7 @@ TEST_F(UiTest, ClickingHighOnlyRaisesTheLevelAndRemovesPointsFromTheCloud) {
     const auto radio = locate(kControlsTitle, "High only [3]");
     ASSERT_TRUE(radio.has_value());
     click(*radio, 0.0);
-    EXPECT_EQ(viewer_->settings().cloud.minConfidence, devices::Confidence::High);
+    EXPECT_EQ(viewer_->settings().cloud.minConfidence, frame::Confidence::High);
     const auto after = cloudSnapshot(0.0);
     EXPECT_LT(litPixels(after), litPixels(before) * 9 / 10) << "low and medium points are no longer drawn";
     EXPECT_GT(litPixels(after), 1000u) << "high-confidence points remain";
@@ -109,7 +109,7 @@ TEST_F(UiTest, WheelZoomsAndDoubleClickResetsTheView) {
 
 TEST_F(UiTest, ShortcutsChangeLevelRotationAndControls) {
     pressKey('2', 0.0);
-    EXPECT_EQ(viewer_->settings().cloud.minConfidence, devices::Confidence::Medium);
+    EXPECT_EQ(viewer_->settings().cloud.minConfidence, frame::Confidence::Medium);
     pressKey('R', 0.0);
     EXPECT_FALSE(viewer_->settings().cloud.motion.enabled);
     pressKey('C', 0.0);

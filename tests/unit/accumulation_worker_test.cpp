@@ -9,32 +9,31 @@ namespace dc::processing {
 namespace {
 
 // A w x h wall `depth` meters in front of a camera at `x` meters along the world's x axis.
-devices::FramePtr wallAt(double x, float depth, int w = 16, int h = 12) {
-    auto f = std::make_shared<devices::Frame>();
+frame::FramePtr wallAt(double x, float depth, int w = 16, int h = 12) {
+    auto f = std::make_shared<frame::Frame>();
     f->cameraIntrinsics = {20.0, 20.0, w / 2.0, h / 2.0, w, h};
-    f->sceneDepth =
-        devices::DepthData{devices::Plane<float>(w, h, depth), devices::Plane<std::uint8_t>(w, h, 2)};
+    f->sceneDepth = frame::DepthData{frame::Plane<float>(w, h, depth), frame::Plane<std::uint8_t>(w, h, 2)};
     f->capturedImage = {
-        devices::PixelFormat::Rgb24, w, h,
+        frame::PixelFormat::Rgb24, w, h,
         std::make_shared<const std::vector<std::uint8_t>>(static_cast<std::size_t>(w) * h * 3, 90)};
-    devices::Pose pose;
+    frame::Pose pose;
     pose.cameraToWorld[12] = x;
     f->pose = pose;
     return f;
 }
 
-AccumulationWorker::Request requestFor(devices::FramePtr frame, std::size_t budget = 1000) {
-    return {std::move(frame), devices::Confidence::Low, 0.0f, budget, 0.001f};
+AccumulationWorker::Request requestFor(frame::FramePtr frame, std::size_t budget = 1000) {
+    return {std::move(frame), frame::Confidence::Low, 0.0f, budget, 0.001f};
 }
 
 TEST(AccumulationWorker, AddsExactlyWhatTheAccumulatorItselfWouldAdd) {
     AccumulationWorker worker;
     PointAccumulator direct(1000, 0.001f);
     for (int i = 0; i < 5; ++i) {
-        const devices::FramePtr frame = wallAt(0.5 * i, 1.0f + 0.1f * static_cast<float>(i));
+        const frame::FramePtr frame = wallAt(0.5 * i, 1.0f + 0.1f * static_cast<float>(i));
         worker.submit(requestFor(frame));
         worker.waitIdle();
-        direct.add(*frame, devices::Confidence::Low, 0.0f);
+        direct.add(*frame, frame::Confidence::Low, 0.0f);
     }
     EXPECT_EQ(worker.size(), direct.size());
     EXPECT_EQ(worker.size(), 5u * 16 * 12);

@@ -1,5 +1,5 @@
-#include "devices/color.h"
-#include "devices/frame.h"
+#include "frame/color.h"
+#include "frame/frame.h"
 
 #include <gtest/gtest.h>
 
@@ -10,7 +10,7 @@ namespace {
 // Cb = (B - Y) / 1.772, Cr = (R - Y) / 1.402), with chroma centred on 0.5 of full scale as in the sample.
 struct Known {
     const char* name;
-    Rgb rgb;
+    frame::Rgb rgb;
     float y, cb, cr; // 8-bit codes
 };
 
@@ -22,7 +22,7 @@ constexpr Known kKnown[] = {
 
 TEST(Color, YcbcrToRgbReproducesKnownColors) {
     for (const Known& k : kKnown) {
-        const Rgb rgb = ycbcrToRgb({k.y / 255.0f, k.cb / 255.0f, k.cr / 255.0f});
+        const frame::Rgb rgb = frame::ycbcrToRgb({k.y / 255.0f, k.cb / 255.0f, k.cr / 255.0f});
         EXPECT_NEAR(rgb.r, k.rgb.r, 2e-3) << k.name;
         EXPECT_NEAR(rgb.g, k.rgb.g, 2e-3) << k.name;
         EXPECT_NEAR(rgb.b, k.rgb.b, 2e-3) << k.name;
@@ -31,7 +31,7 @@ TEST(Color, YcbcrToRgbReproducesKnownColors) {
 
 TEST(Color, RgbToYcbcrMatchesTheStandard) {
     for (const Known& k : kKnown) {
-        const Ycbcr c = rgbToYcbcr(k.rgb);
+        const frame::Ycbcr c = frame::rgbToYcbcr(k.rgb);
         EXPECT_NEAR(c.y * 255.0f, k.y, 0.05) << k.name;
         EXPECT_NEAR(c.cb * 255.0f, k.cb, 0.05) << k.name;
         EXPECT_NEAR(c.cr * 255.0f, k.cr, 0.05) << k.name;
@@ -39,28 +39,28 @@ TEST(Color, RgbToYcbcrMatchesTheStandard) {
 }
 
 TEST(Color, ToByteClampsAndRejectsNan) {
-    EXPECT_EQ(toByte(-0.5f), 0);
-    EXPECT_EQ(toByte(2.0f), 255);
-    EXPECT_EQ(toByte(0.5f), 128);
-    EXPECT_EQ(toByte(std::numeric_limits<float>::quiet_NaN()), 0);
+    EXPECT_EQ(frame::toByte(-0.5f), 0);
+    EXPECT_EQ(frame::toByte(2.0f), 255);
+    EXPECT_EQ(frame::toByte(0.5f), 128);
+    EXPECT_EQ(frame::toByte(std::numeric_limits<float>::quiet_NaN()), 0);
 }
 
 TEST(Color, PixelRgbReadsEveryFormat) {
     // One 2x2 image per format, all pure red.
-    const Ycbcr red = rgbToYcbcr({1, 0, 0});
-    const std::uint8_t y = toByte(red.y), cb = toByte(red.cb), cr = toByte(red.cr);
-    CapturedImage nv12{
-        PixelFormat::Nv12, 2, 2,
+    const frame::Ycbcr red = frame::rgbToYcbcr({1, 0, 0});
+    const std::uint8_t y = frame::toByte(red.y), cb = frame::toByte(red.cb), cr = frame::toByte(red.cr);
+    frame::CapturedImage nv12{
+        frame::PixelFormat::Nv12, 2, 2,
         std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>{y, y, y, y, cb, cr})};
-    CapturedImage yuyv{
-        PixelFormat::Yuyv, 2, 2,
+    frame::CapturedImage yuyv{
+        frame::PixelFormat::Yuyv, 2, 2,
         std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>{y, cb, y, cr, y, cb, y, cr})};
-    CapturedImage rgb{PixelFormat::Rgb24, 2, 2,
-                      std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>(12, 0))};
+    frame::CapturedImage rgb{frame::PixelFormat::Rgb24, 2, 2,
+                             std::make_shared<std::vector<std::uint8_t>>(std::vector<std::uint8_t>(12, 0))};
     for (int i = 0; i < 4; ++i)
         const_cast<std::vector<std::uint8_t>&>(*rgb.bytes)[i * 3] = 255;
-    for (const CapturedImage* image : {&nv12, &yuyv, &rgb}) {
-        const Rgb c = pixelRgb(*image, 1, 1);
+    for (const frame::CapturedImage* image : {&nv12, &yuyv, &rgb}) {
+        const frame::Rgb c = frame::pixelRgb(*image, 1, 1);
         EXPECT_NEAR(c.r, 1.0f, 0.02f) << toString(image->format);
         EXPECT_NEAR(c.g, 0.0f, 0.02f) << toString(image->format);
         EXPECT_NEAR(c.b, 0.0f, 0.02f) << toString(image->format);
@@ -68,10 +68,11 @@ TEST(Color, PixelRgbReadsEveryFormat) {
 }
 
 TEST(Color, PixelRgbOfAMalformedImageIsGrayNotACrash) {
-    CapturedImage truncated{PixelFormat::Nv12, 64, 64, std::make_shared<std::vector<std::uint8_t>>(10)};
-    const Rgb c = pixelRgb(truncated, 63, 63);
+    frame::CapturedImage truncated{frame::PixelFormat::Nv12, 64, 64,
+                                   std::make_shared<std::vector<std::uint8_t>>(10)};
+    const frame::Rgb c = frame::pixelRgb(truncated, 63, 63);
     EXPECT_FLOAT_EQ(c.r, 0.5f);
-    EXPECT_FLOAT_EQ(pixelRgb(CapturedImage{}, 0, 0).g, 0.5f);
+    EXPECT_FLOAT_EQ(frame::pixelRgb(frame::CapturedImage{}, 0, 0).g, 0.5f);
 }
 
 } // namespace

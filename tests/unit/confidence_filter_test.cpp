@@ -7,17 +7,17 @@
 namespace dc::processing {
 namespace {
 
-using devices::Confidence;
+using frame::Confidence;
 
-devices::DepthData sample() {
-    devices::DepthData d{devices::Plane<float>(6, 1), devices::Plane<std::uint8_t>(6, 1)};
+frame::DepthData sample() {
+    frame::DepthData d{frame::Plane<float>(6, 1), frame::Plane<std::uint8_t>(6, 1)};
     d.depthMeters.pixels = {1.0f, 1.5f, 2.0f, 0.0f, std::numeric_limits<float>::quiet_NaN(), 0.05f};
     d.confidence.pixels = {0, 1, 2, 2, 2, 2};
     return d;
 }
 
 TEST(ConfidenceFilter, KeepsOnlySamplesAtOrAboveTheLevel) {
-    const devices::DepthData d = sample();
+    const frame::DepthData d = sample();
     EXPECT_EQ(filterByConfidence(d, Confidence::Low).pixels,
               (std::vector<float>{1.0f, 1.5f, 2.0f, 0, 0, 0.05f}));
     EXPECT_EQ(filterByConfidence(d, Confidence::Medium).pixels,
@@ -26,20 +26,20 @@ TEST(ConfidenceFilter, KeepsOnlySamplesAtOrAboveTheLevel) {
 }
 
 TEST(ConfidenceFilter, CountsDrawablePointsWithTheNearLimit) {
-    const devices::DepthData d = sample();
+    const frame::DepthData d = sample();
     EXPECT_EQ(countDrawablePoints(d, Confidence::Low, 0.0f), 4u);
     EXPECT_EQ(countDrawablePoints(d, Confidence::Low, 0.1f), 3u) << "0.05 m is nearer than the limit";
     EXPECT_EQ(countDrawablePoints(d, Confidence::High, 0.1f), 1u);
 }
 
 TEST(ConfidenceFilter, WithoutAConfidenceMapEveryValidSampleIsKept) {
-    devices::DepthData d = sample();
+    frame::DepthData d = sample();
     d.confidence = {};
     EXPECT_EQ(countDrawablePoints(d, Confidence::High, 0.0f), 4u);
 }
 
 TEST(ConfidenceFilter, InvalidDepthNeverSurvives) {
-    devices::DepthData d{devices::Plane<float>(3, 1), devices::Plane<std::uint8_t>(3, 1, 2)};
+    frame::DepthData d{frame::Plane<float>(3, 1), frame::Plane<std::uint8_t>(3, 1, 2)};
     d.depthMeters.pixels = {-1.0f, std::numeric_limits<float>::infinity(),
                             -std::numeric_limits<float>::infinity()};
     EXPECT_EQ(countDrawablePoints(d, Confidence::Low, 0.0f), 0u);

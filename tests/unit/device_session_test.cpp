@@ -1,5 +1,5 @@
 #include "devices/session.h"
-#include "devices/synthetic_device.h"
+#include "devices/synthetic/synthetic_device.h"
 
 #include <gtest/gtest.h>
 

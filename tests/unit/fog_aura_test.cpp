@@ -10,15 +10,15 @@
 namespace dc::processing {
 namespace {
 
-using devices::DepthData;
-using devices::Plane;
+using frame::DepthData;
+using frame::Plane;
 
-devices::FramePtr solidFrame(int cameraW, int cameraH, std::array<std::uint8_t, 3> rgb, DepthData depth) {
-    auto f = std::make_shared<devices::Frame>();
+frame::FramePtr solidFrame(int cameraW, int cameraH, std::array<std::uint8_t, 3> rgb, DepthData depth) {
+    auto f = std::make_shared<frame::Frame>();
     std::vector<std::uint8_t> bytes;
     for (int i = 0; i < cameraW * cameraH; ++i)
         bytes.insert(bytes.end(), rgb.begin(), rgb.end());
-    f->capturedImage = {devices::PixelFormat::Rgb24, cameraW, cameraH,
+    f->capturedImage = {frame::PixelFormat::Rgb24, cameraW, cameraH,
                         std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
     f->sceneDepth = std::move(depth);
     return f;
@@ -91,7 +91,7 @@ TEST(Fog, ConfidenceOverlayTintsLowConfidenceRed) {
 }
 
 TEST(Fog, UsesTheSelectedDepthAndNeedsAnImage) {
-    auto f = std::make_shared<devices::Frame>(*solidFrame(64, 48, kCamera, constantDepth(16, 12, 9.0f)));
+    auto f = std::make_shared<frame::Frame>(*solidFrame(64, 48, kCamera, constantDepth(16, 12, 9.0f)));
     f->smoothedSceneDepth = constantDepth(16, 12, 0.0001f);
     expectColor(pixel(renderFog(*f, {}, DepthSource::Smoothed), 3, 3), kCameraD);
     expectColor(pixel(renderFog(*f, {}, DepthSource::Raw), 3, 3), fogColor({}));
@@ -164,7 +164,7 @@ TEST(Aura, GlowsYellowAroundTheSubjectAndPulses) {
 }
 
 TEST(Aura, WithoutDepthIsTheCameraImage) {
-    auto f = std::make_shared<devices::Frame>(*solidFrame(64, 48, kCamera, constantDepth(16, 12, 1.0f)));
+    auto f = std::make_shared<frame::Frame>(*solidFrame(64, 48, kCamera, constantDepth(16, 12, 1.0f)));
     f->sceneDepth.reset();
     expectColor(pixel(renderAura(*f, {}, DepthSource::Raw, 1.0), 10, 10), kCameraD);
 }

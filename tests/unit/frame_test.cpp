@@ -1,4 +1,4 @@
-#include "devices/frame.h"
+#include "frame/frame.h"
 
 #include <gtest/gtest.h>
 
@@ -9,8 +9,8 @@ namespace dc::devices {
 namespace {
 
 TEST(Intrinsics, ScalingToDepthResolutionScalesEachAxis) {
-    const Intrinsics camera{1450.0, 1440.0, 960.0, 720.0, 1920, 1440};
-    const Intrinsics depth = camera.scaledTo(256, 192);
+    const frame::Intrinsics camera{1450.0, 1440.0, 960.0, 720.0, 1920, 1440};
+    const frame::Intrinsics depth = camera.scaledTo(256, 192);
     EXPECT_DOUBLE_EQ(depth.fx, 1450.0 * 256.0 / 1920.0);
     EXPECT_DOUBLE_EQ(depth.fy, 1440.0 * 192.0 / 1440.0);
     EXPECT_DOUBLE_EQ(depth.cx, 128.0);
@@ -20,30 +20,33 @@ TEST(Intrinsics, ScalingToDepthResolutionScalesEachAxis) {
 }
 
 TEST(Intrinsics, RejectsDegenerateValues) {
-    EXPECT_TRUE((Intrinsics{500, 500, 320, 240, 640, 480}.valid()));
-    EXPECT_FALSE((Intrinsics{0, 500, 320, 240, 640, 480}.valid()));
-    EXPECT_FALSE((Intrinsics{-1, 500, 320, 240, 640, 480}.valid()));
-    EXPECT_FALSE((Intrinsics{std::numeric_limits<double>::quiet_NaN(), 500, 320, 240, 640, 480}.valid()));
-    EXPECT_FALSE((Intrinsics{500, std::numeric_limits<double>::infinity(), 320, 240, 640, 480}.valid()));
-    EXPECT_FALSE((Intrinsics{500, 500, 320, 240, 0, 480}.valid()));
+    EXPECT_TRUE((frame::Intrinsics{500, 500, 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE((frame::Intrinsics{0, 500, 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE((frame::Intrinsics{-1, 500, 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE(
+        (frame::Intrinsics{std::numeric_limits<double>::quiet_NaN(), 500, 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE(
+        (frame::Intrinsics{500, std::numeric_limits<double>::infinity(), 320, 240, 640, 480}.valid()));
+    EXPECT_FALSE((frame::Intrinsics{500, 500, 320, 240, 0, 480}.valid()));
 }
 
 TEST(Frame, DepthIntrinsicsAreDerivedFromTheImageIntrinsics) {
-    Frame frame;
+    frame::Frame frame;
     frame.cameraIntrinsics = {1450.0, 1450.0, 960.0, 720.0, 1920, 1440};
     EXPECT_FALSE(frame.depthIntrinsics().valid()) << "no depth, no depth intrinsics";
-    frame.sceneDepth = DepthData{Plane<float>(640, 480), {}};
-    const Intrinsics k = frame.depthIntrinsics();
+    frame.sceneDepth = frame::DepthData{frame::Plane<float>(640, 480), {}};
+    const frame::Intrinsics k = frame.depthIntrinsics();
     EXPECT_DOUBLE_EQ(k.fx, 1450.0 / 3.0);
     EXPECT_DOUBLE_EQ(k.cx, 320.0);
     EXPECT_EQ(k.width, 640);
 }
 
 TEST(CapturedImage, ByteSizesOfEachFormat) {
-    EXPECT_EQ(CapturedImage::byteSize(PixelFormat::Nv12, 4, 2), 8u + 4u);
-    EXPECT_EQ(CapturedImage::byteSize(PixelFormat::Nv12, 3, 3), 9u + 8u); // odd sizes round chroma up
-    EXPECT_EQ(CapturedImage::byteSize(PixelFormat::Yuyv, 4, 2), 16u);
-    EXPECT_EQ(CapturedImage::byteSize(PixelFormat::Rgb24, 4, 2), 24u);
+    EXPECT_EQ(frame::CapturedImage::byteSize(frame::PixelFormat::Nv12, 4, 2), 8u + 4u);
+    EXPECT_EQ(frame::CapturedImage::byteSize(frame::PixelFormat::Nv12, 3, 3),
+              9u + 8u); // odd sizes round chroma up
+    EXPECT_EQ(frame::CapturedImage::byteSize(frame::PixelFormat::Yuyv, 4, 2), 16u);
+    EXPECT_EQ(frame::CapturedImage::byteSize(frame::PixelFormat::Rgb24, 4, 2), 24u);
 }
 
 } // namespace

@@ -4,7 +4,7 @@
 // two-pass (mean-centred) window statistics and brute-force windows: slow, but with no running sums, no
 // global centring and no float storage, so it shows what the fast implementation should compute.
 
-#include "devices/frame.h"
+#include "frame/frame.h"
 #include "processing/guided_filter.h"
 
 #include <algorithm>
@@ -22,7 +22,7 @@ struct Window {
     double a = 0, b = 0, weight = 0;
 };
 
-inline Window windowModel(const devices::Plane<float>& guide, const devices::Plane<float>& depth,
+inline Window windowModel(const frame::Plane<float>& guide, const frame::Plane<float>& depth,
                           const std::vector<double>& w, int cx, int cy, const GuidedFilterParams& p) {
     const int r = std::max(p.radius, 1);
     const int x0 = std::max(cx - r, 0), x1 = std::min(cx + r, guide.width - 1);
@@ -61,8 +61,8 @@ inline Window windowModel(const devices::Plane<float>& guide, const devices::Pla
 }
 
 // Output depth per pixel in double (0 where the pixel has no measurement of its own).
-inline std::vector<double> filter(const devices::Plane<float>& guide, const devices::Plane<float>& depth,
-                                  const devices::Plane<float>& weight, const GuidedFilterParams& p) {
+inline std::vector<double> filter(const frame::Plane<float>& guide, const frame::Plane<float>& depth,
+                                  const frame::Plane<float>& weight, const GuidedFilterParams& p) {
     const int width = guide.width, height = guide.height;
     std::vector<double> w(depth.pixels.size());
     for (std::size_t i = 0; i < w.size(); ++i) {

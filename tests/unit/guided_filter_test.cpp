@@ -15,7 +15,7 @@
 namespace dc::processing {
 namespace {
 
-using devices::Plane;
+using frame::Plane;
 
 struct Case {
     Plane<float> guide, depth, weight;

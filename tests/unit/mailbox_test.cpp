@@ -1,4 +1,4 @@
-#include "devices/mailbox.h"
+#include "base/mailbox.h"
 
 #include <gtest/gtest.h>
 
@@ -8,7 +8,7 @@ namespace dc::devices {
 namespace {
 
 TEST(Mailbox, LatestValueWinsAndReplacedValuesAreCountedAsDropped) {
-    Mailbox<int> box;
+    base::Mailbox<int> box;
     EXPECT_FALSE(box.take().has_value());
     box.post(1);
     box.post(2);
@@ -23,7 +23,7 @@ TEST(Mailbox, LatestValueWinsAndReplacedValuesAreCountedAsDropped) {
 }
 
 TEST(Mailbox, WaitTakeWakesOnPostAndTimesOutWhenEmpty) {
-    Mailbox<int> box;
+    base::Mailbox<int> box;
     EXPECT_FALSE(box.waitTake(std::chrono::milliseconds(10)).has_value());
     std::thread producer([&] {
         std::this_thread::sleep_for(std::chrono::milliseconds(20));
@@ -34,7 +34,7 @@ TEST(Mailbox, WaitTakeWakesOnPostAndTimesOutWhenEmpty) {
 }
 
 TEST(Mailbox, ConcurrentProducerNeverLosesCount) {
-    Mailbox<int> box;
+    base::Mailbox<int> box;
     constexpr int kPosts = 20000;
     std::uint64_t taken = 0;
     std::thread producer([&] {

@@ -13,19 +13,19 @@
 namespace dc::processing {
 namespace {
 
-using devices::DepthData;
-using devices::Plane;
+using frame::DepthData;
+using frame::Plane;
 
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-devices::FramePtr frameWith(DepthData depth, int cameraW, int cameraH, std::uint8_t luma = 90) {
-    auto f = std::make_shared<devices::Frame>();
-    const auto bytes = devices::CapturedImage::byteSize(devices::PixelFormat::Nv12, cameraW, cameraH);
+frame::FramePtr frameWith(DepthData depth, int cameraW, int cameraH, std::uint8_t luma = 90) {
+    auto f = std::make_shared<frame::Frame>();
+    const auto bytes = frame::CapturedImage::byteSize(frame::PixelFormat::Nv12, cameraW, cameraH);
     auto nv12 = std::make_shared<std::vector<std::uint8_t>>(bytes, 128);
     for (int i = 0; i < cameraW * cameraH; ++i)
         (*nv12)[static_cast<std::size_t>(i)] = static_cast<std::uint8_t>(luma + (i * 7) % 50);
-    f->capturedImage = {devices::PixelFormat::Nv12, cameraW, cameraH, std::move(nv12)};
+    f->capturedImage = {frame::PixelFormat::Nv12, cameraW, cameraH, std::move(nv12)};
     f->sceneDepth = std::move(depth);
     return f;
 }
@@ -45,7 +45,7 @@ void expectUsable(const DepthData& d) {
 
 // Every stage's output (smoothing and upsampling of the shown map, fog, aura) for both shown maps and both
 // upsampling methods. The map that is not shown passes through unprocessed, as the source delivered it.
-void runEverything(const devices::FramePtr& frame) {
+void runEverything(const frame::FramePtr& frame) {
     for (DepthSource source : {DepthSource::Smoothed, DepthSource::Raw})
         for (UpsamplingMethod method : {UpsamplingMethod::Full, UpsamplingMethod::Fast}) {
             Pipeline pipeline = makeDefaultPipeline();
@@ -54,9 +54,9 @@ void runEverything(const devices::FramePtr& frame) {
             settings.depthSource = source;
             settings.upsamplingParams.method = method;
             for (int i = 0; i < 3; ++i) {
-                auto f = std::make_shared<devices::Frame>(*frame);
+                auto f = std::make_shared<frame::Frame>(*frame);
                 f->timestampNs = i * 16'000'000;
-                const devices::FramePtr out = pipeline.run(f, settings, {});
+                const frame::FramePtr out = pipeline.run(f, settings, {});
                 const DepthData* shown = shownDepth(*out, source);
                 ASSERT_NE(shown, nullptr);
                 expectUsable(*shown);
@@ -83,7 +83,7 @@ TEST(Numerics, OnePixelAndOneRowFrames) {
 }
 
 TEST(Numerics, SingleColourCameraImage) {
-    auto f = std::make_shared<devices::Frame>(*frameWith(hostileDepth(32, 24), 128, 96));
+    auto f = std::make_shared<frame::Frame>(*frameWith(hostileDepth(32, 24), 128, 96));
     auto flat = std::make_shared<std::vector<std::uint8_t>>(*f->capturedImage.bytes);
     std::fill(flat->begin(), flat->begin() + 128 * 96, std::uint8_t{77});
     f->capturedImage.bytes = flat;

@@ -13,9 +13,9 @@ public:
     bool wanted(const ProcessingSettings& s, const Needs& n) const override {
         return s.smoothing && (needsCloud_ ? n.cloud : n.anyDepth());
     }
-    devices::FramePtr process(devices::FramePtr frame, const ProcessingSettings&) override {
+    frame::FramePtr process(frame::FramePtr frame, const ProcessingSettings&) override {
         ++runs;
-        auto copy = std::make_shared<devices::Frame>(*frame);
+        auto copy = std::make_shared<frame::Frame>(*frame);
         copy->sequence += 100;
         return copy;
     }
@@ -34,9 +34,9 @@ ProcessingSettings smoothingSetTo(bool on) {
     return s;
 }
 
-devices::FramePtr frameOfSize(int w, int h) {
-    auto f = std::make_shared<devices::Frame>();
-    f->sceneDepth = devices::DepthData{devices::Plane<float>(w, h), {}};
+frame::FramePtr frameOfSize(int w, int h) {
+    auto f = std::make_shared<frame::Frame>();
+    f->sceneDepth = frame::DepthData{frame::Plane<float>(w, h), {}};
     return f;
 }
 
@@ -87,12 +87,12 @@ TEST(Pipeline, DefaultPipelineHasSmoothingAndUpsampling) {
 }
 
 TEST(Pipeline, ShownDepthFallsBackToTheRawMap) {
-    devices::Frame f;
+    frame::Frame f;
     EXPECT_EQ(shownDepth(f, DepthSource::Smoothed), nullptr);
-    f.sceneDepth = devices::DepthData{devices::Plane<float>(2, 2, 1.0f), {}};
+    f.sceneDepth = frame::DepthData{frame::Plane<float>(2, 2, 1.0f), {}};
     EXPECT_EQ(shownDepth(f, DepthSource::Smoothed), &*f.sceneDepth) << "no smoothed map: the raw one";
     EXPECT_FALSE(showsSmoothed(f, DepthSource::Smoothed));
-    f.smoothedSceneDepth = devices::DepthData{devices::Plane<float>(2, 2, 1.1f), {}};
+    f.smoothedSceneDepth = frame::DepthData{frame::Plane<float>(2, 2, 1.1f), {}};
     EXPECT_EQ(shownDepth(f, DepthSource::Smoothed), &*f.smoothedSceneDepth);
     EXPECT_EQ(shownDepth(f, DepthSource::Raw), &*f.sceneDepth);
     EXPECT_TRUE(showsSmoothed(f, DepthSource::Smoothed));

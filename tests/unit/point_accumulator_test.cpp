@@ -1,7 +1,7 @@
 #include "processing/point_accumulator.h"
 
-#include "devices/color.h"
-#include "devices/synthetic_scene.h"
+#include "devices/synthetic/synthetic_scene.h"
+#include "frame/color.h"
 #include "processing/confidence_filter.h"
 #include "processing/point_cloud.h"
 
@@ -18,20 +18,19 @@ namespace dc::processing {
 namespace {
 
 // A w x h frame of a flat wall at `depth` meters with an all-High confidence, a gray image and `pose`.
-devices::Frame wallFrame(int w, int h, float depth, const devices::Pose& pose) {
-    devices::Frame f;
+frame::Frame wallFrame(int w, int h, float depth, const frame::Pose& pose) {
+    frame::Frame f;
     f.cameraIntrinsics = {100.0, 100.0, w / 2.0, h / 2.0, w, h};
-    f.sceneDepth =
-        devices::DepthData{devices::Plane<float>(w, h, depth), devices::Plane<std::uint8_t>(w, h, 2)};
+    f.sceneDepth = frame::DepthData{frame::Plane<float>(w, h, depth), frame::Plane<std::uint8_t>(w, h, 2)};
     f.capturedImage = {
-        devices::PixelFormat::Rgb24, w, h,
+        frame::PixelFormat::Rgb24, w, h,
         std::make_shared<const std::vector<std::uint8_t>>(static_cast<std::size_t>(w) * h * 3, 128)};
     f.pose = pose;
     return f;
 }
 
-devices::Pose translated(double x, double y, double z) {
-    devices::Pose p;
+frame::Pose translated(double x, double y, double z) {
+    frame::Pose p;
     p.cameraToWorld[12] = x;
     p.cameraToWorld[13] = y;
     p.cameraToWorld[14] = z;
@@ -40,8 +39,8 @@ devices::Pose translated(double x, double y, double z) {
 
 TEST(PointAccumulator, PointsLandInWorldCoordinatesThroughThePose) {
     PointAccumulator acc(1000, 0.001f);
-    const devices::Frame f = wallFrame(4, 4, 2.0f, translated(1.0, -2.0, 3.0));
-    ASSERT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 16u);
+    const frame::Frame f = wallFrame(4, 4, 2.0f, translated(1.0, -2.0, 3.0));
+    ASSERT_EQ(acc.add(f, frame::Confidence::Low, 0.0f), 16u);
     // Pixel (0, 0): camera point ((0 - 2) * 2 / 100, (0 - 2) * 2 / 100, 2), then translated.
     const WorldPoint& p = acc.slots()[0];
     EXPECT_NEAR(p.x, 1.0 - 0.04, 1e-6);
@@ -52,18 +51,18 @@ TEST(PointAccumulator, PointsLandInWorldCoordinatesThroughThePose) {
 
 TEST(PointAccumulator, AFrameWithoutPoseAddsNothing) {
     PointAccumulator acc(100);
-    devices::Frame f = wallFrame(4, 4, 1.0f, {});
+    frame::Frame f = wallFrame(4, 4, 1.0f, {});
     f.pose.reset();
-    EXPECT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 0u);
+    EXPECT_EQ(acc.add(f, frame::Confidence::Low, 0.0f), 0u);
     EXPECT_EQ(acc.size(), 0u);
 }
 
 TEST(PointAccumulator, ThePointsOfAVoxelAlreadyHeldAreNotAddedAgain) {
     PointAccumulator acc(1000, 0.01f);
-    const devices::Frame f = wallFrame(8, 8, 1.0f, {});
-    const std::size_t first = acc.add(f, devices::Confidence::Low, 0.0f);
+    const frame::Frame f = wallFrame(8, 8, 1.0f, {});
+    const std::size_t first = acc.add(f, frame::Confidence::Low, 0.0f);
     EXPECT_GT(first, 0u);
-    EXPECT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 0u) << "the same view adds no copies";
+    EXPECT_EQ(acc.add(f, frame::Confidence::Low, 0.0f), 0u) << "the same view adds no copies";
     // Samples 1 cm apart at 1 m with a 1 cm voxel: each lands in its own voxel.
     EXPECT_EQ(first, 64u);
 }
@@ -71,14 +70,14 @@ TEST(PointAccumulator, ThePointsOfAVoxelAlreadyHeldAreNotAddedAgain) {
 TEST(PointAccumulator, TheOldestPointsLeaveFirstWhenTheBudgetIsFull) {
     PointAccumulator acc(40, 0.001f);
     for (int i = 0; i < 5; ++i)
-        acc.add(wallFrame(4, 4, 1.0f, translated(i, 0, 0)), devices::Confidence::Low, 0.0f);
+        acc.add(wallFrame(4, 4, 1.0f, translated(i, 0, 0)), frame::Confidence::Low, 0.0f);
     EXPECT_EQ(acc.size(), 40u);
     std::set<int> frames;
     for (const WorldPoint& p : acc.slots())
         frames.insert(static_cast<int>(std::lround(p.x)));
     EXPECT_EQ(frames, (std::set<int>{2, 3, 4})) << "80 points went in, the first 40 left";
     // An evicted voxel can be filled again: the hash forgot it when its slot was reused.
-    EXPECT_EQ(acc.add(wallFrame(4, 4, 1.0f, translated(0, 0, 0)), devices::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(wallFrame(4, 4, 1.0f, translated(0, 0, 0)), frame::Confidence::Low, 0.0f), 16u);
 }
 
 TEST(PointAccumulator, HashStaysConsistentUnderHeavyChurn) {
@@ -86,7 +85,7 @@ TEST(PointAccumulator, HashStaysConsistentUnderHeavyChurn) {
     for (int i = 0; i < 200; ++i) {
         const double s = 0.003 * i;
         acc.add(wallFrame(16, 12, 1.0f + 0.001f * static_cast<float>(i % 7), translated(s, -s, 0)),
-                devices::Confidence::Low, 0.0f);
+                frame::Confidence::Low, 0.0f);
     }
     ASSERT_EQ(acc.size(), 500u);
     // No two held points share a voxel.
@@ -99,11 +98,11 @@ TEST(PointAccumulator, HashStaysConsistentUnderHeavyChurn) {
 
 TEST(PointAccumulator, DirtyRangesCoverExactlyTheNewSlots) {
     PointAccumulator acc(20, 0.001f);
-    acc.add(wallFrame(4, 4, 1.0f, translated(0, 0, 0)), devices::Confidence::Low, 0.0f);
+    acc.add(wallFrame(4, 4, 1.0f, translated(0, 0, 0)), frame::Confidence::Low, 0.0f);
     auto dirty = acc.takeDirty();
     ASSERT_EQ(dirty.size(), 1u);
     EXPECT_EQ(dirty[0], (std::pair<std::size_t, std::size_t>{0, 16}));
-    acc.add(wallFrame(4, 4, 1.0f, translated(1, 0, 0)), devices::Confidence::Low, 0.0f);
+    acc.add(wallFrame(4, 4, 1.0f, translated(1, 0, 0)), frame::Confidence::Low, 0.0f);
     dirty = acc.takeDirty();
     ASSERT_EQ(dirty.size(), 2u) << "the ring wrapped";
     EXPECT_EQ(dirty[0], (std::pair<std::size_t, std::size_t>{16, 20}));
@@ -117,20 +116,20 @@ TEST(PointAccumulator, DirtyRangesCoverExactlyTheNewSlots) {
 
 TEST(PointAccumulator, InvalidAndFilteredSamplesAreSkipped) {
     PointAccumulator acc(100, 0.001f);
-    devices::Frame f = wallFrame(4, 4, 1.0f, {});
+    frame::Frame f = wallFrame(4, 4, 1.0f, {});
     auto& d = f.sceneDepth->depthMeters;
     d.at(0, 0) = std::nanf("");
     d.at(1, 0) = -1.0f;
     d.at(2, 0) = 0.0f;
     d.at(3, 0) = std::numeric_limits<float>::infinity();
     f.sceneDepth->confidence.at(0, 1) = 0;
-    EXPECT_EQ(acc.add(f, devices::Confidence::Medium, 0.0f), 11u);
+    EXPECT_EQ(acc.add(f, frame::Confidence::Medium, 0.0f), 11u);
 }
 
 // A w x h frame translated by (tx, ty, tz) whose depth is random in [0.5, 1.5) m with some invalid samples
 // and a random confidence per sample.
-devices::Frame randomFrame(int w, int h, std::mt19937& rng, double tx, double ty, double tz) {
-    devices::Frame f = wallFrame(w, h, 1.0f, translated(tx, ty, tz));
+frame::Frame randomFrame(int w, int h, std::mt19937& rng, double tx, double ty, double tz) {
+    frame::Frame f = wallFrame(w, h, 1.0f, translated(tx, ty, tz));
     std::uniform_real_distribution<float> depth(0.5f, 1.5f);
     std::uniform_int_distribution<int> level(0, 2), invalid(0, 19);
     for (int v = 0; v < h; ++v) {
@@ -155,9 +154,9 @@ class ReferenceAccumulator {
 public:
     ReferenceAccumulator(std::size_t budget, float voxelMeters) : ring_(budget), voxelMeters_(voxelMeters) {}
 
-    std::size_t add(const devices::Frame& f, devices::Confidence minLevel, float nearMeters) {
-        const devices::DepthData& d = *f.sceneDepth;
-        const devices::Intrinsics k = f.depthIntrinsics();
+    std::size_t add(const frame::Frame& f, frame::Confidence minLevel, float nearMeters) {
+        const frame::DepthData& d = *f.sceneDepth;
+        const frame::Intrinsics k = f.depthIntrinsics();
         const auto t = [&](int i) {
             return static_cast<float>(f.pose->cameraToWorld[static_cast<std::size_t>(12 + i)]);
         };
@@ -197,9 +196,8 @@ void expectSameAsReference(std::size_t budget, float voxelMeters, int w, int h, 
     std::mt19937 rng(7);
     for (int i = 0; i < frames; ++i) {
         const double s = drift * (i % 5);
-        const devices::Frame f = randomFrame(w, h, rng, s, -s, 0.0);
-        ASSERT_EQ(acc.add(f, devices::Confidence::Medium, 0.6f),
-                  ref.add(f, devices::Confidence::Medium, 0.6f))
+        const frame::Frame f = randomFrame(w, h, rng, s, -s, 0.0);
+        ASSERT_EQ(acc.add(f, frame::Confidence::Medium, 0.6f), ref.add(f, frame::Confidence::Medium, 0.6f))
             << "frame " << i;
         for (std::size_t slot = 0; slot < acc.size(); ++slot) {
             const WorldPoint& p = acc.slots()[slot];
@@ -221,21 +219,21 @@ TEST(PointAccumulator, MatchesThePlainRuleWhileItsTablesGrow) {
 
 TEST(PointAccumulator, AVoxelFreedByEvictionCanBeOccupiedAgain) {
     PointAccumulator acc(16, 0.001f);
-    const devices::Frame a = wallFrame(4, 4, 1.0f, translated(0, 0, 0));
-    ASSERT_EQ(acc.add(a, devices::Confidence::Low, 0.0f), 16u);
-    EXPECT_EQ(acc.add(a, devices::Confidence::Low, 0.0f), 0u) << "all held";
+    const frame::Frame a = wallFrame(4, 4, 1.0f, translated(0, 0, 0));
+    ASSERT_EQ(acc.add(a, frame::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(a, frame::Confidence::Low, 0.0f), 0u) << "all held";
     // A far-away frame evicts every point of the first, so their voxels (and blocks) are free again.
-    ASSERT_EQ(acc.add(wallFrame(4, 4, 1.0f, translated(10, 0, 0)), devices::Confidence::Low, 0.0f), 16u);
-    EXPECT_EQ(acc.add(a, devices::Confidence::Low, 0.0f), 16u);
-    EXPECT_EQ(acc.add(a, devices::Confidence::Low, 0.0f), 0u) << "held again, so de-duplicated again";
+    ASSERT_EQ(acc.add(wallFrame(4, 4, 1.0f, translated(10, 0, 0)), frame::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(a, frame::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(a, frame::Confidence::Low, 0.0f), 0u) << "held again, so de-duplicated again";
 }
 
 TEST(PointAccumulator, PointsLandAtTheirWorldPositionThroughARotation) {
     // Camera turned 90 degrees about the world y axis: camera +z looks along world +x, camera +x is world -z.
-    devices::Pose pose;
+    frame::Pose pose;
     pose.cameraToWorld = {0, 0, -1, 0, 0, 1, 0, 0, 1, 0, 0, 0, 0.5, 0.25, -1, 1};
     PointAccumulator acc(100, 0.001f);
-    ASSERT_EQ(acc.add(wallFrame(4, 4, 2.0f, pose), devices::Confidence::Low, 0.0f), 16u);
+    ASSERT_EQ(acc.add(wallFrame(4, 4, 2.0f, pose), frame::Confidence::Low, 0.0f), 16u);
     // Pixel (3, 1): camera point ((3 - 2) * 2 / 100, (1 - 2) * 2 / 100, 2) = (0.02, -0.02, 2).
     const WorldPoint& p = acc.slots()[1 * 4 + 3];
     EXPECT_NEAR(p.x, 0.5 + 2.0, 1e-6);
@@ -245,54 +243,54 @@ TEST(PointAccumulator, PointsLandAtTheirWorldPositionThroughARotation) {
 
 TEST(PointAccumulator, ClearAndConfigureForgetTheHeldVoxels) {
     PointAccumulator acc(100, 0.001f);
-    const devices::Frame f = wallFrame(4, 4, 1.0f, {});
-    ASSERT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 16u);
+    const frame::Frame f = wallFrame(4, 4, 1.0f, {});
+    ASSERT_EQ(acc.add(f, frame::Confidence::Low, 0.0f), 16u);
     acc.clear();
-    EXPECT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(f, frame::Confidence::Low, 0.0f), 16u);
     acc.configure(50, 0.001f);
     EXPECT_EQ(acc.size(), 0u);
     EXPECT_EQ(acc.budget(), 50u);
-    EXPECT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 16u);
+    EXPECT_EQ(acc.add(f, frame::Confidence::Low, 0.0f), 16u);
     acc.configure(50, 0.5f);
-    EXPECT_EQ(acc.add(wallFrame(4, 4, 1.0f, translated(0.25, 0.25, 0)), devices::Confidence::Low, 0.0f), 1u)
+    EXPECT_EQ(acc.add(wallFrame(4, 4, 1.0f, translated(0.25, 0.25, 0)), frame::Confidence::Low, 0.0f), 1u)
         << "the 4 cm wall fits one 50 cm voxel";
 }
 
 TEST(PointAccumulator, SamplesNearerThanTheNearLimitAreSkipped) {
     PointAccumulator acc(100, 0.001f);
-    devices::Frame f = wallFrame(4, 4, 1.0f, {});
+    frame::Frame f = wallFrame(4, 4, 1.0f, {});
     f.sceneDepth->depthMeters.at(0, 0) = 0.2f;
     f.sceneDepth->depthMeters.at(1, 0) = 0.29f;
-    EXPECT_EQ(acc.add(f, devices::Confidence::Low, 0.3f), 14u);
+    EXPECT_EQ(acc.add(f, frame::Confidence::Low, 0.3f), 14u);
 }
 
 // An image of random bytes in `format`.
-devices::CapturedImage randomImage(devices::PixelFormat format, int w, int h, std::mt19937& rng) {
-    std::vector<std::uint8_t> bytes(devices::CapturedImage::byteSize(format, w, h));
+frame::CapturedImage randomImage(frame::PixelFormat format, int w, int h, std::mt19937& rng) {
+    std::vector<std::uint8_t> bytes(frame::CapturedImage::byteSize(format, w, h));
     std::uniform_int_distribution<int> byte(0, 255);
     for (auto& b : bytes)
         b = static_cast<std::uint8_t>(byte(rng));
     return {format, w, h, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
 }
 
-std::uint32_t packedPixelRgb(const devices::CapturedImage& image, int x, int y) {
-    const devices::Rgb c = devices::pixelRgb(image, x, y);
-    return static_cast<std::uint32_t>(devices::toByte(c.r)) |
-           static_cast<std::uint32_t>(devices::toByte(c.g)) << 8 |
-           static_cast<std::uint32_t>(devices::toByte(c.b)) << 16 | 0xff000000u;
+std::uint32_t packedPixelRgb(const frame::CapturedImage& image, int x, int y) {
+    const frame::Rgb c = frame::pixelRgb(image, x, y);
+    return static_cast<std::uint32_t>(frame::toByte(c.r)) |
+           static_cast<std::uint32_t>(frame::toByte(c.g)) << 8 |
+           static_cast<std::uint32_t>(frame::toByte(c.b)) << 16 | 0xff000000u;
 }
 
 TEST(CameraColourTable, GivesExactlyWhatPixelRgbGivesInEveryFormat) {
     std::mt19937 rng(3);
     CameraColourTable table;
     for (const auto format :
-         {devices::PixelFormat::Nv12, devices::PixelFormat::Yuyv, devices::PixelFormat::Rgb24}) {
-        const devices::CapturedImage image = randomImage(format, 61, 47, rng);
+         {frame::PixelFormat::Nv12, frame::PixelFormat::Yuyv, frame::PixelFormat::Rgb24}) {
+        const frame::CapturedImage image = randomImage(format, 61, 47, rng);
         ASSERT_TRUE(table.use(image));
         for (int y = 0; y < image.height; ++y)
             for (int x = 0; x < image.width; ++x)
                 ASSERT_EQ(table.rgba(x, y), packedPixelRgb(image, x, y))
-                    << devices::toString(format) << " pixel " << x << ", " << y;
+                    << frame::toString(format) << " pixel " << x << ", " << y;
     }
 }
 
@@ -300,15 +298,15 @@ TEST(CameraColourTable, RefusesEmptyAndTruncatedImages) {
     CameraColourTable table;
     EXPECT_FALSE(table.use({}));
     EXPECT_FALSE(
-        table.use({devices::PixelFormat::Nv12, 4, 4, std::make_shared<const std::vector<std::uint8_t>>(10)}));
+        table.use({frame::PixelFormat::Nv12, 4, 4, std::make_shared<const std::vector<std::uint8_t>>(10)}));
 }
 
 TEST(PointAccumulator, ColoursAreThoseOfTheMatchingCameraPixels) {
     std::mt19937 rng(5);
-    devices::Frame f = wallFrame(8, 6, 1.0f, {});
-    f.capturedImage = randomImage(devices::PixelFormat::Nv12, 20, 15, rng);
+    frame::Frame f = wallFrame(8, 6, 1.0f, {});
+    f.capturedImage = randomImage(frame::PixelFormat::Nv12, 20, 15, rng);
     PointAccumulator acc(100, 0.001f);
-    ASSERT_EQ(acc.add(f, devices::Confidence::Low, 0.0f), 48u);
+    ASSERT_EQ(acc.add(f, frame::Confidence::Low, 0.0f), 48u);
     for (int v = 0; v < 6; ++v) {
         for (int u = 0; u < 8; ++u) {
             const auto [ix, iy] = cameraPixelOf(u, v, 8, 6, f.capturedImage);

@@ -1,5 +1,5 @@
-#include "devices/synthetic_device.h"
-#include "devices/synthetic_scene.h"
+#include "devices/synthetic/synthetic_device.h"
+#include "devices/synthetic/synthetic_scene.h"
 
 #include <gtest/gtest.h>
 
@@ -13,7 +13,7 @@ namespace {
 struct AnalyticCamera {
     double ox = 0, oy = scene::kCameraHeight, oz = 0;
     double pitch = scene::kCameraPitchDegrees * std::numbers::pi / 180.0;
-    Intrinsics k;
+    frame::Intrinsics k;
 
     // World direction of pixel (u, v), scaled so its camera-z component is 1.
     std::array<double, 3> dir(int u, int v) const {
@@ -39,8 +39,8 @@ struct AnalyticCamera {
 
 TEST(SyntheticScene, TrueDepthEqualsTheAnalyticDeskAndApple) {
     const SyntheticScene scene;
-    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
-    const Plane<float> depth = scene.trueDepth(k, SyntheticScene::cameraPose(0.0, false));
+    const frame::Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
+    const frame::Plane<float> depth = scene.trueDepth(k, SyntheticScene::cameraPose(0.0, false));
     const AnalyticCamera cam{.k = k};
 
     int deskPixels = 0, applePixels = 0;
@@ -65,10 +65,10 @@ TEST(SyntheticScene, TrueDepthEqualsTheAnalyticDeskAndApple) {
 
 TEST(SyntheticScene, WindowOpeningHasNoDepthAndLowConfidenceAtItsBorder) {
     const SyntheticScene scene;
-    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
-    const Pose pose = SyntheticScene::cameraPose(0.0, false);
-    const Plane<float> truth = scene.trueDepth(k, pose);
-    const DepthData sensed = scene.sensorDepth(k, pose, 0);
+    const frame::Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
+    const frame::Pose pose = SyntheticScene::cameraPose(0.0, false);
+    const frame::Plane<float> truth = scene.trueDepth(k, pose);
+    const frame::DepthData sensed = scene.sensorDepth(k, pose, 0);
     int holes = 0, borderLow = 0, border = 0;
     for (int v = 1; v < k.height - 1; ++v) {
         for (int u = 1; u < k.width - 1; ++u) {
@@ -89,13 +89,13 @@ TEST(SyntheticScene, WindowOpeningHasNoDepthAndLowConfidenceAtItsBorder) {
 
 TEST(SyntheticScene, NoiseGrowsWithDistanceAndConfidenceFollowsIt) {
     const SyntheticScene scene;
-    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
-    const Pose pose = SyntheticScene::cameraPose(0.0, false);
-    const Plane<float> truth = scene.trueDepth(k, pose);
+    const frame::Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
+    const frame::Pose pose = SyntheticScene::cameraPose(0.0, false);
+    const frame::Plane<float> truth = scene.trueDepth(k, pose);
     double nearErr = 0, farErr = 0;
     int nearN = 0, farN = 0, nearHigh = 0, farHigh = 0;
     for (std::uint64_t seq = 0; seq < 4; ++seq) {
-        const DepthData d = scene.sensorDepth(k, pose, seq);
+        const frame::DepthData d = scene.sensorDepth(k, pose, seq);
         for (std::size_t i = 0; i < truth.pixels.size(); ++i) {
             const float t = truth.pixels[i];
             if (t <= 0.0f || d.confidence.pixels[i] == 0)
@@ -116,8 +116,8 @@ TEST(SyntheticScene, NoiseGrowsWithDistanceAndConfidenceFollowsIt) {
 }
 
 TEST(SyntheticScene, SensorDepthIsDeterministicPerSeedAndSequence) {
-    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(64, 48);
-    const Pose pose = SyntheticScene::cameraPose(0.0, false);
+    const frame::Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(64, 48);
+    const frame::Pose pose = SyntheticScene::cameraPose(0.0, false);
     const SyntheticScene a(7), b(7), c(8);
     EXPECT_EQ(a.sensorDepth(k, pose, 3).depthMeters.pixels, b.sensorDepth(k, pose, 3).depthMeters.pixels);
     EXPECT_NE(a.sensorDepth(k, pose, 3).depthMeters.pixels, a.sensorDepth(k, pose, 4).depthMeters.pixels);
@@ -126,12 +126,12 @@ TEST(SyntheticScene, SensorDepthIsDeterministicPerSeedAndSequence) {
 
 TEST(SyntheticScene, CameraImageHasEdgesWhereDepthHasEdges) {
     const SyntheticScene scene;
-    const Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
-    const Pose pose = SyntheticScene::cameraPose(0.0, false);
-    const CapturedImage image = scene.renderImage(k, pose);
-    ASSERT_EQ(image.bytes->size(), CapturedImage::byteSize(PixelFormat::Nv12, 256, 192));
+    const frame::Intrinsics k = SyntheticScene::cameraIntrinsics().scaledTo(256, 192);
+    const frame::Pose pose = SyntheticScene::cameraPose(0.0, false);
+    const frame::CapturedImage image = scene.renderImage(k, pose);
+    ASSERT_EQ(image.bytes->size(), frame::CapturedImage::byteSize(frame::PixelFormat::Nv12, 256, 192));
     // Luma across the apple's silhouette differs clearly from the desk beside it.
-    const Plane<float> depth = scene.trueDepth(k, pose);
+    const frame::Plane<float> depth = scene.trueDepth(k, pose);
     int strongEdges = 0, edges = 0;
     for (int v = 0; v < k.height; ++v) {
         for (int u = 0; u + 1 < k.width; ++u) {
@@ -160,17 +160,17 @@ TEST(SyntheticDevice, ExactModeDeliversTheGroundTruthWithPose) {
     ASSERT_EQ(r.kind, CaptureResult::Kind::Frame);
     ASSERT_TRUE(r.frame->sceneDepth.has_value());
     ASSERT_TRUE(r.frame->pose.has_value());
-    const Plane<float> truth =
+    const frame::Plane<float> truth =
         device.scene().trueDepth(r.frame->depthIntrinsics(), SyntheticScene::cameraPose(0.0, false));
     EXPECT_EQ(r.frame->sceneDepth->depthMeters.pixels, truth.pixels);
     EXPECT_EQ(r.frame->capturedImage.width, 320);
-    EXPECT_EQ(r.frame->capturedImage.format, PixelFormat::Nv12);
+    EXPECT_EQ(r.frame->capturedImage.format, frame::PixelFormat::Nv12);
 }
 
 TEST(SyntheticDevice, MotionMovesThePoseOverTime) {
-    const Pose a = SyntheticScene::cameraPose(0.0, true), b = SyntheticScene::cameraPose(2.5, true);
+    const frame::Pose a = SyntheticScene::cameraPose(0.0, true), b = SyntheticScene::cameraPose(2.5, true);
     EXPECT_NE(a.cameraToWorld[12], b.cameraToWorld[12]);
-    const Pose still = SyntheticScene::cameraPose(2.5, false);
+    const frame::Pose still = SyntheticScene::cameraPose(2.5, false);
     EXPECT_EQ(still.cameraToWorld, SyntheticScene::cameraPose(0.0, false).cameraToWorld);
 }
 

@@ -1,4 +1,4 @@
-#include "devices/synthetic_scene.h"
+#include "devices/synthetic/synthetic_scene.h"
 #include "processing/pipeline.h"
 #include "processing/quality.h"
 #include "processing/smoothing_stage.h"
@@ -12,8 +12,8 @@
 namespace dc::processing {
 namespace {
 
-using devices::DepthData;
-using devices::Plane;
+using frame::DepthData;
+using frame::Plane;
 
 DepthData uniform(int w, int h, float meters) {
     return {Plane<float>(w, h, meters), Plane<std::uint8_t>(w, h, 2)};
@@ -21,8 +21,8 @@ DepthData uniform(int w, int h, float meters) {
 
 std::vector<DepthData> staticSyntheticScene(int frames) {
     const devices::SyntheticScene scene;
-    const devices::Intrinsics k = devices::SyntheticScene::cameraIntrinsics(256, 192);
-    const devices::Pose pose = devices::SyntheticScene::cameraPose(0.0, false);
+    const frame::Intrinsics k = devices::SyntheticScene::cameraIntrinsics(256, 192);
+    const frame::Pose pose = devices::SyntheticScene::cameraPose(0.0, false);
     std::vector<DepthData> out;
     for (int i = 0; i < frames; ++i)
         out.push_back(scene.sensorDepth(k, pose, static_cast<std::uint64_t>(i)));
@@ -84,8 +84,8 @@ TEST(TemporalSmoothing, AResolutionChangeRestarts) {
     EXPECT_FLOAT_EQ(s.smooth(uniform(8, 6, 1.05f), {}).depthMeters.at(7, 5), 1.05f);
 }
 
-devices::FramePtr frameAt(std::int64_t timestampNs, float meters) {
-    auto f = std::make_shared<devices::Frame>();
+frame::FramePtr frameAt(std::int64_t timestampNs, float meters) {
+    auto f = std::make_shared<frame::Frame>();
     f->timestampNs = timestampNs;
     f->sceneDepth = uniform(4, 4, meters);
     return f;
@@ -112,9 +112,9 @@ TEST(SmoothingStage, RestartsWhenTimeRunsBackwardsOrJumpsAhead) {
 
 TEST(SmoothingStage, PassesASourcesOwnSmoothedDepthThrough) {
     SmoothingStage stage;
-    auto f = std::make_shared<devices::Frame>(*frameAt(0, 1.0f));
+    auto f = std::make_shared<frame::Frame>(*frameAt(0, 1.0f));
     f->smoothedSceneDepth = uniform(4, 4, 3.0f);
-    const devices::FramePtr in = f;
+    const frame::FramePtr in = f;
     EXPECT_EQ(stage.process(in, {}), in);
 }
 

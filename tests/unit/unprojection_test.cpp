@@ -1,4 +1,4 @@
-#include "devices/synthetic_device.h"
+#include "devices/synthetic/synthetic_device.h"
 #include "processing/point_cloud.h"
 
 #include <gtest/gtest.h>
@@ -18,7 +18,7 @@ void expectRelativelyNear(float actual, double expected, double scale) {
 }
 
 TEST(Unprojection, MatchesDoubleReferenceAcrossTheImageAndDepthRange) {
-    const devices::Intrinsics k{211.5, 210.25, 127.3, 95.8, 256, 192};
+    const frame::Intrinsics k{211.5, 210.25, 127.3, 95.8, 256, 192};
     for (int v = 0; v < 192; v += 7) {
         for (int u = 0; u < 256; u += 5) {
             for (float z : {0.1f, 0.75f, 2.5f, 4.99f}) {
@@ -46,12 +46,12 @@ TEST(Unprojection, CloudUsesIntrinsicsScaledToTheDepthResolution) {
     ASSERT_TRUE(device.start());
     const auto result = device.capture(std::chrono::seconds(5));
     ASSERT_EQ(result.kind, devices::CaptureResult::Kind::Frame);
-    const devices::Frame& frame = *result.frame;
+    const frame::Frame& frame = *result.frame;
 
     // The camera intrinsics are for 320x240; the cloud must use them scaled by 64/320 per axis.
-    const devices::Intrinsics& cam = frame.cameraIntrinsics;
+    const frame::Intrinsics& cam = frame.cameraIntrinsics;
     const double sx = 64.0 / 320.0, sy = 48.0 / 240.0;
-    const auto cloud = buildPointCloud(frame, devices::Confidence::Low, 0.0f);
+    const auto cloud = buildPointCloud(frame, frame::Confidence::Low, 0.0f);
     ASSERT_GT(cloud.size(), 1000u);
     std::size_t checked = 0;
     for (int v = 0; v < 48; ++v) {
@@ -71,10 +71,10 @@ TEST(Unprojection, CloudUsesIntrinsicsScaledToTheDepthResolution) {
 }
 
 TEST(Unprojection, DegenerateIntrinsicsGiveNoCloudRatherThanGarbage) {
-    devices::Frame frame;
+    frame::Frame frame;
     frame.cameraIntrinsics = {0.0, 0.0, 0.0, 0.0, 0, 0};
-    frame.sceneDepth = devices::DepthData{devices::Plane<float>(4, 4, 1.0f), {}};
-    EXPECT_TRUE(buildPointCloud(frame, devices::Confidence::Low, 0.0f).empty());
+    frame.sceneDepth = frame::DepthData{frame::Plane<float>(4, 4, 1.0f), {}};
+    EXPECT_TRUE(buildPointCloud(frame, frame::Confidence::Low, 0.0f).empty());
 }
 
 } // namespace

@@ -1,6 +1,6 @@
 // Guided upsampling against the synthetic scene's exact depth, and the upsampling stage's contract.
 
-#include "devices/synthetic_scene.h"
+#include "devices/synthetic/synthetic_scene.h"
 #include "processing/camera_image.h"
 #include "processing/guided_filter.h"
 #include "processing/pipeline.h"
@@ -14,20 +14,20 @@
 namespace dc::processing {
 namespace {
 
-using devices::Plane;
+using frame::Plane;
 
 // The desk scene as an ARKit-like frame at a test-friendly size: 256x192 depth, 960x720 camera.
 struct Scene {
-    devices::FramePtr frame;
+    frame::FramePtr frame;
     Plane<float> truth; // at half the camera size
 };
 
 const Scene& desk() {
     static const Scene scene = [] {
         const devices::SyntheticScene s;
-        const devices::Pose pose = devices::SyntheticScene::cameraPose(0.0, false);
-        const devices::Intrinsics camera = devices::SyntheticScene::cameraIntrinsics(960, 720);
-        auto f = std::make_shared<devices::Frame>();
+        const frame::Pose pose = devices::SyntheticScene::cameraPose(0.0, false);
+        const frame::Intrinsics camera = devices::SyntheticScene::cameraIntrinsics(960, 720);
+        auto f = std::make_shared<frame::Frame>();
         f->capturedImage = s.renderImage(camera, pose);
         f->cameraIntrinsics = camera;
         f->sceneDepth = s.sensorDepth(camera.scaledTo(256, 192), pose, 3);
@@ -44,7 +44,7 @@ GuidedFilterParams deskParams(int subsample) {
     return p;
 }
 
-devices::DepthData upsampleDesk(const GuidedFilterParams& p) {
+frame::DepthData upsampleDesk(const GuidedFilterParams& p) {
     std::vector<std::uint8_t> scratch;
     return guidedUpsample(*desk().frame->sceneDepth, lumaView(desk().frame->capturedImage, scratch), 480, 360,
                           p);
@@ -98,8 +98,8 @@ template <class T, class Pred> bool allAround(const Plane<T>& plane, int sx, int
 }
 
 TEST(GuidedUpsampling, HolesStayHolesAndConfidenceFollowsTheMap) {
-    const devices::DepthData out = upsampleDesk(deskParams(4));
-    const devices::DepthData& in = *desk().frame->sceneDepth;
+    const frame::DepthData out = upsampleDesk(deskParams(4));
+    const frame::DepthData& in = *desk().frame->sceneDepth;
     ASSERT_EQ(out.confidence.width, 480);
     ASSERT_EQ(out.confidence.height, 360);
     std::size_t holes = 0, confident = 0;
@@ -125,7 +125,7 @@ TEST(UpsamplingStage, OutputsOnePointPerOutputPixelWithScaledIntrinsics) {
     UpsamplingStage stage;
     ProcessingSettings settings;
     settings.upsampling = true;
-    const devices::FramePtr out = stage.process(desk().frame, settings);
+    const frame::FramePtr out = stage.process(desk().frame, settings);
     ASSERT_TRUE(out->sceneDepth);
     EXPECT_EQ(out->sceneDepth->depthMeters.width, 480) << "half of the 960x720 camera";
     EXPECT_EQ(out->sceneDepth->depthMeters.height, 360);
@@ -139,13 +139,13 @@ TEST(UpsamplingStage, UpsamplesOnlyTheShownDepth) {
     UpsamplingStage stage;
     ProcessingSettings settings;
     settings.upsampling = true;
-    auto f = std::make_shared<devices::Frame>(*desk().frame);
+    auto f = std::make_shared<frame::Frame>(*desk().frame);
     f->smoothedSceneDepth = f->sceneDepth;
-    const devices::FramePtr smoothedShown = stage.process(f, settings);
+    const frame::FramePtr smoothedShown = stage.process(f, settings);
     EXPECT_EQ(smoothedShown->smoothedSceneDepth->depthMeters.width, 480);
     EXPECT_EQ(smoothedShown->sceneDepth->depthMeters.width, 256) << "not shown: left at the sensor's size";
     settings.depthSource = DepthSource::Raw;
-    const devices::FramePtr rawShown = stage.process(f, settings);
+    const frame::FramePtr rawShown = stage.process(f, settings);
     EXPECT_EQ(rawShown->sceneDepth->depthMeters.width, 480);
     EXPECT_EQ(rawShown->smoothedSceneDepth->depthMeters.width, 256);
 }
@@ -154,9 +154,9 @@ TEST(UpsamplingStage, FramesWithoutCameraImagePassThrough) {
     UpsamplingStage stage;
     ProcessingSettings settings;
     settings.upsampling = true;
-    auto f = std::make_shared<devices::Frame>(*desk().frame);
+    auto f = std::make_shared<frame::Frame>(*desk().frame);
     f->capturedImage = {};
-    const devices::FramePtr in = f;
+    const frame::FramePtr in = f;
     EXPECT_EQ(stage.process(in, settings), in);
 }
 

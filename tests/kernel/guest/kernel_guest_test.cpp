@@ -3,13 +3,13 @@
 // the environment; a missing variable is a failure, never a skip.
 
 #include "devices/frame_age.h"
-#include "devices/live_device_watcher.h"
-#include "devices/live_devices.h"
-#include "devices/live_source_spec.h"
 #include "devices/session.h"
-#include "devices/usb/hotplug_monitor.h"
-#include "devices/usb/usb_enumeration.h"
-#include "devices/v4l2/v4l2_node.h"
+#include "devices/uvc/live_device_watcher.h"
+#include "devices/uvc/live_devices.h"
+#include "devices/uvc/live_source_spec.h"
+#include "devices/uvc/usb/hotplug_monitor.h"
+#include "devices/uvc/usb/usb_enumeration.h"
+#include "devices/uvc/v4l2/v4l2_node.h"
 #include "tests/kernel/vmkit/src/test_pattern.h"
 
 #include <gtest/gtest.h>
@@ -40,7 +40,7 @@ std::string env(const char* name) {
 
 // Checks a depth map against the feeder's pattern: every pixel must be exactly raw * scale of the raw
 // value the feeder sent for that frame. Returns the frame number, or -1 with `why` set.
-long patternFrame(const Plane<float>& meters, float scale, std::string& why) {
+long patternFrame(const frame::Plane<float>& meters, float scale, std::string& why) {
     const auto raw = [&](int x, int y) { return std::lround(meters.at(x, y) / scale); };
     if (meters.width != kWidth || meters.height != kHeight) {
         why = "size " + std::to_string(meters.width) + "x" + std::to_string(meters.height);
@@ -155,7 +155,7 @@ TEST(Uvc, V4l2NodeStreamsTheFeedersPatternPixelForPixel) {
         if (d.kind == v4l2::DequeueResult::Kind::NotReady)
             continue;
         ASSERT_EQ(d.kind, v4l2::DequeueResult::Kind::Buffer) << d.message;
-        Plane<float> units;
+        frame::Plane<float> units;
         v4l2::depthToMeters(d.buffer.bytes, kWidth, kHeight, f.bytesPerLine, 1.0f, units);
         std::string why;
         const long frame = patternFrame(units, 1.0f, why);
@@ -302,7 +302,7 @@ TEST(Vivid, Y16IsDepthWithTheConfiguredScale) {
     for (int i = 0; i < 5 && r.kind != CaptureResult::Kind::Frame; ++i)
         r = (*device)->capture(5000ms);
     ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
-    const Plane<float>& meters = r.frame->sceneDepth->depthMeters;
+    const frame::Plane<float>& meters = r.frame->sceneDepth->depthMeters;
     ASSERT_EQ(meters.width, kWidth);
     int nonZero = 0;
     for (std::size_t i = 0; i < meters.pixels.size(); ++i) {

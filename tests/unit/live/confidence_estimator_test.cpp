@@ -5,8 +5,8 @@
 namespace dc::processing {
 namespace {
 
-using devices::Confidence;
-using devices::Plane;
+using frame::Confidence;
+using frame::Plane;
 
 constexpr auto kLow = static_cast<std::uint8_t>(Confidence::Low);
 constexpr auto kMedium = static_cast<std::uint8_t>(Confidence::Medium);
@@ -92,9 +92,9 @@ TEST(ConfidenceEstimator, TemporalJumpsLowerConfidence) {
     EXPECT_EQ(estimateConfidence(moved, nullptr).at(8, 6), kHigh) << "no previous frame: not counted";
 }
 
-devices::FramePtr frameWith(Plane<float> depth, Plane<std::uint8_t> confidence = {}) {
-    auto f = std::make_shared<devices::Frame>();
-    f->sceneDepth = devices::DepthData{std::move(depth), std::move(confidence)};
+frame::FramePtr frameWith(Plane<float> depth, Plane<std::uint8_t> confidence = {}) {
+    auto f = std::make_shared<frame::Frame>();
+    f->sceneDepth = frame::DepthData{std::move(depth), std::move(confidence)};
     return f;
 }
 
@@ -103,10 +103,10 @@ TEST(ConfidenceEstimatorStage, FillsMissingConfidenceLabelledEstimatedAndLeavesS
     EXPECT_TRUE(stage.wanted({}, {}));
     EXPECT_FALSE(stage.wanted({}, {.cloud = false, .depthPanel = false, .confidencePanel = false}))
         << "nobody shows depth";
-    const devices::FramePtr out = stage.process(frameWith(wall()), {});
+    const frame::FramePtr out = stage.process(frameWith(wall()), {});
     ASSERT_EQ(out->sceneDepth->confidence.width, 16);
     EXPECT_TRUE(out->sceneDepth->confidenceEstimated);
-    const devices::FramePtr sensor = frameWith(wall(), Plane<std::uint8_t>(16, 12, kLow));
+    const frame::FramePtr sensor = frameWith(wall(), Plane<std::uint8_t>(16, 12, kLow));
     EXPECT_EQ(stage.process(sensor, {}), sensor) << "sensor confidence passes untouched";
     EXPECT_FALSE(sensor->sceneDepth->confidenceEstimated);
 }

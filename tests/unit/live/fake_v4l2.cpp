@@ -1,5 +1,6 @@
 #include "tests/unit/live/fake_v4l2.h"
 
+#include "base/clock.h"
 #include "devices/frame_pacer.h"
 
 #include <algorithm>
@@ -312,7 +313,7 @@ int FakeV4l2::nodeIoctl(Node& node, unsigned long request, void* arg) {
         b->bytesused = frame.bytesused.value_or(static_cast<std::uint32_t>(frame.bytes.size()));
         b->flags = frame.flags | V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC;
         b->sequence = node.sequence++;
-        const std::int64_t ns = frame.timestampNs ? frame.timestampNs : monotonicNowNs();
+        const std::int64_t ns = frame.timestampNs ? frame.timestampNs : base::monotonicNowNs();
         b->timestamp = {static_cast<time_t>(ns / 1'000'000'000),
                         static_cast<suseconds_t>(ns % 1'000'000'000 / 1000)};
         return 0;

@@ -1,6 +1,6 @@
 #pragma once
 
-#include "devices/v4l2/syscalls.h"
+#include "devices/uvc/v4l2/syscalls.h"
 
 #include <condition_variable>
 #include <cstdint>

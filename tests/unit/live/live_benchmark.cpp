@@ -4,8 +4,9 @@
 //   between the driver's timestamp and a consumer taking the frame from the Session.
 // Run: build-live/tests/unit/bench_live [--benchmark_repetitions=N]
 
+#include "base/clock.h"
 #include "devices/session.h"
-#include "devices/uvc_device.h"
+#include "devices/uvc/uvc_device.h"
 #include "tests/unit/live/fake_v4l2.h"
 
 #include <benchmark/benchmark.h>
@@ -87,7 +88,7 @@ void BM_TimestampToConsumer(benchmark::State& state) {
     }
     std::vector<double> latencies;
     for (auto _ : state) {
-        const std::int64_t stamp = monotonicNowNs();
+        const std::int64_t stamp = base::monotonicNowNs();
         fake.pushFrame(kDepth, inPlace(kW * kH * 2, stamp));
         const auto frame = session.waitForFrame(std::chrono::seconds(2));
         if (!frame) {

@@ -1,4 +1,4 @@
-#include "devices/live_device_watcher.h"
+#include "devices/uvc/live_device_watcher.h"
 
 #include <gtest/gtest.h>
 

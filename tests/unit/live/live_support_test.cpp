@@ -1,10 +1,10 @@
-#include "devices/calibration.h"
 #include "devices/frame_pairer.h"
-#include "devices/live_source_spec.h"
-#include "devices/usb/known_cameras.h"
-#include "devices/usb/sysfs.h"
-#include "devices/v4l2/node_probe.h"
-#include "devices/v4l2/pixel_formats.h"
+#include "devices/uvc/live_source_spec.h"
+#include "devices/uvc/usb/known_cameras.h"
+#include "devices/uvc/usb/sysfs.h"
+#include "devices/uvc/v4l2/node_probe.h"
+#include "devices/uvc/v4l2/pixel_formats.h"
+#include "frame/calibration.h"
 
 #include <gtest/gtest.h>
 #include <linux/videodev2.h>
@@ -25,7 +25,7 @@ TEST(PixelFormats, Z16BecomesMetersOnceWithRowPaddingSkipped) {
     // 3x2 pixels, rows padded to 8 bytes (drivers may do that); the padding holds garbage.
     const std::vector<std::uint8_t> raw{0x00, 0x00, 0xe8, 0x03, 0xff, 0xff, 0xaa, 0xbb,  // 0, 1000, 65535
                                         0x01, 0x00, 0x10, 0x27, 0x34, 0x12, 0xcc, 0xdd}; // 1, 10000, 0x1234
-    Plane<float> meters;
+    frame::Plane<float> meters;
     v4l2::depthToMeters(raw, 3, 2, 8, 0.001f, meters);
     ASSERT_EQ(meters.width, 3);
     const std::vector<float> expected{0.0f,       1000 * 0.001f,  65535 * 0.001f,
@@ -46,7 +46,7 @@ TEST(PixelFormats, CameraImagesAreCopiedWithoutPaddingAndShortOnesRefused) {
     const std::vector<std::uint8_t> grey{10, 20, 30, 40};
     auto g = v4l2::toCapturedImage(V4L2_PIX_FMT_GREY, grey, 2, 2, 2);
     ASSERT_TRUE(g);
-    EXPECT_EQ(g->format, PixelFormat::Nv12);
+    EXPECT_EQ(g->format, frame::PixelFormat::Nv12);
     EXPECT_EQ(*g->bytes, (std::vector<std::uint8_t>{10, 20, 30, 40, 128, 128})) << "grey with neutral chroma";
     EXPECT_FALSE(v4l2::toCapturedImage(V4L2_PIX_FMT_NV12, std::vector<std::uint8_t>(100), 3, 2, 3))
         << "odd-width NV12 cannot be stored";
@@ -58,7 +58,7 @@ TEST(PixelFormats, MjpegIsDecodedAndGarbageIsAnError) {
     ASSERT_TRUE(cv::imencode(".jpg", bgr, jpeg));
     auto image = v4l2::toCapturedImage(V4L2_PIX_FMT_MJPEG, jpeg, 6, 4, 0);
     ASSERT_TRUE(image) << image.error().message;
-    EXPECT_EQ(image->format, PixelFormat::Rgb24);
+    EXPECT_EQ(image->format, frame::PixelFormat::Rgb24);
     EXPECT_GT((*image->bytes)[0], 200) << "red comes out first in RGB";
     const std::vector<std::uint8_t> garbage(50, 0x42);
     EXPECT_FALSE(v4l2::toCapturedImage(V4L2_PIX_FMT_MJPEG, garbage, 6, 4, 0));
@@ -119,7 +119,7 @@ TEST(NodeRoles, Z16BeatsY16AndColorAndInfraredAreFound) {
 // ---- depth/color pairing ---------------------------------------------------------------------------
 
 StampedDepth depthAt(std::uint64_t seq, std::int64_t ms) {
-    return {seq, ms * 1'000'000, Plane<float>(1, 1, static_cast<float>(seq))};
+    return {seq, ms * 1'000'000, frame::Plane<float>(1, 1, static_cast<float>(seq))};
 }
 StampedImage colorAt(std::uint64_t seq, std::int64_t ms) {
     return {seq, ms * 1'000'000, {}};
@@ -164,7 +164,7 @@ TEST(FramePairer, FramesWithoutTimestampsPairBySequence) {
     FramePairer p(16'000'000);
     p.pushColor({5, 0, {}});
     p.pushColor({6, 0, {}});
-    p.pushDepth({6, 0, Plane<float>(1, 1)});
+    p.pushDepth({6, 0, frame::Plane<float>(1, 1)});
     auto pair = p.pop();
     ASSERT_TRUE(pair && pair->color);
     EXPECT_EQ(pair->color->sequence, 6u);
@@ -173,7 +173,7 @@ TEST(FramePairer, FramesWithoutTimestampsPairBySequence) {
 // ---- calibration files ---------------------------------------------------------------------------
 
 TEST(Calibration, ReadsOpenCvYaml) {
-    const auto c = parseCalibration(R"(%YAML:1.0
+    const auto c = frame::parseCalibration(R"(%YAML:1.0
 ---
 image_width: 1280
 image_height: 720
@@ -188,7 +188,7 @@ distortion_coefficients: !!opencv-matrix
    dt: d
    data: [ 0., 0., 0., 0., 0. ]
 )",
-                                    "cv.yaml");
+                                           "cv.yaml");
     ASSERT_TRUE(c) << c.error().message;
     EXPECT_EQ(c->format, "OpenCV YAML");
     EXPECT_DOUBLE_EQ(c->intrinsics.fx, 640.0);
@@ -198,7 +198,7 @@ distortion_coefficients: !!opencv-matrix
 }
 
 TEST(Calibration, ReadsRosCameraInfoYaml) {
-    const auto c = parseCalibration(R"(image_width: 640
+    const auto c = frame::parseCalibration(R"(image_width: 640
 image_height: 480
 camera_name: depth_camera
 camera_matrix:
@@ -211,12 +211,12 @@ distortion_coefficients:
   cols: 5
   data: [0, 0, 0, 0, 0]
 )",
-                                    "ros.yaml");
+                                           "ros.yaml");
     ASSERT_TRUE(c) << c.error().message;
     EXPECT_EQ(c->format, "ROS camera_info YAML");
     EXPECT_DOUBLE_EQ(c->intrinsics.cx, 320.25);
     EXPECT_EQ(c->intrinsics.height, 480);
-    const Intrinsics half = c->intrinsics.scaledTo(320, 240);
+    const frame::Intrinsics half = c->intrinsics.scaledTo(320, 240);
     EXPECT_DOUBLE_EQ(half.fx, 385.5 / 2);
 }
 
@@ -224,15 +224,15 @@ TEST(Calibration, BadFilesAreErrorsThatNameTheFile) {
     for (const char* text : {"image_width: [unclosed", "image_width: 640\nimage_height: 480\n",
                              "image_width: 640\nimage_height: 480\ncamera_matrix:\n  data: [1, 2, 3]\n",
                              "camera_matrix:\n  data: [385.5, 0, 320, 0, 385.5, 240, 0, 0, 1]\n"}) {
-        const auto c = parseCalibration(text, "bad.yaml");
+        const auto c = frame::parseCalibration(text, "bad.yaml");
         ASSERT_FALSE(c) << text;
         EXPECT_NE(c.error().message.find("bad.yaml"), std::string::npos) << c.error().message;
     }
-    EXPECT_FALSE(loadCalibration("/nonexistent/calib.yaml"));
+    EXPECT_FALSE(frame::loadCalibration("/nonexistent/calib.yaml"));
 }
 
 TEST(Calibration, TheFieldOfViewDefaultIsAPinholeWithThatAngle) {
-    const Intrinsics k = intrinsicsFromFieldOfView(640, 480, 90.0);
+    const frame::Intrinsics k = frame::intrinsicsFromFieldOfView(640, 480, 90.0);
     EXPECT_NEAR(k.fx, 320.0, 1e-9) << "tan(45 deg) = 1";
     EXPECT_DOUBLE_EQ(k.fy, k.fx);
     EXPECT_DOUBLE_EQ(k.cx, 320.0);

@@ -1,5 +1,6 @@
+#include "base/clock.h"
 #include "devices/session.h"
-#include "devices/uvc_device.h"
+#include "devices/uvc/uvc_device.h"
 #include "tests/unit/live/fake_v4l2.h"
 
 #include <gtest/gtest.h>
@@ -60,7 +61,7 @@ protected:
         return {};
     }
 
-    static void expectPattern(const Frame& f, int s) {
+    static void expectPattern(const frame::Frame& f, int s) {
         const auto& depth = f.sceneDepth->depthMeters;
         ASSERT_EQ(depth.width, kW);
         for (int i = 0; i < kW * kH; ++i)
@@ -95,7 +96,7 @@ TEST_F(UvcDeviceTest, ConvertsZ16ToMetersOnceWithTheDepthScale) {
 
 TEST_F(UvcDeviceTest, CalibrationIntrinsicsAreScaledToTheStream) {
     UvcConfig c = config();
-    c.calibration = Calibration{{100.0, 100.0, 8.0, 6.0, 16, 12}, "OpenCV YAML"};
+    c.calibration = frame::Calibration{{100.0, 100.0, 8.0, 6.0, 16, 12}, "OpenCV YAML"};
     UvcDevice d(c, fake_);
     ASSERT_TRUE(d.open());
     EXPECT_FALSE(d.capabilities().approximateIntrinsics);
@@ -204,7 +205,7 @@ TEST_F(UvcDeviceTest, DepthAndColorNodesArePairedByTimestamp) {
     ASSERT_TRUE(d.open());
     ASSERT_TRUE(d.start());
     ASSERT_EQ(d.colorNodePath(), kColor);
-    const std::int64_t t0 = monotonicNowNs() / 1000 * 1000; // V4L2 timestamps have microseconds
+    const std::int64_t t0 = base::monotonicNowNs() / 1000 * 1000; // V4L2 timestamps have microseconds
     FakeFrame depth = depthFrame(0);
     depth.timestampNs = t0;
     FakeFrame color{std::vector<std::uint8_t>(kW * kH * 2, 0x55)};
@@ -214,7 +215,7 @@ TEST_F(UvcDeviceTest, DepthAndColorNodesArePairedByTimestamp) {
     const CaptureResult r = next(d);
     ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
     ASSERT_FALSE(r.frame->capturedImage.empty());
-    EXPECT_EQ(r.frame->capturedImage.format, PixelFormat::Yuyv);
+    EXPECT_EQ(r.frame->capturedImage.format, frame::PixelFormat::Yuyv);
     EXPECT_EQ((*r.frame->capturedImage.bytes)[0], 0x55);
     EXPECT_EQ(r.frame->timestampNs, t0);
     EXPECT_EQ(d.pairer().paired(), 1u);

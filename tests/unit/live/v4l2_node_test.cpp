@@ -1,5 +1,5 @@
-#include "devices/v4l2/handles.h"
-#include "devices/v4l2/v4l2_node.h"
+#include "devices/uvc/v4l2/handles.h"
+#include "devices/uvc/v4l2/v4l2_node.h"
 #include "tests/unit/live/fake_v4l2.h"
 
 #include <gtest/gtest.h>

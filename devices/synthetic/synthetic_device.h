@@ -1,0 +1,54 @@
+#pragma once
+
+#include "devices/device.h"
+#include "devices/frame_pacer.h"
+#include "devices/synthetic/synthetic_scene.h"
+
+#include <chrono>
+#include <cstdint>
+
+namespace dc::devices {
+
+struct SyntheticConfig {
+    int depthWidth = 256; // LiDAR-like 256x192 at 60 Hz, as ARKit's sceneDepth
+    int depthHeight = 192;
+    double fps = 60.0;
+    int cameraWidth = 1920;
+    int cameraHeight = 1440;
+    std::uint64_t seed = 1;
+    bool motion = false; // slow camera sway with the true pose in every frame
+    bool noise = true;   // false: depth is the exact ground truth, confidence all High
+    bool paced = true;   // false: deliver frames as fast as they are generated (tests, benchmarks)
+};
+
+// The built-in depth camera: frames of the SyntheticScene at a steady rate. Without motion the camera
+// image never changes, so it is rendered once and shared by every frame.
+class SyntheticDevice final : public Device {
+public:
+    explicit SyntheticDevice(SyntheticConfig config = {});
+
+    std::string description() const override;
+    Capabilities capabilities() const override;
+    const SyntheticConfig& config() const { return config_; }
+    const SyntheticScene& scene() const { return scene_; }
+    // The frame the device delivers at `timeSeconds` after its start, made on the caller's thread
+    // (benchmarks and tests that need given poses without waiting for them). Needs open() when the scene
+    // does not move: the shared image is rendered there.
+    frame::FramePtr makeFrame(std::uint64_t sequence, double timeSeconds) const;
+
+protected:
+    Status doOpen() override;
+    Status doStart() override;
+    void doStop() override {}
+    CaptureResult doCapture(std::chrono::milliseconds timeout) override;
+
+private:
+    SyntheticConfig config_;
+    SyntheticScene scene_;
+    frame::Intrinsics cameraIntrinsics_;
+    frame::CapturedImage staticImage_;
+    FramePacer pacer_;
+    std::uint64_t sequence_ = 0;
+};
+
+} // namespace dc::devices

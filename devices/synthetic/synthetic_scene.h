@@ -1,0 +1,56 @@
+#pragma once
+
+#include "frame/frame.h"
+
+#include <cstdint>
+
+namespace dc::devices {
+
+// The scene's layout in meters (world axes: y up; the desk top is the plane y = 0). Public so that tests
+// can compute the analytic ground truth independently of the ray caster.
+namespace scene {
+constexpr double kCameraHeight = 0.5;
+constexpr double kCameraPitchDegrees = 20.0; // looking down at the desk
+constexpr double kAppleCenter[3] = {0.06, 0.045, 0.72};
+constexpr double kAppleRadius = 0.045;
+constexpr double kDeskHalfWidth = 0.7, kDeskNear = 0.2, kDeskFar = 1.4;
+constexpr double kFloorY = -0.75;
+constexpr double kWallZ = 1.9;
+constexpr double kWindowLeft = -0.45, kWindowRight = 0.35, kWindowBottom = 0.3, kWindowTop = 1.1;
+constexpr double kBlindsZ = 1.86, kBlindsBottom = 0.7, kSlatPitch = 0.05, kSlatHeight = 0.03;
+constexpr double kBookMin[3] = {-0.38, 0.0, 0.55}, kBookMax[3] = {-0.16, 0.04, 0.85};
+} // namespace scene
+
+// A deterministic procedural scene modelled on the Depth Cloud sample's figure: a desk with an
+// apple-sized sphere and a book on it, a back wall with a window whose opening looks out beyond the
+// sensor's range (no depth), half-open blinds in the window, and a floor. World axes: y up, meters.
+//
+// It is the embedded default source and the ground truth for tests: trueDepth() is the exact noise-free
+// depth for any intrinsics, sensorDepth() adds a LiDAR-like noise model and the confidence derived from it.
+class SyntheticScene {
+public:
+    static constexpr double kMaxRangeMeters = 5.0; // like the LiDAR Scanner: nothing beyond is measured
+
+    explicit SyntheticScene(std::uint64_t seed = 1) : seed_(seed) {}
+
+    // The default capturedImage intrinsics (ARKit-like 1920x1440, ~67 degrees horizontal field of view),
+    // scaled to the requested image size.
+    static frame::Intrinsics cameraIntrinsics(int width = 1920, int height = 1440);
+    // Camera-to-world pose at time t. Without motion the camera is fixed; with motion it sways slowly
+    // sideways and turns to keep the apple in view, revealing the scene's depth.
+    static frame::Pose cameraPose(double timeSeconds, bool motion);
+
+    // Exact depth along the camera's z axis (meters), 0 where nothing is within kMaxRangeMeters.
+    frame::Plane<float> trueDepth(const frame::Intrinsics& intrinsics, const frame::Pose& pose) const;
+    // Depth as a sensor would measure it: noise growing with distance and grazing angle, mixed pixels at
+    // depth edges, and confidence (0/1/2) derived from that noise. Deterministic in (seed, sequence).
+    frame::DepthData sensorDepth(const frame::Intrinsics& intrinsics, const frame::Pose& pose,
+                                 std::uint64_t sequence) const;
+    // The shaded, textured camera image as NV12 (full-range BT.601), consistent with the geometry.
+    frame::CapturedImage renderImage(const frame::Intrinsics& intrinsics, const frame::Pose& pose) const;
+
+private:
+    std::uint64_t seed_;
+};
+
+} // namespace dc::devices

@@ -1,0 +1,126 @@
+#include "devices/uvc/live_source_spec.h"
+
+#include "devices/uvc/v4l2/pixel_formats.h"
+
+#include <cctype>
+#include <charconv>
+#include <linux/videodev2.h>
+#include <sstream>
+#include <vector>
+
+namespace dc::devices {
+
+namespace {
+
+std::vector<std::string> splitColons(const std::string& text) {
+    std::vector<std::string> parts;
+    std::stringstream in(text);
+    for (std::string part; std::getline(in, part, ':');)
+        parts.push_back(part);
+    return parts;
+}
+
+template <class T> bool number(const std::string& text, T& out) {
+    const char* end = text.data() + text.size();
+    auto [ptr, ec] = std::from_chars(text.data(), end, out);
+    return !text.empty() && ec == std::errc() && ptr == end;
+}
+
+bool looksLikeMode(const std::string& part) {
+    return !part.empty() && part.find('x') != std::string::npos &&
+           std::isdigit(static_cast<unsigned char>(part[0]));
+}
+
+Status parseMode(const std::string& part, UvcConfig& config) {
+    const auto at = part.find('@');
+    const std::string size = part.substr(0, at);
+    const auto x = size.find('x');
+    if (!number(size.substr(0, x), config.width) || !number(size.substr(x + 1), config.height) ||
+        config.width <= 0 || config.height <= 0 ||
+        (at != std::string::npos && (!number(part.substr(at + 1), config.fps) || !(config.fps > 0.0))))
+        return Error{"malformed mode '" + part + "' in --source (expected WxH or WxH@FPS, e.g. 640x480@30)"};
+    return {};
+}
+
+Status parseOption(const std::string& key, const std::string& value, UvcConfig& config) {
+    if (key == "format") {
+        const auto fourcc = v4l2::parseFourcc(value);
+        if (!fourcc || (*fourcc != V4L2_PIX_FMT_Z16 && *fourcc != V4L2_PIX_FMT_Y16))
+            return Error{"format=" + value + " in --source: the depth format must be Z16 or Y16"};
+        config.depthFourcc = fourcc;
+    } else if (key == "scale") {
+        float scale = 0.0f;
+        if (!number(value, scale) || !(scale > 0.0f))
+            return Error{"scale=" + value + " in --source: expected meters per depth unit, e.g. scale=0.001"};
+        config.depthScaleMeters = scale;
+    } else if (key == "calib") {
+        auto calibration = frame::loadCalibration(value);
+        if (!calibration)
+            return calibration.error();
+        config.calibration = std::move(*calibration);
+    } else if (key == "color") {
+        config.color = value != "none";
+        config.colorNode = config.color ? value : "";
+    } else if (key == "watchdog") {
+        int ms = 0;
+        if (!number(value, ms) || ms <= 0)
+            return Error{"watchdog=" + value + " in --source: expected milliseconds, e.g. watchdog=2000"};
+        config.watchdog = std::chrono::milliseconds(ms);
+    } else {
+        return Error{"unknown option '" + key + "' in --source (format, scale, calib, color, watchdog)"};
+    }
+    return {};
+}
+
+Status parseOptions(const std::vector<std::string>& parts, std::size_t first, UvcConfig& config) {
+    for (std::size_t i = first; i < parts.size(); ++i) {
+        const std::string& part = parts[i];
+        const auto eq = part.find('=');
+        Status s = eq != std::string::npos ? parseOption(part.substr(0, eq), part.substr(eq + 1), config)
+                   : looksLikeMode(part)   ? parseMode(part, config)
+                                           : Status(Error{"unknown part '" + part + "' in --source"});
+        if (!s)
+            return s;
+    }
+    return {};
+}
+
+} // namespace
+
+bool isLiveSourceSpec(const std::string& spec) {
+    return spec.rfind("v4l2:", 0) == 0 || spec.rfind("usb:", 0) == 0;
+}
+
+Expected<UvcConfig> parseLiveSourceSpec(const std::string& spec) {
+    const std::vector<std::string> parts = splitColons(spec);
+    UvcConfig config;
+    std::size_t options = 2;
+    if (parts.size() >= 2 && parts[0] == "v4l2") {
+        if (parts[1].empty())
+            return Error{"v4l2: needs a node, e.g. --source v4l2:/dev/video0"};
+        config.depthNode = parts[1];
+    } else if (parts.size() >= 3 && parts[0] == "usb") {
+        const bool hasSerial =
+            parts.size() >= 4 && parts[3].find('=') == std::string::npos && !looksLikeMode(parts[3]);
+        const std::string ids = parts[1] + ":" + parts[2] + (hasSerial ? ":" + parts[3] : "");
+        config.usb = usb::UsbMatch::parse(ids);
+        if (!config.usb)
+            return Error{"malformed USB ids '" + ids +
+                         "' in --source (expected VID:PID[:SERIAL] in hex, e.g. 8086:0b07)"};
+        options = hasSerial ? 4 : 3;
+    } else {
+        return Error{"malformed live source '" + spec + "' (expected " + kLiveSourceSpecHelp + ")"};
+    }
+    if (Status s = parseOptions(parts, options, config); !s)
+        return s.error();
+    return config;
+}
+
+Expected<std::unique_ptr<Device>> openLiveSourceSpec(const std::string& spec) {
+    auto config = parseLiveSourceSpec(spec);
+    if (!config)
+        return config.error();
+    return std::unique_ptr<Device>(std::make_unique<UvcDevice>(std::move(*config)));
+}
+
+} // namespace dc::devices

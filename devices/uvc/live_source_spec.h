@@ -1,0 +1,24 @@
+#pragma once
+
+#include "base/expected.h"
+#include "devices/device.h"
+#include "devices/uvc/uvc_device.h"
+
+#include <memory>
+#include <string>
+
+namespace dc::devices {
+
+// The live sources of --source:
+//   v4l2:/dev/videoN[:OPTION...]            a depth node (Z16, or Y16)
+//   usb:VID:PID[:SERIAL][:OPTION...]        a USB camera by its ids (hex), found again after a replug
+// OPTION: WxH[@FPS] (depth mode), format=Z16|Y16, scale=METERS_PER_UNIT, calib=FILE (OpenCV or ROS
+// camera_info YAML), color=/dev/videoM|none, watchdog=MS (default 2000).
+inline constexpr const char* kLiveSourceSpecHelp = "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS]";
+
+bool isLiveSourceSpec(const std::string& spec);
+// Parses without touching any device (a calibration file is read: a bad one is a bad argument).
+Expected<UvcConfig> parseLiveSourceSpec(const std::string& spec);
+Expected<std::unique_ptr<Device>> openLiveSourceSpec(const std::string& spec);
+
+} // namespace dc::devices

@@ -1,0 +1,109 @@
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace dc::frame {
+
+// Pinhole intrinsics of an image of `width` x `height` pixels, in pixels. Pixel (u, v) with depth z
+// unprojects to ((u - cx) z / fx, (v - cy) z / fy, z) in the camera frame (OpenCV axes: x right, y down,
+// z forward), as the Depth Cloud sample does.
+struct Intrinsics {
+    double fx = 0.0;
+    double fy = 0.0;
+    double cx = 0.0;
+    double cy = 0.0;
+    int width = 0;
+    int height = 0;
+
+    // The intrinsics of the same camera resampled to another resolution. ARKit derives the depth map's
+    // intrinsics this way (a plain per-axis scale of the capturedImage intrinsics); so do we.
+    Intrinsics scaledTo(int newWidth, int newHeight) const;
+    // Finite, positive focal lengths and a positive size: anything else cannot place points in 3D.
+    bool valid() const;
+};
+
+// A dense single-channel image owned by value, row-major with no padding.
+template <class T> struct Plane {
+    int width = 0;
+    int height = 0;
+    std::vector<T> pixels;
+
+    Plane() = default;
+    Plane(int w, int h, T fill = T{}) : width(w), height(h), pixels(static_cast<std::size_t>(w) * h, fill) {}
+
+    bool empty() const { return pixels.empty(); }
+    T& at(int x, int y) { return pixels[static_cast<std::size_t>(y) * width + x]; }
+    const T& at(int x, int y) const { return pixels[static_cast<std::size_t>(y) * width + x]; }
+};
+
+enum class PixelFormat {
+    Nv12,  // full-range BT.601 Y plane, then interleaved Cb/Cr at half resolution (ARKit's capturedImage)
+    Yuyv,  // packed 4:2:2
+    Rgb24, // packed 8-bit R, G, B
+};
+
+const char* toString(PixelFormat format);
+
+// The camera image exactly as the source captured it. The bytes are shared and never modified, so a
+// static scene can hand the same image to every frame without copying 4 MB per frame.
+struct CapturedImage {
+    PixelFormat format = PixelFormat::Nv12;
+    int width = 0;
+    int height = 0;
+    std::shared_ptr<const std::vector<std::uint8_t>> bytes;
+
+    bool empty() const { return !bytes || bytes->empty(); }
+    // Expected byte count for the format and size; a source whose buffer differs is malformed.
+    static std::size_t byteSize(PixelFormat format, int width, int height);
+};
+
+// ARConfidenceLevel: how much the sensor trusts each depth sample.
+enum class Confidence : std::uint8_t { Low = 0, Medium = 1, High = 2 };
+
+// One depth map with its per-pixel confidence (ARDepthData). depthMeters == 0 means "no measurement".
+// `confidence` is empty when the source provides none; otherwise it has the depth map's size.
+struct DepthData {
+    Plane<float> depthMeters;
+    Plane<std::uint8_t> confidence;
+    // The sensor gave no confidence and `confidence` was estimated from the depth map itself
+    // (processing/confidence_estimator.h): the UI labels it "estimated".
+    bool confidenceEstimated = false;
+};
+
+// Camera-to-world rigid transform, column-major 4x4 (OpenCV camera axes, meters).
+struct Pose {
+    std::array<double, 16> cameraToWorld{1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1};
+};
+
+// Where a replayed frame sits in its recording. A consumer that asked for a seek compares
+// seekGeneration with the value the seek returned: an older generation is a frame decoded before the
+// seek (still in flight), the first frame with the new generation is exactly the one asked for.
+struct ReplayPosition {
+    std::size_t index = 0;
+    std::size_t count = 0;
+    std::uint64_t seekGeneration = 0;
+};
+
+// One capture: an immutable value handed between threads as FramePtr (ARFrame, made explicit).
+struct Frame {
+    std::uint64_t sequence = 0;
+    std::int64_t timestampNs = 0;
+    CapturedImage capturedImage;
+    Intrinsics cameraIntrinsics; // of capturedImage
+    std::optional<DepthData> sceneDepth;
+    std::optional<DepthData> smoothedSceneDepth;
+    std::optional<Pose> pose;
+    std::optional<ReplayPosition> replay; // set by replay sources only
+
+    // Depth intrinsics are never stored: they follow from the image intrinsics and the depth map size.
+    Intrinsics depthIntrinsics() const;
+};
+
+using FramePtr = std::shared_ptr<const Frame>;
+
+} // namespace dc::frame
