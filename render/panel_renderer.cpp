@@ -49,17 +49,7 @@ void main() {
 constexpr const char* kConfidenceMain = R"glsl(
 void main() {
     uint level = texelFetch(confidenceMap, texelUnder(textureSize(confidenceMap, 0)), 0).r;
-    vec3 color = level == 0u ? vec3(1.0, 0.0, 0.0)
-               : level == 1u ? vec3(0.0, 1.0, 0.0)
-               : level == 2u ? vec3(0.0, 0.0, 1.0)
-                             : vec3(0.0);
-    fragColor = vec4(color, 1.0);
-}
-)glsl";
-
-constexpr const char* kCameraMain = R"glsl(
-void main() {
-    fragColor = vec4(cameraColor(imageCoord()), 1.0);
+    fragColor = vec4(confidenceColor(level), 1.0);
 }
 )glsl";
 
@@ -81,8 +71,7 @@ Expected<gl::Program> linkPanel(const char* name, const char* main) {
 Status PanelRenderer::init() {
     std::pair<Panel*, Expected<gl::Program>> panels[] = {
         {&depth_, linkPanel("depth", kDepthMain)},
-        {&confidence_, linkPanel("confidence", kConfidenceMain)},
-        {&camera_, linkPanel("camera", kCameraMain)}};
+        {&confidence_, linkPanel("confidence", kConfidenceMain)}};
     for (auto& [panel, program] : panels) {
         if (!program)
             return program.error();
@@ -109,12 +98,6 @@ void PanelRenderer::renderDepth(RenderTarget& target, const FrameTextures& textu
 
 void PanelRenderer::renderConfidence(RenderTarget& target, const FrameTextures& textures) {
     if (begin(target, textures, confidence_, textures.hasDepth()))
-        draw();
-}
-
-void PanelRenderer::renderCamera(RenderTarget& target, const FrameTextures& textures) {
-    // Any upload creates the camera textures (mid-gray without an image), with or without depth.
-    if (begin(target, textures, camera_, textures.lumaTexture() != 0))
         draw();
 }
 

@@ -8,8 +8,8 @@
 
 namespace dc::render {
 
-// The 2D panels beside the cloud: depth as a jet colormap, confidence as red/green/blue, and the camera
-// image. Each fills its whole target with one fullscreen triangle; the caller sizes the target, usually to
+// The 2D data panels beside the cloud: depth in a colormap, confidence as red/green/blue (the camera panel
+// shows the engine's image as it is). Each fills its whole target with one fullscreen triangle; the caller sizes the target, usually to
 // the data's own resolution. Depth and confidence show the sample under each pixel without filtering, so
 // a panel at native size is pixel-exact. All leave framebuffer 0 bound.
 class PanelRenderer {
@@ -22,8 +22,6 @@ public:
                      Colormap colormap = Colormap::Jet);
     // Low red, medium green, high blue (the sample's colors); black without depth.
     void renderConfidence(RenderTarget& target, const FrameTextures& textures);
-    // The camera image converted to RGB; mid-gray without one.
-    void renderCamera(RenderTarget& target, const FrameTextures& textures);
 
 private:
     struct Panel {
@@ -37,7 +35,6 @@ private:
     gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
     Panel depth_;
     Panel confidence_;
-    Panel camera_;
     GLint depthMinMeters_ = -1;
     GLint depthInverseRange_ = -1;
     GLint depthColormapStops_ = -1;

@@ -1,5 +1,6 @@
 #include "render/point_cloud_renderer.h"
 
+#include "render/colormap.h"
 #include "render/point_shaders.h"
 
 #include "render/render_pass.h"
@@ -19,6 +20,9 @@ uniform vec4 depthIntrinsics; // fx, fy, cx, cy in depth-map pixels
 uniform uint minConfidence;
 uniform float nearMeters;
 uniform float pointSizePixels;
+uniform int coloring; // render::PointColoring
+uniform float minMeters;
+uniform float inverseRangeMeters;
 
 out vec3 pointColor;
 
@@ -36,9 +40,9 @@ void main() {
     }
     vec2 xy = (vec2(pixel) - depthIntrinsics.zw) * z / depthIntrinsics.xy;
     gl_Position = viewProjection * vec4(xy, z, 1.0);
-    // The camera image covers the same field of view at its own resolution: sample at the centre of the
-    // area this depth pixel covers.
-    pointColor = cameraColor((vec2(pixel) + 0.5) / vec2(size));
+    pointColor = coloring == 0 ? texelFetch(colorMap, pixel, 0).rgb
+               : coloring == 1 ? colormapColor((z - minMeters) * inverseRangeMeters)
+                               : confidenceColor(confidence);
 }
 )glsl";
 
@@ -68,8 +72,21 @@ void main() {
 
 } // namespace
 
+const char* toString(PointColoring coloring) {
+    switch (coloring) {
+    case PointColoring::Camera:
+        return "camera";
+    case PointColoring::Depth:
+        return "depth";
+    case PointColoring::Confidence:
+        return "confidence";
+    }
+    return "camera";
+}
+
 Status PointCloudRenderer::init() {
-    const std::string vertexShader = std::string("#version 330 core\n") + kFrameTexturesGlsl + kVertexMain;
+    const std::string vertexShader =
+        std::string("#version 330 core\n") + kFrameTexturesGlsl + kColormapGlsl + kVertexMain;
     Expected<gl::Program> program = gl::Program::link(vertexShader, kPointColorFragmentShader);
     if (!program)
         return Error{"point cloud shaders: " + program.error().message};
@@ -84,8 +101,10 @@ Status PointCloudRenderer::init() {
     emptyVertexArray_ = gl::VertexArray::create();
     FrameTextures::connectSamplers(program_);
     uniforms_ = {program_.uniformLocation("viewProjection"), program_.uniformLocation("depthIntrinsics"),
-                 program_.uniformLocation("minConfidence"), program_.uniformLocation("nearMeters"),
-                 program_.uniformLocation("pointSizePixels")};
+                 program_.uniformLocation("minConfidence"),  program_.uniformLocation("nearMeters"),
+                 program_.uniformLocation("pointSizePixels"), program_.uniformLocation("coloring"),
+                 program_.uniformLocation("minMeters"),      program_.uniformLocation("inverseRangeMeters"),
+                 program_.uniformLocation("colormapStops")};
     glUseProgram(0);
     return Status::success();
 }
@@ -132,6 +151,11 @@ void PointCloudRenderer::setUniforms(const FrameTextures& textures, const CloudP
     glUniform1ui(uniforms_.minConfidence, static_cast<GLuint>(params.minConfidence));
     glUniform1f(uniforms_.nearMeters, params.nearMeters);
     glUniform1f(uniforms_.pointSizePixels, params.pointSizePixels);
+    glUniform1i(uniforms_.coloring, static_cast<GLint>(params.coloring));
+    glUniform3fv(uniforms_.colormapStops, kColormapStopCount, colormapStops(params.colormap).front().data());
+    glUniform1f(uniforms_.minMeters, params.rangeMinMeters);
+    glUniform1f(uniforms_.inverseRangeMeters,
+                1.0f / std::max(params.rangeMaxMeters - params.rangeMinMeters, 1e-6f));
 }
 
 } // namespace dc::render

@@ -3,6 +3,7 @@
 #include "base/expected.h"
 #include "frame/frame.h"
 #include "render/accumulated_points.h"
+#include "render/colormap.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"
 #include "render/render_target.h"
@@ -14,6 +15,12 @@
 
 namespace dc::render {
 
+// What gives each point its colour: the camera image (the sample's look), the depth through the depth
+// panel's colormap and range, or the confidence level as the confidence panel shows it.
+enum class PointColoring { Camera, Depth, Confidence };
+inline constexpr int kPointColoringCount = 3;
+const char* toString(PointColoring coloring);
+
 struct CloudParams {
     // Maps a point of the depth camera's frame (OpenCV axes: x right, y down, z forward; meters) to clip
     // space, e.g. cloudViewProjection() of orbit_camera.h.
@@ -23,6 +30,10 @@ struct CloudParams {
     // Samples closer than this are not drawn, like the sample's fragment shader does below 1 m.
     float nearMeters = 0.1f;
     float pointSizePixels = 2.0f;
+    PointColoring coloring = PointColoring::Camera;
+    Colormap colormap = Colormap::Jet; // PointColoring::Depth, over [rangeMinMeters, rangeMaxMeters]
+    float rangeMinMeters = 0.0f;
+    float rangeMaxMeters = 2.5f;
     glm::vec3 background{0.0f, 0.0f, 0.0f}; // linear RGB in [0, 1]
     // Anchors, in the same frame as the points, drawn as small lit cubes among them (depth-tested).
     std::vector<glm::vec3> anchors;
@@ -35,8 +46,8 @@ struct CloudParams {
 
 inline constexpr std::size_t kMaxDrawnAnchors = 32;
 
-// Draws one point per depth sample, placed by unprojecting it through the depth intrinsics and colored
-// by the camera image, the Depth Cloud sample's pointCloudVertexShader. All the work happens in the
+// Draws one point per depth sample, placed by unprojecting it through the depth intrinsics and coloured
+// as CloudParams says (by default the camera's colour, the Depth Cloud sample's pointCloudVertexShader). All the work happens in the
 // vertex shader: no vertex buffer, one vertex per depth pixel addressed by gl_VertexID.
 class PointCloudRenderer {
 public:
@@ -55,6 +66,10 @@ private:
         GLint minConfidence = -1;
         GLint nearMeters = -1;
         GLint pointSizePixels = -1;
+        GLint coloring = -1;
+        GLint minMeters = -1;
+        GLint inverseRangeMeters = -1;
+        GLint colormapStops = -1;
     };
 
     void setUniforms(const FrameTextures& textures, const CloudParams& params) const;
