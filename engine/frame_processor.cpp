@@ -55,7 +55,7 @@ void FrameProcessor::onFrame() {
 
 std::uint64_t FrameProcessor::setDemand(const Demand& demand) {
     std::lock_guard lock(mutex_);
-    if (demand == demand_)
+    if (demand == demand_ && generation_ > 0)
         return generation_;
     demand_ = demand;
     ++generation_;
@@ -73,7 +73,7 @@ void FrameProcessor::afterSeek(std::uint64_t seekGeneration) {
 }
 
 bool FrameProcessor::hasWork() const {
-    return stopping_ || frameReady_ || reset_ || generation_ != doneGeneration_;
+    return stopping_ || (generation_ > 0 && (frameReady_ || reset_ || generation_ != doneGeneration_));
 }
 
 void FrameProcessor::run() {

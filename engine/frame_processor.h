@@ -91,7 +91,7 @@ private:
     std::shared_ptr<devices::Session> session_;
     std::uint64_t epoch_ = 0; // counts sessions, so a result of the old one is never published
     Demand demand_;
-    std::uint64_t generation_ = 1;
+    std::uint64_t generation_ = 0; // 0: no demand yet, so nothing is processed (nobody asked for anything)
     std::uint64_t doneGeneration_ = 0;
     std::uint64_t awaitedSeek_ = 0;
     bool reset_ = false;

@@ -75,7 +75,8 @@ public:
     frame::FramePtr run(frame::FramePtr frame, const ProcessingSettings& settings, const Needs& needs);
     void reset();
     bool hasStage(std::string_view name) const;
-    // Timings of the stages that ran in the last run() (stages skipped are absent).
+    // Timings of the stages that made something in the last run() (stages skipped, or that passed the frame
+    // through, are absent).
     const std::vector<StageTiming>& lastTimings() const { return timings_; }
 
 private:

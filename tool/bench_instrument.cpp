@@ -140,8 +140,8 @@ std::pair<double, double> benchStatsPanel(const BenchInstrumentOptions& o) {
     if (!gui.init(1280, 720) || !renderer.init())
         return {0, 0};
     engine::Instrument instrument(std::make_unique<devices::SyntheticDevice>(c), "synthetic");
-    instrument.start();
     ui::Viewer viewer(instrument, renderer, ui::Settings{});
+    instrument.start();
     base::RollingStats ms(static_cast<std::size_t>(o.frames));
     for (int i = 0; i < o.frames + 20; ++i) {
         gui.newFrame(1.0f / 60.0f);

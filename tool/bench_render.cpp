@@ -64,8 +64,8 @@ Expected<CaseResult> runCase(const BenchCase& c, const BenchOptions& o) {
     if (Status s = renderer.init(); !s)
         return s.error();
     engine::Instrument instrument(std::move(device), "synthetic frames");
-    instrument.start();
     ui::Viewer viewer(instrument, renderer, ui::Settings{});
+    instrument.start();
     base::RollingStats frameMs(static_cast<std::size_t>(o.frames));
     for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
         const auto start = Clock::now();

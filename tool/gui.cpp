@@ -234,8 +234,8 @@ int runGui(const ViewerOptions& options) {
             return kExitFailure;
         }
         engine::Instrument instrument(std::move(*device), options.source);
-        instrument.start();
         ui::Viewer viewer(instrument, renderer, settings);
+        instrument.start();
         devices::LiveDeviceWatcher cameras;
         const auto start = Clock::now();
         for (int frame = 0;; ++frame) {

@@ -58,15 +58,15 @@ int runHeadless(const ViewerOptions& options) {
     if (Status s = renderer.init(); !s)
         return fail(s.error().message);
     engine::Instrument instrument(std::move(*device), options.source);
-    instrument.start();
-    const engine::InstrumentStatus started = instrument.status();
-    if (!started.running)
-        return fail(started.message);
     ui::Settings settings; // headless snapshots use defaults, never a user's saved view
     if (options.confidence)
         settings.cloud.minConfidence = *options.confidence;
     ui::Viewer viewer(instrument, renderer, settings);
     viewer.resizeCloud(kCloudWidth, kCloudHeight);
+    instrument.start();
+    const engine::InstrumentStatus started = instrument.status();
+    if (!started.running)
+        return fail(started.message);
 
     const int frames = options.frames.value_or(60);
     int shown = 0;

@@ -43,6 +43,9 @@ Viewer::Viewer(engine::Instrument& instrument, render::ViewRenderer& renderer, S
     : instrument_(instrument), renderer_(renderer), settings_(std::move(settings)) {
     sanitize(settings_);
     renderer_.resizeCloud(kDefaultCloudWidth, kDefaultCloudHeight);
+    // Before the source starts, so that not even its first frame carries what nobody shows.
+    demand_ = demandOf();
+    demandGeneration_ = instrument_.setDemand(demand_);
 }
 
 // The demand, in data terms, of what the panels show now.
@@ -81,7 +84,7 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     if (wait.count() > 0)
         next = instrument_.waitForResult(wait, true);
     else if (changed && shown_)
-        next = instrument_.waitForResult(kRedoWait, false);
+        next = instrument_.waitForResult(redoWait_, false);
     if (!next)
         next = instrument_.update();
     const bool fresh = next && (*next)->newFrame;

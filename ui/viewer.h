@@ -42,7 +42,10 @@ public:
     // After a settings change the next frame waits this long at most for the result that answers it, so
     // what is drawn matches the settings; work that takes longer shows when it is done.
     static constexpr std::chrono::milliseconds kRedoWait{250};
+    // Tests on a loaded machine wait longer, so "the next frame shows it" does not depend on the load.
+    void setRedoWait(std::chrono::milliseconds wait) { redoWait_ = wait; }
 
+    // States its demand at once: make the viewer before starting the instrument.
     Viewer(engine::Instrument& instrument, render::ViewRenderer& renderer, Settings settings);
 
     // Once per UI frame, before drawUi(): states the demand, takes the newest result (waiting up to `wait`
@@ -122,6 +125,7 @@ private:
     Settings settings_;
     engine::Demand demand_;
     std::uint64_t demandGeneration_ = 0;
+    std::chrono::milliseconds redoWait_ = kRedoWait;
     processing::ShownFramePtr shown_;
     bool presentedShown_ = true; // presented() already counted shown_
     int cameraShownWidth_ = kDefaultCameraWidth;
