@@ -44,6 +44,8 @@ void Instrument::start() {
 void Instrument::startSession() {
     message_.clear();
     state_ = "closed";
+    // Before the capture thread starts, so that not even the first frame decodes what nobody shows.
+    session_->setDemand({demand_.needsCameraImage()});
     if (Status s = session_->start(); !s) {
         message_ = s.error().message;
         running_ = false;
@@ -51,7 +53,6 @@ void Instrument::startSession() {
         return;
     }
     running_ = true;
-    session_->setDemand({demand_.needsCameraImage()});
     processor_->setSession(session_);
 }
 

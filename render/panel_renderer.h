@@ -6,6 +6,8 @@
 #include "render/gl_objects.h"
 #include "render/render_target.h"
 
+#include <array>
+
 namespace dc::render {
 
 // The 2D data panels beside the cloud: depth in a colormap, confidence as red/green/blue (the camera panel
@@ -27,17 +29,16 @@ private:
     struct Panel {
         gl::Program program;
         GLint viewportSize = -1;
+        GLint minMeters = -1;
+        GLint inverseRangeMeters = -1;
     };
 
     bool begin(RenderTarget& target, const FrameTextures& textures, const Panel& panel, bool hasData) const;
     void draw() const;
 
     gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
-    Panel depth_;
+    std::array<Panel, kColormapCount> depth_; // one per colormap (colormapGlsl says why)
     Panel confidence_;
-    GLint depthMinMeters_ = -1;
-    GLint depthInverseRange_ = -1;
-    GLint depthColormapStops_ = -1;
 };
 
 } // namespace dc::render

@@ -85,12 +85,21 @@ const char* toString(PointColoring coloring) {
 }
 
 Status PointCloudRenderer::init() {
-    const std::string vertexShader =
-        std::string("#version 330 core\n") + kFrameTexturesGlsl + kColormapGlsl + kVertexMain;
-    Expected<gl::Program> program = gl::Program::link(vertexShader, kPointColorFragmentShader);
-    if (!program)
-        return Error{"point cloud shaders: " + program.error().message};
-    program_ = std::move(program).value();
+    for (int c = 0; c < kColormapCount; ++c) {
+        const std::string vertexShader = std::string("#version 330 core\n") + kFrameTexturesGlsl +
+                                         colormapGlsl(static_cast<Colormap>(c)) + kVertexMain;
+        Expected<gl::Program> program = gl::Program::link(vertexShader, kPointColorFragmentShader);
+        if (!program)
+            return Error{"point cloud shaders: " + program.error().message};
+        CloudProgram& cloud = programs_[static_cast<std::size_t>(c)];
+        cloud.program = std::move(program).value();
+        const gl::Program& p = cloud.program;
+        FrameTextures::connectSamplers(p);
+        cloud.uniforms = {p.uniformLocation("viewProjection"),  p.uniformLocation("depthIntrinsics"),
+                          p.uniformLocation("minConfidence"),   p.uniformLocation("nearMeters"),
+                          p.uniformLocation("pointSizePixels"), p.uniformLocation("coloring"),
+                          p.uniformLocation("minMeters"),       p.uniformLocation("inverseRangeMeters")};
+    }
     Expected<gl::Program> anchors = gl::Program::link(kAnchorVertexShader, kPointColorFragmentShader);
     if (!anchors)
         return Error{"anchor shaders: " + anchors.error().message};
@@ -99,12 +108,6 @@ Status PointCloudRenderer::init() {
     anchorPositions_ = anchorProgram_.uniformLocation("anchors");
     anchorHalfSize_ = anchorProgram_.uniformLocation("halfSize");
     emptyVertexArray_ = gl::VertexArray::create();
-    FrameTextures::connectSamplers(program_);
-    uniforms_ = {program_.uniformLocation("viewProjection"), program_.uniformLocation("depthIntrinsics"),
-                 program_.uniformLocation("minConfidence"),  program_.uniformLocation("nearMeters"),
-                 program_.uniformLocation("pointSizePixels"), program_.uniformLocation("coloring"),
-                 program_.uniformLocation("minMeters"),      program_.uniformLocation("inverseRangeMeters"),
-                 program_.uniformLocation("colormapStops")};
     glUseProgram(0);
     return Status::success();
 }
@@ -117,10 +120,11 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
     beginPass(target, params.background, true);
     if (params.accumulated) {
         params.accumulated->draw(params.worldToClip, params.pointSizePixels);
-    } else if (program_ && textures.hasDepth() && textures.depthIntrinsics().valid()) {
+    } else if (const CloudProgram& cloud = programs_[static_cast<std::size_t>(params.colormap)];
+               cloud.program && textures.hasDepth() && textures.depthIntrinsics().valid()) {
         glEnable(GL_PROGRAM_POINT_SIZE);
-        glUseProgram(program_.id());
-        setUniforms(textures, params);
+        glUseProgram(cloud.program.id());
+        setUniforms(cloud.uniforms, textures, params);
         textures.bind();
         glBindVertexArray(emptyVertexArray_.id());
         const GLsizei count = textures.depthWidth() * textures.depthHeight();
@@ -143,19 +147,18 @@ void PointCloudRenderer::drawAnchors(const CloudParams& params) const {
     glDrawArraysInstanced(GL_TRIANGLES, 0, 36, count);
 }
 
-void PointCloudRenderer::setUniforms(const FrameTextures& textures, const CloudParams& params) const {
+void PointCloudRenderer::setUniforms(const Uniforms& u, const FrameTextures& textures,
+                                     const CloudParams& params) const {
     const frame::Intrinsics& k = textures.depthIntrinsics();
-    glUniformMatrix4fv(uniforms_.viewProjection, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
-    glUniform4f(uniforms_.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy),
-                static_cast<float>(k.cx), static_cast<float>(k.cy));
-    glUniform1ui(uniforms_.minConfidence, static_cast<GLuint>(params.minConfidence));
-    glUniform1f(uniforms_.nearMeters, params.nearMeters);
-    glUniform1f(uniforms_.pointSizePixels, params.pointSizePixels);
-    glUniform1i(uniforms_.coloring, static_cast<GLint>(params.coloring));
-    glUniform3fv(uniforms_.colormapStops, kColormapStopCount, colormapStops(params.colormap).front().data());
-    glUniform1f(uniforms_.minMeters, params.rangeMinMeters);
-    glUniform1f(uniforms_.inverseRangeMeters,
-                1.0f / std::max(params.rangeMaxMeters - params.rangeMinMeters, 1e-6f));
+    glUniformMatrix4fv(u.viewProjection, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
+    glUniform4f(u.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy), static_cast<float>(k.cx),
+                static_cast<float>(k.cy));
+    glUniform1ui(u.minConfidence, static_cast<GLuint>(params.minConfidence));
+    glUniform1f(u.nearMeters, params.nearMeters);
+    glUniform1f(u.pointSizePixels, params.pointSizePixels);
+    glUniform1i(u.coloring, static_cast<GLint>(params.coloring));
+    glUniform1f(u.minMeters, params.rangeMinMeters);
+    glUniform1f(u.inverseRangeMeters, 1.0f / std::max(params.rangeMaxMeters - params.rangeMinMeters, 1e-6f));
 }
 
 } // namespace dc::render

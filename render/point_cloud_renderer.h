@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
@@ -69,19 +70,22 @@ private:
         GLint coloring = -1;
         GLint minMeters = -1;
         GLint inverseRangeMeters = -1;
-        GLint colormapStops = -1;
+    };
+    // A cloud program per colormap (colormapGlsl says why), with its uniforms.
+    struct CloudProgram {
+        gl::Program program;
+        Uniforms uniforms;
     };
 
-    void setUniforms(const FrameTextures& textures, const CloudParams& params) const;
+    void setUniforms(const Uniforms& uniforms, const FrameTextures& textures, const CloudParams& params) const;
     void drawAnchors(const CloudParams& params) const;
 
-    gl::Program program_;
+    std::array<CloudProgram, kColormapCount> programs_;
     gl::Program anchorProgram_;
     GLint anchorViewProjection_ = -1;
     GLint anchorPositions_ = -1;
     GLint anchorHalfSize_ = -1;
     gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
-    Uniforms uniforms_;
     std::size_t lastPointCount_ = 0;
 };
 
