@@ -22,6 +22,10 @@ struct Demand {
     // Which samples become points: the count, accumulation and the snapshot PLY keep what the cloud draws.
     frame::Confidence minConfidence = frame::Confidence::Low;
     float nearMeters = 0.1f;
+    // The cloud draws at most one point per panel pixel: each decimation x decimation cell of the shown
+    // depth becomes its nearest sample. 0: the smallest factor that fits cloudPanelPixels (0 = unknown).
+    int cloudDecimation = 0;
+    std::size_t cloudPanelPixels = 0;
     processing::ProcessingSettings processing;
     bool accumulate = false; // posed frames add their points to the world cloud
     std::size_t accumulateBudget = 1'000'000;

@@ -3,6 +3,7 @@
 #include "processing/aura.h"
 #include "processing/camera_image.h"
 #include "processing/confidence_filter.h"
+#include "processing/decimation.h"
 #include "processing/depth_statistics.h"
 #include "processing/fog.h"
 
@@ -58,6 +59,7 @@ void ProcessingGraph::reset() {
     fog_.clear();
     aura_.clear();
     range_.clear();
+    cloud_.clear();
     count_.clear();
 }
 
@@ -125,7 +127,8 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
     if (demand.needsPointColors() && shown.depth.data) {
         const int w = shown.depth.width(), h = shown.depth.height();
         shown.pointColors = cached(pointColors_, ImageKey{image.bytes, w, h}, kPointColorsStage, [&] {
-            return std::make_shared<const processing::RgbImage>(processing::pointColors(image, w, h, colourTable_));
+            return std::make_shared<const processing::RgbImage>(
+                processing::pointColors(image, w, h, colourTable_));
         });
     }
     if (demand.cameraPanelWidth > 0 && !image.empty()) {
@@ -138,7 +141,8 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
 }
 
 // Fog and aura share one conversion of the camera image to their size.
-void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand) {
+void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Frame& frame,
+                                 const Demand& demand) {
     if ((!demand.fog && !demand.aura) || frame.capturedImage.empty())
         return;
     const frame::CapturedImage& image = frame.capturedImage;
@@ -172,12 +176,35 @@ void ProcessingGraph::addDepthProducts(processing::ShownFrame& shown, const Dema
     if (demand.automaticRange)
         shown.automaticRange = cached(range_, depth, kDepthRangeStage,
                                       [&] { return processing::percentileRange(depth->depthMeters); });
-    if (demand.cloud || demand.accumulate)
-        shown.pointCount = cached(count_, CountKey{depth, demand.minConfidence, demand.nearMeters},
-                                  kPointCountStage, [&] {
-                                      return processing::countDrawablePoints(*depth, demand.minConfidence,
-                                                                             demand.nearMeters);
-                                  });
+    if (!demand.cloud && !demand.accumulate)
+        return;
+    shown.cloud = shownCloud(shown, demand);
+    const std::shared_ptr<const frame::DepthData>& drawn = shown.cloud.depth.data;
+    shown.pointCount =
+        cached(count_, CountKey{drawn, demand.minConfidence, demand.nearMeters}, kPointCountStage, [&] {
+            return processing::countDrawablePoints(*drawn, demand.minConfidence, demand.nearMeters);
+        });
+}
+
+processing::ShownCloud ProcessingGraph::shownCloud(const processing::ShownFrame& shown,
+                                                   const Demand& demand) {
+    const processing::ShownDepth& depth = shown.depth;
+    const int factor = demand.cloudDecimation > 0 ? demand.cloudDecimation
+                                                  : processing::footprintFactor(depth.width(), depth.height(),
+                                                                                demand.cloudPanelPixels);
+    if (factor <= 1 || !demand.cloud)
+        return {depth, shown.pointColors, 1};
+    return cached(
+        cloud_, DecimationKey{depth.data, shown.pointColors, factor, demand.minConfidence, demand.nearMeters},
+        kDecimationStage, [&] {
+            processing::DecimatedDepth d =
+                processing::decimateNearest(*depth.data, depth.intrinsics, shown.pointColors.get(), factor,
+                                            demand.minConfidence, demand.nearMeters);
+            processing::ShownDepth cloud = depth;
+            cloud.data = std::move(d.data);
+            cloud.intrinsics = d.intrinsics;
+            return processing::ShownCloud{cloud, std::move(d.colors), factor};
+        });
 }
 
 } // namespace dc::engine

@@ -22,6 +22,7 @@ inline constexpr std::string_view kFogStage = "fog";
 inline constexpr std::string_view kAuraStage = "aura";
 inline constexpr std::string_view kDepthRangeStage = "depth range";
 inline constexpr std::string_view kPointCountStage = "point count";
+inline constexpr std::string_view kDecimationStage = "decimation";
 
 // The camera panel's image is made at the size it is shown, in steps (so resizing the panel does not
 // redo it every frame), never above the image's own size.
@@ -84,6 +85,14 @@ private:
         bool operator==(const CountKey&) const = default;
     };
 
+    struct DecimationKey {
+        std::shared_ptr<const frame::DepthData> depth;
+        std::shared_ptr<const processing::RgbImage> colors;
+        int factor = 1;
+        frame::Confidence minConfidence = frame::Confidence::Low;
+        float nearMeters = 0.0f;
+        bool operator==(const DecimationKey&) const = default;
+    };
     // Runs `make` for `key` unless the memo already holds its result; timed and counted under `stage`.
     template <class Key, class Value, class Make>
     const Value& cached(Memo<Key, Value>& memo, const Key& key, std::string_view stage, Make&& make);
@@ -91,6 +100,7 @@ private:
     void addImages(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addDepthProducts(processing::ShownFrame& shown, const Demand& demand);
+    processing::ShownCloud shownCloud(const processing::ShownFrame& shown, const Demand& demand);
 
     processing::Pipeline pipeline_;
     processing::CameraColourTable colourTable_;
@@ -101,6 +111,7 @@ private:
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> fog_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> aura_;
     Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;
+    Memo<DecimationKey, processing::ShownCloud> cloud_;
     Memo<CountKey, std::size_t> count_;
     std::map<std::string, std::uint64_t, std::less<>> runs_;
     std::vector<processing::StageTiming>* timings_ = nullptr; // of the result being made

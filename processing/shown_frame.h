@@ -26,6 +26,15 @@ struct ShownDepth {
     int height() const { return data ? data->depthMeters.height : 0; }
 };
 
+// The samples the cloud draws: the shown depth, or fewer of them (processing/decimation.h) when the panel
+// has fewer pixels than the map has samples or the user asks for a decimation. The very objects of
+// ShownFrame::depth and ::pointColors when nothing is decimated.
+struct ShownCloud {
+    ShownDepth depth;
+    std::shared_ptr<const RgbImage> colors;
+    int factor = 1;
+};
+
 // A depth range in meters, e.g. the automatic colormap range.
 struct DepthRangeMeters {
     float minMeters = 0.0f;
@@ -44,7 +53,8 @@ struct ShownFrame {
     std::shared_ptr<const RgbaImage> fog;
     std::shared_ptr<const RgbaImage> aura;
     std::optional<DepthRangeMeters> automaticRange; // when the colormap follows the data
-    std::size_t pointCount = 0;                     // points the cloud draws of `depth`
+    ShownCloud cloud;                               // when the cloud or accumulation shows depth
+    std::size_t pointCount = 0;                     // points the cloud draws (of `cloud`)
     std::uint64_t demandGeneration = 0;             // the demand this answers
     bool newFrame = false;                          // a device frame's first result (not a redo)
     std::vector<StageTiming> timings;               // the stages that ran for this result

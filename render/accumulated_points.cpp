@@ -4,6 +4,7 @@
 
 #include <glm/gtc/type_ptr.hpp>
 
+#include <algorithm>
 #include <cstddef>
 
 namespace dc::render {
@@ -55,16 +56,33 @@ void AccumulatedPoints::sync(processing::PointAccumulator& accumulator) {
     const auto& slots = accumulator.slots();
     glBindBuffer(GL_ARRAY_BUFFER, buffer_.id());
     if (accumulator.generation() != generation_ || slots.size() != capacity_) {
-        // A new budget or a clear: the old contents are meaningless, reallocate and start over.
+        // A new budget, a clear or a new CPU copy: start over from everything the accumulator holds.
         capacity_ = slots.size();
-        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(capacity_ * kSize), nullptr, GL_DYNAMIC_DRAW);
+        glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(capacity_ * kSize), slots.data(),
+                     GL_DYNAMIC_DRAW);
         generation_ = accumulator.generation();
+        cpu_ = keepCpu_ ? slots : std::vector<processing::WorldPoint>{};
+        (void)accumulator.takeDirty();
+        ++version_;
     }
-    for (const auto& [begin, end] : accumulator.takeDirty())
+    for (const auto& [begin, end] : accumulator.takeDirty()) {
         glBufferSubData(GL_ARRAY_BUFFER, static_cast<GLintptr>(begin * kSize),
                         static_cast<GLsizeiptr>((end - begin) * kSize), &slots[begin]);
+        if (keepCpu_)
+            std::copy(slots.begin() + static_cast<std::ptrdiff_t>(begin),
+                      slots.begin() + static_cast<std::ptrdiff_t>(end),
+                      cpu_.begin() + static_cast<std::ptrdiff_t>(begin));
+        ++version_;
+    }
     glBindBuffer(GL_ARRAY_BUFFER, 0);
     count_ = accumulator.size();
+}
+
+void AccumulatedPoints::setCpuCopy(bool keep) {
+    if (keep == keepCpu_)
+        return;
+    keepCpu_ = keep;
+    generation_ = ~0ull; // the next sync starts over, copying everything
 }
 
 void AccumulatedPoints::draw(const glm::mat4& worldToClip, float pointSizePixels) const {

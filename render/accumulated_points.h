@@ -7,6 +7,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <vector>
 
 namespace dc::render {
 
@@ -21,6 +22,12 @@ public:
     // Draws the points into the bound framebuffer; the caller has begun the pass.
     void draw(const glm::mat4& worldToClip, float pointSizePixels) const;
     std::size_t pointCount() const { return count_; }
+    // Changes whenever sync() changed what is drawn.
+    std::uint64_t version() const { return version_; }
+    // Keeps a CPU copy of the points as well, for the CPU cloud path (CloudSplatter::splatWorld); turning
+    // it on copies everything at the next sync.
+    void setCpuCopy(bool keep);
+    const std::vector<processing::WorldPoint>& cpuCopy() const { return cpu_; }
 
 private:
     gl::Program program_;
@@ -31,6 +38,9 @@ private:
     std::size_t capacity_ = 0;
     std::size_t count_ = 0;
     std::uint64_t generation_ = ~0ull;
+    std::uint64_t version_ = 0;
+    bool keepCpu_ = false;
+    std::vector<processing::WorldPoint> cpu_;
 };
 
 } // namespace dc::render

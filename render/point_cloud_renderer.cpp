@@ -70,6 +70,28 @@ void main() {
 }
 )glsl";
 
+// Shows CloudSplatter's keys: the colour where a point landed, at the depth it landed at (so anchors are
+// hidden behind nearer points as on the GL_POINTS path); nothing where none did.
+constexpr const char* kSplatFragmentShader = R"glsl(#version 330 core
+uniform usampler2D splatKeys;
+out vec4 fragColor;
+
+void main() {
+    uvec2 key = texelFetch(splatKeys, ivec2(gl_FragCoord.xy), 0).rg;
+    if (key.y == 0xffffffffu)
+        discard;
+    gl_FragDepth = uintBitsToFloat(key.y);
+    fragColor = vec4(vec3(uvec3(key.x, key.x >> 8, key.x >> 16) & 255u) / 255.0, 1.0);
+}
+)glsl";
+
+constexpr const char* kSplatVertexShader = R"glsl(#version 330 core
+void main() {
+    vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));
+    gl_Position = vec4(corner, 0.0, 1.0);
+}
+)glsl";
+
 } // namespace
 
 const char* toString(PointColoring coloring) {
@@ -100,6 +122,13 @@ Status PointCloudRenderer::init() {
                           p.uniformLocation("pointSizePixels"), p.uniformLocation("coloring"),
                           p.uniformLocation("minMeters"),       p.uniformLocation("inverseRangeMeters")};
     }
+    Expected<gl::Program> splat = gl::Program::link(kSplatVertexShader, kSplatFragmentShader);
+    if (!splat)
+        return Error{"splat shaders: " + splat.error().message};
+    splatProgram_ = std::move(splat).value();
+    glUseProgram(splatProgram_.id());
+    glUniform1i(splatProgram_.uniformLocation("splatKeys"), 0);
+    splatKeys_ = gl::Texture::create();
     Expected<gl::Program> anchors = gl::Program::link(kAnchorVertexShader, kPointColorFragmentShader);
     if (!anchors)
         return Error{"anchor shaders: " + anchors.error().message};
@@ -135,6 +164,35 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
     endPass();
 }
 
+void PointCloudRenderer::renderSplat(RenderTarget& target, const CloudSplatter& splat,
+                                     const CloudParams& params) {
+    lastPointCount_ = splat.pointCount();
+    if (target.empty())
+        return;
+    beginPass(target, params.background, true);
+    if (splat.width() == target.width() && splat.height() == target.height() && splatProgram_) {
+        glActiveTexture(GL_TEXTURE0);
+        glBindTexture(GL_TEXTURE_2D, splatKeys_.id());
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        if (splatWidth_ != splat.width() || splatHeight_ != splat.height()) {
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+            glTexImage2D(GL_TEXTURE_2D, 0, GL_RG32UI, splat.width(), splat.height(), 0, GL_RG_INTEGER,
+                         GL_UNSIGNED_INT, splat.keys().data());
+            splatWidth_ = splat.width();
+            splatHeight_ = splat.height();
+        } else {
+            glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, splat.width(), splat.height(), GL_RG_INTEGER,
+                            GL_UNSIGNED_INT, splat.keys().data());
+        }
+        glUseProgram(splatProgram_.id());
+        glBindVertexArray(emptyVertexArray_.id());
+        glDrawArrays(GL_TRIANGLES, 0, 3);
+    }
+    drawAnchors(params);
+    endPass();
+}
+
 void PointCloudRenderer::drawAnchors(const CloudParams& params) const {
     if (!anchorProgram_ || params.anchors.empty())
         return;
@@ -151,8 +209,8 @@ void PointCloudRenderer::setUniforms(const Uniforms& u, const FrameTextures& tex
                                      const CloudParams& params) const {
     const frame::Intrinsics& k = textures.depthIntrinsics();
     glUniformMatrix4fv(u.viewProjection, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
-    glUniform4f(u.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy), static_cast<float>(k.cx),
-                static_cast<float>(k.cy));
+    glUniform4f(u.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy),
+                static_cast<float>(k.cx), static_cast<float>(k.cy));
     glUniform1ui(u.minConfidence, static_cast<GLuint>(params.minConfidence));
     glUniform1f(u.nearMeters, params.nearMeters);
     glUniform1f(u.pointSizePixels, params.pointSizePixels);

@@ -3,6 +3,7 @@
 #include "base/expected.h"
 #include "frame/frame.h"
 #include "render/accumulated_points.h"
+#include "render/cloud_splat.h"
 #include "render/colormap.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"
@@ -43,13 +44,16 @@ struct CloudParams {
     // (viewProjection composed with the current frame's world-to-camera transform).
     const AccumulatedPoints* accumulated = nullptr;
     glm::mat4 worldToClip{1.0f};
+
+    bool operator==(const CloudParams&) const = default;
 };
 
 inline constexpr std::size_t kMaxDrawnAnchors = 32;
 
 // Draws one point per depth sample, placed by unprojecting it through the depth intrinsics and coloured
-// as CloudParams says (by default the camera's colour, the Depth Cloud sample's pointCloudVertexShader). All the work happens in the
-// vertex shader: no vertex buffer, one vertex per depth pixel addressed by gl_VertexID.
+// as CloudParams says (by default the camera's colour, the Depth Cloud sample's pointCloudVertexShader). All
+// the work happens in the vertex shader: no vertex buffer, one vertex per depth pixel addressed by
+// gl_VertexID.
 class PointCloudRenderer {
 public:
     // Compiles the shaders; needs a current context.
@@ -57,6 +61,9 @@ public:
     // Clears `target` to the background and draws the cloud; draws nothing without depth or with invalid
     // intrinsics. Leaves framebuffer 0 bound.
     void render(RenderTarget& target, const FrameTextures& textures, const CloudParams& params);
+    // Clears `target` and shows a cloud splatted on the CPU (its size must be the target's), then draws
+    // the anchors depth-tested among its points. Leaves framebuffer 0 bound.
+    void renderSplat(RenderTarget& target, const CloudSplatter& splat, const CloudParams& params);
     // Vertices submitted by the last render(): every depth sample, culled ones included.
     std::size_t lastPointCount() const { return lastPointCount_; }
 
@@ -77,10 +84,15 @@ private:
         Uniforms uniforms;
     };
 
-    void setUniforms(const Uniforms& uniforms, const FrameTextures& textures, const CloudParams& params) const;
+    void setUniforms(const Uniforms& uniforms, const FrameTextures& textures,
+                     const CloudParams& params) const;
     void drawAnchors(const CloudParams& params) const;
 
     std::array<CloudProgram, kColormapCount> programs_;
+    gl::Program splatProgram_;
+    gl::Texture splatKeys_; // CloudSplatter's keys as GL_RG32UI: colour, window depth bits
+    int splatWidth_ = 0;
+    int splatHeight_ = 0;
     gl::Program anchorProgram_;
     GLint anchorViewProjection_ = -1;
     GLint anchorPositions_ = -1;

@@ -1,14 +1,31 @@
 #include "render/view_renderer.h"
 
+#include <algorithm>
+#include <array>
+
 namespace dc::render {
 
+const char* toString(CloudPath path) {
+    return path == CloudPath::Splat ? "CPU splat" : "GL points";
+}
+
+bool isSoftwareRenderer(std::string_view glRenderer) {
+    constexpr std::array<std::string_view, 5> kSoftware = {"llvmpipe", "softpipe", "swrast",
+                                                           "Software Rasterizer", "Basic Render Driver"};
+    return std::any_of(kSoftware.begin(), kSoftware.end(), [&](std::string_view name) {
+        return glRenderer.find(name) != std::string_view::npos;
+    });
+}
+
 Status ViewRenderer::init() {
-    if (Status s = cloud_.init(); !s)
+    if (Status s = cloudRenderer_.init(); !s)
         return s;
     if (Status s = panels_.init(); !s)
         return s;
     if (Status s = accumulated_.init(); !s)
         return s;
+    const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+    glRenderer_ = name ? name : "";
     // An instrument shows the sensor's own samples, not blends of neighbours; the cloud is drawn 1:1.
     cloudTarget_.setSampling(Sampling::Nearest);
     return {};
@@ -25,18 +42,11 @@ void ViewRenderer::uploadOnce(const std::shared_ptr<const T>& product, std::shar
 }
 
 void ViewRenderer::sync(const processing::ShownFrame& shown) {
-    if (shown.depth.data != depthUploaded_) {
-        textures_.uploadDepth(shown.depth);
-        depthUploaded_ = shown.depth.data;
-        colorsUploaded_.reset(); // the colour texture follows the depth map's size
+    if (shown.depth.data != depth_.data)
         panelsDrawnWith_.reset();
-        ++uploads_;
-    }
-    if (shown.pointColors != colorsUploaded_ || !textures_.colorTexture()) {
-        textures_.uploadColors(shown.pointColors.get());
-        colorsUploaded_ = shown.pointColors;
-        ++uploads_;
-    }
+    depth_ = shown.depth;
+    pointColors_ = shown.pointColors;
+    cloud_ = shown.cloud;
     uploadOnce(shown.cameraImage, cameraUploaded_, [this](const processing::RgbImage& image) {
         camera_.uploadRgb(image.width, image.height, image.pixels.data());
     });
@@ -48,28 +58,90 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     });
 }
 
+const FrameTextures& ViewRenderer::texturesFor(UploadedDepth& uploaded, const processing::ShownDepth& depth,
+                                               const std::shared_ptr<const processing::RgbImage>& colors,
+                                               bool withColors) {
+    if (depth.data != uploaded.depth) {
+        uploaded.textures.uploadDepth(depth);
+        uploaded.depth = depth.data;
+        uploaded.colorsUploaded = false; // the colour texture follows the depth map's size
+        ++uploads_;
+    }
+    if (withColors && (!uploaded.colorsUploaded || colors != uploaded.colors)) {
+        uploaded.textures.uploadColors(colors.get());
+        uploaded.colors = colors;
+        uploaded.colorsUploaded = true;
+        ++uploads_;
+    }
+    return uploaded.textures;
+}
+
+const FrameTextures& ViewRenderer::textures() {
+    return texturesFor(panelDepth_, depth_, pointColors_, true);
+}
+
 void ViewRenderer::syncAccumulated(processing::AccumulationWorker& worker) {
     worker.tryRead([this](processing::PointAccumulator& points) { accumulated_.sync(points); });
 }
 
 void ViewRenderer::renderPanels(const PanelParams& params) {
-    if (panelsDrawnWith_ == params || !textures_.hasDepth())
+    if (panelsDrawnWith_ == params || !depth_.data || (!params.depth && !params.confidence))
         return;
+    const FrameTextures& textures = texturesFor(panelDepth_, depth_, pointColors_, false);
     if (params.depth) {
-        depthTarget_.resize(textures_.depthWidth(), textures_.depthHeight());
-        panels_.renderDepth(depthTarget_, textures_, params.minMeters, params.maxMeters, params.colormap);
+        depthTarget_.resize(textures.depthWidth(), textures.depthHeight());
+        panels_.renderDepth(depthTarget_, textures, params.minMeters, params.maxMeters, params.colormap);
     }
     if (params.confidence) {
-        confidenceTarget_.resize(textures_.depthWidth(), textures_.depthHeight());
-        panels_.renderConfidence(confidenceTarget_, textures_);
+        confidenceTarget_.resize(textures.depthWidth(), textures.depthHeight());
+        panels_.renderConfidence(confidenceTarget_, textures);
     }
     panelsDrawnWith_ = params;
     ++panelRenders_;
 }
 
+void ViewRenderer::setCloudPath(CloudPath path) {
+    path_ = path;
+    accumulated_.setCpuCopy(path == CloudPath::Splat);
+}
+
 void ViewRenderer::renderCloud(CloudParams params, bool accumulated) {
     params.accumulated = accumulated ? &accumulated_ : nullptr;
-    cloud_.render(cloudTarget_, textures_, params);
+    CloudDrawing drawing{params,
+                         accumulated ? nullptr : cloud_.depth.data,
+                         accumulated ? nullptr : cloud_.colors,
+                         accumulated ? accumulated_.version() : 0,
+                         path_,
+                         cloudTarget_.width(),
+                         cloudTarget_.height()};
+    if (cloudDrawn_ == drawing)
+        return;
+    drawCloud(params, accumulated);
+    cloudDrawn_ = std::move(drawing);
+    ++cloudRenders_;
+}
+
+void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
+    const bool camera = params.coloring == PointColoring::Camera;
+    if (path_ == CloudPath::Points) {
+        // Undecimated, the cloud's samples are the panels' own: one set of textures serves both.
+        UploadedDepth& uploaded = cloud_.factor > 1 ? cloudDepth_ : panelDepth_;
+        const FrameTextures& textures = accumulated || !cloud_.depth.data
+                                            ? panelDepth_.textures
+                                            : texturesFor(uploaded, cloud_.depth, cloud_.colors, camera);
+        cloudRenderer_.render(cloudTarget_, textures, params);
+        return;
+    }
+    const int width = cloudTarget_.width();
+    const int height = cloudTarget_.height();
+    if (accumulated)
+        splatter_.splatWorld(accumulated_.cpuCopy(), accumulated_.pointCount(), params, width, height);
+    else if (cloud_.depth.data && cloud_.depth.intrinsics.valid())
+        splatter_.splatSamples(*cloud_.depth.data, cloud_.depth.intrinsics, cloud_.colors.get(), params,
+                               width, height);
+    else
+        splatter_.splatWorld({}, 0, params, width, height);
+    cloudRenderer_.renderSplat(cloudTarget_, splatter_, params);
 }
 
 void ViewRenderer::resizeCloud(int width, int height) {

@@ -4,6 +4,7 @@
 #include "processing/accumulation_worker.h"
 #include "processing/shown_frame.h"
 #include "render/accumulated_points.h"
+#include "render/cloud_splat.h"
 #include "render/colormap.h"
 #include "render/frame_textures.h"
 #include "render/panel_renderer.h"
@@ -14,6 +15,8 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
+#include <string_view>
 
 namespace dc::render {
 
@@ -27,6 +30,14 @@ struct PanelParams {
 
     bool operator==(const PanelParams&) const = default;
 };
+
+// How the cloud reaches the screen: GL_POINTS on the GPU, or splatted on the CPU's cores (CloudSplatter)
+// and shown as one image. On software GL the splat is several times cheaper; on a GPU the points are.
+enum class CloudPath { Points, Splat };
+const char* toString(CloudPath path);
+// Whether GL_RENDERER names a software rasteriser (Mesa's llvmpipe, softpipe or swrast, Windows' basic
+// render driver through D3D12), where the splat path wins.
+bool isSoftwareRenderer(std::string_view glRenderer);
 
 // Everything the GL thread draws, in one place: the engine's products uploaded as textures, the cloud, the
 // depth and confidence panels, accumulated points. It only uploads and draws: a product already on the GPU
@@ -42,8 +53,14 @@ public:
     void syncAccumulated(processing::AccumulationWorker& worker);
     // Draws the depth and confidence panels at the depth map's size if their data or `params` changed.
     void renderPanels(const PanelParams& params);
-    // Draws the cloud into cloudTarget() (params.accumulated is filled in by accumulate mode).
+    // Draws the cloud into cloudTarget() (params.accumulated is filled in by accumulate mode), unless
+    // nothing it shows changed since the last time: the same samples, parameters, size and path.
     void renderCloud(CloudParams params, bool accumulated);
+    void setCloudPath(CloudPath path);
+    CloudPath cloudPath() const { return path_; }
+    // GL_RENDERER of the context init() ran in, and whether it rasterises in software.
+    const std::string& glRenderer() const { return glRenderer_; }
+    bool softwareGl() const { return isSoftwareRenderer(glRenderer_); }
     void resizeCloud(int width, int height);
 
     const RenderTarget& cloudTarget() const { return cloudTarget_; }
@@ -52,18 +69,55 @@ public:
     const RgbaTexture& cameraTexture() const { return camera_; }
     const RgbaTexture& fogTexture() const { return fog_; }
     const RgbaTexture& auraTexture() const { return aura_; }
-    const FrameTextures& textures() const { return textures_; }
+    // The shown depth as textures, uploaded if it was not yet (the depth panel and GL_POINTS read them).
+    const FrameTextures& textures();
     // Work done, for tests that check that nothing is redone for nothing.
     std::uint64_t uploads() const { return uploads_; }
     std::uint64_t panelRenders() const { return panelRenders_; }
+    std::uint64_t cloudRenders() const { return cloudRenders_; }
+    // Points the last cloud drawing processed (after decimation; accumulated points in accumulate mode).
+    std::size_t cloudPoints() const { return cloudRenderer_.lastPointCount(); }
 
 private:
-    // Uploads `product` unless it is the one uploaded last (held, so its address is never reused).
-    template <class T, class Upload> void uploadOnce(const std::shared_ptr<const T>& product,
-                                                    std::shared_ptr<const T>& uploaded, Upload&& upload);
+    // A FrameTextures and the products it holds, so a product is uploaded once.
+    struct UploadedDepth {
+        FrameTextures textures;
+        std::shared_ptr<const frame::DepthData> depth;
+        std::shared_ptr<const processing::RgbImage> colors;
+        bool colorsUploaded = false;
+    };
+    // What the last cloud drawing showed: the same again is not drawn again.
+    struct CloudDrawing {
+        CloudParams params;
+        std::shared_ptr<const frame::DepthData> depth;
+        std::shared_ptr<const processing::RgbImage> colors;
+        std::uint64_t accumulatedVersion = 0;
+        CloudPath path = CloudPath::Points;
+        int width = 0;
+        int height = 0;
+        bool operator==(const CloudDrawing&) const = default;
+    };
 
-    FrameTextures textures_;
-    PointCloudRenderer cloud_;
+    // Uploads `product` unless it is the one uploaded last (held, so its address is never reused).
+    template <class T, class Upload>
+    void uploadOnce(const std::shared_ptr<const T>& product, std::shared_ptr<const T>& uploaded,
+                    Upload&& upload);
+    // Brings `uploaded` to `depth` (and `colors` when the points read them).
+    const FrameTextures& texturesFor(UploadedDepth& uploaded, const processing::ShownDepth& depth,
+                                     const std::shared_ptr<const processing::RgbImage>& colors,
+                                     bool withColors);
+    void drawCloud(const CloudParams& params, bool accumulated);
+
+    UploadedDepth panelDepth_;
+    UploadedDepth cloudDepth_; // the cloud's samples when they are decimated
+    processing::ShownDepth depth_;
+    std::shared_ptr<const processing::RgbImage> pointColors_;
+    processing::ShownCloud cloud_;
+    PointCloudRenderer cloudRenderer_;
+    CloudSplatter splatter_;
+    CloudPath path_ = CloudPath::Points;
+    std::string glRenderer_;
+    std::optional<CloudDrawing> cloudDrawn_;
     PanelRenderer panels_;
     AccumulatedPoints accumulated_;
     RenderTarget cloudTarget_;
@@ -72,14 +126,13 @@ private:
     RgbaTexture camera_;
     RgbaTexture fog_;
     RgbaTexture aura_;
-    std::shared_ptr<const frame::DepthData> depthUploaded_;
-    std::shared_ptr<const processing::RgbImage> colorsUploaded_;
     std::shared_ptr<const processing::RgbImage> cameraUploaded_;
     std::shared_ptr<const processing::RgbaImage> fogUploaded_;
     std::shared_ptr<const processing::RgbaImage> auraUploaded_;
     std::optional<PanelParams> panelsDrawnWith_; // reset by a new depth map
     std::uint64_t uploads_ = 0;
     std::uint64_t panelRenders_ = 0;
+    std::uint64_t cloudRenders_ = 0;
 };
 
 } // namespace dc::render

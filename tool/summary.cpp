@@ -20,6 +20,7 @@ std::string summaryJson(const ui::ViewerSummary& s, const std::string& renderer,
                      {"viewerFps", f.shownPerSecond},
                      {"uiFps", s.uiFps},
                      {"pointsDrawn", s.pointsDrawn},
+                     {"cloudPath", s.cloudPath},
                      {"depthWidth", s.depthWidth},
                      {"depthHeight", s.depthHeight},
                      {"stageMedianMs", stages}};

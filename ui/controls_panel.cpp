@@ -1,5 +1,7 @@
 #include "ui/panels.h"
 
+#include <cstdio>
+
 namespace dc::ui {
 
 namespace {
@@ -30,6 +32,26 @@ bool viewSection(CloudSettings& cloud) {
     cloud.coloring = static_cast<render::PointColoring>(coloring);
     changed |= ImGui::SliderFloat("Point size", &cloud.pointSizePixels, 1.0f, 8.0f, "%.1f px");
     changed |= ImGui::SliderFloat("Near limit", &cloud.nearMeters, 0.0f, 2.0f, "%.2f m");
+    return changed;
+}
+
+// How the cloud is drawn: the path (the one in use, and why, beside it) and the decimation with the
+// factor and point count it gives.
+bool drawingSection(CloudSettings& cloud, const ControlsContext& context) {
+    int path = static_cast<int>(cloud.path);
+    bool changed = ImGui::Combo("Cloud path", &path, "automatic\0GL points\0CPU splat\0");
+    cloud.path = static_cast<CloudPathChoice>(path);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Drawing with %s.\nAutomatic draws on the CPU's cores when OpenGL renders in software.",
+            context.cloudPath.c_str());
+    char format[96];
+    std::snprintf(format, sizeof format, "%s: %dx, %llu points", cloud.decimation == 0 ? "fit panel" : "%dx",
+                  context.cloudDecimation, static_cast<unsigned long long>(context.cloudPoints));
+    changed |= ImGui::SliderInt("Decimation", &cloud.decimation, 0, kMaxDecimation, format);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Each cell of NxN depth samples becomes its nearest point.\n"
+                          "'fit panel' keeps at most one point per pixel of the cloud panel.");
     return changed;
 }
 
@@ -187,6 +209,7 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
     changed |= cameraSection(settings.camera);
     ImGui::Separator();
     changed |= processingSection(settings.processing, context);
+    changed |= drawingSection(settings.cloud, context);
     ImGui::Separator();
     changed |= panelsSection(settings.panels);
     ImGui::PopItemWidth();

@@ -106,6 +106,9 @@ struct ControlsContext {
     std::size_t anchorCount = 0;
     bool hasPose = false; // accumulate needs world coordinates
     std::size_t accumulatedPoints = 0;
+    std::string cloudPath;        // the path drawing the cloud, and why
+    int cloudDecimation = 1;      // the factor in use
+    std::uint64_t cloudPoints = 0; // points the cloud draws
     engine::RecordingStatus record;
     RecordPanelState* recordState = nullptr;
 };
@@ -130,6 +133,7 @@ struct StatusLine {
     engine::FrameCounts frames;
     double uiFps = 0.0;
     std::uint64_t pointsDrawn = 0;
+    std::string cloudPath; // e.g. "CPU splat (software GL)"
     std::vector<processing::StageTiming> stageMedians;
     std::optional<double> latencyMs; // median device timestamp to screen; none when clocks differ
 };

@@ -127,6 +127,10 @@ void sanitize(CloudSettings& c) {
     const auto coloring = static_cast<int>(c.coloring);
     if (coloring < 0 || coloring >= render::kPointColoringCount)
         c.coloring = d.cloud.coloring;
+    const auto path = static_cast<int>(c.path);
+    if (path < 0 || path > static_cast<int>(CloudPathChoice::Splat))
+        c.path = d.cloud.path;
+    c.decimation = std::clamp(c.decimation, 0, kMaxDecimation);
 }
 
 void sanitize(Settings& s) {
@@ -167,6 +171,8 @@ std::string settingsToJson(const Settings& s) {
                   {"pointSizePixels", c.pointSizePixels},
                   {"nearMeters", c.nearMeters},
                   {"coloring", static_cast<int>(c.coloring)},
+                  {"path", static_cast<int>(c.path)},
+                  {"decimation", c.decimation},
                   {"autoRotate", c.motion.enabled},
                   {"rotationSpeed", c.motion.speed},
                   {"scaleMovement", c.motion.scaleMovement},
@@ -217,6 +223,10 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     int coloring = static_cast<int>(s.cloud.coloring);
     read(c, "coloring", coloring);
     s.cloud.coloring = static_cast<render::PointColoring>(coloring); // sanitize() checks the range
+    int path = static_cast<int>(s.cloud.path);
+    read(c, "path", path);
+    s.cloud.path = static_cast<CloudPathChoice>(path);
+    read(c, "decimation", s.cloud.decimation);
     read(c, "autoRotate", s.cloud.motion.enabled);
     read(c, "rotationSpeed", s.cloud.motion.speed);
     read(c, "scaleMovement", s.cloud.motion.scaleMovement);

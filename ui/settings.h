@@ -26,11 +26,19 @@ struct PanelVisibility {
     bool aura = false;
 };
 
+// Which cloud path draws (render::CloudPath): automatic picks the CPU splat on software GL.
+enum class CloudPathChoice { Automatic, Points, Splat };
+inline constexpr int kMaxDecimation = 8;
+
 struct CloudSettings {
     frame::Confidence minConfidence = frame::Confidence::Low; // points below are not drawn
     float pointSizePixels = 2.0f;
     float nearMeters = 0.1f; // points nearer than this are not drawn (the sample drops the nearest too)
     render::PointColoring coloring = render::PointColoring::Camera;
+    CloudPathChoice path = CloudPathChoice::Automatic;
+    // Each decimation x decimation cell of the depth becomes its nearest point; 0 fits the points to the
+    // panel's pixels (never more points than the panel can show).
+    int decimation = 0;
     render::AutoMotion motion;
     render::OrbitView orbit;
 };

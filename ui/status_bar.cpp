@@ -20,7 +20,8 @@ std::vector<std::string> statusParts(const StatusLine& s) {
     std::vector<std::string> parts{s.source + " | " + s.state,
                                    format("device %.1f fps | shown %.1f fps | dropped %llu", f.deliveredPerSecond,
                                           f.shownPerSecond, static_cast<unsigned long long>(f.dropped)),
-                                   format("points %llu", static_cast<unsigned long long>(s.pointsDrawn))};
+                                   format("points %llu, %s", static_cast<unsigned long long>(s.pointsDrawn),
+                                          s.cloudPath.c_str())};
     if (s.latencyMs)
         parts.push_back(format("latency %.1f ms", *s.latencyMs));
     return parts;

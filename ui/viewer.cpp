@@ -64,6 +64,9 @@ engine::Demand Viewer::demandOf() const {
                        (d.depthImage || (show.cloud && cloud.coloring == render::PointColoring::Depth));
     d.minConfidence = cloud.minConfidence;
     d.nearMeters = cloud.nearMeters;
+    d.cloudDecimation = cloud.decimation;
+    const render::RenderTarget& target = renderer_.cloudTarget();
+    d.cloudPanelPixels = static_cast<std::size_t>(target.width()) * static_cast<std::size_t>(target.height());
     d.processing = settings_.processing;
     const AccumulateSettings& a = settings_.accumulate;
     d.accumulate = a.enabled;
@@ -81,10 +84,12 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     demand_ = demand;
     demandGeneration_ = instrument_.setDemand(demand);
     std::optional<processing::ShownFramePtr> next;
+    const auto waitStart = Clock::now();
     if (wait.count() > 0)
         next = instrument_.waitForResult(wait, true);
     else if (changed && shown_)
         next = instrument_.waitForResult(redoWait_, false);
+    lastWaitMs_ = millisecondsSince(waitStart);
     if (!next)
         next = instrument_.update();
     const bool fresh = next && (*next)->newFrame;
@@ -124,7 +129,8 @@ render::CloudParams Viewer::cloudParams(double timeSeconds) const {
     const CloudSettings& cloud = settings_.cloud;
     const render::OrbitView view = combine(cloud.orbit, render::autoOffset(cloud.motion, timeSeconds));
     const render::RenderTarget& target = renderer_.cloudTarget();
-    const float aspect = static_cast<float>(target.width()) / static_cast<float>(std::max(target.height(), 1));
+    const float aspect =
+        static_cast<float>(target.width()) / static_cast<float>(std::max(target.height(), 1));
     params.viewProjection = render::cloudViewProjection(
         view, pivotDepthMeters_, render::verticalFovRadians(shown_->depth.intrinsics), aspect);
     params.minConfidence = cloud.minConfidence;
@@ -140,8 +146,29 @@ render::CloudParams Viewer::cloudParams(double timeSeconds) const {
     return params;
 }
 
+render::CloudPath Viewer::cloudPath() const {
+    switch (settings_.cloud.path) {
+    case CloudPathChoice::Points:
+        return render::CloudPath::Points;
+    case CloudPathChoice::Splat:
+        return render::CloudPath::Splat;
+    case CloudPathChoice::Automatic:
+        break;
+    }
+    return renderer_.softwareGl() ? render::CloudPath::Splat : render::CloudPath::Points;
+}
+
+std::string Viewer::cloudPathText() const {
+    const render::CloudPath path = cloudPath();
+    std::string why = settings_.cloud.path != CloudPathChoice::Automatic ? "chosen"
+                      : path == render::CloudPath::Splat                 ? "software GL"
+                                                                         : "hardware GL";
+    return std::string(render::toString(path)) + " (" + why + ")";
+}
+
 void Viewer::renderCloud(double timeSeconds) {
     const auto start = Clock::now();
+    renderer_.setCloudPath(cloudPath());
     const render::CloudParams params = cloudParams(timeSeconds);
     if (accumulating())
         renderer_.syncAccumulated(instrument_.accumulation());
@@ -232,8 +259,8 @@ Expected<std::string> Viewer::saveSnapshot(const std::string& parent) const {
 
 StatusLine Viewer::statusLine() {
     const engine::InstrumentStatus s = instrument_.status();
-    StatusLine line{s.source, s.state, s.message, s.frames, uiFrames_.perSecond(), pointsShown(), {},
-                    s.latencyMs};
+    StatusLine line{s.source,      s.state,         s.message, s.frames,   uiFrames_.perSecond(),
+                    pointsShown(), cloudPathText(), {},        s.latencyMs};
     for (const engine::StageSummary& stage : s.stages)
         line.stageMedians.push_back({stage.name, stage.medianMs});
     return line;
@@ -253,8 +280,8 @@ StatsView Viewer::statsView() {
 
 ViewerSummary Viewer::summary() {
     const engine::InstrumentStatus s = instrument_.status();
-    ViewerSummary summary{s.source, s.frames, uiFrames_.perSecond(), pointsShown(), 0, 0,
-                          instrument_.stages().all(), s.latencyMs};
+    ViewerSummary summary{s.source, s.frames, uiFrames_.perSecond(),      pointsShown(), cloudPathText(),
+                          0,        0,        instrument_.stages().all(), s.latencyMs};
     if (shown_) {
         summary.depthWidth = shown_->depth.width();
         summary.depthHeight = shown_->depth.height();

@@ -23,6 +23,7 @@ struct ViewerSummary {
     engine::FrameCounts frames;
     double uiFps = 0.0; // UI frames drawn per second (with or without a new device frame)
     std::uint64_t pointsDrawn = 0;
+    std::string cloudPath; // Viewer::cloudPathText()
     int depthWidth = 0;
     int depthHeight = 0;
     std::vector<engine::StageSummary> stages;
@@ -69,7 +70,12 @@ public:
     // Writes the panels as PNGs and the points drawn as cloud.ply (camera frame) into a new directory
     // under `parent` named after the frame; returns that directory.
     Expected<std::string> saveSnapshot(const std::string& parent) const;
+    // The cloud path the settings and the GL choose, and that with the reason ("CPU splat (software GL)").
+    render::CloudPath cloudPath() const;
+    std::string cloudPathText() const;
     StatusLine statusLine();
+    // How long the last update() waited for the engine's result (benchmarks take it off the frame time).
+    double lastWaitMs() const { return lastWaitMs_; }
     ViewerSummary summary();
     StatsView statsView();
     // The result drawn last (null before the first).
@@ -127,6 +133,7 @@ private:
     std::uint64_t demandGeneration_ = 0;
     std::chrono::milliseconds redoWait_ = kRedoWait;
     processing::ShownFramePtr shown_;
+    double lastWaitMs_ = 0.0;
     bool presentedShown_ = true; // presented() already counted shown_
     int cameraShownWidth_ = kDefaultCameraWidth;
     float pivotDepthMeters_ = 1.0f;

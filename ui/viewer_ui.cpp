@@ -129,6 +129,9 @@ void Viewer::drawControls(float width, float height) {
                                   anchors_.size(),
                                   shown_ && shown_->frame->pose,
                                   instrument_.accumulation().size(),
+                                  cloudPathText(),
+                                  shown_ ? shown_->cloud.factor : 1,
+                                  pointsShown(),
                                   instrument_.recording(),
                                   &recordState_};
     const ControlsResult r = drawControlsPanel(settings_, context, &settings_.panels.controls);

@@ -145,6 +145,33 @@ TEST_F(InstrumentTest, AnchorsOnTheDeskLandOnTheAnalyticPointsAndMeasureTheirDis
     EXPECT_EQ(viewer_->anchors().size(), 2u) << "Z undoes the last anchor";
 }
 
+TEST_F(InstrumentTest, EitherCloudPathAndAnyDecimationKeepAnchorsOnTheAnalyticPoints) {
+    const frame::Intrinsics k = shown().depth.intrinsics;
+    const std::pair<CloudPathChoice, const char*> paths[] = {{CloudPathChoice::Points, "GL points"},
+                                                             {CloudPathChoice::Splat, "CPU splat"}};
+    double time = 0.0;
+    int u = 90;
+    for (const auto& [path, name] : paths)
+        for (const int decimation : {1, 3}) {
+            time += 1.0;
+            u += 12; // a new place each time: two clicks on one place would make a double-click
+            viewer_->settings().cloud.path = path;
+            viewer_->settings().cloud.decimation = decimation;
+            while (!viewer_->anchors().empty())
+                pressKey('Z', time);
+            frame(time);
+            EXPECT_EQ(viewer_->cloudPathText().rfind(name, 0), 0u) << viewer_->cloudPathText();
+            EXPECT_EQ(shown().cloud.factor, decimation);
+            EXPECT_EQ(renderer_.cloudPath() == render::CloudPath::Splat, path == CloudPathChoice::Splat);
+            ASSERT_EQ(viewer_->anchors().size(), 0u);
+            click(screenOfCloudSample(u, 178), time);
+            ASSERT_EQ(viewer_->anchors().size(), 1u) << name << " " << decimation;
+            const glm::dvec3 anchor(viewer_->anchors().inCameraFrame(shown().frame->pose)[0]);
+            const glm::dvec3 truth = analyticDeskPoint(k, u, 178);
+            EXPECT_LT(glm::length(anchor - truth), 1e-3 * truth.z) << name << " " << decimation;
+        }
+}
+
 TEST_F(InstrumentTest, AnchorsAreDrawnAsCubesInTheCloud) {
     viewer_->settings().cloud.pointSizePixels = 1.0f;
     frame(0.0);

@@ -1,0 +1,32 @@
+#pragma once
+
+#include "frame/frame.h"
+#include "processing/camera_image.h"
+
+#include <cstddef>
+#include <memory>
+
+namespace dc::processing {
+
+// The samples the cloud draws when it draws fewer than the depth map holds: each factor x factor cell of
+// the map becomes one sample, the nearest of the cell's samples that the cloud would draw (so a cell
+// keeps the surface in front, as a depth test would, and never loses a point to a culled neighbour).
+// Placed at the cell's centre: the intrinsics are the map's divided by the factor, as RealSense's
+// decimation filter does.
+struct DecimatedDepth {
+    std::shared_ptr<const frame::DepthData> data; // confidence of the kept sample; 0 depth: none kept
+    frame::Intrinsics intrinsics;
+    std::shared_ptr<const RgbImage> colors; // the kept sample's colour; null when none were given
+};
+
+// The smallest factor at which a width x height map has at most `maxPoints` cells (1 when it already has,
+// or when maxPoints is 0 = unknown).
+int footprintFactor(int width, int height, std::size_t maxPoints);
+
+// Decimates `depth` by `factor` (>= 2) keeping the nearest drawable sample of each cell (keepSample with
+// minLevel and nearMeters); `colors`, when given, has one colour per sample of `depth`.
+DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
+                               const RgbImage* colors, int factor, frame::Confidence minLevel,
+                               float nearMeters);
+
+} // namespace dc::processing

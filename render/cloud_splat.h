@@ -1,0 +1,69 @@
+#pragma once
+
+#include "frame/frame.h"
+#include "processing/camera_image.h"
+#include "processing/point_accumulator.h"
+#include "render/colormap.h"
+
+#include <glm/glm.hpp>
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <vector>
+
+namespace dc::render {
+
+struct CloudParams;
+
+// The cloud drawn on the CPU, for software OpenGL: on llvmpipe the point raster runs its vertex work on
+// one thread and costs more per point than the pixels the point covers, while projecting a point and
+// writing a few pixels costs a few nanoseconds on any core. Each point is projected exactly as the
+// cloud's vertex shader places it and covers the pixels a GL point of the same size covers; the nearest
+// point wins each pixel, as GL's depth test (GL_LESS) decides.
+//
+// The result is one 64-bit key per pixel, bottom row first like a GL texture: the window depth's float
+// bits in the high word (positive floats order like their bits) and the colour (R | G << 8 | B << 16) in
+// the low word, so "nearest wins" is a plain minimum. kEmpty where no point landed.
+class CloudSplatter {
+public:
+    static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
+
+    // The frame's samples placed through their intrinsics and coloured as `params` says (point colours:
+    // one RGB per sample, or null for mid-gray). Pixels of `width` x `height`.
+    void splatSamples(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
+                      const processing::RgbImage* colors, const CloudParams& params, int width, int height);
+    // Accumulated world points (the first `count` of `points`) through params.worldToClip.
+    void splatWorld(const std::vector<processing::WorldPoint>& points, std::size_t count,
+                    const CloudParams& params, int width, int height);
+
+    const std::vector<std::uint64_t>& keys() const { return keys_; }
+    int width() const { return width_; }
+    int height() const { return height_; }
+    // Points that were projected (kept by confidence and near limit), whether or not they landed inside.
+    std::size_t pointCount() const { return pointCount_; }
+
+    // One splat before it is written: its first covered pixel and its key.
+    struct Splat {
+        std::int32_t x = 0;
+        std::int32_t y = 0;
+        std::uint64_t key = kEmpty;
+    };
+
+private:
+    template <class Project>
+    void run(int sourceRows, const CloudParams& params, int width, int height, Project&& project);
+    void write(int band, int bands, int pointSize);
+
+    std::vector<std::uint64_t> keys_;
+    int width_ = 0;
+    int height_ = 0;
+    std::size_t pointCount_ = 0;
+    // [piece][band]: the splats piece `piece` of the sources made that touch rows of band `band`. Kept
+    // between frames so a steady cloud allocates nothing.
+    std::vector<std::vector<std::vector<Splat>>> splats_;
+    std::vector<std::size_t> counts_;
+    std::array<std::uint32_t, 1024> colormapTable_{};
+};
+
+} // namespace dc::render

@@ -1,0 +1,147 @@
+// The CPU splat path against the GL_POINTS path: the same cloud from the same view must cover the same
+// pixels with the same colours, at every point size; anchors hide behind nearer points on both.
+
+#include "gl_test_support.h"
+
+#include "devices/synthetic/synthetic_device.h"
+#include "processing/point_colors.h"
+#include "render/cloud_splat.h"
+#include "render/frame_textures.h"
+#include "render/orbit_camera.h"
+#include "render/point_cloud_renderer.h"
+#include "render/render_target.h"
+
+#include <utility>
+
+namespace dc::render::test {
+namespace {
+
+constexpr int kWidth = 480;
+constexpr int kHeight = 360;
+const glm::vec3 kBackground{1.0f, 0.0f, 1.0f}; // magenta: no colour of the synthetic scene
+
+class CloudSplatTest : public GlTest, public ::testing::WithParamInterface<float> {
+protected:
+    void SetUp() override {
+        GlTest::SetUp();
+        ASSERT_FALSE(HasFatalFailure());
+        ASSERT_TRUE(renderer_.init().ok());
+        ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+        frame_ = devices::SyntheticDevice{}.makeFrame(0, 0.0);
+        uploadFrame(textures_, *frame_);
+        const frame::Intrinsics k = frame_->depthIntrinsics();
+        colors_ = processing::pointColors(frame_->capturedImage, k.width, k.height);
+        // An oblique view, so that points overlap and the depth test decides.
+        params_.viewProjection = cloudViewProjection({0.5f, 0.3f, 1.2f, {0.02f, -0.01f}}, 1.2f,
+                                                     verticalFovRadians(k), float(kWidth) / kHeight);
+        params_.pointSizePixels = GetParam();
+        params_.background = kBackground;
+    }
+
+    std::vector<std::uint8_t> drawPoints() {
+        renderer_.render(target_, textures_, params_);
+        return target_.readRgba();
+    }
+    std::vector<std::uint8_t> drawSplat() {
+        splatter_.splatSamples(*frame_->sceneDepth, frame_->depthIntrinsics(), &colors_, params_, kWidth,
+                               kHeight);
+        renderer_.renderSplat(target_, splatter_, params_);
+        return target_.readRgba();
+    }
+
+    PointCloudRenderer renderer_;
+    CloudSplatter splatter_;
+    FrameTextures textures_;
+    RenderTarget target_;
+    frame::FramePtr frame_;
+    processing::RgbImage colors_;
+    CloudParams params_;
+};
+
+bool covered(const std::vector<std::uint8_t>& rgba, int x, int y) {
+    return !(pixelAt(rgba, kWidth, x, y) == Rgba{255, 0, 255, 255});
+}
+
+// Whether a pixel within one of (x, y) is covered: the masks may differ by a pixel at the silhouettes,
+// where a point centre falls exactly on a pixel boundary.
+bool coveredNear(const std::vector<std::uint8_t>& rgba, int x, int y) {
+    for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx)
+            if (x + dx >= 0 && x + dx < kWidth && y + dy >= 0 && y + dy < kHeight &&
+                covered(rgba, x + dx, y + dy))
+                return true;
+    return false;
+}
+
+TEST_P(CloudSplatTest, SplatAndGlPointsAgree) {
+    const std::vector<std::uint8_t> points = drawPoints();
+    const std::vector<std::uint8_t> splat = drawSplat();
+    ASSERT_TRUE(noGlError());
+    int coveredBoth = 0, agreeing = 0, onlyOne = 0, coveredPoints = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            const bool p = covered(points, x, y);
+            const bool s = covered(splat, x, y);
+            coveredPoints += p;
+            if ((p && !coveredNear(splat, x, y)) || (s && !coveredNear(points, x, y)))
+                ++onlyOne;
+            if (p && s) {
+                ++coveredBoth;
+                agreeing +=
+                    static_cast<bool>(near(pixelAt(points, kWidth, x, y), pixelAt(splat, kWidth, x, y), 6));
+            }
+        }
+    ASSERT_GT(coveredPoints, kWidth * kHeight / 10) << "the scene fills the view";
+    EXPECT_EQ(onlyOne, 0) << "coverage differs beyond a one-pixel border";
+    EXPECT_GE(agreeing, coveredBoth * 99 / 100) << agreeing << " of " << coveredBoth << " pixels agree";
+}
+
+// The pixel (top row first, as readRgba returns them) a point of the depth camera's frame lands on.
+std::pair<int, int> pixelOf(const glm::mat4& viewProjection, const glm::vec3& point) {
+    const glm::vec4 clip = viewProjection * glm::vec4(point, 1.0f);
+    const int x = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * kWidth);
+    const int y = static_cast<int>((clip.y / clip.w * 0.5f + 0.5f) * kHeight);
+    return {x, kHeight - 1 - y};
+}
+
+TEST_P(CloudSplatTest, AnchorsHideBehindNearerPointsOnBothPaths) {
+    const std::vector<std::uint8_t> pointsAlone = drawPoints();
+    const std::vector<std::uint8_t> splatAlone = drawSplat();
+    // Two anchors on the view's ray through the scene's centre sample, one in front of it and one behind
+    // it: only the first shows, on both paths.
+    const frame::Intrinsics k = frame_->depthIntrinsics();
+    const int u = k.width / 2;
+    const int v = k.height / 2;
+    const float z = frame_->sceneDepth->depthMeters.at(u, v);
+    const glm::vec3 sample(float((u - k.cx) / k.fx) * z, float((v - k.cy) / k.fy) * z, z);
+    const glm::vec4 clip = params_.viewProjection * glm::vec4(sample, 1.0f);
+    const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+    const auto onRay = [&](float ndcZ) {
+        const glm::vec4 p = glm::inverse(params_.viewProjection) * glm::vec4(ndc.x, ndc.y, ndcZ, 1.0f);
+        return glm::vec3(p) / p.w;
+    };
+    const glm::vec3 front = onRay(ndc.z - 0.3f * (ndc.z + 1.0f));
+    const glm::vec3 behind = onRay(ndc.z + 0.5f * (1.0f - ndc.z));
+    params_.anchorSizeMeters = 0.05f;
+    const auto [x, y] = pixelOf(params_.viewProjection, sample);
+    ASSERT_TRUE(x >= 0 && x < kWidth && y >= 0 && y < kHeight);
+    ASSERT_TRUE(covered(pointsAlone, x, y));
+
+    params_.anchors = {front};
+    const std::vector<std::uint8_t> pointsFront = drawPoints();
+    const std::vector<std::uint8_t> splatFront = drawSplat();
+    EXPECT_NE(pixelAt(pointsFront, kWidth, x, y), pixelAt(pointsAlone, kWidth, x, y)) << "the anchor shows";
+    EXPECT_TRUE(near(pixelAt(splatFront, kWidth, x, y), pixelAt(pointsFront, kWidth, x, y), 2));
+
+    params_.anchors = {behind};
+    const std::vector<std::uint8_t> pointsBehind = drawPoints();
+    const std::vector<std::uint8_t> splatBehind = drawSplat();
+    ASSERT_TRUE(noGlError());
+    EXPECT_EQ(pixelAt(pointsBehind, kWidth, x, y), pixelAt(pointsAlone, kWidth, x, y)) << "hidden";
+    EXPECT_EQ(pixelAt(splatBehind, kWidth, x, y), pixelAt(splatAlone, kWidth, x, y)) << "hidden";
+}
+
+INSTANTIATE_TEST_SUITE_P(PointSizes, CloudSplatTest, ::testing::Values(1.0f, 2.0f, 5.0f));
+
+} // namespace
+} // namespace dc::render::test
