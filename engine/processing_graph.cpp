@@ -16,14 +16,15 @@ namespace {
 constexpr int kCameraWidthStep = 64;
 
 processing::Needs needsOf(const Demand& d) {
-    // Pipeline stages run for anything that shows depth; the camera panel alone does not.
+    // The pipeline's stages ask only whether any depth is shown and whether confidence is read
+    // (Stage::wanted). Which panels show the depth is left out, so that it is also left out of the depth
+    // memo's key: opening the depth panel or turning fog on must not redo the confidence estimate or
+    // upsampling of a frame whose shown depth it does not change. The camera panel alone needs no depth.
     processing::Needs needs;
-    needs.cloud = d.cloud || d.accumulate || d.automaticRange;
-    needs.depthPanel = d.depthImage;
-    needs.confidencePanel = d.confidencePanel;
-    needs.cameraPanel = d.cameraPanelWidth > 0;
-    needs.fogPanel = d.fog;
-    needs.auraPanel = d.aura;
+    needs.cloud = d.needsDepth();
+    needs.depthPanel = false;
+    needs.confidencePanel = false;
+    needs.cameraPanel = false;
     needs.confidence = d.readsConfidence() && d.needsDepth();
     return needs;
 }
@@ -125,7 +126,8 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
     if (demand.needsPointColors() && shown.depth.data) {
         const int w = shown.depth.width(), h = shown.depth.height();
         shown.pointColors = cached(pointColors_, ImageKey{image.bytes, w, h}, kPointColorsStage, [&] {
-            return std::make_shared<const processing::RgbImage>(processing::pointColors(image, w, h, colourTable_));
+            return std::make_shared<const processing::RgbImage>(
+                processing::pointColors(image, w, h, colourTable_));
         });
     }
     if (demand.cameraPanelWidth > 0 && !image.empty()) {
@@ -138,7 +140,8 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
 }
 
 // Fog and aura share one conversion of the camera image to their size.
-void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand) {
+void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Frame& frame,
+                                 const Demand& demand) {
     if ((!demand.fog && !demand.aura) || frame.capturedImage.empty())
         return;
     const frame::CapturedImage& image = frame.capturedImage;
@@ -173,11 +176,10 @@ void ProcessingGraph::addDepthProducts(processing::ShownFrame& shown, const Dema
         shown.automaticRange = cached(range_, depth, kDepthRangeStage,
                                       [&] { return processing::percentileRange(depth->depthMeters); });
     if (demand.cloud || demand.accumulate)
-        shown.pointCount = cached(count_, CountKey{depth, demand.minConfidence, demand.nearMeters},
-                                  kPointCountStage, [&] {
-                                      return processing::countDrawablePoints(*depth, demand.minConfidence,
-                                                                             demand.nearMeters);
-                                  });
+        shown.pointCount =
+            cached(count_, CountKey{depth, demand.minConfidence, demand.nearMeters}, kPointCountStage, [&] {
+                return processing::countDrawablePoints(*depth, demand.minConfidence, demand.nearMeters);
+            });
 }
 
 } // namespace dc::engine
