@@ -9,6 +9,7 @@
 
 #include <atomic>
 #include <cstdlib>
+#include <deque>
 #include <map>
 
 namespace dc::engine::test {
@@ -44,17 +45,21 @@ TEST(EngineStressTest, DemandsSeeksAndFramesAtOnceKeepEveryResultConsistent) {
     FrameProcessor processor(stages, accumulation);
     processor.setSession(session);
 
-    // The capture side: frames stamped with the seek generation they were decoded under, which may be one a
-    // seek has just made stale.
+    // The capture side, a replay decoding three frames ahead: each frame carries the seek generation of
+    // three frames before, so the first frames after a seek are stale.
     std::atomic<std::uint64_t> seekGeneration{0};
     std::atomic<bool> stop{false};
     std::uint64_t pushed = 0;
     std::thread feeder([&] {
         const std::vector<frame::FramePtr> frames = syntheticFrames(8);
+        std::deque<std::uint64_t> decodedUnder;
         while (!stop) {
             if (source.pending() < 2) {
+                decodedUnder.push_back(seekGeneration.load());
+                if (decodedUnder.size() > 3)
+                    decodedUnder.pop_front();
                 auto f = std::make_shared<frame::Frame>(
-                    *asReplayed(frames[pushed % frames.size()], seekGeneration.load()));
+                    *asReplayed(frames[pushed % frames.size()], decodedUnder.front()));
                 f->sequence = pushed;
                 f->timestampNs = static_cast<std::int64_t>(pushed + 1) * 1'000'000;
                 source.push(std::move(f));
