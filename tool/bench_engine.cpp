@@ -87,7 +87,7 @@ ui::Settings everyStage() {
 }
 
 struct EngineResult {
-    std::vector<double> glCpuMs, glFrameCpuMs, glWallMs, latencyMs;
+    std::vector<double> glCpuMs, updateCpuMs, uiCpuMs, glFrameCpuMs, glWallMs, latencyMs;
     engine::FrameCounts frames;
     engine::ProcessorCounts processor;
     std::uint64_t sourceDropped = 0;
@@ -123,6 +123,7 @@ Expected<EngineResult> runEngine(const BenchEngineOptions& o, std::vector<frame:
         const double cpu = threadCpuMs();
         gui.newFrame(static_cast<float>(1.0 / o.viewerFps));
         viewer.update(i / o.viewerFps);
+        const double updated = threadCpuMs();
         viewer.drawUi();
         const double glCpu = threadCpuMs() - cpu;
         const double glWall = msSince(wall);
@@ -131,6 +132,8 @@ Expected<EngineResult> runEngine(const BenchEngineOptions& o, std::vector<frame:
         viewer.presented();
         if (i >= kWarmupFrames) {
             r.glCpuMs.push_back(glCpu);
+            r.updateCpuMs.push_back(updated - cpu);
+            r.uiCpuMs.push_back(cpu + glCpu - updated);
             r.glWallMs.push_back(glWall);
             r.glFrameCpuMs.push_back(threadCpuMs() - cpu);
         }
@@ -214,6 +217,7 @@ int runBenchEngine(const BenchEngineOptions& o) {
     const InlineResult in = runInline(o, frames, e.demand);
     const Spread glCpu = spreadOf(e.glCpuMs), glFrameCpu = spreadOf(e.glFrameCpuMs),
                  glWall = spreadOf(e.glWallMs);
+    const Spread updateCpu = spreadOf(e.updateCpuMs), uiCpu = spreadOf(e.uiCpuMs);
     const Spread latency = spreadOf(e.latencyMs), inCpu = spreadOf(in.cpuMs), inWall = spreadOf(in.wallMs);
 
     std::printf(
@@ -223,6 +227,11 @@ int runBenchEngine(const BenchEngineOptions& o) {
     std::printf(
         "  GL thread, hand-over + uploads + draw calls + UI (thread CPU): median %.3f ms, p99 %.3f ms\n",
         glCpu.median, glCpu.p99);
+    std::printf("    of which viewer.update (hand-over, uploads, panel and cloud draw calls, with llvmpipe's "
+                "vertex work on this thread): median %.3f ms, p99 %.3f ms\n",
+                updateCpu.median, updateCpu.p99);
+    std::printf("    of which the UI's panels (ImGui, no driver): median %.3f ms, p99 %.3f ms\n",
+                uiCpu.median, uiCpu.p99);
     std::printf("  GL thread, whole frame incl. ImGui render and glFinish (thread CPU): median %.3f ms, p99 "
                 "%.3f ms\n",
                 glFrameCpu.median, glFrameCpu.p99);
@@ -261,6 +270,8 @@ int runBenchEngine(const BenchEngineOptions& o) {
         {"frames", o.frames},
         {"engine",
          {{"glThreadCpuMs", toJson(glCpu)},
+          {"glThreadUpdateCpuMs", toJson(updateCpu)},
+          {"glThreadUiCpuMs", toJson(uiCpu)},
           {"glThreadWallMs", toJson(glWall)},
           {"glThreadFrameCpuMs", toJson(glFrameCpu)},
           {"processingLatencyMs", toJson(latency)},

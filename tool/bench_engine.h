@@ -7,7 +7,7 @@
 namespace dc::tool {
 
 struct BenchEngineOptions {
-    int frames = 300;        // measured viewer frames
+    int frames = 100;        // measured viewer frames
     double sourceFps = 60.0; // the camera's rate
     double viewerFps = 30.0; // the viewer's, slower than the source: latest wins
     std::string jsonPath;
