@@ -252,7 +252,9 @@ int runBenchEngine(const BenchEngineOptions& o) {
         static_cast<unsigned long long>(e.frames.shown), static_cast<unsigned long long>(e.frames.dropped),
         static_cast<unsigned long long>(e.processor.framesUnshown),
         static_cast<unsigned long long>(e.sourceDropped));
-    std::printf("  processor stage medians:");
+    // The GL thread's own stages (upload, panels, cloud) are among them: the upload is the part of
+    // viewer.update that is not a draw.
+    std::printf("  stage medians, wall (the processor's, and the GL thread's upload, panels, cloud):");
     for (const engine::StageSummary& s : e.stages)
         std::printf(" %s %.2f ms", s.name.c_str(), s.medianMs);
     std::printf("\n");
