@@ -120,6 +120,9 @@ TEST(EngineStressTest, DemandsSeeksAndFramesAtOnceKeepEveryResultConsistent) {
     }
     stop = true;
     feeder.join();
+    // The frame the last seek asked for arrives, as a replay's always does.
+    source.push(asReplayed(syntheticFrames(1, pushed).front(), seekGeneration.load()));
+    ++pushed;
     // Once the source is silent, the last change is still answered, on the current frame.
     const std::uint64_t final = ask();
     const auto last =

@@ -152,6 +152,23 @@ TEST_F(FrameProcessorTest, AfterASeekFramesDecodedBeforeItAreDroppedAndSmoothing
     EXPECT_EQ((*r)->depth.data->depthMeters.pixels, frames[1]->sceneDepth->depthMeters.pixels);
 }
 
+// A replay that decodes a capture again with its colour (a panel asked for the video) delivers the same
+// timestamp twice: that is the current frame made complete, not a new one.
+TEST_F(FrameProcessorTest, TheSameCaptureDeliveredAgainIsShownButNotCountedAsNew) {
+    processor_.setDemand(cloudAndPanels());
+    const frame::FramePtr first = syntheticFrames(1).front();
+    auto again = std::make_shared<frame::Frame>(*first);
+    device_->push(first);
+    ASSERT_TRUE(processor_.waitFor(10s, any));
+    device_->push(again);
+    const auto r = processor_.waitFor(10s, [&](const processing::ShownFrame& s) { return s.frame == again; });
+    ASSERT_TRUE(r);
+    EXPECT_FALSE((*r)->newFrame);
+    const ProcessorCounts c = processor_.counts();
+    EXPECT_EQ(c.framesProcessed, 1u);
+    EXPECT_EQ(c.framesSkipped, 1u);
+}
+
 // The instrument's frame counts add up for a paced source and a consumer slower than it: every delivered
 // frame is shown or dropped, and at any moment at most three are on their way (the session's mailbox, the
 // processor's hands, the result slot).
