@@ -50,8 +50,8 @@ TEST(EngineStressTest, DemandsSeeksAndFramesAtOnceKeepEveryResultConsistent) {
     std::atomic<std::uint64_t> seekGeneration{0};
     std::atomic<bool> stop{false};
     std::uint64_t pushed = 0;
+    const std::vector<frame::FramePtr> frames = syntheticFrames(8);
     std::thread feeder([&] {
-        const std::vector<frame::FramePtr> frames = syntheticFrames(8);
         std::deque<std::uint64_t> decodedUnder;
         while (!stop) {
             if (source.pending() < 2) {
@@ -103,6 +103,14 @@ TEST(EngineStressTest, DemandsSeeksAndFramesAtOnceKeepEveryResultConsistent) {
         EXPECT_EQ(r.pointColors != nullptr, a.demand.needsPointColors());
     };
 
+    // The clock starts once frames flow.
+    const auto first = processor.waitFor(10s, [](const processing::ShownFrame&) { return true; });
+    if (!first) {
+        stop = true;
+        feeder.join();
+        FAIL() << "no result within 10 s";
+    }
+    check(**first);
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(stressSeconds());
     for (int i = 0; std::chrono::steady_clock::now() < end; ++i) {
         if (i % 3 == 0)

@@ -143,11 +143,15 @@ TEST_F(FrameProcessorTest, AfterASeekFramesDecodedBeforeItAreDroppedAndSmoothing
     processor_.afterSeek(1);
     device_->push(asReplayed(frames[2], 0)); // still on its way when the seek was asked for
     ASSERT_TRUE(waitUntil([&] { return processor_.counts().framesSkipped == 1; }));
+    // A change now has no frame to redo: the one before the seek is gone.
+    d.fog = true;
+    const std::uint64_t fog = processor_.setDemand(d);
     device_->push(asReplayed(frames[1], 1)); // the frame the seek asked for
     r = processor_.waitFor(10s, any);
     ASSERT_TRUE(r);
     EXPECT_EQ((*r)->frame->sequence, 1u) << "no result of a frame decoded before the seek";
     EXPECT_EQ((*r)->frame->replay->seekGeneration, 1u);
+    EXPECT_EQ((*r)->demandGeneration, fog);
     // With the history dropped, frame 1 smoothed alone is its raw depth.
     EXPECT_EQ((*r)->depth.data->depthMeters.pixels, frames[1]->sceneDepth->depthMeters.pixels);
 }
