@@ -82,8 +82,14 @@ void FrameProcessor::run() {
         wake_.wait(lock, [this] { return hasWork(); });
         if (stopping_)
             return;
-        const Work work{session_,      epoch_, demand_, generation_, awaitedSeek_, std::exchange(reset_, false),
-                        std::exchange(frameReady_, false), arrival_};
+        const Work work{session_,
+                        epoch_,
+                        demand_,
+                        generation_,
+                        awaitedSeek_,
+                        std::exchange(reset_, false),
+                        std::exchange(frameReady_, false),
+                        arrival_};
         lock.unlock();
         std::optional<processing::ShownFramePtr> result = process(work);
         lock.lock();
@@ -105,13 +111,14 @@ std::optional<processing::ShownFramePtr> FrameProcessor::process(const Work& wor
     bool taken = false;
     if (work.frameSignal && work.session) {
         std::optional<frame::FramePtr> next = work.session->takeLatest();
-        if (next && *next && !decodedBeforeSeek(**next, work.awaitedSeek)) {
+        const bool got = next && *next; // before the frame is moved into current_
+        if (got && !decodedBeforeSeek(**next, work.awaitedSeek)) {
             // The same capture delivered again (a replay re-decoding it with its colour) is no new frame.
             fresh = !current_ || (*next)->timestampNs != current_->timestampNs;
             current_ = std::move(*next);
             taken = true;
         }
-        skipped_ += next && *next && !fresh ? 1 : 0;
+        skipped_ += got && !fresh ? 1 : 0;
     }
     const bool changed = taken || work.reset || work.generation != lastGeneration_;
     if (!current_ || !changed)

@@ -17,14 +17,15 @@ namespace {
 constexpr int kCameraWidthStep = 64;
 
 processing::Needs needsOf(const Demand& d) {
-    // Pipeline stages run for anything that shows depth; the camera panel alone does not.
+    // The pipeline's stages ask only whether any depth is shown and whether confidence is read
+    // (Stage::wanted). Which panels show the depth is left out, so that it is also left out of the depth
+    // memo's key: opening the depth panel or turning fog on must not redo the confidence estimate or
+    // upsampling of a frame whose shown depth it does not change. The camera panel alone needs no depth.
     processing::Needs needs;
-    needs.cloud = d.cloud || d.accumulate || d.automaticRange;
-    needs.depthPanel = d.depthImage;
-    needs.confidencePanel = d.confidencePanel;
-    needs.cameraPanel = d.cameraPanelWidth > 0;
-    needs.fogPanel = d.fog;
-    needs.auraPanel = d.aura;
+    needs.cloud = d.needsDepth();
+    needs.depthPanel = false;
+    needs.confidencePanel = false;
+    needs.cameraPanel = false;
     needs.confidence = d.readsConfidence() && d.needsDepth();
     return needs;
 }

@@ -2,6 +2,7 @@
 
 #include "base/log.h"
 #include "devices/source_spec.h"
+#include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
 #include "tool/bench_upsample_options.h"
 #include "tool/live_commands.h"
@@ -97,6 +98,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     benchRender->add_option("--json", bench.jsonPath, "also write the results as JSON to this file");
     BenchInstrumentOptions benchInstrument;
+    BenchEngineOptions benchEngine;
+    CLI::App* benchEngineCmd = addBenchEngineCommand(*benchCmd, benchEngine);
     CLI::App* benchInstrumentCmd = addBenchInstrumentCommand(*benchCmd, benchInstrument);
     BenchCaptureOptions benchCapture;
     CLI::App* benchCaptureCmd = addBenchCaptureCommand(*benchCmd, benchCapture);
@@ -119,6 +122,8 @@ int main(int argc, char** argv) {
         return *code;
     if (benchRender->parsed())
         return runBenchRender(bench);
+    if (benchEngineCmd->parsed())
+        return runBenchEngine(benchEngine);
     if (benchInstrumentCmd->parsed())
         return runBenchInstrument(benchInstrument);
     if (benchCaptureCmd->parsed())

@@ -1,0 +1,183 @@
+// The processing graph counts the work it does: each test states which stages a run must (and must not)
+// make again, so a memo that stops hitting, or a stage that runs for nobody, fails here.
+
+#include "engine/processing_graph.h"
+#include "engine_test_support.h"
+#include "processing/confidence_estimator.h"
+
+#include <gtest/gtest.h>
+
+namespace dc::engine::test {
+namespace {
+
+using Runs = std::map<std::string, std::uint64_t, std::less<>>;
+
+// Every product on: the cloud in camera colours, all panels, fog, aura, the automatic range, smoothing and
+// upsampling.
+Demand everything() {
+    Demand d;
+    d.cameraPanelWidth = 320;
+    d.fog = true;
+    d.aura = true;
+    d.automaticRange = true;
+    d.processing.smoothing = true;
+    d.processing.upsampling = true;
+    return d;
+}
+
+// Only the cloud, coloured by depth: nothing reads confidence or the camera.
+Demand cloudOnly() {
+    Demand d;
+    d.pointColors = false;
+    d.depthImage = false;
+    d.confidencePanel = false;
+    return d;
+}
+
+// The stages whose count differs between two snapshots, with how many more runs each made.
+Runs ranSince(const Runs& before, const Runs& after) {
+    Runs delta;
+    for (const auto& [stage, n] : after) {
+        const auto it = before.find(stage);
+        const std::uint64_t was = it == before.end() ? 0 : it->second;
+        if (n != was)
+            delta[stage] = n - was;
+    }
+    return delta;
+}
+
+class ProcessingGraphTest : public ::testing::Test {
+protected:
+    // Frames without sensor confidence, so the confidence estimate has work whenever it is wanted.
+    void SetUp() override {
+        for (const frame::FramePtr& f : syntheticFrames(2))
+            frames_.push_back(withoutConfidence(f));
+    }
+
+    // Runs `demand` on frame `index` and returns what ran for it.
+    Runs runOn(std::size_t index, const Demand& demand, bool newFrame = false) {
+        const Runs before = graph_.allRuns();
+        last_ = graph_.run(frames_[index], demand, ++generation_, newFrame);
+        return ranSince(before, graph_.allRuns());
+    }
+
+    std::vector<frame::FramePtr> frames_;
+    ProcessingGraph graph_;
+    processing::ShownFramePtr last_;
+    std::uint64_t generation_ = 0;
+};
+
+TEST_F(ProcessingGraphTest, EveryStageRunsOnceForANewFrameWithEverythingShown) {
+    const Runs ran = runOn(0, everything(), true);
+    const Runs expected{{std::string(processing::kConfidenceEstimateStage), 1},
+                        {std::string(processing::kSmoothingStage), 1},
+                        {std::string(processing::kUpsamplingStage), 1},
+                        {std::string(kPointColorsStage), 1},
+                        {std::string(kCameraImageStage), 1},
+                        {std::string(kEffectsImageStage), 1},
+                        {std::string(kFogStage), 1},
+                        {std::string(kAuraStage), 1},
+                        {std::string(kDepthRangeStage), 1},
+                        {std::string(kPointCountStage), 1}};
+    EXPECT_EQ(ran, expected);
+    ASSERT_TRUE(last_->depth.data);
+    EXPECT_TRUE(last_->depth.upsampled);
+    EXPECT_TRUE(last_->depth.smoothed);
+    EXPECT_TRUE(last_->pointColors && last_->cameraImage && last_->fog && last_->aura);
+    EXPECT_TRUE(last_->automaticRange);
+    EXPECT_GT(last_->pointCount, 0u);
+}
+
+// What a colormap change (which lives in the shader, not in the demand) or a redraw asks of the graph.
+TEST_F(ProcessingGraphTest, TheSameFrameAndDemandRunNothingAgainAndShareEveryProduct) {
+    runOn(0, everything(), true);
+    const processing::ShownFramePtr first = last_;
+    EXPECT_EQ(runOn(0, everything()), Runs{});
+    EXPECT_EQ(last_->depth.data, first->depth.data);
+    EXPECT_EQ(last_->pointColors, first->pointColors);
+    EXPECT_EQ(last_->cameraImage, first->cameraImage);
+    EXPECT_EQ(last_->fog, first->fog);
+    EXPECT_EQ(last_->aura, first->aura);
+    EXPECT_EQ(last_->pointCount, first->pointCount);
+    EXPECT_TRUE(last_->timings.empty());
+}
+
+TEST_F(ProcessingGraphTest, AFogSettingRerunsOnlyTheFog) {
+    runOn(0, everything(), true);
+    Demand d = everything();
+    d.processing.fog.fogMaxMeters = 2.0f;
+    EXPECT_EQ(runOn(0, d), (Runs{{std::string(kFogStage), 1}}));
+}
+
+TEST_F(ProcessingGraphTest, AConfidenceLevelRerunsOnlyThePointCount) {
+    runOn(0, everything(), true);
+    const std::size_t all = last_->pointCount;
+    Demand d = everything();
+    d.minConfidence = frame::Confidence::High;
+    EXPECT_EQ(runOn(0, d), (Runs{{std::string(kPointCountStage), 1}}));
+    EXPECT_LT(last_->pointCount, all);
+}
+
+TEST_F(ProcessingGraphTest, UpsamplingOffRerunsTheDepthAndItsReadersButNotTheCameraImages) {
+    runOn(0, everything(), true);
+    const int upsampledWidth = last_->depth.width();
+    Demand d = everything();
+    d.processing.upsampling = false;
+    // The depth pipeline runs again on the same capture (smoothing redoes it without advancing history), and
+    // everything read from the shown depth follows; the camera's own images stay.
+    const Runs expected{{std::string(processing::kConfidenceEstimateStage), 1},
+                        {std::string(processing::kSmoothingStage), 1},
+                        {std::string(kPointColorsStage), 1},
+                        {std::string(kFogStage), 1},
+                        {std::string(kAuraStage), 1},
+                        {std::string(kDepthRangeStage), 1},
+                        {std::string(kPointCountStage), 1}};
+    EXPECT_EQ(runOn(0, d), expected);
+    EXPECT_EQ(last_->depth.width(), frames_[0]->sceneDepth->depthMeters.width);
+    EXPECT_NE(last_->depth.width(), upsampledWidth);
+    EXPECT_FALSE(last_->depth.upsampled);
+}
+
+TEST_F(ProcessingGraphTest, TheCameraPanelIsRemadeOnlyWhenItsShownSizeCrossesAStep) {
+    runOn(0, everything(), true);
+    Demand d = everything();
+    d.cameraPanelWidth = 300; // the same 64-pixel step as 320
+    EXPECT_EQ(runOn(0, d), Runs{});
+    d.cameraPanelWidth = 100;
+    EXPECT_EQ(runOn(0, d), (Runs{{std::string(kCameraImageStage), 1}}));
+    EXPECT_EQ(last_->cameraImage->width, cameraPanelImageWidth(320, 100));
+}
+
+TEST_F(ProcessingGraphTest, AStageWhoseOutputNobodyReadsNeverRuns) {
+    for (std::size_t i = 0; i < frames_.size(); ++i) {
+        const Runs ran = runOn(i, cloudOnly(), true);
+        EXPECT_EQ(ran, (Runs{{std::string(kPointCountStage), 1}})) << "frame " << i;
+        EXPECT_FALSE(last_->pointColors || last_->cameraImage || last_->fog || last_->aura);
+        EXPECT_FALSE(last_->automaticRange);
+        EXPECT_GT(last_->pointCount, 0u);
+    }
+    // Each one runs as soon as something reads it, on the same frame.
+    Demand d = cloudOnly();
+    d.confidencePanel = true;
+    EXPECT_EQ(runOn(1, d), (Runs{{std::string(processing::kConfidenceEstimateStage), 1},
+                                 {std::string(kPointCountStage), 1}}));
+    d.fog = true;
+    EXPECT_EQ(runOn(1, d), (Runs{{std::string(kEffectsImageStage), 1}, {std::string(kFogStage), 1}}));
+    EXPECT_TRUE(last_->fog);
+    EXPECT_FALSE(last_->aura);
+    // A panel that shows the depth already made asks for nothing new.
+    d.depthImage = true;
+    EXPECT_EQ(runOn(1, d), Runs{});
+}
+
+TEST_F(ProcessingGraphTest, ANewFrameRerunsWhatItFeedsAndResetStartsOver) {
+    runOn(0, everything(), true);
+    const Runs next = runOn(1, everything(), true);
+    EXPECT_EQ(next.size(), 10u) << "every stage reads the frame";
+    // After a reset (a seek), the same frame and demand make everything again: nothing is remembered.
+    graph_.reset();
+    EXPECT_EQ(runOn(1, everything()).size(), 10u);
+}
+
+} // namespace
+} // namespace dc::engine::test
