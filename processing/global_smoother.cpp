@@ -297,6 +297,39 @@ void dataAsValue(Grid& g) {
 
 } // namespace
 
+namespace {
+
+// The colour-weighted median of `value` (see GlobalSmootherParams::weightedMedianRadius) into `out`.
+void weightedMedian(const cv::Mat& value, ColorView guide, int radius, float sigma, cv::Mat& out) {
+    const float inverseSigmaSquared = 1.0f / std::max(sigma * sigma, 1e-6f);
+    rowsInParallel(value.rows, [&](int y) {
+        std::vector<std::pair<float, float>> votes;
+        for (int x = 0; x < value.cols; ++x) {
+            const std::uint8_t* centre = guide.pixels + y * guide.stride + 3 * x;
+            votes.clear();
+            float total = 0.0f;
+            for (int v = std::max(y - radius, 0); v <= std::min(y + radius, value.rows - 1); ++v)
+                for (int u = std::max(x - radius, 0); u <= std::min(x + radius, value.cols - 1); ++u) {
+                    const std::uint8_t* other = guide.pixels + v * guide.stride + 3 * u;
+                    float d2 = 0.0f;
+                    for (int c = 0; c < 3; ++c)
+                        d2 += static_cast<float>((other[c] - centre[c]) * (other[c] - centre[c]));
+                    const float w = 1.0f / (1.0f + d2 * inverseSigmaSquared);
+                    votes.emplace_back(value.at<float>(v, u), w);
+                    total += w;
+                }
+            std::sort(votes.begin(), votes.end());
+            float cumulative = 0.0f;
+            std::size_t k = 0;
+            while (k + 1 < votes.size() && (cumulative += votes[k].second) < 0.5f * total)
+                ++k;
+            out.at<float>(y, x) = votes[k].first;
+        }
+    });
+}
+
+} // namespace
+
 struct GlobalSmoother::Buffers {
     Grid sensor, output;
     double offset = 0.0;                   // the data's weighted mean, subtracted while solving
@@ -305,13 +338,14 @@ struct GlobalSmoother::Buffers {
     BilinearTaps tapsX, tapsY;             // output pixel -> sensor samples
     std::vector<float> rows;               // sensor rows interpolated to the output width: 4 quantities
     std::vector<float> measuredWeight;     // bilinear weight of the measured samples, output size
-    std::vector<float> median;             // the final median, output size
+    std::vector<float> medianValue;        // the final median, output size
 
     bool prepareSensor(const frame::DepthData& depth);
     void reduceGuide(ColorView guide);
     void interpolateRows();
     void upsampleSensor(float footprintSigma);
-    void finish(int medianPixels, frame::DepthData& out);
+    void median(const GlobalSmootherParams& params, ColorView guide);
+    void finish(frame::DepthData& out);
 };
 
 bool GlobalSmoother::Buffers::prepareSensor(const frame::DepthData& depth) {
@@ -444,20 +478,27 @@ DC_VECTOR_KERNEL void outputRow(const float* __restrict smoothed, const float* _
 
 } // namespace
 
-void GlobalSmoother::Buffers::finish(int medianPixels, frame::DepthData& out) {
+void GlobalSmoother::Buffers::median(const GlobalSmootherParams& params, ColorView guide) {
     const int width = output.width, height = output.height;
     const cv::Mat value(height, width, CV_32F, output.value.data(),
                         static_cast<std::size_t>(output.paddedWidth) * 4);
-    median.resize(static_cast<std::size_t>(width) * height);
-    cv::Mat filtered(height, width, CV_32F, median.data());
-    if ((medianPixels == 3 || medianPixels == 5) && width >= medianPixels && height >= medianPixels)
-        cv::medianBlur(value, filtered, medianPixels);
+    medianValue.resize(static_cast<std::size_t>(width) * height);
+    cv::Mat filtered(height, width, CV_32F, medianValue.data());
+    const int side = params.medianPixels;
+    if (params.weightedMedianRadius > 0)
+        weightedMedian(value, guide, params.weightedMedianRadius, params.weightedMedianSigma, filtered);
+    else if ((side == 3 || side == 5) && width >= side && height >= side)
+        cv::medianBlur(value, filtered, side);
     else
         value.copyTo(filtered);
+}
+
+void GlobalSmoother::Buffers::finish(frame::DepthData& out) {
+    const int width = output.width, height = output.height;
     const auto offsetF = static_cast<float>(offset);
     rowsInParallel(height, [&](int y) {
         const std::size_t row = static_cast<std::size_t>(y) * width, at = output.index(0, y);
-        outputRow(median.data() + row, output.dataSum.data() + at, output.dataWeight.data() + at,
+        outputRow(medianValue.data() + row, output.dataSum.data() + at, output.dataWeight.data() + at,
                   measuredWeight.data() + row, offsetF, out.depthMeters.pixels.data() + row, width);
     });
 }
@@ -484,12 +525,15 @@ frame::DepthData GlobalSmoother::upsample(const frame::DepthData& depth, ColorVi
     b.reduceGuide(guide);
     dataAsValue(b.sensor);
     runPass(b.sensor, params.sensorColor);
-    runPass(b.sensor, params.sensorDepth);
+    for (int round = 0; round < params.sensorDepthRounds; ++round)
+        runPass(b.sensor, params.sensorDepth);
     b.upsampleSensor(params.footprintSigma);
     dataAsValue(b.output);
     runPass(b.output, params.outputColor);
-    runPass(b.output, params.outputDepth);
-    b.finish(params.medianPixels, out);
+    for (int round = 0; round < params.outputDepthRounds; ++round)
+        runPass(b.output, params.outputDepth);
+    b.median(params, guide);
+    b.finish(out);
     return out;
 }
 

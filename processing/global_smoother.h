@@ -1,23 +1,13 @@
 #pragma once
 
 #include "frame/frame.h"
+#include "processing/camera_image.h"
 
 #include <cstddef>
 #include <cstdint>
 #include <memory>
 
 namespace dc::processing {
-
-// Rows of 8-bit three-channel pixels (any channel order: only distances between pixels are used) that
-// somebody else owns.
-struct ColorView {
-    const std::uint8_t* pixels = nullptr;
-    int width = 0;
-    int height = 0;
-    std::ptrdiff_t stride = 0; // bytes from one row to the next
-
-    bool empty() const { return pixels == nullptr || width <= 0 || height <= 0; }
-};
 
 // One weighted-least-squares pass: minimises sum_p c_p (u_p - f_p)^2 + lambda sum_pq w_pq (u_p - u_q)^2 over
 // 4-neighbours p, q, approximated as in the fast global smoother by alternating 1-D horizontal and vertical
@@ -46,24 +36,33 @@ struct GlobalSmootherParams {
     // colour texture left) with the colour term kept as a weak guard.
     SmootherPass sensorColor;
     SmootherPass sensorDepth;
+    // The depth pass repeated, each round guided by the last one's result (iteratively reweighted least
+    // squares): edges the first round blurred a little are sharper in the next one's weights.
+    int sensorDepthRounds = 1;
     // At the output resolution, on the bilinear upsampling of the denoised map: edges. Guided by the colour
     // image, then by that result's depth.
     SmootherPass outputColor;
     SmootherPass outputDepth;
+    int outputDepthRounds = 1;
     // A bilinear sample whose four sensor samples spread over more than this straddles a depth edge: its data
     // weight falls as 1 / (1 + (spread / footprintSigma)^2), so the edge's position comes from the colour
     // image rather than from the interpolation's blur. 0 = off.
     float footprintSigma = 0.0f;
     // Side of the final median window that removes single-pixel outliers: 0 (off), 3 or 5.
     int medianPixels = 3;
+    // Instead of that median, a colour-weighted median over (2 radius + 1)^2 pixels when the radius is > 0:
+    // each neighbour votes with 1 / (1 + (d / weightedMedianSigma)^2), d its colour distance to the
+    // centre, so that a pixel at an edge takes the depth of the side whose colour it has.
+    int weightedMedianRadius = 0;
+    float weightedMedianSigma = 8.0f;
 };
 
-// Upsamples a depth map to the size of a colour guide with the dual-guided global smoother (see
-// GlobalSmootherParams). Invalid depth (0, NaN, inf, negative) and low-confidence samples carry no data
-// weight: they are filled in from their neighbours. The output has depth only where the bilinear upsampling
-// of the measured samples has weight >= 0.5 (holes stay holes), confidence as the bilinear map, rounded.
-// Keeps its buffers between frames (a first frame, or a new size, allocates them); not thread-safe (it runs
-// its work on the thread pool itself).
+// Upsamples a depth map to the size of a colour guide (8-bit, three channels in any order: only distances
+// between pixels count) with the dual-guided global smoother (see GlobalSmootherParams). Invalid depth (0,
+// NaN, inf, negative) and low-confidence samples carry no data weight: they are filled in from their
+// neighbours. The output has depth only where the bilinear upsampling of the measured samples has weight >=
+// 0.5 (holes stay holes), confidence as the bilinear map, rounded. Keeps its buffers between frames (a first
+// frame, or a new size, allocates them); not thread-safe (it runs its work on the thread pool itself).
 class GlobalSmoother {
 public:
     GlobalSmoother();

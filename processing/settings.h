@@ -22,8 +22,10 @@ struct SmoothingParams {
 };
 
 enum class UpsamplingMethod {
-    Full, // guided filter at the output resolution
-    Fast, // fast guided filter: coefficients at 1/subsample of the output resolution, then interpolated
+    Full,    // guided filter at the output resolution
+    Fast,    // fast guided filter: coefficients at 1/subsample of the output resolution, then interpolated
+    Global,  // dual-guided global smoother (global_smoother.h): real time, close to the best offline error
+    Quality, // the global smoother with more sweeps and a colour-weighted median: export and snapshots
 };
 
 enum class UpsamplingSize {
@@ -46,6 +48,12 @@ struct UpsamplingParams {
     bool fitWeighted = true;
     // Residual spread (meters) below which a window counts as a good fit: about the sensor's noise.
     float fitNoiseMeters = 0.005f;
+    // Global and Quality: the sensor's depth noise (standard deviation, meters). Depth steps well above it
+    // stay sharp; differences below it are smoothed away as noise.
+    float depthNoiseMeters = 0.005f;
+    // Global and Quality: scales every smoothness weight. Over a region of uniform colour a sample's
+    // influence spreads over about sqrt(smoothness) times as many pixels.
+    float smoothness = 1.0f;
 };
 
 // Fog (ARKit's "Creating a fog effect using scene depth"): the camera image mixed with a fog color in

@@ -7,6 +7,7 @@
 #include "tool/recording_commands.h"
 
 #include <cstdio>
+#include <optional>
 
 namespace dc::tool {
 
@@ -38,6 +39,18 @@ private:
     int lastPercent_ = -1;
 };
 
+// The upsampling that `--upsample` names; none for "none". Method names are checked by the parser.
+std::optional<processing::UpsamplingParams> upsamplingOf(const std::string& name) {
+    if (name == "none")
+        return std::nullopt;
+    processing::UpsamplingParams p;
+    p.method = name == "full"      ? processing::UpsamplingMethod::Full
+               : name == "global"  ? processing::UpsamplingMethod::Global
+               : name == "quality" ? processing::UpsamplingMethod::Quality
+                                   : processing::UpsamplingMethod::Fast;
+    return p;
+}
+
 exporting::ExportFormat formatOf(const std::string& name) {
     if (name == "stray")
         return exporting::ExportFormat::Stray;
@@ -57,6 +70,7 @@ int runExport(const ExportOptionsCli& o) {
     options.format = formatOf(o.format);
     options.outDirectory = o.out;
     options.worldCoordinates = o.world;
+    options.upsampling = upsamplingOf(o.upsample);
     if (!o.frames.empty()) {
         auto range = exporting::parseFrameRange(o.frames, (*source)->frameCount());
         if (!range)
@@ -68,8 +82,9 @@ int runExport(const ExportOptionsCli& o) {
         **source, options, [&bar](std::size_t done, std::size_t total) { return bar.update(done, total); });
     if (!result)
         return fail(result.error().message, kExitFailure);
-    std::printf("depthcloud export: wrote %zu frames as %s to %s%s\n", result->framesWritten,
-                exporting::toString(options.format), o.out.c_str(),
+    std::printf("depthcloud export: wrote %zu frames as %s%s to %s%s\n", result->framesWritten,
+                exporting::toString(options.format),
+                options.upsampling ? (", depth upsampled (" + o.upsample + ")").c_str() : "", o.out.c_str(),
                 result->framesSkipped
                     ? (" (" + std::to_string(result->framesSkipped) + " unreadable frames skipped)").c_str()
                     : "");
