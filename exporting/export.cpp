@@ -7,7 +7,6 @@
 #include "exporting/stray_writer.h"
 #include "frame/image_io.h"
 #include "processing/point_cloud.h"
-#include "processing/upsampling_stage.h"
 
 #include <algorithm>
 #include <charconv>
@@ -66,12 +65,6 @@ double meanFps(const devices::replay::ReplaySource& source, const FrameRange& ra
     return std::clamp(fps, 1.0, 240.0);
 }
 
-// The frame with its depth upsampled by `stage` (which keeps its buffers from one frame to the next).
-frame::Frame upsampled(frame::Frame original, processing::UpsamplingStage& stage,
-                       const processing::ProcessingSettings& settings) {
-    return *stage.process(std::make_shared<frame::Frame>(std::move(original)), settings);
-}
-
 } // namespace
 
 const char* toString(ExportFormat format) {
@@ -116,21 +109,15 @@ Expected<ExportResult> exportFrames(devices::replay::ReplaySource& source, const
         options.outDirectory + (options.format == ExportFormat::Png16 ? "/depth" : ""), ec);
     if (ec)
         return Error{"cannot create " + options.outDirectory + ": " + ec.message()};
-    // The upsampling needs the camera image whatever the format.
-    source.setDecodeColor(options.format != ExportFormat::Png16 || options.upsampling.has_value());
-    processing::UpsamplingStage upsampling;
-    processing::ProcessingSettings settings;
-    settings.upsampling = true;
-    settings.depthSource = processing::DepthSource::Raw;
-    if (options.upsampling)
-        settings.upsamplingParams = *options.upsampling;
+    // Processing may need the colour even for depth-only output (upsampling is guided by it).
+    source.setDecodeColor(options.format != ExportFormat::Png16 || options.transform);
     StrayWriter stray(options.outDirectory, meanFps(source, range));
     ExportResult result;
     const std::size_t total = range.end - range.first;
     for (std::size_t i = range.first; i < range.end; ++i) {
         auto frame = devices::replay::loadFrame(source, i);
-        if (frame && frame->sceneDepth && options.upsampling)
-            *frame = upsampled(std::move(*frame), upsampling, settings);
+        if (frame && options.transform)
+            *frame = options.transform(std::move(*frame));
         if (!frame || !frame->sceneDepth) {
             logWarning("export: skipping frame " + std::to_string(i) + ": " +
                        (frame ? std::string("it has no depth") : frame.error().message));

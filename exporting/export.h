@@ -2,11 +2,9 @@
 
 #include "base/expected.h"
 #include "devices/replay/replay_source.h"
-#include "processing/settings.h"
 
 #include <cstddef>
 #include <functional>
-#include <optional>
 #include <string>
 
 namespace dc::exporting {
@@ -33,9 +31,9 @@ struct ExportOptions {
     std::string outDirectory;
     FrameRange frames;             // end == 0: to the last frame
     bool worldCoordinates = false; // PLY: points through the frame's pose (when it has one)
-    // Each frame's depth upsampled to the camera image first (as the viewer's upsampling stage does, with
-    // these settings); none: the sensor's depth as recorded. Frames without a camera image pass as they are.
-    std::optional<processing::UpsamplingParams> upsampling;
+    // Applied to each frame before it is written, in order (the instrument's processing: smoothing and
+    // upsampling make the depth that was shown, which then replaces sceneDepth). None: frames as recorded.
+    std::function<frame::Frame(frame::Frame)> transform;
 };
 
 struct ExportResult {

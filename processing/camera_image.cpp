@@ -165,4 +165,11 @@ ColorView cameraRgbView(const frame::CapturedImage& image, int width, int height
     return {};
 }
 
+RgbImage cameraRgbImage(const frame::CapturedImage& image, int width, int height) {
+    std::vector<std::uint8_t> rgb = cameraRgb(image, width, height);
+    if (rgb.empty())
+        return {};
+    return {width, height, std::move(rgb)};
+}
+
 } // namespace dc::processing

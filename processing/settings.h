@@ -19,6 +19,8 @@ struct SmoothingParams {
     float jumpMeters = 0.10f;
     // Frames a pixel that loses its measurement keeps its last smoothed value (0 = holes show at once).
     int holeFrames = 3;
+
+    bool operator==(const SmoothingParams&) const = default;
 };
 
 enum class UpsamplingMethod {
@@ -54,6 +56,8 @@ struct UpsamplingParams {
     // Global and Quality: scales every smoothness weight. Over a region of uniform colour a sample's
     // influence spreads over about sqrt(smoothness) times as many pixels.
     float smoothness = 1.0f;
+
+    bool operator==(const UpsamplingParams&) const = default;
 };
 
 // Fog (ARKit's "Creating a fog effect using scene depth"): the camera image mixed with a fog color in
@@ -65,6 +69,8 @@ struct FogSettings {
     // The sample's debug overlay: red mixed in with weight 1 - confidence / 2 (solid red at low, half at
     // medium, none at high confidence).
     bool confidenceOverlay = false;
+
+    bool operator==(const FogSettings&) const = default;
 };
 
 enum class AuraMatte {
@@ -86,6 +92,8 @@ struct AuraSettings {
     float pulseHz = 3.18f;
     float whiteGain = 1.0f;
     float yellowGain = 2.0f; // the article doubles the yellow layer
+
+    bool operator==(const AuraSettings&) const = default;
 };
 
 } // namespace dc::processing
