@@ -27,7 +27,7 @@ enum class UpsamplingMethod {
     Full,    // guided filter at the output resolution
     Fast,    // fast guided filter: coefficients at 1/subsample of the output resolution, then interpolated
     Global,  // dual-guided global smoother (global_smoother.h): real time, close to the best offline error
-    Quality, // the global smoother with more sweeps and a colour-weighted median: export and snapshots
+    Quality, // the global smoother with three sweeps per output pass instead of one: export and snapshots
 };
 
 enum class UpsamplingSize {
