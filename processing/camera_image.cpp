@@ -57,6 +57,39 @@ void splitYuyv(const frame::CapturedImage& image, cv::Mat& luma, cv::Mat& chroma
     }
 }
 
+// `source` at `size` in `buffer` (resized to fit; its capacity kept), or `source` itself when it has the
+// size already. Halving, the common case (a 1920x1440 camera image to 960x720), is OpenCV's vectorised 2x
+// area path straight into the buffer; any other size goes through resized().
+cv::Mat resizedInto(const cv::Mat& source, cv::Size size, std::vector<std::uint8_t>& buffer) {
+    if (source.size() == size)
+        return source;
+    buffer.resize(static_cast<std::size_t>(size.area()) * source.elemSize());
+    cv::Mat out(size, source.type(), buffer.data());
+    if (size.width * 2 == source.cols && size.height * 2 == source.rows)
+        cv::resize(source, out, size, 0, 0, cv::INTER_AREA);
+    else
+        resized(source, size).copyTo(out);
+    return out;
+}
+
+ColorView viewOf(const cv::Mat& rgb) {
+    return {rgb.ptr<std::uint8_t>(0), rgb.cols, rgb.rows, static_cast<std::ptrdiff_t>(rgb.step[0])};
+}
+
+// Y and interleaved CbCr planes, both at the output size, to packed RGB in scratch.rgb (as ycbcrToRgb24).
+ColorView ycbcrToRgbInto(const cv::Mat& luma, const cv::Mat& chroma, RgbScratch& scratch) {
+    const auto bytes = static_cast<std::size_t>(luma.cols) * luma.rows * 3;
+    scratch.ycrcb.resize(bytes);
+    scratch.rgb.resize(bytes);
+    cv::Mat ycrcb(luma.size(), CV_8UC3, scratch.ycrcb.data());
+    const cv::Mat sources[] = {luma, chroma};
+    const int fromTo[] = {0, 0, 1, 2, 2, 1}; // Y -> 0, Cb -> 2, Cr -> 1
+    cv::mixChannels(sources, 2, &ycrcb, 1, fromTo, 3);
+    cv::Mat rgb(luma.size(), CV_8UC3, scratch.rgb.data());
+    cv::cvtColor(ycrcb, rgb, cv::COLOR_YCrCb2RGB);
+    return viewOf(rgb);
+}
+
 } // namespace
 
 GrayView lumaView(const frame::CapturedImage& image, std::vector<std::uint8_t>& scratch) {
@@ -104,6 +137,30 @@ std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width
         const std::uint8_t* data = rgb.ptr<std::uint8_t>(0);
         return {data, data + static_cast<std::size_t>(width) * height * 3};
     }
+    }
+    return {};
+}
+
+ColorView cameraRgbView(const frame::CapturedImage& image, int width, int height, RgbScratch& scratch) {
+    if (!wellFormed(image) || width <= 0 || height <= 0)
+        return {};
+    const cv::Size size(width, height);
+    auto* bytes = const_cast<std::uint8_t*>(image.bytes->data()); // cv::Mat wants non-const; only read
+    switch (image.format) {
+    case frame::PixelFormat::Nv12: {
+        const cv::Mat luma(image.height, image.width, CV_8U, bytes);
+        const cv::Mat chroma((image.height + 1) / 2, (image.width + 1) / 2, CV_8UC2,
+                             bytes + static_cast<std::size_t>(image.width) * image.height);
+        return ycbcrToRgbInto(resizedInto(luma, size, scratch.luma),
+                              resizedInto(chroma, size, scratch.chroma), scratch);
+    }
+    case frame::PixelFormat::Yuyv: {
+        cv::Mat luma, chroma;
+        splitYuyv(image, luma, chroma);
+        return ycbcrToRgbInto(resized(luma, size), resized(chroma, size), scratch);
+    }
+    case frame::PixelFormat::Rgb24:
+        return viewOf(resizedInto(cv::Mat(image.height, image.width, CV_8UC3, bytes), size, scratch.rgb));
     }
     return {};
 }

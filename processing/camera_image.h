@@ -19,6 +19,16 @@ struct GrayView {
     bool empty() const { return pixels == nullptr || width <= 0 || height <= 0; }
 };
 
+// Rows of 8-bit three-channel pixels that somebody else owns.
+struct ColorView {
+    const std::uint8_t* pixels = nullptr;
+    int width = 0;
+    int height = 0;
+    std::ptrdiff_t stride = 0; // bytes from one row to the next
+
+    bool empty() const { return pixels == nullptr || width <= 0 || height <= 0; }
+};
+
 // An 8-bit RGB image, rows top to bottom without padding: point colours, the camera panel's image.
 struct RgbImage {
     int width = 0;
@@ -44,6 +54,16 @@ GrayView lumaView(const frame::CapturedImage& image, std::vector<std::uint8_t>& 
 // full-range BT.601 as the sample's matrix (frame::ycbcrToRgb, to 0.2 levels). Empty for an empty or
 // malformed image.
 std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width, int height);
+
+// Buffers that cameraRgbView() keeps between frames.
+struct RgbScratch {
+    std::vector<std::uint8_t> luma, chroma, ycrcb, rgb;
+};
+
+// cameraRgb() into `scratch`, whose buffers keep their capacity: once they have the size, a frame
+// allocates nothing (on a virtual machine, first-touch page faults of a few fresh megabytes per frame
+// cost milliseconds). The view points into `scratch`.
+ColorView cameraRgbView(const frame::CapturedImage& image, int width, int height, RgbScratch& scratch);
 
 // cameraRgb as an RgbImage (empty when cameraRgb is).
 RgbImage cameraRgbImage(const frame::CapturedImage& image, int width, int height);

@@ -24,8 +24,10 @@ struct SmoothingParams {
 };
 
 enum class UpsamplingMethod {
-    Full, // guided filter at the output resolution
-    Fast, // fast guided filter: coefficients at 1/subsample of the output resolution, then interpolated
+    Full,    // guided filter at the output resolution
+    Fast,    // fast guided filter: coefficients at 1/subsample of the output resolution, then interpolated
+    Global,  // dual-guided global smoother (global_smoother.h): real time, close to the best offline error
+    Quality, // the global smoother with three sweeps per output pass instead of one: export and snapshots
 };
 
 enum class UpsamplingSize {
@@ -48,6 +50,12 @@ struct UpsamplingParams {
     bool fitWeighted = true;
     // Residual spread (meters) below which a window counts as a good fit: about the sensor's noise.
     float fitNoiseMeters = 0.005f;
+    // Global and Quality: the sensor's depth noise (standard deviation, meters). Depth steps well above it
+    // stay sharp; differences below it are smoothed away as noise.
+    float depthNoiseMeters = 0.005f;
+    // Global and Quality: scales every smoothness weight. Over a region of uniform colour a sample's
+    // influence spreads over about sqrt(smoothness) times as many pixels.
+    float smoothness = 1.0f;
 
     bool operator==(const UpsamplingParams&) const = default;
 };

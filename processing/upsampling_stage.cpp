@@ -1,6 +1,8 @@
 #include "processing/upsampling_stage.h"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 
 namespace dc::processing {
 
@@ -20,23 +22,59 @@ GuidedFilterParams guidedFilterParams(const UpsamplingParams& params) {
     return p;
 }
 
+GlobalSmootherParams globalSmootherParams(const UpsamplingParams& params, double factor, float depthNoise) {
+    const float s = std::max(params.smoothness, 0.0f);
+    const float noise = std::max(depthNoise, 0.0f);
+    const double f = std::max(factor, 1.0);
+    GlobalSmootherParams p;
+    p.sensorColor = {6.0f * s, 2, 24.0f, 0.0f};
+    p.sensorDepth = {10.0f * s, 3, 0.0f, 0.4f * noise};
+    // The output passes bridge the band of about `factor` pixels that interpolation blurs at an edge: the
+    // colour pass's reach grows with it.
+    p.outputColor = {3.0f * s * static_cast<float>(std::pow(f, 2.5)), 1, 4.0f, 0.0f};
+    p.outputDepth = {100.0f * s * static_cast<float>(std::sqrt(f)), 1, 64.0f, 0.2f * noise};
+    p.footprintSigma = 0.2f * noise;
+    p.medianPixels = 3;
+    if (params.method == UpsamplingMethod::Quality) {
+        p.outputColor.iterations = 3;
+        p.outputDepth.iterations = 3;
+    }
+    return p;
+}
+
 bool UpsamplingStage::wanted(const ProcessingSettings& settings, const Needs& needs) const {
     return settings.upsampling && needs.anyDepth();
+}
+
+std::optional<frame::DepthData> UpsamplingStage::upsample(const frame::DepthData& depth,
+                                                          const frame::CapturedImage& image,
+                                                          const UpsamplingParams& params) {
+    const auto [width, height] = upsamplingOutputSize(image.width, image.height, params);
+    if (params.method == UpsamplingMethod::Global || params.method == UpsamplingMethod::Quality) {
+        const ColorView guide = cameraRgbView(image, width, height, rgbScratch_);
+        if (guide.empty())
+            return std::nullopt;
+        const double factor = static_cast<double>(width) / std::max(depth.depthMeters.width, 1);
+        return smoother_.upsample(depth, guide,
+                                  globalSmootherParams(params, factor, params.depthNoiseMeters));
+    }
+    const GrayView luma = lumaView(image, lumaScratch_);
+    if (luma.empty())
+        return std::nullopt;
+    upsampler_.setGuide(luma, width, height, guidedFilterParams(params));
+    return upsampler_.upsample(depth);
 }
 
 frame::FramePtr UpsamplingStage::process(frame::FramePtr frame, const ProcessingSettings& settings) {
     if (!frame || !frame->sceneDepth)
         return frame;
-    const GrayView luma = lumaView(frame->capturedImage, lumaScratch_);
-    if (luma.empty())
+    const bool smoothed = showsSmoothed(*frame, settings.depthSource);
+    auto upsampled = upsample(smoothed ? *frame->smoothedSceneDepth : *frame->sceneDepth,
+                              frame->capturedImage, settings.upsamplingParams);
+    if (!upsampled)
         return frame;
-    const auto [width, height] = upsamplingOutputSize(luma.width, luma.height, settings.upsamplingParams);
-    upsampler_.setGuide(luma, width, height, guidedFilterParams(settings.upsamplingParams));
     auto out = std::make_shared<frame::Frame>(*frame);
-    if (showsSmoothed(*frame, settings.depthSource))
-        out->smoothedSceneDepth = upsampler_.upsample(*frame->smoothedSceneDepth);
-    else
-        out->sceneDepth = upsampler_.upsample(*frame->sceneDepth);
+    (smoothed ? out->smoothedSceneDepth : out->sceneDepth) = std::move(*upsampled);
     return out;
 }
 

@@ -126,18 +126,22 @@ nlohmann::json compareWithPublished(const std::vector<Row>& rows, const upsample
     return out;
 }
 
-// Where each of our methods has both lower error and lower time than each OpenCV edge-aware baseline.
+// Where each of our methods has both lower error and lower time than each OpenCV edge-aware peer.
 nlohmann::json checkDominance(const std::vector<Row>& rows) {
+    const std::vector<std::pair<const char*, std::vector<const char*>>> pairs = {
+        {"ours global", {"opencv fast global smoother", "opencv guided", "opencv joint bilateral"}},
+        {"ours full", {"opencv guided", "opencv joint bilateral"}},
+        {"ours fast s=2", {"opencv guided", "opencv joint bilateral"}},
+        {"ours fast s=4", {"opencv guided", "opencv joint bilateral"}},
+        {"ours fast s=8", {"opencv guided", "opencv joint bilateral"}}};
     nlohmann::json out = nlohmann::json::array();
     std::printf("\ndominance (lower MAD and lower median time, per scene and factor, every scene above):\n");
-    for (const char* ours : {"ours full", "ours fast s=2", "ours fast s=4", "ours fast s=8"})
-        for (const char* theirs : {"opencv guided", "opencv joint bilateral"}) {
+    for (const auto& [ours, peers] : pairs)
+        for (const char* theirs : peers) {
             int wins = 0, total = 0;
             std::string losses;
             for (const Row& r : rows) {
-                if (r.method != ours)
-                    continue;
-                const Row* other = find(rows, theirs, r.scene, r.factor);
+                const Row* other = r.method == ours ? find(rows, theirs, r.scene, r.factor) : nullptr;
                 if (!other)
                     continue;
                 ++total;
@@ -146,10 +150,71 @@ nlohmann::json checkDominance(const std::vector<Row>& rows) {
                 else
                     losses += " " + r.scene + " x" + std::to_string(static_cast<int>(std::lround(r.factor)));
             }
-            std::printf("  %-14s over %-22s %2d of %2d%s%s\n", ours, theirs, wins, total,
+            std::printf("  %-14s over %-28s %2d of %2d%s%s\n", ours, theirs, wins, total,
                         losses.empty() ? "" : "; not:", losses.c_str());
             out.push_back({{"method", ours}, {"over", theirs}, {"cases", total}, {"dominated", wins}});
         }
+    return out;
+}
+
+// Each method's MAD over that of the best published result on this benchmark (RCG, Liu et al., TIP 2017)
+// for every scene and factor, with the targets of the global smoother's two modes.
+nlohmann::json compareWithRcg(const std::vector<Row>& rows,
+                              const std::map<std::pair<std::string, int>, double>& rcg) {
+    const std::vector<std::pair<const char*, double>> methods = {{"ours global", 1.3},
+                                                                 {"ours quality", 1.2},
+                                                                 {"ours full", 0.0},
+                                                                 {"ours fast s=4", 0.0},
+                                                                 {"opencv fast global smoother", 0.0},
+                                                                 {"opencv guided", 0.0},
+                                                                 {"opencv joint bilateral", 0.0},
+                                                                 {"bicubic", 0.0}};
+    nlohmann::json out = nlohmann::json::array();
+    std::printf(
+        "\nagainst RCG (Liu et al., TIP 2017; its published outputs, the best result on this benchmark): "
+        "MAD / RCG's MAD\n");
+    for (const auto& [method, target] : methods) {
+        double worst = 0.0, sum = 0.0;
+        std::string where, cells;
+        nlohmann::json cases = nlohmann::json::array();
+        for (const Row& r : rows) {
+            const auto it = rcg.find({r.scene, static_cast<int>(std::lround(r.factor))});
+            if (r.method != method || it == rcg.end() || it->second <= 0.0)
+                continue;
+            const double ratio = r.mad / it->second;
+            sum += ratio;
+            if (ratio > worst) {
+                worst = ratio;
+                where = r.scene + " x" + std::to_string(it->first.second);
+            }
+            char cell[48];
+            std::snprintf(cell, sizeof cell, " %s x%d %.2f", r.scene.c_str(), it->first.second, ratio);
+            cells += cell;
+            cases.push_back({{"scene", r.scene},
+                             {"factor", it->first.second},
+                             {"mad", r.mad},
+                             {"rcgMad", it->second},
+                             {"ratio", ratio}});
+        }
+        if (cases.empty())
+            continue;
+        const bool met = worst <= target;
+        char note[64] = "";
+        if (target > 0.0)
+            std::snprintf(note, sizeof note, "; target <= %.1f everywhere: %s", target,
+                          met ? "met" : "MISSED");
+        std::printf("  %-28s worst %.3f (%s), mean %.3f%s\n   %s\n", method, worst, where.c_str(),
+                    sum / static_cast<double>(cases.size()), note, cells.c_str());
+        out.push_back({{"method", method},
+                       {"worstRatio", worst},
+                       {"worstCase", where},
+                       {"meanRatio", sum / static_cast<double>(cases.size())},
+                       {"cases", cases}});
+        if (target > 0.0) {
+            out.back()["target"] = target;
+            out.back()["targetMet"] = met;
+        }
+    }
     return out;
 }
 
@@ -191,35 +256,75 @@ CLI::App* addBenchUpsampleCommand(CLI::App& bench, BenchUpsampleOptions& options
     CLI::App* cmd =
         bench.add_subcommand("upsample", "depth upsampling error against run time, smoothing figures");
     cmd->add_option("--data", options.dataDirectory,
-                    "noisy-Middlebury directory (<scene>/<scene>_big.png, ...)")
-        ->check(CLI::ExistingDirectory)
-        ->capture_default_str();
+                    "noisy-Middlebury directory (<scene>/<scene>_big.png, _color.png, depth_<k>_n.png; "
+                    "rcg_mad.txt for the ratios to the best published result), e.g. "
+                    "../shared/data/middlebury_upsampling; without it, the synthetic scene only")
+        ->check(CLI::ExistingDirectory);
     cmd->add_option("--json", options.jsonPath, "also write every figure as JSON to this file");
     cmd->add_option("--chart", options.chartPath, "write the error-versus-time chart as PNG to this file");
     cmd->add_option("--runs", options.runs, "timed runs per case, the median is reported (at least 10)")
         ->check(CLI::Range(10, 100000))
         ->capture_default_str();
-    cmd->add_flag("--quick", options.quick, "small synthetic frames: checks the whole report in seconds");
+    cmd->add_flag("--quick", options.quick,
+                  "small synthetic frames and the first --data scene only: the whole report in seconds");
     return cmd;
 }
+
+namespace {
+
+void printReproduce(const BenchUpsampleOptions& o) {
+    std::printf("reproduce: depthcloud bench upsample --runs %d%s%s%s\n", o.runs, o.quick ? " --quick" : "",
+                o.dataDirectory.empty() ? "" : " --data ", o.dataDirectory.c_str());
+}
+
+// The Middlebury part of the report: every method on every scene and factor, the protocol check, the
+// published rows and the ratios to RCG. Returns false (having printed why) when the data cannot be read.
+bool benchMiddlebury(const BenchUpsampleOptions& options, nlohmann::json& report, std::vector<Row>& rows) {
+    auto problems = upsample::middleburyProblems(options.dataDirectory, {2, 4, 8, 16});
+    if (!problems) {
+        std::fprintf(stderr, "depthcloud: error: %s\n", problems.error().message.c_str());
+        return false;
+    }
+    if (options.quick) // the first scene: its four factors
+        problems->erase(std::remove_if(problems->begin(), problems->end(),
+                                       [&](const Problem& p) { return p.scene != problems->front().scene; }),
+                        problems->end());
+    printHeader("noisy Middlebury: MAD and RMSE over all pixels", "8-bit disparity levels");
+    rows = runProblems(*problems, options.runs);
+    const upsample::Provenance prov = upsample::readProvenance(options.dataDirectory + "/PROVENANCE.txt");
+    report["middlebury"] = rowsJson(rows);
+    report["protocolCheck"] = checkProtocol(rows, prov);
+    report["published"] = compareWithPublished(rows, prov, "ours full");
+    report["rcg"] = compareWithRcg(rows, upsample::readRcg(options.dataDirectory + "/rcg_mad.txt"));
+    return true;
+}
+
+Status writeOutputs(const BenchUpsampleOptions& options, const nlohmann::json& report,
+                    const std::vector<Row>& synRows, const std::vector<Row>& mbRows) {
+    if (!options.chartPath.empty()) {
+        std::vector<upsample::ChartPanel> panels{
+            panelOf(synRows, "synthetic ARKit frame -> half camera size", "MAD mm", 1000.0)};
+        if (!mbRows.empty())
+            panels.push_back(panelOf(mbRows, "noisy Middlebury, mean of scenes x2..x16", "MAD levels", 1.0));
+        if (Status s = upsample::writeChart(options.chartPath, panels); !s)
+            return s;
+    }
+    if (!options.jsonPath.empty())
+        return base::writeTextFile(options.jsonPath, report.dump(2) + "\n");
+    return Status::success();
+}
+
+} // namespace
 
 int runBenchUpsample(const BenchUpsampleOptions& options) {
     setLogQuiet(true);
     std::printf("bench upsample: %d timed runs per case (median), %d threads\n", options.runs,
                 cv::getNumThreads());
-    auto middlebury = upsample::middleburyProblems(options.dataDirectory, {2, 4, 8, 16});
-    if (!middlebury) {
-        std::fprintf(stderr, "depthcloud: error: %s\n", middlebury.error().message.c_str());
-        return kExitBadArguments;
-    }
-    printHeader("noisy Middlebury: MAD and RMSE over all pixels", "8-bit disparity levels");
-    const std::vector<Row> mbRows = runProblems(*middlebury, options.runs);
-    const upsample::Provenance prov = upsample::readProvenance(options.dataDirectory + "/PROVENANCE.txt");
+    printReproduce(options);
     nlohmann::json report;
-    report["middlebury"] = rowsJson(mbRows);
-    report["protocolCheck"] = checkProtocol(mbRows, prov);
-    report["published"] = compareWithPublished(mbRows, prov, "ours full");
-
+    std::vector<Row> mbRows;
+    if (!options.dataDirectory.empty() && !benchMiddlebury(options, report, mbRows))
+        return kExitBadArguments;
     const Problem synthetic = options.quick ? upsample::syntheticProblem(64, 48, 320, 240)
                                             : upsample::syntheticProblem(256, 192, 1920, 1440);
     printHeader("synthetic desk (ARKit-like frame), against exact ground truth", "mm");
@@ -232,21 +337,9 @@ int runBenchUpsample(const BenchUpsampleOptions& options) {
     allRows.insert(allRows.end(), synRows.begin(), synRows.end());
     report["dominance"] = checkDominance(allRows);
     report["smoothing"] = upsample::benchSmoothing(options);
-
-    if (!options.chartPath.empty()) {
-        const std::vector<upsample::ChartPanel> panels{
-            panelOf(synRows, "synthetic ARKit frame 256x192 -> 960x720", "MAD mm", 1000.0),
-            panelOf(mbRows, "noisy Middlebury, mean of 4 scenes x2..x16", "MAD levels", 1.0)};
-        if (Status s = upsample::writeChart(options.chartPath, panels); !s) {
-            std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
-            return kExitFailure;
-        }
-    }
-    if (!options.jsonPath.empty()) {
-        if (Status s = base::writeTextFile(options.jsonPath, report.dump(2) + "\n"); !s) {
-            std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
-            return kExitFailure;
-        }
+    if (Status s = writeOutputs(options, report, synRows, mbRows); !s) {
+        std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
+        return kExitFailure;
     }
     return kExitOk;
 }

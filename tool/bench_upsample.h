@@ -10,6 +10,7 @@
 #include <opencv2/core.hpp>
 
 #include <functional>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -26,6 +27,7 @@ struct Problem {
     // Pixels that count (nonzero); empty = all pixels.
     frame::Plane<std::uint8_t> evaluated;
     float fitNoise = 0.0f; // the depth's noise floor in its units (our filter's fitNoise)
+    float noise = 0.0f;    // the depth's noise (standard deviation) in its units (our global smoother's)
     std::string units;
 };
 
@@ -36,6 +38,8 @@ struct Method {
 
 // nearest, bilinear, bicubic (Keys a = -0.5), OpenCV guided / joint bilateral / fast global smoother, ours.
 std::vector<Method> allMethods();
+// The method of that name (one of allMethods()).
+const Method& methodNamed(const std::string& name);
 // The bicubic used for the reference numbers (Keys a = -0.5, MATLAB/PIL's; OpenCV's INTER_CUBIC is a =
 // -0.75).
 frame::Plane<float> bicubic(const frame::Plane<float>& low, int width, int height);
@@ -55,6 +59,10 @@ struct Provenance {
 };
 Provenance readProvenance(const std::string& path);
 
+// The best published result's MAD per (scene, factor), from lines "<scene> <factor> <mad>" ('#' comments);
+// empty when the file is missing.
+std::map<std::pair<std::string, int>, double> readRcg(const std::string& path);
+
 // Median wall time of `runs` calls after one warm-up call, milliseconds.
 double medianMilliseconds(int runs, const std::function<void()>& call);
 
@@ -73,7 +81,7 @@ struct ChartPanel {
 Status writeChart(const std::string& path, const std::vector<ChartPanel>& panels);
 
 // The ARKit case (`problem`: 256x192 depth, 1920x1440 guide, 960x720 output): ours against OpenCV's
-// guidedFilter at one thread and at all threads.
+// filters at one thread and at all threads.
 nlohmann::json benchArkitFrame(const BenchUpsampleOptions& options, const Problem& problem);
 // The whole processing chain per ARKit frame: confidence filter, smoothing, upsampling, cloud preparation.
 nlohmann::json benchChain(const BenchUpsampleOptions& options);

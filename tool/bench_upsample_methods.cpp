@@ -2,8 +2,10 @@
 
 #include "devices/synthetic/synthetic_scene.h"
 #include "processing/camera_image.h"
+#include "processing/global_smoother.h"
 #include "processing/guided_filter.h"
 #include "processing/quality.h"
+#include "processing/upsampling_stage.h"
 #include "tool/bench_upsample.h"
 
 #include <opencv2/imgcodecs.hpp>
@@ -11,6 +13,7 @@
 #include <opencv2/ximgproc.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -39,23 +42,23 @@ cv::Size outputSize(const Problem& p) {
 }
 
 // What an OpenCV user would feed its filters: the depth scaled bilinearly (holes averaged in) and the
-// guide at the output size.
-cv::Mat bilinearDepth(const Problem& p) {
-    cv::Mat out;
+// guide at the output size, into matrices kept from one call to the next as a loop over frames keeps them.
+const cv::Mat& bilinearDepth(const Problem& p) {
+    thread_local cv::Mat out;
     cv::resize(asMat(p.low.depthMeters), out, outputSize(p), 0, 0, cv::INTER_LINEAR);
     return out;
 }
 
-cv::Mat guideAtOutput(const cv::Mat& guide, cv::Size size) {
+const cv::Mat& guideAtOutput(const cv::Mat& guide, cv::Size size) {
     if (guide.size() == size)
         return guide;
-    cv::Mat out;
+    thread_local cv::Mat out;
     cv::resize(guide, out, size, 0, 0, cv::INTER_AREA);
     return out;
 }
 
-cv::Mat unitFloat(const cv::Mat& image8) {
-    cv::Mat out;
+const cv::Mat& unitFloat(const cv::Mat& image8) {
+    thread_local cv::Mat out;
     image8.convertTo(out, CV_32F, 1.0 / 255.0);
     return out;
 }
@@ -64,6 +67,14 @@ cv::Mat unitFloat(const cv::Mat& image8) {
 // rule (by mean MAD over the Middlebury scenes at x2..x16) of a small sweep done while writing this bench.
 int radiusFor(double factor, double base, double perFactor) {
     return std::max(1, static_cast<int>(std::lround(base + perFactor * factor)));
+}
+
+// A parameter tuned per factor (x2, x4, x8, x16 on the four public Middlebury scenes), interpolated
+// log-linearly in between and held beyond.
+double perFactor(double factor, const std::array<double, 4>& values) {
+    const double t = std::clamp(std::log2(factor) - 1.0, 0.0, 3.0);
+    const int i = std::min(static_cast<int>(t), 2);
+    return std::exp(std::log(values[i]) + (t - i) * (std::log(values[i + 1]) - std::log(values[i])));
 }
 
 Plane<float> ours(const Problem& p, int subsample, bool fitWeighted) {
@@ -78,26 +89,40 @@ Plane<float> ours(const Problem& p, int subsample, bool fitWeighted) {
     return processing::guidedUpsample(p.low, guide, p.truth.width, p.truth.height, params).depthMeters;
 }
 
+// The global smoother as the upsampling stage runs it (its parameters from globalSmootherParams), with the
+// RGB guide at the output size and its buffers kept between calls.
+Plane<float> oursGlobal(const Problem& p, processing::UpsamplingMethod method) {
+    thread_local processing::GlobalSmoother smoother;
+    processing::UpsamplingParams params;
+    params.method = method;
+    const cv::Mat& guide = guideAtOutput(p.guideColor, outputSize(p));
+    const processing::ColorView view{guide.ptr<std::uint8_t>(0), guide.cols, guide.rows,
+                                     static_cast<std::ptrdiff_t>(guide.step[0])};
+    return smoother.upsample(p.low, view, processing::globalSmootherParams(params, p.factor, p.noise))
+        .depthMeters;
+}
+
 Plane<float> opencvGuided(const Problem& p) {
-    const cv::Mat guide = unitFloat(guideAtOutput(p.guideColor, outputSize(p)));
-    cv::Mat out;
-    cv::ximgproc::guidedFilter(guide, bilinearDepth(p), out, radiusFor(p.factor, 0.0, 1.0), 1e-2);
+    thread_local cv::Mat out;
+    cv::ximgproc::guidedFilter(unitFloat(guideAtOutput(p.guideColor, outputSize(p))), bilinearDepth(p), out,
+                               radiusFor(p.factor, 0.0, 1.0), 1e-2);
     return toPlane(out);
 }
 
 Plane<float> opencvJointBilateral(const Problem& p) {
-    const cv::Mat guide = unitFloat(guideAtOutput(p.guideColor, outputSize(p))); // same depth as the source
     const double sigmaSpace = std::min(p.factor, 3.0); // its cost grows with sigmaSpace^2
-    cv::Mat out;
-    cv::ximgproc::jointBilateralFilter(guide, bilinearDepth(p), out,
-                                       2 * static_cast<int>(1.5 * sigmaSpace) + 1, 0.1, sigmaSpace);
+    thread_local cv::Mat out;
+    cv::ximgproc::jointBilateralFilter(unitFloat(guideAtOutput(p.guideColor, outputSize(p))),
+                                       bilinearDepth(p), out, 2 * static_cast<int>(1.5 * sigmaSpace) + 1, 0.1,
+                                       sigmaSpace);
     return toPlane(out);
 }
 
+// lambda and sigma_color the best of lambda 30..3000 x sigma 2..16 by mean MAD / RCG's at each factor.
 Plane<float> opencvFastGlobalSmoother(const Problem& p) {
-    cv::Mat out;
+    thread_local cv::Mat out;
     cv::ximgproc::fastGlobalSmootherFilter(guideAtOutput(p.guideColor, outputSize(p)), bilinearDepth(p), out,
-                                           100.0, 4.0);
+                                           perFactor(p.factor, {100.0, 100.0, 300.0, 300.0}), 4.0);
     return toPlane(out);
 }
 
@@ -177,7 +202,15 @@ std::vector<Method> allMethods() {
         {"ours fast s=2", [](const Problem& p) { return ours(p, 2, true); }},
         {"ours fast s=4", [](const Problem& p) { return ours(p, 4, true); }},
         {"ours fast s=8", [](const Problem& p) { return ours(p, 8, true); }},
+        {"ours global", [](const Problem& p) { return oursGlobal(p, processing::UpsamplingMethod::Global); }},
+        {"ours quality",
+         [](const Problem& p) { return oursGlobal(p, processing::UpsamplingMethod::Quality); }},
     };
+}
+
+const Method& methodNamed(const std::string& name) {
+    static const std::vector<Method> methods = allMethods();
+    return *std::find_if(methods.begin(), methods.end(), [&](const Method& m) { return m.name == name; });
 }
 
 namespace {
@@ -201,6 +234,9 @@ Expected<Problem> middleburyProblem(const std::filesystem::path& dir, const std:
     cv::cvtColor(color, p.guideGray, cv::COLOR_BGR2GRAY);
     p.truth = toPlane(truth);
     p.fitNoise = 0.25f; // a quarter disparity level: the 8-bit quantisation step's spread is 0.29
+    // The inputs' Gaussian noise (Park et al.): 5.2 levels by the median absolute difference of
+    // horizontal neighbours in every input (median |d(x+1) - d(x)| = 5 = 0.954 sigma).
+    p.noise = 5.0f;
     p.units = "levels";
     return p;
 }
@@ -252,6 +288,7 @@ Problem syntheticProblem(int depthWidth, int depthHeight, int cameraWidth, int c
     for (std::size_t i = 0; i < p.evaluated.pixels.size(); ++i)
         p.evaluated.pixels[i] = p.evaluated.pixels[i] && p.truth.pixels[i] > 0.0f;
     p.fitNoise = 0.005f; // the sensor's noise at about 1.5 m
+    p.noise = 0.005f;
     p.units = "m";
     return p;
 }
@@ -285,6 +322,21 @@ Provenance readProvenance(const std::string& path) {
         }
     }
     return prov;
+}
+
+std::map<std::pair<std::string, int>, double> readRcg(const std::string& path) {
+    std::map<std::pair<std::string, int>, double> rcg;
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line)) {
+        std::istringstream fields(line.substr(0, line.find('#')));
+        std::string scene;
+        int factor = 0;
+        double mad = 0.0;
+        if (fields >> scene >> factor >> mad)
+            rcg[{scene, factor}] = mad;
+    }
+    return rcg;
 }
 
 double medianMilliseconds(int runs, const std::function<void()>& call) {

@@ -2,11 +2,13 @@
 
 #include "base/log.h"
 #include "devices/replay/replay_spec.h"
+#include "engine/export_job.h"
 #include "exporting/export.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
 
 #include <cstdio>
+#include <functional>
 
 namespace dc::tool {
 
@@ -38,6 +40,21 @@ private:
     int lastPercent_ = -1;
 };
 
+// The export's processing for `--upsample`: the instrument's upsampling stage with that method, on the
+// sensor's depth; no transform for "none". Method names are checked by the parser.
+std::function<frame::Frame(frame::Frame)> upsamplingOf(const std::string& name) {
+    if (name == "none")
+        return {};
+    engine::Demand demand;
+    demand.processing.upsampling = true;
+    demand.processing.depthSource = processing::DepthSource::Raw;
+    demand.processing.upsamplingParams.method = name == "full"      ? processing::UpsamplingMethod::Full
+                                                : name == "global"  ? processing::UpsamplingMethod::Global
+                                                : name == "quality" ? processing::UpsamplingMethod::Quality
+                                                                    : processing::UpsamplingMethod::Fast;
+    return engine::processedDepth(demand);
+}
+
 exporting::ExportFormat formatOf(const std::string& name) {
     if (name == "stray")
         return exporting::ExportFormat::Stray;
@@ -57,6 +74,7 @@ int runExport(const ExportOptionsCli& o) {
     options.format = formatOf(o.format);
     options.outDirectory = o.out;
     options.worldCoordinates = o.world;
+    options.transform = upsamplingOf(o.upsample);
     if (!o.frames.empty()) {
         auto range = exporting::parseFrameRange(o.frames, (*source)->frameCount());
         if (!range)
@@ -68,8 +86,9 @@ int runExport(const ExportOptionsCli& o) {
         **source, options, [&bar](std::size_t done, std::size_t total) { return bar.update(done, total); });
     if (!result)
         return fail(result.error().message, kExitFailure);
-    std::printf("depthcloud export: wrote %zu frames as %s to %s%s\n", result->framesWritten,
-                exporting::toString(options.format), o.out.c_str(),
+    std::printf("depthcloud export: wrote %zu frames as %s%s to %s%s\n", result->framesWritten,
+                exporting::toString(options.format),
+                options.transform ? (", depth upsampled (" + o.upsample + ")").c_str() : "", o.out.c_str(),
                 result->framesSkipped
                     ? (" (" + std::to_string(result->framesSkipped) + " unreadable frames skipped)").c_str()
                     : "");

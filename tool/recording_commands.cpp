@@ -47,6 +47,14 @@ void addExport(CLI::App& app, ExportOptionsCli& o, RecordingCommands& c) {
         ->check(CLI::IsMember({"ply", "stray", "png16"}))
         ->capture_default_str();
     c.exportCmd->add_flag("--world", o.world, "PLY points in world coordinates (through each frame's pose)");
+    c.exportCmd
+        ->add_option(
+            "--upsample", o.upsample,
+            "upsample each frame's depth to half the camera image first: none | fast (guided filter, "
+            "s = 4) | full (guided filter) | global (global smoother, real time) | quality (global "
+            "smoother, quality mode: hundreds of ms per frame)")
+        ->check(CLI::IsMember({"none", "fast", "full", "global", "quality"}))
+        ->capture_default_str();
 }
 
 } // namespace

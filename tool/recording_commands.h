@@ -28,6 +28,7 @@ struct ExportOptionsCli {
     std::string frames; // "A:B"
     std::string format = "ply";
     bool world = false;
+    std::string upsample = "none"; // none | fast | full | global | quality
 };
 
 struct BenchReplayOptions {

@@ -1,5 +1,6 @@
 #include "ui/panels.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace dc::ui {
@@ -132,22 +133,69 @@ bool smoothingControls(processing::SmoothingParams& p) {
     return changed;
 }
 
+// The method list: the full guided filter, the fast one with its subsampling factor, the global smoother's
+// real-time and quality modes.
+int methodIndex(const processing::UpsamplingParams& p) {
+    switch (p.method) {
+    case processing::UpsamplingMethod::Full:
+        return 0;
+    case processing::UpsamplingMethod::Fast:
+        return p.subsample == 2 ? 1 : p.subsample == 8 ? 3 : 2;
+    case processing::UpsamplingMethod::Global:
+        return 4;
+    case processing::UpsamplingMethod::Quality:
+        return 5;
+    }
+    return 2;
+}
+
+void setMethod(processing::UpsamplingParams& p, int index) {
+    constexpr processing::UpsamplingMethod kMethods[] = {
+        processing::UpsamplingMethod::Full,   processing::UpsamplingMethod::Fast,
+        processing::UpsamplingMethod::Fast,   processing::UpsamplingMethod::Fast,
+        processing::UpsamplingMethod::Global, processing::UpsamplingMethod::Quality};
+    p.method = kMethods[std::clamp(index, 0, 5)];
+    if (p.method == processing::UpsamplingMethod::Fast)
+        p.subsample = index == 1 ? 2 : index == 3 ? 8 : 4;
+}
+
+bool guidedFilterControls(processing::UpsamplingParams& p) {
+    bool changed = ImGui::SliderInt("Radius", &p.radiusPixels, 1, 32, "%d px");
+    changed |= ImGui::SliderFloat("Epsilon", &p.epsilon, 1e-5f, 1e-1f, "%.5f", ImGuiSliderFlags_Logarithmic);
+    changed |= ImGui::Checkbox("Edge-aware weights", &p.fitWeighted);
+    return changed;
+}
+
+bool globalSmootherControls(processing::UpsamplingParams& p) {
+    float noiseMillimeters = p.depthNoiseMeters * 1000.0f;
+    bool changed = ImGui::SliderFloat("Depth noise", &noiseMillimeters, 0.5f, 50.0f, "%.1f mm",
+                                      ImGuiSliderFlags_Logarithmic);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "The sensor's noise: steps well above it stay sharp, smaller differences are smoothed.");
+    p.depthNoiseMeters = noiseMillimeters / 1000.0f;
+    changed |=
+        ImGui::SliderFloat("Smoothness", &p.smoothness, 0.1f, 10.0f, "%.2fx", ImGuiSliderFlags_Logarithmic);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Scales how far depth spreads along surfaces of one colour.");
+    return changed;
+}
+
 bool upsamplingControls(processing::UpsamplingParams& p) {
-    // One list for the method: the full filter, or the fast one with its subsampling factor.
-    int method = p.method == processing::UpsamplingMethod::Full ? 0
-                 : p.subsample == 2                             ? 1
-                 : p.subsample == 8                             ? 3
-                                                                : 2;
-    bool changed =
-        ImGui::Combo("Method", &method, "full guided filter\0fast, s = 2\0fast, s = 4\0fast, s = 8\0");
-    p.method = method == 0 ? processing::UpsamplingMethod::Full : processing::UpsamplingMethod::Fast;
-    p.subsample = method == 1 ? 2 : method == 3 ? 8 : 4;
+    int method = methodIndex(p);
+    bool changed = ImGui::Combo("Method", &method,
+                                "full guided filter\0fast, s = 2\0fast, s = 4\0fast, s = 8\0"
+                                "global smoother (real time)\0global smoother, quality\0");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("The global smoother: colour- then depth-guided least squares, closest to the best "
+                          "offline result; its quality mode takes hundreds of milliseconds per frame.");
+    setMethod(p, method);
     int size = static_cast<int>(p.size);
     changed |= ImGui::Combo("Output", &size, "half camera size\0full camera size\0");
     p.size = static_cast<processing::UpsamplingSize>(size);
-    changed |= ImGui::SliderInt("Radius", &p.radiusPixels, 1, 32, "%d px");
-    changed |= ImGui::SliderFloat("Epsilon", &p.epsilon, 1e-5f, 1e-1f, "%.5f", ImGuiSliderFlags_Logarithmic);
-    changed |= ImGui::Checkbox("Edge-aware weights", &p.fitWeighted);
+    const bool global =
+        p.method == processing::UpsamplingMethod::Global || p.method == processing::UpsamplingMethod::Quality;
+    changed |= global ? globalSmootherControls(p) : guidedFilterControls(p);
     return changed;
 }
 

@@ -42,6 +42,8 @@ json processingToJson(const processing::ProcessingSettings& p) {
             {"radiusPixels", up.radiusPixels},
             {"epsilon", up.epsilon},
             {"fitWeighted", up.fitWeighted},
+            {"depthNoiseMeters", up.depthNoiseMeters},
+            {"smoothness", up.smoothness},
             {"fogMaxMeters", p.fog.fogMaxMeters},
             {"fogColor", p.fog.color},
             {"fogConfidenceOverlay", p.fog.confidenceOverlay},
@@ -68,12 +70,14 @@ void processingFromJson(const json& j, processing::ProcessingSettings& p) {
     read(j, "alpha", sm.alpha);
     read(j, "jumpMeters", sm.jumpMeters);
     read(j, "holeFrames", sm.holeFrames);
-    readEnum(j, "method", up.method, 2);
+    readEnum(j, "method", up.method, 4);
     read(j, "subsample", up.subsample);
     readEnum(j, "outputSize", up.size, 2);
     read(j, "radiusPixels", up.radiusPixels);
     read(j, "epsilon", up.epsilon);
     read(j, "fitWeighted", up.fitWeighted);
+    read(j, "depthNoiseMeters", up.depthNoiseMeters);
+    read(j, "smoothness", up.smoothness);
     read(j, "fogMaxMeters", p.fog.fogMaxMeters);
     read(j, "fogColor", p.fog.color);
     read(j, "fogConfidenceOverlay", p.fog.confidenceOverlay);
@@ -96,6 +100,9 @@ void sanitize(processing::ProcessingSettings& p) {
         up.subsample = d.upsamplingParams.subsample;
     up.radiusPixels = std::clamp(up.radiusPixels, 1, 64);
     up.epsilon = std::clamp(finiteOr(up.epsilon, d.upsamplingParams.epsilon), 1e-6f, 1.0f);
+    up.depthNoiseMeters =
+        std::clamp(finiteOr(up.depthNoiseMeters, d.upsamplingParams.depthNoiseMeters), 1e-4f, 1.0f);
+    up.smoothness = std::clamp(finiteOr(up.smoothness, d.upsamplingParams.smoothness), 0.01f, 100.0f);
     p.fog.fogMaxMeters = std::clamp(finiteOr(p.fog.fogMaxMeters, d.fog.fogMaxMeters), 0.1f, 100.0f);
     for (float& c : p.fog.color)
         c = std::clamp(finiteOr(c, 0.8f), 0.0f, 1.0f);

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -43,6 +44,8 @@ void writeTinyScene(const fs::path& dir) {
         cv::imwrite((dir / "tiny" / ("depth_" + std::to_string(k) + "_n.png")).string(), low);
     }
     std::ofstream(dir / "PROVENANCE.txt") << "made by bench_upsample_test\n";
+    std::ofstream(dir / "rcg_mad.txt")
+        << "# scene factor mad\ntiny 2 0.5\ntiny 4 1.0\ntiny 8 2.0\ntiny 16 4.0\n";
 }
 
 struct Output {
@@ -80,12 +83,20 @@ TEST(BenchUpsample, WritesTableJsonAndChartOnTinyInputs) {
 
     std::ifstream in(json);
     const nlohmann::json report = nlohmann::json::parse(in);
-    ASSERT_EQ(report["middlebury"].size(), 4u * 11u) << "4 factors x 11 methods";
+    ASSERT_EQ(report["middlebury"].size(), 4u * 13u) << "4 factors x 13 methods";
     for (const auto& row : report["middlebury"]) {
         EXPECT_GE(row["mad"].get<double>(), 0.0);
         EXPECT_GT(row["medianMs"].get<double>(), 0.0);
     }
-    EXPECT_TRUE(report["chain"].contains("medianMs"));
+    const auto global = std::find_if(report["rcg"].begin(), report["rcg"].end(),
+                                     [](const nlohmann::json& m) { return m["method"] == "ours global"; });
+    ASSERT_NE(global, report["rcg"].end()) << "ratios to rcg_mad.txt's figures";
+    ASSERT_EQ((*global)["cases"].size(), 4u);
+    for (const auto& c : (*global)["cases"])
+        EXPECT_NEAR(c["ratio"].get<double>(), c["mad"].get<double>() / c["rcgMad"].get<double>(), 1e-9);
+    EXPECT_EQ((*global)["cases"][3]["rcgMad"].get<double>(), 4.0) << "x16 read from the file";
+    EXPECT_TRUE(report["chain"]["fast"].contains("medianMs"));
+    EXPECT_TRUE(report["chain"]["global"].contains("medianMs")) << "the chain with the global smoother too";
     EXPECT_GT(report["smoothing"]["flickerReduction"].get<double>(), 1.0);
 
     const cv::Mat png = cv::imread(chart, cv::IMREAD_COLOR);

@@ -43,11 +43,12 @@ void expectUsable(const DepthData& d) {
         ASSERT_TRUE(std::isfinite(v) && v >= 0.0f) << v;
 }
 
-// Every stage's output (smoothing and upsampling of the shown map, fog, aura) for both shown maps and both
-// upsampling methods. The map that is not shown passes through unprocessed, as the source delivered it.
+// Every stage's output (smoothing and upsampling of the shown map, fog, aura) for both shown maps and every
+// upsampling method. The map that is not shown passes through unprocessed, as the source delivered it.
 void runEverything(const frame::FramePtr& frame) {
     for (DepthSource source : {DepthSource::Smoothed, DepthSource::Raw})
-        for (UpsamplingMethod method : {UpsamplingMethod::Full, UpsamplingMethod::Fast}) {
+        for (UpsamplingMethod method : {UpsamplingMethod::Full, UpsamplingMethod::Fast,
+                                        UpsamplingMethod::Global, UpsamplingMethod::Quality}) {
             Pipeline pipeline = makeDefaultPipeline();
             ProcessingSettings settings;
             settings.smoothing = settings.upsampling = true;

@@ -1,0 +1,540 @@
+#include "processing/global_smoother.h"
+
+#include "processing/parallel.h"
+#include "processing/resample.h"
+#include "processing/tridiagonal.h"
+
+#include <opencv2/imgproc.hpp>
+
+#include <algorithm>
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+
+namespace dc::processing {
+
+namespace {
+
+// Lines solved in lockstep, one per lane: kLanes neighbouring rows in the horizontal sweeps, kLanes
+// neighbouring columns in the vertical ones, as two AVX vectors (Octet) or four SSE ones (Quad): independent
+// chains of work that hide the latency of the division each elimination step waits for.
+constexpr int kLanes = 16;
+using Quad = float __attribute__((vector_size(4 * sizeof(float))));
+using Octet = float __attribute__((vector_size(8 * sizeof(float))));
+
+// A smoothed weight below this means no sample reached the pixel: its own data is used instead.
+constexpr float kMinSolvedWeight = 1e-6f;
+// Data weight per ARKit confidence level: a low-confidence sample is filled in from its neighbours rather
+// than trusted; medium counts half as much as high.
+constexpr float kConfidenceWeight[3] = {0.0f, 0.5f, 1.0f};
+constexpr int kRowsPerPiece = 16;
+
+bool measured(float depth) {
+    return std::isfinite(depth) && depth > 0.0f;
+}
+
+int roundUp(int n, int multiple) {
+    return (n + multiple - 1) / multiple * multiple;
+}
+
+// FGS's schedule: the smoothness of iteration t of T falls by 4 from one to the next and the iterations
+// sum to 1.5 lambda, so that the first sweeps carry values far and the later ones repair the streaks that
+// alternating 1-D solves leave.
+float iterationLambda(float lambda, int t, int iterations) {
+    return static_cast<float>(lambda * 1.5 * std::pow(4.0, iterations - 1 - t) /
+                              (std::pow(4.0, iterations) - 1.0));
+}
+
+struct Grid {
+    int width = 0, height = 0, paddedWidth = 0, paddedHeight = 0;
+    std::vector<float> dataSum, dataWeight; // confidence-weighted data and its weight
+    std::vector<float> sum, weight;         // the same, smoothed in place by a pass
+    std::vector<float> edgeH, edgeV;        // neighbour weights of the pass: to the right, below
+    std::vector<float> value;               // the last pass's depth, centred
+    std::vector<float> colorH, colorV;      // squared colour distances to the right, below
+
+    std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * paddedWidth + x; }
+};
+
+// A new size zeroes every plane: the padding (whole vectors of lanes) must stay 0, which no weight couples
+// to a real pixel and every solve keeps at 0.
+void resize(Grid& g, int width, int height) {
+    if (g.width == width && g.height == height)
+        return;
+    g.width = width;
+    g.height = height;
+    g.paddedWidth = roundUp(width, kLanes);
+    g.paddedHeight = roundUp(height, kLanes);
+    const std::size_t n = static_cast<std::size_t>(g.paddedWidth) * g.paddedHeight;
+    for (std::vector<float>* plane :
+         {&g.dataSum, &g.dataWeight, &g.sum, &g.weight, &g.edgeH, &g.edgeV, &g.value, &g.colorH, &g.colorV})
+        plane->assign(n, 0.0f);
+}
+
+void rowsInParallel(int height, const std::function<void(int y)>& row) {
+    parallelRanges(height, kRowsPerPiece, [&](int y0, int y1) {
+        for (int y = y0; y < y1; ++y)
+            row(y);
+    });
+}
+
+// The per-pixel kernels are also built for x86-64-v3 (AVX2, FMA) and chosen at run time: twice the lanes
+// per instruction where the CPU has them. flatten inlines what they call into each version.
+#define DC_VECTOR_KERNEL [[gnu::target_clones("arch=x86-64-v3", "default"), gnu::flatten]]
+
+// Squared Euclidean distances of n pixels' colours to their right neighbours' (h) and to the pixels below
+// (v); h[n - 1] is never read.
+DC_VECTOR_KERNEL void colorDistanceRow(const std::uint8_t* __restrict row,
+                                       const std::uint8_t* __restrict below, float* __restrict h,
+                                       float* __restrict v, int n) {
+    for (int x = 0; x + 1 < n; ++x) {
+        const int d0 = row[3 * x + 3] - row[3 * x], d1 = row[3 * x + 4] - row[3 * x + 1],
+                  d2 = row[3 * x + 5] - row[3 * x + 2];
+        h[x] = static_cast<float>(d0 * d0 + d1 * d1 + d2 * d2);
+    }
+    for (int x = 0; x < n; ++x) {
+        const int d0 = below[3 * x] - row[3 * x], d1 = below[3 * x + 1] - row[3 * x + 1],
+                  d2 = below[3 * x + 2] - row[3 * x + 2];
+        v[x] = static_cast<float>(d0 * d0 + d1 * d1 + d2 * d2);
+    }
+}
+
+void colorDistances(ColorView guide, Grid& g) {
+    rowsInParallel(g.height, [&](int y) {
+        const std::uint8_t* row = guide.pixels + y * guide.stride;
+        colorDistanceRow(row, y + 1 < g.height ? row + guide.stride : row, g.colorH.data() + g.index(0, y),
+                         g.colorV.data() + g.index(0, y), g.width);
+    });
+}
+
+// One neighbour weight: colour term 1 / (1 + (d / sigma)^8) from the squared distance d^2, times depth term
+// 1 / (1 + (dz / sigma)^2)^2. A sigma of 0 enters as an inverse of 0, which makes its term exactly 1.
+float neighbourWeight(float colorSquared, float inverseColorSigmaSquared, float dz, float inverseDepthSigma) {
+    const float s = colorSquared * inverseColorSigmaSquared, s2 = s * s;
+    const float t = dz * inverseDepthSigma, q = 1.0f + t * t;
+    return 1.0f / ((1.0f + s2 * s2) * (q * q));
+}
+
+void transpose(Quad& a, Quad& b, Quad& c, Quad& d) {
+    const Quad ab0 = __builtin_shufflevector(a, b, 0, 4, 1, 5),
+               ab1 = __builtin_shufflevector(a, b, 2, 6, 3, 7);
+    const Quad cd0 = __builtin_shufflevector(c, d, 0, 4, 1, 5),
+               cd1 = __builtin_shufflevector(c, d, 2, 6, 3, 7);
+    a = __builtin_shufflevector(ab0, cd0, 0, 1, 4, 5);
+    b = __builtin_shufflevector(ab0, cd0, 2, 3, 6, 7);
+    c = __builtin_shufflevector(ab1, cd1, 0, 1, 4, 5);
+    d = __builtin_shufflevector(ab1, cd1, 2, 3, 6, 7);
+}
+
+// kLanes rows of a plane (row stride `stride`) to and from lines[x * kLanes + lane], in 4 x 4 tiles.
+template <bool ToLines> void interleave(float* rows, std::size_t stride, int paddedWidth, float* lines) {
+    for (int quad = 0; quad < kLanes / 4; ++quad)
+        for (int x = 0; x < paddedWidth; x += 4) {
+            float* tile[4];
+            float* line[4];
+            for (int k = 0; k < 4; ++k) {
+                tile[k] = rows + (4 * quad + k) * stride + x;
+                line[k] = lines + static_cast<std::size_t>(x + k) * kLanes + 4 * quad;
+            }
+            float* const* from = ToLines ? tile : line;
+            float* const* to = ToLines ? line : tile;
+            Quad q[4];
+            for (int k = 0; k < 4; ++k)
+                std::memcpy(&q[k], from[k], sizeof(Quad));
+            transpose(q[0], q[1], q[2], q[3]);
+            for (int k = 0; k < 4; ++k)
+                std::memcpy(to[k], &q[k], sizeof(Quad));
+        }
+}
+
+// The neighbour weights of rows [y0, y1) of block b: vertical ones in place, horizontal ones into `rows`
+// (kLanes rows of the padded width), then interleaved as the horizontal sweeps read them.
+DC_VECTOR_KERNEL void weightBlock(Grid& g, int b, float inverseColor, float inverseDepth, float* rows) {
+    const std::size_t stride = static_cast<std::size_t>(g.paddedWidth);
+    for (int y = b * kLanes; y < std::min((b + 1) * kLanes, g.height); ++y) {
+        const std::size_t i = g.index(0, y);
+        const float* __restrict z = g.value.data() + i;
+        const float* __restrict below = y + 1 < g.height ? z + g.paddedWidth : z;
+        const float* __restrict ch = g.colorH.data() + i;
+        const float* __restrict cv = g.colorV.data() + i;
+        float* __restrict h = rows + (y - b * kLanes) * stride;
+        float* __restrict v = g.edgeV.data() + i;
+        for (int x = 0; x + 1 < g.width; ++x)
+            h[x] = neighbourWeight(ch[x], inverseColor, z[x + 1] - z[x], inverseDepth);
+        for (int x = 0; x < g.width; ++x)
+            v[x] = neighbourWeight(cv[x], inverseColor, below[x] - z[x], inverseDepth);
+    }
+    interleave<true>(rows, stride, g.paddedWidth, g.edgeH.data() + b * kLanes * stride);
+}
+
+// The pass's neighbour weights, computed once per pass (not once per sweep).
+void passWeights(Grid& g, const SmootherPass& pass) {
+    const float ic = pass.colorSigma > 0.0f ? 1.0f / (pass.colorSigma * pass.colorSigma) : 0.0f;
+    const float id = pass.depthSigma > 0.0f ? 1.0f / pass.depthSigma : 0.0f;
+    parallelRanges(g.paddedHeight / kLanes, 1, [&](int b0, int b1) {
+        thread_local std::vector<float> rows;
+        rows.assign(static_cast<std::size_t>(g.paddedWidth) * kLanes, 0.0f);
+        for (int b = b0; b < b1; ++b)
+            weightBlock(g, b, ic, id, rows.data());
+    });
+}
+
+// One horizontal sweep of the kLanes rows of block b: to lines, solved, back. `lines` holds 2 x kLanes rows.
+template <class V> void horizontalBlock(Grid& g, int b, float scale, float* lines, float* forward) {
+    const std::size_t stride = static_cast<std::size_t>(g.paddedWidth), lineSize = stride * kLanes;
+    const std::size_t first = static_cast<std::size_t>(b) * lineSize;
+    float* s = lines;
+    float* w = lines + lineSize;
+    interleave<true>(g.sum.data() + first, stride, g.paddedWidth, s);
+    interleave<true>(g.weight.data() + first, stride, g.paddedWidth, w);
+    solvePathLaplacian<V, 2, kLanes * sizeof(float) / sizeof(V)>(g.width, g.edgeH.data() + first, {s, w},
+                                                                 kLanes, scale, forward);
+    interleave<false>(g.sum.data() + first, stride, g.paddedWidth, s);
+    interleave<false>(g.weight.data() + first, stride, g.paddedWidth, w);
+}
+
+// One vertical sweep of the kLanes columns from x0, in place.
+template <class V> void verticalStrip(Grid& g, std::size_t x0, float scale, float* forward) {
+    solvePathLaplacian<V, 2, kLanes * sizeof(float) / sizeof(V)>(g.height, g.edgeV.data() + x0,
+                                                                 {g.sum.data() + x0, g.weight.data() + x0},
+                                                                 g.paddedWidth, scale, forward);
+}
+
+// The sweeps built twice: for x86-64-v3 (AVX2, FMA) with Octets, and for any x86-64 with Quads, the widths
+// each instruction set has registers for (a wider generic vector is split through memory). flatten
+// inlines the solve into each, so that it is compiled for that instruction set.
+struct Sweeps {
+    void (*horizontal)(Grid&, int b, float scale, float* lines);
+    void (*vertical)(Grid&, std::size_t x0, float scale);
+};
+
+// Each thread's scratch for the elimination's multipliers: n elements of kLanes floats.
+float* forwardScratch(int n) {
+    thread_local std::vector<float> forward;
+    forward.resize(static_cast<std::size_t>(n) * kLanes);
+    return forward.data();
+}
+
+[[gnu::target("arch=x86-64-v3"), gnu::flatten]] void horizontalAvx2(Grid& g, int b, float scale,
+                                                                    float* lines) {
+    horizontalBlock<Octet>(g, b, scale, lines, forwardScratch(g.paddedWidth));
+}
+[[gnu::target("arch=x86-64-v3"), gnu::flatten]] void verticalAvx2(Grid& g, std::size_t x0, float scale) {
+    verticalStrip<Octet>(g, x0, scale, forwardScratch(g.paddedHeight));
+}
+[[gnu::flatten]] void horizontalSse2(Grid& g, int b, float scale, float* lines) {
+    horizontalBlock<Quad>(g, b, scale, lines, forwardScratch(g.paddedWidth));
+}
+[[gnu::flatten]] void verticalSse2(Grid& g, std::size_t x0, float scale) {
+    verticalStrip<Quad>(g, x0, scale, forwardScratch(g.paddedHeight));
+}
+
+const Sweeps& sweeps() {
+    static const Sweeps chosen = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")
+                                     ? Sweeps{horizontalAvx2, verticalAvx2}
+                                     : Sweeps{horizontalSse2, verticalSse2};
+    return chosen;
+}
+
+void horizontalSweep(Grid& g, float scale) {
+    parallelRanges(g.paddedHeight / kLanes, 1, [&](int b0, int b1) {
+        thread_local std::vector<float> lines;
+        lines.resize(2 * static_cast<std::size_t>(g.paddedWidth) * kLanes);
+        for (int b = b0; b < b1; ++b)
+            sweeps().horizontal(g, b, scale, lines.data());
+    });
+}
+
+void verticalSweep(Grid& g, float scale) {
+    parallelRanges(g.paddedWidth / kLanes, 1, [&](int s0, int s1) {
+        for (int s = s0; s < s1; ++s)
+            sweeps().vertical(g, static_cast<std::size_t>(s) * kLanes, scale);
+    });
+}
+
+// value = sum / weight, or the data's own ratio where the smoothed weight is too small to divide by (0 where
+// there is no data either). Branch-free over restrict pointers, so that it vectorises.
+DC_VECTOR_KERNEL void ratioRow(const float* __restrict sum, const float* __restrict weight,
+                               const float* __restrict dataSum, const float* __restrict dataWeight,
+                               float* __restrict value, int n) {
+    for (int x = 0; x < n; ++x) {
+        const float own = dataSum[x] / std::max(dataWeight[x], FLT_MIN);
+        const float smoothed = sum[x] / std::max(weight[x], kMinSolvedWeight);
+        value[x] = weight[x] > kMinSolvedWeight ? smoothed : dataWeight[x] > 0.0f ? own : 0.0f;
+    }
+}
+
+// One pass: its weights from the colour distances and the previous pass's depth, the data smoothed, and
+// the result (smoothed data over smoothed weight) as the grid's new depth. A pixel that no weight reached
+// keeps its own data (0, the mean, where it has none).
+void runPass(Grid& g, const SmootherPass& pass) {
+    if (pass.iterations <= 0)
+        return;
+    passWeights(g, pass);
+    std::copy(g.dataSum.begin(), g.dataSum.end(), g.sum.begin());
+    std::copy(g.dataWeight.begin(), g.dataWeight.end(), g.weight.begin());
+    for (int t = 0; t < pass.iterations; ++t) {
+        const float scale = iterationLambda(pass.lambda, t, pass.iterations);
+        horizontalSweep(g, scale);
+        verticalSweep(g, scale);
+    }
+    rowsInParallel(g.height, [&](int y) {
+        const std::size_t i = g.index(0, y);
+        ratioRow(g.sum.data() + i, g.weight.data() + i, g.dataSum.data() + i, g.dataWeight.data() + i,
+                 g.value.data() + i, g.width);
+    });
+}
+
+// The data as the grid's depth, for the first pass's weights (which use colour only) and for a grid that no
+// pass smooths.
+void dataAsValue(Grid& g) {
+    rowsInParallel(g.height, [&](int y) {
+        const std::size_t i = g.index(0, y);
+        ratioRow(g.dataSum.data() + i, g.dataWeight.data() + i, g.dataSum.data() + i, g.dataWeight.data() + i,
+                 g.value.data() + i, g.width);
+    });
+}
+
+} // namespace
+
+namespace {
+
+// The colour-weighted median of `value` (see GlobalSmootherParams::weightedMedianRadius) into `out`.
+void weightedMedian(const cv::Mat& value, ColorView guide, int radius, float sigma, cv::Mat& out) {
+    const float inverseSigmaSquared = 1.0f / std::max(sigma * sigma, 1e-6f);
+    rowsInParallel(value.rows, [&](int y) {
+        std::vector<std::pair<float, float>> votes;
+        for (int x = 0; x < value.cols; ++x) {
+            const std::uint8_t* centre = guide.pixels + y * guide.stride + 3 * x;
+            votes.clear();
+            float total = 0.0f;
+            for (int v = std::max(y - radius, 0); v <= std::min(y + radius, value.rows - 1); ++v)
+                for (int u = std::max(x - radius, 0); u <= std::min(x + radius, value.cols - 1); ++u) {
+                    const std::uint8_t* other = guide.pixels + v * guide.stride + 3 * u;
+                    float d2 = 0.0f;
+                    for (int c = 0; c < 3; ++c)
+                        d2 += static_cast<float>((other[c] - centre[c]) * (other[c] - centre[c]));
+                    const float w = 1.0f / (1.0f + d2 * inverseSigmaSquared);
+                    votes.emplace_back(value.at<float>(v, u), w);
+                    total += w;
+                }
+            std::sort(votes.begin(), votes.end());
+            float cumulative = 0.0f;
+            std::size_t k = 0;
+            while (k + 1 < votes.size() && (cumulative += votes[k].second) < 0.5f * total)
+                ++k;
+            out.at<float>(y, x) = votes[k].first;
+        }
+    });
+}
+
+} // namespace
+
+struct GlobalSmoother::Buffers {
+    Grid sensor, output;
+    double offset = 0.0;                   // the data's weighted mean, subtracted while solving
+    std::vector<std::uint8_t> sensorValid; // 1 where the input was measured
+    std::vector<std::uint8_t> sensorGuide; // the guide reduced to the sensor's size, packed
+    BilinearTaps tapsX, tapsY;             // output pixel -> sensor samples
+    std::vector<float> rows;               // sensor rows interpolated to the output width: 4 quantities
+    std::vector<float> measuredWeight;     // bilinear weight of the measured samples, output size
+    std::vector<float> medianValue;        // the final median, output size
+
+    bool prepareSensor(const frame::DepthData& depth);
+    void reduceGuide(ColorView guide);
+    void interpolateRows();
+    void upsampleSensor(float footprintSigma);
+    void median(const GlobalSmootherParams& params, ColorView guide);
+    void finish(frame::DepthData& out);
+};
+
+bool GlobalSmoother::Buffers::prepareSensor(const frame::DepthData& depth) {
+    const frame::Plane<float>& d = depth.depthMeters;
+    const bool hasConfidence = depth.confidence.pixels.size() == d.pixels.size();
+    resize(sensor, d.width, d.height);
+    sensorValid.assign(d.pixels.size(), 0);
+    double sum = 0.0, total = 0.0, validSum = 0.0, validCount = 0.0;
+    for (std::size_t i = 0; i < d.pixels.size(); ++i) {
+        if (!measured(d.pixels[i]))
+            continue;
+        sensorValid[i] = 1;
+        const float w =
+            hasConfidence ? kConfidenceWeight[std::min<int>(depth.confidence.pixels[i], 2)] : 1.0f;
+        sum += static_cast<double>(w) * d.pixels[i];
+        total += w;
+        validSum += d.pixels[i];
+        validCount += 1.0;
+    }
+    if (validCount == 0.0)
+        return false;
+    // A frame measured only with low confidence still has a shape: trust every sample alike then.
+    const bool trustAll = total <= 0.0;
+    offset = trustAll ? validSum / validCount : sum / total;
+    for (int y = 0; y < d.height; ++y)
+        for (int x = 0; x < d.width; ++x) {
+            const std::size_t i = static_cast<std::size_t>(y) * d.width + x, at = sensor.index(x, y);
+            const float w = !sensorValid[i] ? 0.0f
+                            : trustAll || !hasConfidence
+                                ? 1.0f
+                                : kConfidenceWeight[std::min<int>(depth.confidence.pixels[i], 2)];
+            sensor.dataWeight[at] = w;
+            sensor.dataSum[at] = w > 0.0f ? static_cast<float>(w * (d.pixels[i] - offset)) : 0.0f;
+        }
+    return true;
+}
+
+void GlobalSmoother::Buffers::reduceGuide(ColorView guide) {
+    colorDistances(guide, output);
+    const cv::Mat full(guide.height, guide.width, CV_8UC3, const_cast<std::uint8_t*>(guide.pixels),
+                       static_cast<std::size_t>(guide.stride));
+    sensorGuide.resize(static_cast<std::size_t>(sensor.width) * sensor.height * 3);
+    resized(full, {sensor.width, sensor.height})
+        .copyTo(cv::Mat(sensor.height, sensor.width, CV_8UC3, sensorGuide.data()));
+    colorDistances(
+        {sensorGuide.data(), sensor.width, sensor.height, static_cast<std::ptrdiff_t>(sensor.width) * 3},
+        sensor);
+}
+
+// Each sensor row interpolated horizontally to the output width, as 4 rows: the measured values' weighted
+// sum and weight, and their minimum and maximum over the two taps (for the footprint's spread). Doing this
+// once per sensor row, not per output row, divides its cost by the upsampling factor.
+void GlobalSmoother::Buffers::interpolateRows() {
+    const int width = output.width;
+    const std::size_t rowSize = static_cast<std::size_t>(width) * 4;
+    rows.resize(rowSize * sensor.height);
+    rowsInParallel(sensor.height, [&](int r) {
+        float* sum = rows.data() + rowSize * r;
+        float* weight = sum + width;
+        float* lo = weight + width;
+        float* hi = lo + width;
+        const float* z = sensor.value.data() + sensor.index(0, r);
+        const std::uint8_t* m = sensorValid.data() + static_cast<std::size_t>(r) * sensor.width;
+        for (int x = 0; x < width; ++x) {
+            const int c0 = tapsX.first[x], c1 = tapsX.second[x];
+            const float f = tapsX.weight[x];
+            const float m0 = m[c0], m1 = m[c1];
+            sum[x] = (1.0f - f) * m0 * z[c0] + f * m1 * z[c1];
+            weight[x] = (1.0f - f) * m0 + f * m1;
+            lo[x] = std::min(m0 > 0.0f ? z[c0] : FLT_MAX, m1 > 0.0f ? z[c1] : FLT_MAX);
+            hi[x] = std::max(m0 > 0.0f ? z[c0] : -FLT_MAX, m1 > 0.0f ? z[c1] : -FLT_MAX);
+        }
+    });
+}
+
+namespace {
+
+// One output row from the two interpolated sensor rows around it (sum, weight, lo, hi, each n long).
+DC_VECTOR_KERNEL void combineRows(const float* __restrict a, const float* __restrict b, float f,
+                                  float inverseSigma, float* __restrict sum, float* __restrict weight,
+                                  float* __restrict measuredWeight, int n) {
+    for (int x = 0; x < n; ++x) {
+        const float lo = std::min(a[2 * n + x], b[2 * n + x]);
+        const float hi = std::max(a[3 * n + x], b[3 * n + x]);
+        const float spread = hi > lo ? (hi - lo) * inverseSigma : 0.0f;
+        const float factor = 1.0f / (1.0f + spread * spread);
+        const float m = (1.0f - f) * a[n + x] + f * b[n + x];
+        measuredWeight[x] = m;
+        sum[x] = ((1.0f - f) * a[x] + f * b[x]) * factor;
+        weight[x] = m * factor;
+    }
+}
+
+} // namespace
+
+// The output grid's data: the bilinear upsampling of the sensor's (denoised) depth over its measured
+// samples, each pixel's weight reduced where its footprint spans a depth edge.
+void GlobalSmoother::Buffers::upsampleSensor(float footprintSigma) {
+    const int width = output.width;
+    tapsX = bilinearTaps(sensor.width, width);
+    tapsY = bilinearTaps(sensor.height, output.height);
+    interpolateRows();
+    measuredWeight.resize(static_cast<std::size_t>(width) * output.height);
+    const float inverseSigma = footprintSigma > 0.0f ? 1.0f / footprintSigma : 0.0f;
+    const std::size_t rowSize = static_cast<std::size_t>(width) * 4;
+    rowsInParallel(output.height, [&](int y) {
+        const float* a = rows.data() + rowSize * tapsY.first[y];
+        const float* b = rows.data() + rowSize * tapsY.second[y];
+        combineRows(a, b, tapsY.weight[y], inverseSigma, output.dataSum.data() + output.index(0, y),
+                    output.dataWeight.data() + output.index(0, y),
+                    measuredWeight.data() + static_cast<std::size_t>(y) * width, width);
+    });
+}
+
+namespace {
+
+// Output depth: the smoothed value where the bilinear map was measured and the value is a usable depth, else
+// the bilinear data itself, else 0. Branch-free, so that it vectorises.
+DC_VECTOR_KERNEL void outputRow(const float* __restrict smoothed, const float* __restrict dataSum,
+                                const float* __restrict dataWeight, const float* __restrict measuredWeight,
+                                float offset, float* __restrict out, int n) {
+    for (int x = 0; x < n; ++x) {
+        const float q = smoothed[x] + offset;
+        const float own = dataSum[x] / std::max(dataWeight[x], FLT_MIN) + offset;
+        const bool qUsable = q > 0.0f && q <= FLT_MAX, ownUsable = own > 0.0f && own <= FLT_MAX;
+        const float chosen = qUsable ? q : ownUsable ? own : 0.0f;
+        out[x] = measuredWeight[x] >= 0.5f ? chosen : 0.0f;
+    }
+}
+
+} // namespace
+
+void GlobalSmoother::Buffers::median(const GlobalSmootherParams& params, ColorView guide) {
+    const int width = output.width, height = output.height;
+    const cv::Mat value(height, width, CV_32F, output.value.data(),
+                        static_cast<std::size_t>(output.paddedWidth) * 4);
+    medianValue.resize(static_cast<std::size_t>(width) * height);
+    cv::Mat filtered(height, width, CV_32F, medianValue.data());
+    const int side = params.medianPixels;
+    if (params.weightedMedianRadius > 0)
+        weightedMedian(value, guide, params.weightedMedianRadius, params.weightedMedianSigma, filtered);
+    else if ((side == 3 || side == 5) && width >= side && height >= side)
+        cv::medianBlur(value, filtered, side);
+    else
+        value.copyTo(filtered);
+}
+
+void GlobalSmoother::Buffers::finish(frame::DepthData& out) {
+    const int width = output.width, height = output.height;
+    const auto offsetF = static_cast<float>(offset);
+    rowsInParallel(height, [&](int y) {
+        const std::size_t row = static_cast<std::size_t>(y) * width, at = output.index(0, y);
+        outputRow(medianValue.data() + row, output.dataSum.data() + at, output.dataWeight.data() + at,
+                  measuredWeight.data() + row, offsetF, out.depthMeters.pixels.data() + row, width);
+    });
+}
+
+GlobalSmoother::GlobalSmoother() : buffers_(std::make_unique<Buffers>()) {}
+GlobalSmoother::~GlobalSmoother() = default;
+GlobalSmoother::GlobalSmoother(GlobalSmoother&&) noexcept = default;
+GlobalSmoother& GlobalSmoother::operator=(GlobalSmoother&&) noexcept = default;
+
+frame::DepthData GlobalSmoother::upsample(const frame::DepthData& depth, ColorView guide,
+                                          const GlobalSmootherParams& params) {
+    if (guide.empty() || depth.depthMeters.empty())
+        return depth;
+    Buffers& b = *buffers_;
+    const int width = guide.width, height = guide.height;
+    frame::DepthData out{frame::Plane<float>(width, height), {}, depth.confidenceEstimated};
+    if (!depth.confidence.empty() && depth.confidence.pixels.size() == depth.depthMeters.pixels.size()) {
+        out.confidence = frame::Plane<std::uint8_t>(width, height);
+        cv::resize(asMat(depth.confidence), asMat(out.confidence), {width, height}, 0, 0, cv::INTER_LINEAR);
+    }
+    if (!b.prepareSensor(depth))
+        return out;
+    resize(b.output, width, height);
+    b.reduceGuide(guide);
+    dataAsValue(b.sensor);
+    runPass(b.sensor, params.sensorColor);
+    for (int round = 0; round < params.sensorDepthRounds; ++round)
+        runPass(b.sensor, params.sensorDepth);
+    b.upsampleSensor(params.footprintSigma);
+    dataAsValue(b.output);
+    runPass(b.output, params.outputColor);
+    for (int round = 0; round < params.outputDepthRounds; ++round)
+        runPass(b.output, params.outputDepth);
+    b.median(params, guide);
+    b.finish(out);
+    return out;
+}
+
+} // namespace dc::processing
