@@ -3,11 +3,19 @@
 
 namespace dc::devices {
 
-namespace {
-// Limits that keep a typo from allocating gigabytes; 8K is the largest frame we promise to handle.
-constexpr int kMaxSide = 7680;
-constexpr double kMaxFps = 1000.0;
-} // namespace
+Status checkSyntheticConfig(const SyntheticConfig& c) {
+    const auto sideOk = [](int s) { return s >= 1 && s <= kSyntheticMaxImageSide; };
+    if (!sideOk(c.depthWidth) || !sideOk(c.depthHeight) || !sideOk(c.cameraWidth) || !sideOk(c.cameraHeight))
+        return Error{"synthetic source: sizes must be between 1 and " +
+                     std::to_string(kSyntheticMaxImageSide) + " pixels"};
+    if (static_cast<std::int64_t>(c.depthWidth) * c.depthHeight > kSyntheticMaxDepthPixels)
+        return Error{"synthetic source: depth " + std::to_string(c.depthWidth) + "x" +
+                     std::to_string(c.depthHeight) + " is larger than the limit of " +
+                     std::to_string(kSyntheticMaxDepthPixels) + " pixels (1920x1440)"};
+    if (!(c.fps > 0.0 && c.fps <= kSyntheticMaxFps))
+        return Error{"synthetic source: frame rate must be in (0, 1000] fps"};
+    return {};
+}
 
 SyntheticDevice::SyntheticDevice(SyntheticConfig config)
     : config_(config), scene_(config.seed),
@@ -28,12 +36,8 @@ Capabilities SyntheticDevice::capabilities() const {
 }
 
 Status SyntheticDevice::doOpen() {
-    const auto sideOk = [](int s) { return s >= 1 && s <= kMaxSide; };
-    if (!sideOk(config_.depthWidth) || !sideOk(config_.depthHeight) || !sideOk(config_.cameraWidth) ||
-        !sideOk(config_.cameraHeight))
-        return Error{"synthetic source: sizes must be between 1 and " + std::to_string(kMaxSide) + " pixels"};
-    if (!(config_.fps > 0.0 && config_.fps <= kMaxFps))
-        return Error{"synthetic source: frame rate must be in (0, 1000] fps"};
+    if (Status s = checkSyntheticConfig(config_); !s)
+        return s;
     if (!config_.motion)
         staticImage_ = scene_.renderImage(cameraIntrinsics_, SyntheticScene::cameraPose(0.0, false));
     return {};

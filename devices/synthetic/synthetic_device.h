@@ -21,6 +21,15 @@ struct SyntheticConfig {
     bool paced = true;   // false: deliver frames as fast as they are generated (tests, benchmarks)
 };
 
+// Limits that keep a typo from allocating gigabytes: the camera image up to 8K per side, the depth map no
+// larger than the default camera image (a depth map is upsampled to the image, never beyond it), and at
+// most 1000 fps. A configuration beyond them is refused before anything is allocated.
+inline constexpr int kSyntheticMaxImageSide = 7680;
+inline constexpr std::int64_t kSyntheticMaxDepthPixels = 1920 * 1440;
+inline constexpr double kSyntheticMaxFps = 1000.0;
+// Why `config` is outside those limits, naming the limit; success when it is within them.
+Status checkSyntheticConfig(const SyntheticConfig& config);
+
 // The built-in depth camera: frames of the SyntheticScene at a steady rate. Without motion the camera
 // image never changes, so it is rendered once and shared by every frame.
 class SyntheticDevice final : public Device {
