@@ -18,8 +18,8 @@ struct AnalyticCamera {
     // World direction of pixel (u, v), scaled so its camera-z component is 1.
     std::array<double, 3> dir(int u, int v) const {
         const double xn = (u - k.cx) / k.fx, yn = (v - k.cy) / k.fy;
-        // right = (1,0,0), down = (0,-cos,-sin), forward = (0,-sin,cos)
-        return {xn, -std::cos(pitch) * yn - std::sin(pitch), -std::sin(pitch) * yn + std::cos(pitch)};
+        // right = (-1,0,0) (world +x is on the camera's left), down = (0,-cos,-sin), forward = (0,-sin,cos)
+        return {-xn, -std::cos(pitch) * yn - std::sin(pitch), -std::sin(pitch) * yn + std::cos(pitch)};
     }
     // Depth at which the ray meets the desk plane y = 0.
     double deskDepth(int u, int v) const { return -oy / dir(u, v)[1]; }
