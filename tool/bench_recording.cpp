@@ -1,6 +1,7 @@
 // depthcloud bench replay / bench record: decode throughput of replay sources, and recording throughput,
 // drops and size at 1280x720 depth + color @30 fps.
 
+#include "base/files.h"
 #include "base/log.h"
 #include "devices/frame_list_device.h"
 #include "devices/recording/session_recording.h"
@@ -10,11 +11,16 @@
 #include "tool/options.h"
 #include "tool/recording_commands.h"
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <filesystem>
 #include <sched.h>
+#include <sys/prctl.h>
+#include <sys/wait.h>
 #include <thread>
 #include <unistd.h>
 #include <vector>
@@ -81,8 +87,19 @@ struct RecordCase {
     int threads;
 };
 
-void runRecordCase(const RecordCase& c, const std::vector<frame::FramePtr>& frames,
-                   const BenchRecordOptions& o) {
+struct RecordCaseResult {
+    std::string name;
+    std::uint64_t offered = 0, written = 0, dropped = 0;
+    double megabytesPerFrame = 0.0, megabytesPerSecond = 0.0;
+    double encodeCorePercent = 0.0, writeCorePercent = 0.0; // of one core, over the run
+    double closeSeconds = 0.0;                              // stop(): writing what was still queued
+    std::string error;
+};
+
+RecordCaseResult runRecordCase(const RecordCase& c, const std::vector<frame::FramePtr>& frames,
+                               const BenchRecordOptions& o) {
+    RecordCaseResult result;
+    result.name = c.name;
     const std::string path = tempPath(o.directory, c.name);
     auto device =
         std::make_unique<devices::FrameListDevice>(frames, 30.0, "synthetic 1280x720 + 1280x720 NV12");
@@ -93,9 +110,8 @@ void runRecordCase(const RecordCase& c, const std::vector<frame::FramePtr>& fram
     options.writer.syncInterval = std::chrono::milliseconds(o.syncMs);
     auto recording = devices::recording::SessionRecording::start(session, path, options);
     if (!recording || !session.start()) {
-        std::printf("  %-8s cannot start: %s\n", c.name,
-                    recording ? "session" : recording.error().message.c_str());
-        return;
+        result.error = recording ? "cannot start the session" : recording.error().message;
+        return result;
     }
     const auto start = Clock::now();
     while (secondsSince(start) < o.seconds)
@@ -103,23 +119,36 @@ void runRecordCase(const RecordCase& c, const std::vector<frame::FramePtr>& fram
     session.stop();
     const auto closing = Clock::now();
     const Status closed = (*recording)->stop();
-    const double drainSeconds = secondsSince(closing);
+    result.closeSeconds = secondsSince(closing);
     const auto s = (*recording)->stats();
     const double elapsed = secondsSince(start);
-    std::printf("  %-8s %5llu offered %5llu written %4llu dropped  %6.1f MB/s written  %5.2f MB/frame  "
-                "encode %4.0f%% "
-                "write %3.0f%% of a core  close %.2f s%s\n",
-                c.name, static_cast<unsigned long long>((*recording)->framesOffered()),
-                static_cast<unsigned long long>(s.framesWritten),
-                static_cast<unsigned long long>(s.framesDropped),
-                static_cast<double>(s.bytesWritten) / 1e6 / elapsed,
-                static_cast<double>(s.bytesWritten) / 1e6 /
-                    static_cast<double>(std::max<std::uint64_t>(s.framesWritten, 1)),
-                100.0 * s.encodeSeconds / elapsed, 100.0 * s.writeSeconds / elapsed, drainSeconds,
-                closed ? "" : (" FAILED: " + closed.error().message).c_str());
+    result.offered = (*recording)->framesOffered();
+    result.written = s.framesWritten;
+    result.dropped = s.framesDropped;
+    result.megabytesPerSecond = static_cast<double>(s.bytesWritten) / 1e6 / elapsed;
+    result.megabytesPerFrame = static_cast<double>(s.bytesWritten) / 1e6 /
+                               static_cast<double>(std::max<std::uint64_t>(s.framesWritten, 1));
+    result.encodeCorePercent = 100.0 * s.encodeSeconds / elapsed;
+    result.writeCorePercent = 100.0 * s.writeSeconds / elapsed;
+    if (!closed)
+        result.error = closed.error().message;
     std::error_code ec;
     fs::remove(path, ec);
     fs::remove(path + ".partial", ec);
+    return result;
+}
+
+// One line per case; the size relative to the raw case when it ran first (the same run's baseline).
+void printCase(const RecordCaseResult& r, double rawMegabytesPerFrame) {
+    char ratio[32] = "";
+    if (rawMegabytesPerFrame > 0.0)
+        std::snprintf(ratio, sizeof ratio, " (%.3fx raw)", r.megabytesPerFrame / rawMegabytesPerFrame);
+    std::printf("  %-8s %5llu offered %5llu written %4llu dropped  %6.1f MB/s  %6.3f MB/frame%s  "
+                "encode %4.0f%% write %3.0f%% of a core  close %.2f s%s\n",
+                r.name.c_str(), static_cast<unsigned long long>(r.offered),
+                static_cast<unsigned long long>(r.written), static_cast<unsigned long long>(r.dropped),
+                r.megabytesPerSecond, r.megabytesPerFrame, ratio, r.encodeCorePercent, r.writeCorePercent,
+                r.closeSeconds, r.error.empty() ? "" : (" FAILED: " + r.error).c_str());
 }
 
 void pinToCores(int cores) {
@@ -134,16 +163,68 @@ void pinToCores(int cores) {
         std::printf("(could not pin to %d cores)\n", cores);
 }
 
+// Processes that each keep one core busy (on the cores this process is pinned to) while it exists: a
+// recorder rarely has the machine to itself. They die with their parent, however it ends.
+class CoreLoad {
+public:
+    explicit CoreLoad(int processes) {
+        const pid_t parent = ::getpid();
+        for (int i = 0; i < processes; ++i) {
+            const pid_t child = ::fork();
+            if (child == 0) {
+                ::prctl(PR_SET_PDEATHSIG, SIGKILL);
+                if (::getppid() != parent)
+                    ::_exit(0);
+                volatile double x = 1.0;
+                for (;;)
+                    x = x * 1.0000001 + 1e-9;
+            }
+            if (child > 0)
+                children_.push_back(child);
+        }
+    }
+    ~CoreLoad() {
+        for (const pid_t child : children_) {
+            ::kill(child, SIGKILL);
+            ::waitpid(child, nullptr, 0);
+        }
+    }
+    CoreLoad(const CoreLoad&) = delete;
+    CoreLoad& operator=(const CoreLoad&) = delete;
+    std::size_t running() const { return children_.size(); }
+
+private:
+    std::vector<pid_t> children_;
+};
+
+nlohmann::json toJson(const RecordCaseResult& r) {
+    return {{"case", r.name},
+            {"offered", r.offered},
+            {"written", r.written},
+            {"dropped", r.dropped},
+            {"megabytesPerFrame", r.megabytesPerFrame},
+            {"megabytesPerSecond", r.megabytesPerSecond},
+            {"encodeCorePercent", r.encodeCorePercent},
+            {"writeCorePercent", r.writeCorePercent},
+            {"closeSeconds", r.closeSeconds},
+            {"error", r.error}};
+}
+
 } // namespace
 
 int runBenchReplay(const BenchReplayOptions& o) {
     setLogQuiet(true);
     std::printf("bench replay: decode throughput, headless, one thread (goal: >= 20x real time)\n");
-    if (auto stray = devices::replay::openStraySource(o.stray); stray) {
-        decodeAll("ARKit capture (Stray), depth+confidence+video", **stray, true, o.passes);
-        decodeAll("ARKit capture (Stray), depth+confidence only", **stray, false, o.passes);
-    } else {
-        std::printf("  ARKit capture: %s\n", stray.error().message.c_str());
+    if (!o.data.empty()) {
+        auto source = devices::replay::openReplaySource(o.data);
+        if (!source) {
+            std::fprintf(stderr, "depthcloud bench replay: error: --data: %s\n",
+                         source.error().message.c_str());
+            return kExitBadArguments;
+        }
+        const std::string name = (*source)->description();
+        decodeAll(name + ", everything", **source, true, o.passes);
+        decodeAll(name + ", without color", **source, false, o.passes);
     }
     devices::SyntheticConfig config;
     config.depthWidth = config.cameraWidth = 640;
@@ -174,26 +255,46 @@ int runBenchReplay(const BenchReplayOptions& o) {
 int runBenchRecord(const BenchRecordOptions& o) {
     setLogQuiet(true);
     pinToCores(o.cores);
-    std::printf(
-        "bench record: 1280x720 float depth + confidence + 1280x720 NV12 color @30 fps, %.0f s per case, "
-        "%d cores (goal: 0 dropped)\n",
-        o.seconds, o.cores);
+    std::printf("bench record: 1280x720 float depth + confidence + 1280x720 NV12 color @30 fps, %.0f s per "
+                "case, %d cores, %d of them loaded by another process (goal: 0 dropped)\n",
+                o.seconds, o.cores, o.load);
     devices::SyntheticConfig config;
     config.depthWidth = config.cameraWidth = 1280;
     config.depthHeight = config.cameraHeight = 720;
     config.motion = true;
     const auto frames = syntheticFrames(config, 30);
-    // Two encoder threads (the Recorder's default), and one case with a single one for comparison.
+    // The Recorder's default of two encoder threads, and cases with one for comparison.
     const RecordCase cases[] = {
         {"raw", false, 1, devices::recording::ColorStorage::AsCaptured, 2},
         {"zstd1", true, 1, devices::recording::ColorStorage::AsCaptured, 2},
         {"zstd3", true, 3, devices::recording::ColorStorage::AsCaptured, 2},
         {"jpeg", true, 1, devices::recording::ColorStorage::Jpeg, 2},
         {"zstd1-1t", true, 1, devices::recording::ColorStorage::AsCaptured, 1},
+        {"jpeg-1t", true, 1, devices::recording::ColorStorage::Jpeg, 1},
     };
-    for (const RecordCase& c : cases)
-        if (o.only.empty() || o.only == c.name)
-            runRecordCase(c, frames, o);
+    const CoreLoad load(o.load); // after the frames are made: it only competes with the recording
+    nlohmann::json results = nlohmann::json::array();
+    double rawMegabytesPerFrame = 0.0;
+    for (const RecordCase& c : cases) {
+        if (!o.only.empty() && o.only != c.name)
+            continue;
+        const RecordCaseResult r = runRecordCase(c, frames, o);
+        if (r.name == "raw")
+            rawMegabytesPerFrame = r.megabytesPerFrame;
+        printCase(r, rawMegabytesPerFrame);
+        results.push_back(toJson(r));
+    }
+    if (o.jsonPath.empty())
+        return kExitOk;
+    const nlohmann::json report{{"frame", "1280x720 float depth + confidence + 1280x720 NV12 @30 fps"},
+                                {"secondsPerCase", o.seconds},
+                                {"cores", o.cores},
+                                {"loadProcesses", load.running()},
+                                {"cases", results}};
+    if (Status s = base::writeTextFile(o.jsonPath, report.dump(2) + "\n"); !s) {
+        std::fprintf(stderr, "depthcloud bench record: error: %s\n", s.error().message.c_str());
+        return kExitFailure;
+    }
     return kExitOk;
 }
 

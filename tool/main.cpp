@@ -51,7 +51,7 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
     app.add_flag("--headless", o.headless,
                  "no window: render offscreen and write PNGs + summary.json to --out");
     app.add_option("--frames", o.frames, "stop after N frames (headless default 60)")
-        ->check(CLI::PositiveNumber);
+        ->check(CLI::Range(1, 1'000'000'000));
     app.add_option("--out", o.outDirectory, "output directory (headless default: depthcloud-snapshots)");
     // By name in help and errors: CLI11 would print a Confidence (a byte) as a raw control character.
     app.add_option_function<std::string>(
