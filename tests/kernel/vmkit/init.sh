@@ -111,14 +111,39 @@ start_uvc() {
 	FILTER="$FILTER:Uvc.*"
 }
 
+LOOP_ARGS="devices=1 video_nr=10 exclusive_caps=1 card_label=loopdepth"
+start_loopwriter() {
+	loopwriter -d /dev/video10 -f 'Z16 ' -r 10 > /tmp/lw.log 2>&1 &
+	LOOPWRITER=$!
+	sleep 1
+}
+
 start_loopback() {
 	echo "--- v4l2loopback (patched for Z16)"
-	modprobe v4l2loopback devices=1 video_nr=10 exclusive_caps=1 card_label=loopdepth || { result loopback-load FAIL; return 1; }
-	loopwriter -d /dev/video10 -f 'Z16 ' -r 10 > /tmp/lw.log 2>&1 &
-	sleep 1
+	modprobe v4l2loopback $LOOP_ARGS || { result loopback-load FAIL; return 1; }
+	start_loopwriter
 	cat /tmp/lw.log
-	ENV="$ENV LOOP_NODE=/dev/video10"
+	ENV="$ENV LOOP_NODE=/dev/video10 LOOP_REQUEST=$SCRATCH/loopback-request"
 	FILTER="$FILTER:Loopback.*"
+	loopback_plugger &
+}
+
+# Unplugs ("unplug": the feeder stopped, the module removed) and replugs the loopback camera when the guest
+# test writes the request file, which is removed once done: its module loads here, outside the chroot.
+loopback_plugger() {
+	request=/host$SCRATCH/loopback-request
+	while :; do
+		case $(cat $request 2>/dev/null) in
+		unplug)
+			kill $LOOPWRITER
+			i=0; while ! rmmod v4l2loopback 2>/dev/null && [ $i -lt 50 ]; do sleep 0.1; i=$((i+1)); done
+			rm -f $request ;;
+		replug)
+			modprobe v4l2loopback $LOOP_ARGS && start_loopwriter
+			rm -f $request ;;
+		esac
+		sleep 0.1
+	done
 }
 
 start_vivid() {
@@ -168,6 +193,7 @@ for t in $(echo $TESTS | tr , ' '); do
 	esac
 done
 [ $UVC = 1 ] && check_devices_command
+case $FILTER in *Loopback*Vivid*) FILTER="$FILTER:Virtual.*" ;; esac # both virtual cameras are up
 [ -n "$FILTER" ] && in_host /usr/bin/env $ENV $GUEST_TEST --gtest_filter="${FILTER#:}" --gtest_color=no
 [ $UVC = 1 ] && check_headless
 [ $UVC = 1 ] && tail -5 /tmp/feeder.log
