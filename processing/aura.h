@@ -25,5 +25,8 @@ frame::Plane<std::uint8_t> subjectMatte(const frame::DepthData& depth, const Aur
 // without a camera image; the camera image without depth.
 RgbaImage renderAura(const frame::Frame& frame, const AuraSettings& settings, DepthSource source,
                      double timeSeconds);
+// The same from a camera image already at the output size and the depth that makes the matte (null: none).
+RgbaImage renderAura(const RgbImage& cameraImage, const frame::DepthData* depth, const AuraSettings& settings,
+                     double timeSeconds);
 
 } // namespace dc::processing

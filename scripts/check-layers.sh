@@ -26,22 +26,32 @@ declare -A forbidden=(
     [ui]="^(tool|devices/uvc)/|epoxy/|GL/|EGL/|$kernel"
 )
 
-status=0
+# One pass over every include line of every layer: "file:line:text" in, one message per violation out.
+layers=()
 for layer in "${!forbidden[@]}"; do
-    [ -d "$root/$layer" ] || continue
-    while IFS= read -r hit; do
-        file=${hit%%:*}
-        rest=${hit#*:}
-        line=${rest%%:*}
-        text=${rest#*:}
-        included=$(sed -E 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]([^>"]+)[>"].*/\1/' <<<"$text")
-        if grep -Eq "${forbidden[$layer]}" <<<"$included"; then
-            echo "${file#"$root"/}:$line: $layer/ must not include <$included>" >&2
-            status=1
-        fi
-    done < <(grep -rnE '^[[:space:]]*#[[:space:]]*include' "$root/$layer" --include='*.h' --include='*.cpp' || true)
+    [ -d "$root/$layer" ] && layers+=("$layer")
 done
-if [ "$status" -ne 0 ]; then
+[ ${#layers[@]} -eq 0 ] && exit 0
+rules=$(for layer in "${layers[@]}"; do printf '%s\t%s\n' "$layer" "${forbidden[$layer]}"; done)
+violations=$(cd "$root" && grep -rnE '^[[:space:]]*#[[:space:]]*include' "${layers[@]}" \
+    --include='*.h' --include='*.cpp' | awk -v rules="$rules" '
+    BEGIN {
+        n = split(rules, lines, "\n")
+        for (i = 1; i <= n; ++i) { split(lines[i], kv, "\t"); rule[kv[1]] = kv[2] }
+    }
+    {
+        file = $0; sub(/:.*/, "", file)
+        rest = substr($0, length(file) + 2); line = rest; sub(/:.*/, "", line)
+        text = substr(rest, length(line) + 2)
+        layer = file; sub(/\/.*/, "", layer)
+        included = text
+        sub(/^[[:space:]]*#[[:space:]]*include[[:space:]]*[<"]/, "", included)
+        sub(/[>"].*$/, "", included)
+        if (included ~ rule[layer])
+            printf "%s:%s: %s/ must not include <%s>\n", file, line, layer, included
+    }')
+if [ -n "$violations" ]; then
+    printf '%s\n' "$violations" >&2
     echo "check-layers: includes against the layers' arrows (see ../shared/CONVENTIONS.md)" >&2
+    exit 1
 fi
-exit "$status"
