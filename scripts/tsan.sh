@@ -9,6 +9,10 @@ targets=(
     test_recording # the recorder's encoder and writer threads, replay
     test_live      # the V4L2 capture thread over the fake driver, the camera-list watcher
 )
+# The engine's tests (frame processor, instrument: three threads around one demand), where the tree has them.
+if [ -f tests/engine/CMakeLists.txt ]; then
+    targets+=(test_engine)
+fi
 start=$(date +%s)
 # -O1 compiles about as fast as -O0 and runs the tests several times faster under TSan.
 cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g" \

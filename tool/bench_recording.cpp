@@ -1,5 +1,5 @@
 // depthcloud bench replay / bench record: decode throughput of replay sources, and recording throughput,
-// drops and size at 1280x720 depth + color @30 fps.
+// drops and size of a source's frames at its rate (by default 1280x720 depth + color @30 fps).
 
 #include "base/files.h"
 #include "base/log.h"
@@ -7,6 +7,7 @@
 #include "devices/recording/session_recording.h"
 #include "devices/replay/importers.h"
 #include "devices/session.h"
+#include "devices/source_spec.h"
 #include "devices/synthetic/synthetic_device.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
@@ -74,6 +75,81 @@ std::vector<frame::FramePtr> syntheticFrames(devices::SyntheticConfig config, in
     return frames;
 }
 
+// What a case records: a few distinct frames of one source, replayed at the source's own rate.
+struct BenchFrames {
+    std::vector<frame::FramePtr> frames;
+    double fps = 30.0;
+    std::string description;
+};
+
+constexpr int kDistinctFrames = 30;
+
+std::string describe(const frame::Frame& f, double fps, const std::string& source) {
+    char text[160];
+    const int depthWidth = f.sceneDepth ? f.sceneDepth->depthMeters.width : 0;
+    const int depthHeight = f.sceneDepth ? f.sceneDepth->depthMeters.height : 0;
+    std::snprintf(text, sizeof text, "%s: %dx%d float depth + confidence + %dx%d color @%.0f fps",
+                  source.c_str(), depthWidth, depthHeight, f.capturedImage.width, f.capturedImage.height,
+                  fps);
+    return text;
+}
+
+// The default: 1280x720 depth and color of the moving synthetic scene at 30 fps, made as fast as it can.
+BenchFrames defaultFrames() {
+    devices::SyntheticConfig config;
+    config.depthWidth = config.cameraWidth = 1280;
+    config.depthHeight = config.cameraHeight = 720;
+    config.motion = true;
+    BenchFrames b{syntheticFrames(config, kDistinctFrames), 30.0, {}};
+    if (!b.frames.empty())
+        b.description = describe(*b.frames.front(), b.fps, "synthetic");
+    return b;
+}
+
+// The first frames `device` delivers, at the rate it announces.
+Expected<BenchFrames> sourceFrames(devices::Device& device, const std::string& spec) {
+    if (Status s = device.open(); !s)
+        return s.error();
+    if (Status s = device.start(); !s)
+        return s.error();
+    BenchFrames b;
+    b.fps = device.capabilities().nominalFps > 0.0 ? device.capabilities().nominalFps : 30.0;
+    for (int misses = 0; static_cast<int>(b.frames.size()) < kDistinctFrames && misses < 5;) {
+        auto r = device.capture(std::chrono::milliseconds(1000));
+        if (r.kind == devices::CaptureResult::Kind::Frame)
+            b.frames.push_back(r.frame);
+        else
+            ++misses;
+    }
+    device.stop();
+    if (b.frames.empty())
+        return Error{"delivered no frames"};
+    b.description = describe(*b.frames.front(), b.fps, spec);
+    return b;
+}
+
+// The frames --source names (a bad spec is a bad argument), or the default ones. Returns the exit code.
+int benchFrames(const BenchRecordOptions& o, BenchFrames& out) {
+    if (o.source.empty()) {
+        out = defaultFrames();
+        return out.frames.empty() ? kExitFailure : kExitOk;
+    }
+    auto device = devices::openSourceSpec(o.source);
+    if (!device) {
+        std::fprintf(stderr, "depthcloud bench record: error: --source: %s\n",
+                     device.error().message.c_str());
+        return kExitBadArguments;
+    }
+    auto frames = sourceFrames(**device, o.source);
+    if (!frames) {
+        std::fprintf(stderr, "depthcloud bench record: error: %s: %s\n", o.source.c_str(),
+                     frames.error().message.c_str());
+        return kExitFailure;
+    }
+    out = std::move(*frames);
+    return kExitOk;
+}
+
 std::string tempPath(const std::string& directory, const std::string& name) {
     const fs::path dir = directory.empty() ? fs::temp_directory_path() : fs::path(directory);
     return (dir / ("depthcloud-bench-" + std::to_string(::getpid()) + "-" + name + ".dcrec")).string();
@@ -96,13 +172,11 @@ struct RecordCaseResult {
     std::string error;
 };
 
-RecordCaseResult runRecordCase(const RecordCase& c, const std::vector<frame::FramePtr>& frames,
-                               const BenchRecordOptions& o) {
+RecordCaseResult runRecordCase(const RecordCase& c, const BenchFrames& frames, const BenchRecordOptions& o) {
     RecordCaseResult result;
     result.name = c.name;
     const std::string path = tempPath(o.directory, c.name);
-    auto device =
-        std::make_unique<devices::FrameListDevice>(frames, 30.0, "synthetic 1280x720 + 1280x720 NV12");
+    auto device = std::make_unique<devices::FrameListDevice>(frames.frames, frames.fps, frames.description);
     devices::Session session(std::move(device));
     devices::recording::RecorderOptions options;
     options.writer.encode = {c.compress, c.zstdLevel, c.color, 90};
@@ -255,14 +329,12 @@ int runBenchReplay(const BenchReplayOptions& o) {
 int runBenchRecord(const BenchRecordOptions& o) {
     setLogQuiet(true);
     pinToCores(o.cores);
-    std::printf("bench record: 1280x720 float depth + confidence + 1280x720 NV12 color @30 fps, %.0f s per "
-                "case, %d cores, %d of them loaded by another process (goal: 0 dropped)\n",
-                o.seconds, o.cores, o.load);
-    devices::SyntheticConfig config;
-    config.depthWidth = config.cameraWidth = 1280;
-    config.depthHeight = config.cameraHeight = 720;
-    config.motion = true;
-    const auto frames = syntheticFrames(config, 30);
+    BenchFrames frames;
+    if (const int code = benchFrames(o, frames); code != kExitOk)
+        return code;
+    std::printf("bench record: %s, %.0f s per case, %d cores, %d of them loaded by another process (goal: 0 "
+                "dropped)\n",
+                frames.description.c_str(), o.seconds, o.cores, o.load);
     // The Recorder's default of two encoder threads, and cases with one for comparison.
     const RecordCase cases[] = {
         {"raw", false, 1, devices::recording::ColorStorage::AsCaptured, 2},
@@ -286,11 +358,9 @@ int runBenchRecord(const BenchRecordOptions& o) {
     }
     if (o.jsonPath.empty())
         return kExitOk;
-    const nlohmann::json report{{"frame", "1280x720 float depth + confidence + 1280x720 NV12 @30 fps"},
-                                {"secondsPerCase", o.seconds},
-                                {"cores", o.cores},
-                                {"loadProcesses", load.running()},
-                                {"cases", results}};
+    const nlohmann::json report{{"frame", frames.description},     {"fps", frames.fps},
+                                {"secondsPerCase", o.seconds},     {"cores", o.cores},
+                                {"loadProcesses", load.running()}, {"cases", results}};
     if (Status s = base::writeTextFile(o.jsonPath, report.dump(2) + "\n"); !s) {
         std::fprintf(stderr, "depthcloud bench record: error: %s\n", s.error().message.c_str());
         return kExitFailure;

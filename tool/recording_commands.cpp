@@ -68,8 +68,8 @@ void addRecordingCommands(CLI::App& app, CLI::App& bench, RecordingCommands& c) 
         ->add_option("--passes", c.benchReplay.passes, "passes over every case; the median is reported")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();
-    c.benchRecordCmd =
-        bench.add_subcommand("record", "recording throughput and drops at 1280x720 depth + color @30 fps");
+    c.benchRecordCmd = bench.add_subcommand(
+        "record", "recording throughput, drops and size (default: 1280x720 depth + color @30 fps)");
     c.benchRecordCmd->add_option("--seconds", c.benchRecord.seconds, "seconds per case")
         ->check(CLI::Range(1.0, 3600.0))
         ->capture_default_str();
@@ -88,6 +88,9 @@ void addRecordingCommands(CLI::App& app, CLI::App& bench, RecordingCommands& c) 
         ->add_option("--sync-ms", c.benchRecord.syncMs, "write-back interval in ms (0: only at close)")
         ->check(CLI::Range(0, 60000))
         ->capture_default_str();
+    c.benchRecordCmd->add_option(
+        "--source", c.benchRecord.source,
+        "record the first frames of this source (as --source takes it) at its own rate");
     c.benchRecordCmd->add_option("--cores", c.benchRecord.cores, "run on this many CPUs (0: all)")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();

@@ -45,6 +45,7 @@ struct BenchRecordOptions {
     int load = 0;          // processes that each keep one of those cores busy meanwhile
     int syncMs = 1000;     // the recorder's write-back interval (0: only at close)
     std::string jsonPath;  // also write the results as JSON here
+    std::string source;    // record frames of this --source at its rate (default: synthetic 1280x720 @30 fps)
 };
 
 struct RecordingCommands {
