@@ -146,7 +146,9 @@ TEST_F(RecordingApp, KilledRecorderLeavesAReplayablePrefix) {
               std::string::npos)
         << exported.output;
     const RunResult refused = run("record --source synthetic --frames 2 " + out);
-    EXPECT_EQ(refused.exitCode, 1) << "the interrupted recording is kept, not overwritten";
+    // The destination is refused before the source opens, like an existing output: a bad argument.
+    EXPECT_EQ(refused.exitCode, 2) << "the interrupted recording is kept, not overwritten";
+    EXPECT_EQ(RecordingReader::open(out + ".partial")->frameCount(), reader->frameCount());
     EXPECT_NE(refused.output.find("interrupted recording"), std::string::npos) << refused.output;
 }
 
