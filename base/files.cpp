@@ -60,29 +60,49 @@ int syncDirectoryOf(const std::string& path) {
     return fsyncRetried(fd.get());
 }
 
+// The injected result of `step`, else the real call's: 0 or -errno.
+template <class Call> int runStep(const AtomicWriteFault& fault, AtomicWriteStep step, Call call) {
+    if (fault) {
+        if (const int injected = fault(step); injected < 0)
+            return injected;
+    }
+    return call();
+}
+
+// Writes and flushes the temporary file; 0 or -errno, leaving no file behind on failure.
+int writeTemporary(const std::string& tmp, std::span<const std::uint8_t> bytes,
+                   const AtomicWriteFault& fault) {
+    UniqueFd fd;
+    int r = runStep(fault, AtomicWriteStep::Open, [&] {
+        fd.reset(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
+        return fd.valid() ? 0 : -errno;
+    });
+    if (r < 0)
+        return r;
+    r = runStep(fault, AtomicWriteStep::Write, [&] { return writeAll(fd.get(), bytes); });
+    if (r == 0)
+        r = runStep(fault, AtomicWriteStep::Sync, [&] { return fsyncRetried(fd.get()); });
+    if (r < 0)
+        ::unlink(tmp.c_str());
+    return r;
+}
+
 } // namespace
 
-Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes) {
+Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes,
+                           const AtomicWriteFault& fault) {
     // The pid keeps two processes writing the same path from sharing a temporary file.
     const std::string tmp = path + ".tmp." + std::to_string(::getpid());
-    {
-        UniqueFd fd(::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644));
-        if (!fd.valid())
-            return Error{"cannot write " + path + ": " + std::strerror(errno)};
-        int r = writeAll(fd.get(), bytes);
-        if (r == 0)
-            r = fsyncRetried(fd.get());
-        if (r < 0) {
-            ::unlink(tmp.c_str());
-            return Error{"cannot write " + path + ": " + std::strerror(-r)};
-        }
-    }
-    if (::rename(tmp.c_str(), path.c_str()) != 0) {
-        const std::string reason = std::strerror(errno);
+    if (const int r = writeTemporary(tmp, bytes, fault); r < 0)
+        return Error{"cannot write " + path + ": " + std::strerror(-r)};
+    const int renamed = runStep(fault, AtomicWriteStep::Rename,
+                                [&] { return ::rename(tmp.c_str(), path.c_str()) == 0 ? 0 : -errno; });
+    if (renamed < 0) {
         ::unlink(tmp.c_str());
-        return Error{"cannot rename " + tmp + " to " + path + ": " + reason};
+        return Error{"cannot rename " + tmp + " to " + path + ": " + std::strerror(-renamed)};
     }
-    if (const int r = syncDirectoryOf(path); r < 0)
+    if (const int r = runStep(fault, AtomicWriteStep::SyncDirectory, [&] { return syncDirectoryOf(path); });
+        r < 0)
         return Error{"wrote " + path + " but could not flush its directory: " + std::strerror(-r)};
     return {};
 }

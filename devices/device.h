@@ -21,6 +21,8 @@ struct Capabilities {
     bool approximateIntrinsics = false;
     // Frame timestamps are CLOCK_MONOTONIC capture times, so now - timestampNs is the frame's age.
     bool monotonicTimestamps = false;
+    // The frame rate the source promises (0: unknown). A session delivering clearly less cannot keep it.
+    double nominalFps = 0.0;
 };
 
 inline constexpr const char* kApproximateIntrinsicsMessage =

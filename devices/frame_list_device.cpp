@@ -14,7 +14,8 @@ Capabilities FrameListDevice::capabilities() const {
             .smoothedSceneDepth = f.smoothedSceneDepth.has_value(),
             .confidence = f.sceneDepth && !f.sceneDepth->confidence.empty(),
             .color = !f.capturedImage.empty(),
-            .pose = f.pose.has_value()};
+            .pose = f.pose.has_value(),
+            .nominalFps = fps_};
 }
 
 Status FrameListDevice::doOpen() {

@@ -56,6 +56,8 @@ Expected<std::unique_ptr<Device>> openSynthetic(const std::vector<std::string>& 
             return s.error();
         }
     }
+    if (Status s = checkSyntheticConfig(config); !s)
+        return s.error();
     return std::unique_ptr<Device>(std::make_unique<SyntheticDevice>(config));
 }
 

@@ -2,6 +2,7 @@
 
 #include "base/clock.h"
 #include "base/log.h"
+#include "devices/recording/take_names.h"
 #include "devices/source_spec.h"
 
 #include <algorithm>
@@ -152,8 +153,8 @@ FrameCounts Instrument::countFrames() {
 
 InstrumentStatus Instrument::status() {
     drainEvents();
-    InstrumentStatus s{session_->description(), state_, message_, running_, countFrames(), std::nullopt,
-                       std::nullopt, stages_.recent()};
+    InstrumentStatus s{session_->description(), state_,       message_,     running_,
+                       countFrames(),           std::nullopt, std::nullopt, stages_.recent()};
     if (replay_ && running_) {
         const devices::replay::ReplayStatus r = replay_->status();
         if (r.atEnd && !r.loop)
@@ -176,17 +177,31 @@ void Instrument::stepReplay(int frames) {
         processor_->afterSeek(replay_->step(frames));
 }
 
-Status Instrument::startRecording(const std::string& path) {
+Status Instrument::startRecording(const std::string& path,
+                                  const devices::recording::RecordingOptions& options) {
     if (recording_)
         return Error{"already recording to " + recording_->path()};
-    auto r = devices::recording::SessionRecording::start(*session_, path);
+    auto r = devices::recording::SessionRecording::start(*session_, path, options);
     if (!r) {
         logError("record: " + r.error().message);
         return r.error();
     }
     recording_ = std::move(*r);
+    recordingOptions_ = options;
     logInfo("recording to " + path);
     return {};
+}
+
+Expected<std::string> Instrument::startTake(const std::string& directory,
+                                            const devices::recording::RecordingOptions& options) {
+    auto path = devices::recording::nextTakePath(directory);
+    if (!path) {
+        logError("record: " + path.error().message);
+        return path.error();
+    }
+    if (Status s = startRecording(*path, options); !s)
+        return s.error();
+    return *path;
 }
 
 Status Instrument::stopRecording() {
@@ -200,8 +215,8 @@ Status Instrument::stopRecording() {
         logError("recording " + path + ": " + s.error().message);
         return s;
     }
-    logInfo("recorded " + std::to_string(stats.framesWritten) + " frames (" + std::to_string(stats.framesDropped) +
-            " dropped) to " + path);
+    logInfo("recorded " + std::to_string(stats.framesWritten) + " frames (" +
+            std::to_string(stats.framesDropped) + " dropped) to " + path);
     return {};
 }
 
@@ -210,11 +225,12 @@ RecordingStatus Instrument::recording() const {
         return {};
     const devices::recording::RecorderStats s = recording_->stats();
     // Frames accepted are written or about to be: the same count the final message gives once they are.
-    return {true, recording_->path(), s.framesWritten + s.queueDepth, s.framesDropped, s.bytesWritten};
+    return {true,           recording_->path(), s.framesWritten + s.queueDepth, s.framesDropped,
+            s.bytesWritten, recordingOptions_};
 }
 
-Status Instrument::startExport(exporting::ExportFormat format, const std::string& directory, std::size_t first,
-                               std::size_t end, const Demand& demand) {
+Status Instrument::startExport(exporting::ExportFormat format, const std::string& directory,
+                               std::size_t first, std::size_t end, const Demand& demand) {
     if (!replay_)
         return Error{"export needs a replay source"};
     if (exportJob_ && !exportJob_->finished())

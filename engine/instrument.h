@@ -48,6 +48,7 @@ struct RecordingStatus {
     std::uint64_t frames = 0; // accepted into the recording (written or being written)
     std::uint64_t dropped = 0;
     std::uint64_t bytesWritten = 0;
+    devices::recording::RecordingOptions options; // how this take stores its frames
 };
 
 // The application: one source (session, replay timeline, recording, export) and the engine that turns its
@@ -94,7 +95,11 @@ public:
     void seekReplay(std::size_t index);
     void stepReplay(int frames);
 
-    Status startRecording(const std::string& path);
+    Status startRecording(const std::string& path, const devices::recording::RecordingOptions& options = {});
+    // Records into the next numbered take in `directory` (depthcloud-recording-001.dcrec, …); returns its
+    // path.
+    Expected<std::string> startTake(const std::string& directory,
+                                    const devices::recording::RecordingOptions& options);
     Status stopRecording();
     RecordingStatus recording() const;
 
@@ -136,6 +141,7 @@ private:
     };
     std::deque<CountSample> countHistory_;
     std::unique_ptr<devices::recording::SessionRecording> recording_;
+    devices::recording::RecordingOptions recordingOptions_;
     std::unique_ptr<ExportJob> exportJob_;
 };
 

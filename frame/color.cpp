@@ -11,11 +11,6 @@ Rgb ycbcrToRgb(Ycbcr c) {
     return {c.y + 1.402f * cr, c.y - 0.3441f * cb - 0.7141f * cr, c.y + 1.772f * cb};
 }
 
-Ycbcr rgbToYcbcr(Rgb c) {
-    const float y = 0.299f * c.r + 0.587f * c.g + 0.114f * c.b;
-    return {y, 0.5f + (c.b - y) / 1.772f, 0.5f + (c.r - y) / 1.402f};
-}
-
 std::uint8_t toByte(float normalised) {
     if (!(normalised > 0.0f)) // also maps NaN to 0
         return 0;

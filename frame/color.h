@@ -22,8 +22,13 @@ struct Rgb {
 // The sample's inverse matrix: R = Y + 1.402 Cr', G = Y - 0.3441 Cb' - 0.7141 Cr', B = Y + 1.772 Cb'.
 // Results are not clamped, exactly like the shader; callers clamp when they store 8-bit values.
 Rgb ycbcrToRgb(Ycbcr c);
-// The forward transform whose inverse is ycbcrToRgb (to within the sample's 4-digit coefficients).
-Ycbcr rgbToYcbcr(Rgb c);
+// The forward transform whose inverse is ycbcrToRgb (to within the sample's 4-digit coefficients). Inline:
+// the synthetic camera converts every pixel it renders.
+inline Ycbcr rgbToYcbcr(Rgb c) {
+    constexpr float kCbPerBlue = 1.0f / 1.772f, kCrPerRed = 1.0f / 1.402f; // multiplications, not divisions
+    const float y = 0.299f * c.r + 0.587f * c.g + 0.114f * c.b;
+    return {y, 0.5f + (c.b - y) * kCbPerBlue, 0.5f + (c.r - y) * kCrPerRed};
+}
 
 std::uint8_t toByte(float normalised);
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Command 2: install what is missing, build, and run every test tier (unit, gl, ui, app, kernel), then the unit
-# and gl tiers again under AddressSanitizer + UndefinedBehaviorSanitizer.
+# and gl tiers again under AddressSanitizer + UndefinedBehaviorSanitizer, the threaded tests under
+# ThreadSanitizer, and the fuzz targets briefly.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -25,4 +26,5 @@ cmake --build build-asan -j"$jobs" --target test_unit test_processing test_setti
 # Mesa's llvmpipe keeps allocations alive until process exit; leak checking stays on for the unit tier.
 ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^unit$'
 ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^gl$'
+./scripts/tsan.sh # the unit, recording and live tests under ThreadSanitizer
 ./scripts/fuzz.sh # libFuzzer targets of the recording reader and importers, 15 s each

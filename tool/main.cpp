@@ -51,19 +51,25 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
         ->capture_default_str();
     app.add_flag("--headless", o.headless,
                  "no window: render offscreen and write PNGs + summary.json to --out");
-    app.add_option("--frames", o.frames, "stop after N frames (headless default 60)");
+    app.add_option("--frames", o.frames, "stop after N frames (headless default 60)")
+        ->check(CLI::Range(1, 1'000'000'000));
     app.add_option("--out", o.outDirectory, "output directory (headless default: depthcloud-snapshots)");
-    const std::map<std::string, dc::frame::Confidence> levels{{"low", dc::frame::Confidence::Low},
-                                                              {"medium", dc::frame::Confidence::Medium},
-                                                              {"high", dc::frame::Confidence::High}};
-    app.add_option("--confidence", o.confidence, "lowest confidence drawn in the cloud: low|medium|high")
-        ->transform(CLI::CheckedTransformer(levels, CLI::ignore_case));
+    // By name in help and errors: CLI11 would print a Confidence (a byte) as a raw control character.
+    app.add_option_function<std::string>(
+           "--confidence",
+           [&o](const std::string& name) {
+               static const std::map<std::string, dc::frame::Confidence> kLevels{
+                   {"low", dc::frame::Confidence::Low},
+                   {"medium", dc::frame::Confidence::Medium},
+                   {"high", dc::frame::Confidence::High}};
+               o.confidence = kLevels.at(name);
+           },
+           "lowest confidence drawn in the cloud")
+        ->transform(CLI::IsMember({"low", "medium", "high"}, CLI::ignore_case));
     app.add_flag("--reset", o.reset, "start with default settings and layout");
 }
 
 int runViewer(ViewerOptions o) {
-    if (o.frames && *o.frames < 1)
-        return badArgument("--frames must be at least 1 (got " + std::to_string(*o.frames) + ")");
     if (auto device = dc::devices::openSourceSpec(o.source); !device)
         return badArgument("--source: " + device.error().message);
     if (!o.headless && !hasDisplay()) {

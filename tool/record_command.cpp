@@ -27,15 +27,15 @@ int fail(const std::string& message, int code = kExitFailure) {
     return code;
 }
 
-devices::recording::RecorderOptions recorderOptions(const RecordOptions& o) {
-    devices::recording::RecorderOptions r;
+devices::recording::RecordingOptions recordingOptions(const RecordOptions& o) {
+    devices::recording::RecordingOptions r;
+    r.color = o.color == "jpeg" ? devices::recording::ColorStorage::Jpeg
+                                : devices::recording::ColorStorage::AsCaptured;
+    r.jpegQuality = o.jpegQuality;
+    r.compress = o.compression == "zstd";
+    r.zstdLevel = o.zstdLevel;
+    r.overwrite = o.overwrite;
     r.queueFrames = static_cast<std::size_t>(o.queueFrames);
-    r.writer.overwrite = o.overwrite;
-    r.writer.encode.compress = o.compression == "zstd";
-    r.writer.encode.zstdLevel = o.zstdLevel;
-    r.writer.encode.color = o.color == "jpeg" ? devices::recording::ColorStorage::Jpeg
-                                              : devices::recording::ColorStorage::AsCaptured;
-    r.writer.encode.jpegQuality = o.jpegQuality;
     return r;
 }
 
@@ -77,6 +77,8 @@ std::string waitForEnd(devices::Session& session, const devices::recording::Sess
 
 int runRecord(const RecordOptions& o) {
     setLogQuiet(true);
+    if (Status s = devices::recording::RecordingWriter::checkDestination(o.out, o.overwrite); !s)
+        return fail(s.error().message, kExitBadArguments);
     auto device = devices::openSourceSpec(o.source);
     if (!device)
         return fail("--source: " + device.error().message, kExitBadArguments);
@@ -84,7 +86,7 @@ int runRecord(const RecordOptions& o) {
     std::optional<std::uint64_t> limit;
     if (o.frames)
         limit = static_cast<std::uint64_t>(*o.frames);
-    auto recording = devices::recording::SessionRecording::start(session, o.out, recorderOptions(o), limit);
+    auto recording = devices::recording::SessionRecording::start(session, o.out, recordingOptions(o), limit);
     if (!recording)
         return fail(recording.error().message);
     std::signal(SIGINT, requestStop);

@@ -11,10 +11,10 @@ void addRecord(CLI::App& app, RecordOptions& o, RecordingCommands& c) {
     c.recordCmd = app.add_subcommand("record", "record a source to a depthcloud recording (.dcrec)");
     c.recordCmd->add_option("--source", o.source, std::string("what to record: ") + devices::kSourceSpecHelp)
         ->capture_default_str();
-    auto* frames =
-        c.recordCmd->add_option("--frames", o.frames, "stop after N frames")->check(CLI::PositiveNumber);
+    auto* frames = c.recordCmd->add_option("--frames", o.frames, "stop after N frames")
+                       ->check(CLI::Range(1, 1'000'000'000));
     c.recordCmd->add_option("--seconds", o.seconds, "stop after S seconds")
-        ->check(CLI::PositiveNumber)
+        ->check(CLI::Range(0.001, 1e9))
         ->excludes(frames);
     c.recordCmd->add_flag("--overwrite", o.overwrite, "replace OUT if it exists");
     c.recordCmd->add_option("--color", o.color, "camera image: raw (as captured) or jpeg")
@@ -63,28 +63,42 @@ void addRecordingCommands(CLI::App& app, CLI::App& bench, RecordingCommands& c) 
     addRecord(app, c.record, c);
     addExport(app, c.exportOptions, c);
     c.benchReplayCmd = bench.add_subcommand("replay", "replay decode throughput, headless");
-    c.benchReplayCmd->add_option("--stray", c.benchReplay.stray, "a Stray Scanner capture to decode")
-        ->capture_default_str();
+    c.benchReplayCmd
+        ->add_option("--data", c.benchReplay.data,
+                     "also decode this capture (a recording, a Stray or TUM directory, e.g. "
+                     "../shared/data/arkit_dance_stray)")
+        ->check(CLI::ExistingPath);
     c.benchReplayCmd
         ->add_option("--synthetic-frames", c.benchReplay.syntheticFrames, "frames of the synthetic recording")
         ->check(CLI::Range(10, 10000))
         ->capture_default_str();
     c.benchReplayCmd
         ->add_option("--passes", c.benchReplay.passes, "passes over every case; the median is reported")
-        ->check(CLI::PositiveNumber);
-    c.benchRecordCmd =
-        bench.add_subcommand("record", "recording throughput and drops at 1280x720 depth + color @30 fps");
+        ->check(CLI::Range(1, 1000))
+        ->capture_default_str();
+    c.benchRecordCmd = bench.add_subcommand(
+        "record", "recording throughput, drops and size (default: 1280x720 depth + color @30 fps)");
     c.benchRecordCmd->add_option("--seconds", c.benchRecord.seconds, "seconds per case")
         ->check(CLI::Range(1.0, 3600.0))
         ->capture_default_str();
-    c.benchRecordCmd->add_option("--case", c.benchRecord.only,
-                                 "run only this case (raw, zstd1, zstd3, jpeg, zstd1-1t)");
-    c.benchRecordCmd->add_option("--dir", c.benchRecord.directory,
-                                 "where to write the recordings (removed after)");
+    c.benchRecordCmd->add_option("--case", c.benchRecord.only, "run only this case")
+        ->check(CLI::IsMember({"raw", "zstd1", "zstd3", "jpeg", "zstd1-1t", "jpeg-1t"}));
+    c.benchRecordCmd
+        ->add_option("--dir", c.benchRecord.directory, "where to write the recordings (removed after)")
+        ->check(CLI::ExistingDirectory);
+    c.benchRecordCmd
+        ->add_option("--load", c.benchRecord.load, "processes that each keep one of the cores busy meanwhile")
+        ->check(CLI::Range(0, 64))
+        ->capture_default_str();
+    c.benchRecordCmd->add_option("--json", c.benchRecord.jsonPath,
+                                 "also write the results as JSON to this file");
     c.benchRecordCmd
         ->add_option("--sync-ms", c.benchRecord.syncMs, "write-back interval in ms (0: only at close)")
         ->check(CLI::Range(0, 60000))
         ->capture_default_str();
+    c.benchRecordCmd->add_option(
+        "--source", c.benchRecord.source,
+        "record the first frames of this source (as --source takes it) at its own rate");
     c.benchRecordCmd->add_option("--cores", c.benchRecord.cores, "run on this many CPUs (0: all)")
         ->check(CLI::Range(0, 1024))
         ->capture_default_str();

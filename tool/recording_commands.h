@@ -32,7 +32,8 @@ struct ExportOptionsCli {
 };
 
 struct BenchReplayOptions {
-    std::string stray = "../shared/data/arkit_dance_stray";
+    std::string
+        data; // a capture to decode besides the synthetic recording (a .dcrec, Stray or TUM directory)
     int syntheticFrames = 150;
     int passes = 5; // decodes of every frame per case; the median pass is reported
 };
@@ -42,7 +43,10 @@ struct BenchRecordOptions {
     std::string only;      // run one case by name
     std::string directory; // where the recordings are written (and removed); default: the temp dir
     int cores = 2;         // pin the process to this many CPUs (0: leave as is)
+    int load = 0;          // processes that each keep one of those cores busy meanwhile
     int syncMs = 1000;     // the recorder's write-back interval (0: only at close)
+    std::string jsonPath;  // also write the results as JSON here
+    std::string source;    // record frames of this --source at its rate (default: synthetic 1280x720 @30 fps)
 };
 
 struct RecordingCommands {

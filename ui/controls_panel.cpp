@@ -239,7 +239,7 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
     }
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f); // room for the longest label
     if (context.recordState) {
-        result.toggleRecording = drawRecordControls(context.record, *context.recordState);
+        result.toggleRecording = drawRecordControls(context.record, settings.record, *context.recordState);
         result.snapshot = ImGui::Button("Snapshot [P]");
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("Every panel as PNG and the cloud as PLY, into depthcloud-snapshots/.");

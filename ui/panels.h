@@ -92,12 +92,18 @@ struct CameraPanelResult {
 CameraPanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay,
                                   const CameraView& view, const ProbeSource& probe, bool* open);
 
+// The folder field's text while it is edited (RecordSettings::directory follows it).
 struct RecordPanelState {
-    std::array<char, 512> path{"depthcloud-recording.dcrec"};
+    std::array<char, 512> directory{};
+    bool editing = false; // the field had the keyboard last frame: the buffer leads, not the settings
 };
 
-// The record button (inside the controls panel); returns true when it was pressed.
-bool drawRecordControls(const engine::RecordingStatus& view, RecordPanelState& state);
+inline constexpr const char* kRecordButtonId = "###record";
+
+// The record button (inside the controls panel) with where and how takes are stored; returns true when the
+// button was pressed. The button keeps its place and size whether it says Record or Stop.
+bool drawRecordControls(const engine::RecordingStatus& view, RecordSettings& settings,
+                        RecordPanelState& state);
 
 // What the controls need to know but must not change.
 struct ControlsContext {

@@ -155,6 +155,9 @@ void sanitize(Settings& s) {
     s.accumulate.budgetThousands = std::clamp(s.accumulate.budgetThousands, 10, 4000);
     s.accumulate.voxelMillimeters =
         std::clamp(finiteOr(s.accumulate.voxelMillimeters, d.accumulate.voxelMillimeters), 0.5f, 100.0f);
+    s.record.jpegQuality = std::clamp(s.record.jpegQuality, 1, 100);
+    if (s.record.directory.empty())
+        s.record.directory = d.record.directory;
     if (s.recentSources.size() > kMaxRecentSources)
         s.recentSources.resize(kMaxRecentSources);
 }
@@ -198,6 +201,9 @@ std::string settingsToJson(const Settings& s) {
     j["accumulate"] = {{"enabled", s.accumulate.enabled},
                        {"budgetThousands", s.accumulate.budgetThousands},
                        {"voxelMillimeters", s.accumulate.voxelMillimeters}};
+    j["record"] = {{"directory", s.record.directory},
+                   {"jpegColor", s.record.jpegColor},
+                   {"jpegQuality", s.record.jpegQuality}};
     j["recentSources"] = s.recentSources;
     j["processing"] = processingToJson(s.processing);
     return j.dump(2) + "\n";
@@ -257,6 +263,10 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(acc, "enabled", s.accumulate.enabled);
     read(acc, "budgetThousands", s.accumulate.budgetThousands);
     read(acc, "voxelMillimeters", s.accumulate.voxelMillimeters);
+    const json& rec = j.contains("record") ? j["record"] : none;
+    read(rec, "directory", s.record.directory);
+    read(rec, "jpegColor", s.record.jpegColor);
+    read(rec, "jpegQuality", s.record.jpegQuality);
     read(j, "recentSources", s.recentSources);
     processingFromJson(j.contains("processing") ? j["processing"] : none, s.processing);
     sanitize(s);

@@ -57,6 +57,15 @@ struct AccumulateSettings {
     float voxelMillimeters = 5.0f;
 };
 
+// How the record button stores its takes: numbered files in `directory`, the camera image as JPEG (the
+// default: a tenth of the size of the raw image, and the rate a busy machine keeps up with) or as captured.
+// Depth and confidence are always lossless.
+struct RecordSettings {
+    std::string directory = ".";
+    bool jpegColor = true;
+    int jpegQuality = 90; // 1 .. 100
+};
+
 // The camera panel fits the whole image (letterboxed) or fills the panel and crops, as the sample's
 // display transform does; the depth can be laid over it.
 struct CameraView {
@@ -72,6 +81,7 @@ struct Settings {
     DepthRange depthRange;
     CameraView camera;
     AccumulateSettings accumulate;
+    RecordSettings record;
     processing::ProcessingSettings processing;
     std::vector<std::string> recentSources; // newest first, at most kMaxRecentSources
 };

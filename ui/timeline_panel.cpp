@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <string>
 
 namespace dc::ui {
 
@@ -98,21 +100,40 @@ TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& 
     return actions;
 }
 
-bool drawRecordControls(const engine::RecordingStatus& view, RecordPanelState& state) {
-    bool toggle = false;
-    if (view.recording) {
+bool drawRecordControls(const engine::RecordingStatus& view, RecordSettings& settings,
+                        RecordPanelState& state) {
+    if (view.recording)
         ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.15f, 0.15f, 1.0f));
-        toggle = ImGui::Button("Stop recording");
+    const std::string label = std::string(view.recording ? "Stop" : "Record") + kRecordButtonId;
+    const bool toggle = ImGui::Button(label.c_str(), ImVec2(ImGui::GetFontSize() * 5.0f, 0.0f));
+    if (view.recording)
         ImGui::PopStyleColor();
-        ImGui::Text("%llu frames, %llu dropped, %.1f MB", static_cast<unsigned long long>(view.frames),
+    ImGui::SameLine();
+    if (view.recording) {
+        const std::string name = std::filesystem::path(view.path).filename().string();
+        ImGui::Text("%s: %llu frames, %llu dropped, %.1f MB", name.c_str(),
+                    static_cast<unsigned long long>(view.frames),
                     static_cast<unsigned long long>(view.dropped),
                     static_cast<double>(view.bytesWritten) / 1e6);
     } else {
-        ImGui::SetNextItemWidth(-ImGui::GetFontSize() * 5.0f);
-        ImGui::InputText("##recordPath", state.path.data(), state.path.size());
-        ImGui::SameLine();
-        toggle = ImGui::Button("Record");
+        if (!state.editing)
+            std::snprintf(state.directory.data(), state.directory.size(), "%s", settings.directory.c_str());
+        ImGui::SetNextItemWidth(-1.0f);
+        if (ImGui::InputTextWithHint("##recordDirectory", "folder", state.directory.data(),
+                                     state.directory.size()))
+            settings.directory = state.directory.data();
+        state.editing = ImGui::IsItemActive();
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("Takes are numbered in this folder: depthcloud-recording-001.dcrec, -002, ...");
     }
+    // What a take stores is fixed once it starts.
+    ImGui::BeginDisabled(view.recording);
+    int color = settings.jpegColor ? 0 : 1;
+    if (ImGui::Combo("camera image", &color, "JPEG\0as captured (raw)\0"))
+        settings.jpegColor = color == 0;
+    if (settings.jpegColor)
+        ImGui::SliderInt("JPEG quality", &settings.jpegQuality, 1, 100);
+    ImGui::EndDisabled();
     return toggle;
 }
 

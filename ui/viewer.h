@@ -117,6 +117,7 @@ private:
     void placePanel(const char* title, float x, float y, float w, float h);
     void afterPanel(const char* title, const PanelResult& result);
     void drawControls(float width, float height);
+    void toggleRecording();
     void drawCloud(float x, float y, float w, float h);
     void drawSidePanels(float x, float w, float h);
     void drawSourcePicker(float x, float y);

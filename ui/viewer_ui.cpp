@@ -122,6 +122,19 @@ void Viewer::drawUi() {
         showProbeTooltip(*hoverProbe_);
 }
 
+void Viewer::toggleRecording() {
+    if (instrument_.recording().recording) {
+        (void)instrument_.stopRecording();
+        return;
+    }
+    devices::recording::RecordingOptions options;
+    options.color = settings_.record.jpegColor ? devices::recording::ColorStorage::Jpeg
+                                               : devices::recording::ColorStorage::AsCaptured;
+    options.jpegQuality = settings_.record.jpegQuality;
+    // A failure (a missing folder, a full disk) is logged by the instrument and shown as a toast.
+    (void)instrument_.startTake(settings_.record.directory, options);
+}
+
 void Viewer::drawControls(float width, float height) {
     placePanel(kControlsTitle, 0, 0, width, height);
     const ControlsContext context{true,
@@ -138,8 +151,7 @@ void Viewer::drawControls(float width, float height) {
     if (r.snapshot)
         (void)saveSnapshot(kSnapshotDirectory);
     if (r.toggleRecording)
-        (void)(instrument_.recording().recording ? instrument_.stopRecording()
-                                                 : instrument_.startRecording(recordState_.path.data()));
+        toggleRecording();
     if (r.clearAccumulation)
         instrument_.accumulation().clear();
     if (r.clearAnchors)
@@ -166,7 +178,8 @@ void Viewer::drawSidePanels(float x, float w, float h) {
     const ProbeSource probe = probeSource();
     if (show.depth) {
         placePanel(kDepthTitle, x, 0, w, h);
-        afterPanel(kDepthTitle, drawDepthPanel(imageOf(renderer_.depthTarget()), legend_, probe, &show.depth));
+        afterPanel(kDepthTitle,
+                   drawDepthPanel(imageOf(renderer_.depthTarget()), legend_, probe, &show.depth));
     }
     if (show.confidence) {
         placePanel(kConfidenceTitle, x, h, w, h);
@@ -177,9 +190,9 @@ void Viewer::drawSidePanels(float x, float w, float h) {
     }
     if (show.camera) {
         placePanel(kCameraTitle, x, 2.0f * h, w, h);
-        const CameraPanelResult r = drawCameraPanel(imageOf(renderer_.cameraTexture()),
-                                                    imageOf(renderer_.depthTarget()), settings_.camera, probe,
-                                                    &show.camera);
+        const CameraPanelResult r =
+            drawCameraPanel(imageOf(renderer_.cameraTexture()), imageOf(renderer_.depthTarget()),
+                            settings_.camera, probe, &show.camera);
         afterPanel(kCameraTitle, r.panel);
         if (r.shownWidth > 0)
             cameraShownWidth_ = r.shownWidth;

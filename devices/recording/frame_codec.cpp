@@ -2,14 +2,11 @@
 
 #include "devices/recording/byte_io.h"
 #include "devices/recording/format.h"
-#include "frame/rgb_image.h"
-
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
+#include "devices/recording/jpeg_codec.h"
 
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <zstd.h>
 
 namespace dc::devices::recording {
@@ -129,6 +126,7 @@ std::optional<double> exactUint16Scale(const frame::Plane<float>& depthMeters) {
 struct FrameEncoder::Impl {
     EncodeOptions options;
     std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> cctx{ZSTD_createCCtx(), &ZSTD_freeCCtx};
+    JpegEncoder jpegEncoder;
     std::vector<std::uint8_t> scratch;
 
     void section(std::vector<std::uint8_t>& out, SectionHeader h, std::span<const std::uint8_t> raw,
@@ -213,13 +211,10 @@ Status FrameEncoder::Impl::color(std::vector<std::uint8_t>& out, const frame::Ca
                 *image.bytes, true);
         return {};
     }
-    std::vector<std::uint8_t> rgb = frame::toRgb24(image);
-    cv::Mat bgr;
-    cv::cvtColor(cv::Mat(image.height, image.width, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
-    std::vector<std::uint8_t> jpeg;
-    if (!cv::imencode(".jpg", bgr, jpeg, {cv::IMWRITE_JPEG_QUALITY, options.jpegQuality}))
-        return Error{"cannot encode the camera image as JPEG"};
-    section(out, {Section::Color, Codec::Raw, kColorJpeg, image.width, image.height, 0.0, 0}, jpeg, false);
+    const auto jpeg = jpegEncoder.encode(image, options.jpegQuality);
+    if (!jpeg)
+        return jpeg.error();
+    section(out, {Section::Color, Codec::Raw, kColorJpeg, image.width, image.height, 0.0, 0}, *jpeg, false);
     return {};
 }
 
@@ -266,6 +261,7 @@ Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& fra
 
 struct FrameDecoder::Impl {
     std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> dctx{ZSTD_createDCtx(), &ZSTD_freeDCtx};
+    JpegDecoder jpegDecoder;
     std::vector<std::uint8_t> scratch;
     std::string where; // "FILE: frame N"
 
@@ -359,17 +355,10 @@ Expected<frame::Plane<std::uint8_t>> FrameDecoder::Impl::decodePlane8(const Sect
 
 Expected<frame::CapturedImage> FrameDecoder::Impl::decodeColor(const SectionHeader& h, std::uint64_t offset) {
     if (h.layout == kColorJpeg) {
-        cv::Mat bgr;
-        try {
-            bgr = cv::imdecode(scratch, cv::IMREAD_COLOR);
-        } catch (const cv::Exception&) {
-            bgr.release();
-        }
-        if (bgr.empty() || bgr.cols != h.width || bgr.rows != h.height)
-            return error("cannot decode the JPEG camera image", offset);
-        std::vector<std::uint8_t> rgb(static_cast<std::size_t>(h.width) * h.height * 3);
-        cv::cvtColor(bgr, cv::Mat(h.height, h.width, CV_8UC3, rgb.data()), cv::COLOR_BGR2RGB);
-        return frame::makeRgb24Image(h.width, h.height, std::move(rgb));
+        auto image = jpegDecoder.decode(scratch, h.width, h.height);
+        if (!image)
+            return error(image.error().message, offset);
+        return image;
     }
     if (h.layout > static_cast<std::uint8_t>(frame::PixelFormat::Rgb24))
         return error("camera image in unknown format " + std::to_string(h.layout), offset);

@@ -37,11 +37,25 @@ Status renameInto(const std::string& from, const std::string& to, bool overwrite
 
 } // namespace
 
+Status RecordingWriter::checkDestination(const std::string& path, bool overwrite) {
+    namespace fs = std::filesystem;
+    std::error_code ec;
+    if (!overwrite && fs::exists(path, ec))
+        return Error{path + " already exists (pass --overwrite to replace it)"};
+    const std::string partial = partialPathFor(path);
+    if (fs::exists(partial, ec))
+        return Error{partial + " exists: it holds an interrupted recording (replay it with --source replay:" +
+                     partial + ", then move or remove it)"};
+    const fs::path directory = fs::path(path).parent_path();
+    if (!directory.empty() && !fs::is_directory(directory, ec))
+        return Error{path + ": no such directory " + directory.string()};
+    return {};
+}
+
 Expected<RecordingWriter> RecordingWriter::create(const std::string& path, const DeviceInfo& device,
                                                   WriterOptions options) {
-    std::error_code ec;
-    if (!options.overwrite && std::filesystem::exists(path, ec))
-        return Error{path + " already exists (pass --overwrite to replace it)"};
+    if (Status s = checkDestination(path, options.overwrite); !s)
+        return s.error();
     const std::string partial = partialPathFor(path);
     base::UniqueFd file(::open(partial.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644));
     if (!file.valid()) {

@@ -27,8 +27,11 @@ class RecordingWriter {
 public:
     static std::string partialPathFor(const std::string& path) { return path + ".partial"; }
 
-    // Refuses an existing destination unless options.overwrite, and an existing partial file always
-    // (it is an interrupted recording that nothing may destroy).
+    // Whether a recording may be written to `path`, checked before anything is recorded: an existing
+    // destination is refused unless `overwrite`, an existing partial file always (it is an interrupted
+    // recording that nothing may destroy), and so is a destination whose directory does not exist.
+    static Status checkDestination(const std::string& path, bool overwrite);
+    // Checks the destination (checkDestination) and creates the partial file.
     static Expected<RecordingWriter> create(const std::string& path, const DeviceInfo& device,
                                             WriterOptions options = {});
 

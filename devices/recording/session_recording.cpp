@@ -4,6 +4,20 @@
 
 namespace dc::devices::recording {
 
+RecorderOptions recorderOptionsFor(const RecordingOptions& o) {
+    RecorderOptions r;
+    r.writer.encode = {o.compress, o.zstdLevel, o.color, o.jpegQuality};
+    r.writer.overwrite = o.overwrite;
+    r.queueFrames = o.queueFrames;
+    return r;
+}
+
+Expected<std::unique_ptr<SessionRecording>> SessionRecording::start(Session& session, const std::string& path,
+                                                                    const RecordingOptions& options,
+                                                                    std::optional<std::uint64_t> maxFrames) {
+    return start(session, path, recorderOptionsFor(options), maxFrames);
+}
+
 Expected<std::unique_ptr<SessionRecording>> SessionRecording::start(Session& session, const std::string& path,
                                                                     RecorderOptions options,
                                                                     std::optional<std::uint64_t> maxFrames) {

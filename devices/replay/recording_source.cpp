@@ -45,7 +45,11 @@ public:
         return "recording " + std::filesystem::path(reader_.name()).filename().string() + " (" +
                description_ + ")";
     }
-    Capabilities capabilities() const override { return capabilities_; }
+    Capabilities capabilities() const override {
+        Capabilities c = capabilities_;
+        c.nominalFps = recordedFps();
+        return c;
+    }
     std::size_t frameCount() const override { return reader_.frameCount(); }
     std::int64_t timestampNs(std::size_t i) const override { return reader_.timestampNs(i); }
     Expected<frame::Frame> frame(std::size_t i) override { return reader_.frame(i); }

@@ -22,6 +22,13 @@ std::size_t ReplaySource::indexAtTime(std::int64_t ns) const {
     return lo == 0 ? 0 : lo - 1;
 }
 
+double ReplaySource::recordedFps() const {
+    const std::size_t n = frameCount();
+    if (n < 2 || timestampNs(n - 1) <= timestampNs(0))
+        return 0.0;
+    return static_cast<double>(n - 1) * 1e9 / static_cast<double>(timestampNs(n - 1) - timestampNs(0));
+}
+
 // Every replayed sample passes through here, so this file is built with -O3 (CMakeLists.txt) and the loop
 // is written to vectorise: two comparisons instead of isfinite (NaN fails both), combined bitwise, and a
 // select, not a branch.

@@ -36,6 +36,9 @@ public:
     // The frame on screen at time `ns`: the last one whose timestamp is not after it (the first frame
     // before the capture starts). Timestamps are non-decreasing in every source.
     std::size_t indexAtTime(std::int64_t ns) const;
+    // The rate the capture was recorded at (frames per second of its timestamps); 0 for fewer than two
+    // frames or a zero duration. Capabilities::nominalFps of the sources, at speed 1.
+    double recordedFps() const;
 
 protected:
     ReplaySource() = default;

@@ -61,7 +61,8 @@ public:
                 .smoothedSceneDepth = false,
                 .confidence = hasConfidence_,
                 .color = true,
-                .pose = true};
+                .pose = true,
+                .nominalFps = recordedFps()};
     }
     std::size_t frameCount() const override { return frames_; }
     std::int64_t timestampNs(std::size_t i) const override {

@@ -29,7 +29,8 @@ public:
                 .smoothedSceneDepth = false,
                 .confidence = false,
                 .color = true,
-                .pose = !groundTruth_.empty()};
+                .pose = !groundTruth_.empty(),
+                .nominalFps = recordedFps()};
     }
     std::size_t frameCount() const override { return pairs_.size(); }
     std::int64_t timestampNs(std::size_t i) const override {

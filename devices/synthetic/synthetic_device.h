@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <memory>
 
 namespace dc::devices {
 
@@ -21,14 +22,27 @@ struct SyntheticConfig {
     bool paced = true;   // false: deliver frames as fast as they are generated (tests, benchmarks)
 };
 
+// Limits that keep a typo from allocating gigabytes: the camera image up to 8K per side, the depth map no
+// larger than the default camera image (a depth map is upsampled to the image, never beyond it), and at
+// most 1000 fps. A configuration beyond them is refused before anything is allocated.
+inline constexpr int kSyntheticMaxImageSide = 7680;
+inline constexpr std::int64_t kSyntheticMaxDepthPixels = 1920 * 1440;
+inline constexpr double kSyntheticMaxFps = 1000.0;
+// Why `config` is outside those limits, naming the limit; success when it is within them.
+Status checkSyntheticConfig(const SyntheticConfig& config);
+
 // The built-in depth camera: frames of the SyntheticScene at a steady rate. Without motion the camera
-// image never changes, so it is rendered once and shared by every frame.
+// image never changes, so it is rendered once and shared by every frame. A frame depends only on its
+// sequence number, so worker threads render the next few ahead while the capture thread only waits for
+// the pacer and hands them out in order: rendering never delays the cadence unless it falls behind it.
 class SyntheticDevice final : public Device {
 public:
     explicit SyntheticDevice(SyntheticConfig config = {});
+    ~SyntheticDevice() override;
 
     std::string description() const override;
     Capabilities capabilities() const override;
+    void interruptCapture() override;
     const SyntheticConfig& config() const { return config_; }
     const SyntheticScene& scene() const { return scene_; }
     // The frame the device delivers at `timeSeconds` after its start, made on the caller's thread
@@ -39,16 +53,22 @@ public:
 protected:
     Status doOpen() override;
     Status doStart() override;
-    void doStop() override {}
+    void doStop() override;
     CaptureResult doCapture(std::chrono::milliseconds timeout) override;
 
 private:
+    class RenderAhead;
+
+    std::shared_ptr<frame::Frame> renderFrame(std::uint64_t sequence, double timeSeconds) const;
+
     SyntheticConfig config_;
     SyntheticScene scene_;
     frame::Intrinsics cameraIntrinsics_;
     frame::CapturedImage staticImage_;
     FramePacer pacer_;
     std::uint64_t sequence_ = 0;
+    std::unique_ptr<RenderAhead> renderAhead_; // while streaming
+    std::shared_ptr<frame::Frame> pending_;    // rendered, waiting for its beat
 };
 
 } // namespace dc::devices

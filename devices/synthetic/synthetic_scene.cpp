@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -35,12 +37,12 @@ Vec3 normalize(Vec3 a) {
 }
 
 using namespace scene;
-constexpr double kCameraPitchRadians = kCameraPitchDegrees * 3.14159265358979323846 / 180.0;
+constexpr double kPi = std::numbers::pi;
+constexpr double kCameraPitchRadians = kCameraPitchDegrees * kPi / 180.0;
 constexpr Vec3 kApple{kAppleCenter[0], kAppleCenter[1], kAppleCenter[2]};
-constexpr Vec3 kBookLow{kBookMin[0], kBookMin[1], kBookMin[2]};
-constexpr Vec3 kBookHigh{kBookMax[0], kBookMax[1], kBookMax[2]};
+constexpr double kHitEpsilon = 1e-6;
 
-enum class Material { Sky, Desk, Floor, Wall, Blind, Apple, BookCover, BookPages };
+enum class Material : std::uint8_t { Sky, Desk, Floor, Wall, Blind, Apple, BookCover, BookPages };
 
 struct Hit {
     double t = std::numeric_limits<double>::infinity();
@@ -53,23 +55,41 @@ struct Ray {
     Vec3 dir; // camera-z component 1, so the hit parameter t is the depth along the optical axis
 };
 
-double axis(Vec3 v, int i) {
-    return i == 0 ? v.x : (i == 1 ? v.y : v.z);
+// 1/d, or 0 for a ray parallel to the planes of that axis (which then never meets them).
+double inverseOrZero(double d) {
+    return std::abs(d) < 1e-12 ? 0.0 : 1.0 / d;
 }
 
-// Intersects the axis-aligned plane coordinate[axisIndex] == value; `inside` limits the plane's extent.
-template <class Inside>
-void hitPlane(const Ray& ray, int axisIndex, double value, Vec3 normal, Material m, Hit& best,
-              Inside inside) {
-    const double d = axis(ray.dir, axisIndex);
-    if (std::abs(d) < 1e-12)
+// The desk top (y = 0) and the floor: planes across y, met at t = (y - origin.y) / dir.y.
+void hitHorizontal(const Ray& ray, double invY, Hit& best) {
+    const double tDesk = -ray.origin.y * invY;
+    if (tDesk > kHitEpsilon && tDesk < best.t) {
+        const double x = ray.origin.x + ray.dir.x * tDesk, z = ray.origin.z + ray.dir.z * tDesk;
+        if (std::abs(x) <= kDeskHalfWidth && z >= kDeskNear && z <= kDeskFar)
+            best = {tDesk, {0, 1, 0}, Material::Desk};
+    }
+    const double tFloor = (kFloorY - ray.origin.y) * invY;
+    if (tFloor > kHitEpsilon && tFloor < best.t && ray.origin.z + ray.dir.z * tFloor < kWallZ)
+        best = {tFloor, {0, 1, 0}, Material::Floor};
+}
+
+bool inWindow(double x, double y) {
+    return x > kWindowMinX && x < kWindowMaxX && y > kWindowBottom && y < kWindowTop;
+}
+
+// The back wall with its window opening, and the blinds just in front of the opening.
+void hitWallAndBlinds(const Ray& ray, double invZ, Hit& best) {
+    const double tWall = (kWallZ - ray.origin.z) * invZ;
+    if (tWall > kHitEpsilon && tWall < best.t &&
+        !inWindow(ray.origin.x + ray.dir.x * tWall, ray.origin.y + ray.dir.y * tWall))
+        best = {tWall, {0, 0, -1}, Material::Wall};
+    const double tBlinds = (kBlindsZ - ray.origin.z) * invZ;
+    if (tBlinds <= kHitEpsilon || tBlinds >= best.t)
         return;
-    const double t = (value - axis(ray.origin, axisIndex)) / d;
-    if (t <= 1e-6 || t >= best.t)
-        return;
-    const Vec3 p = ray.origin + ray.dir * t;
-    if (inside(p))
-        best = {t, normal, m};
+    const double x = ray.origin.x + ray.dir.x * tBlinds, y = ray.origin.y + ray.dir.y * tBlinds;
+    const double above = y - kBlindsBottom;
+    if (inWindow(x, y) && above > 0.0 && above - kSlatPitch * std::floor(above / kSlatPitch) < kSlatHeight)
+        best = {tBlinds, {0, 0, -1}, Material::Blind};
 }
 
 void hitSphere(const Ray& ray, Hit& best) {
@@ -81,42 +101,57 @@ void hitSphere(const Ray& ray, Hit& best) {
     if (disc < 0)
         return;
     const double t = (-b - std::sqrt(disc)) / a;
-    if (t <= 1e-6 || t >= best.t)
+    if (t <= kHitEpsilon || t >= best.t)
         return;
     best = {t, normalize(ray.origin + ray.dir * t - kApple), Material::Apple};
 }
 
-void hitBook(const Ray& ray, Hit& best) {
+// The book, an axis-aligned box: the slab test finds the face the ray enters through (the last of the
+// three slabs it enters), whose outward normal faces the ray.
+void hitBook(const Ray& ray, Vec3 inv, Hit& best) {
+    const double origin[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+    const double dir[3] = {ray.dir.x, ray.dir.y, ray.dir.z};
+    const double invDir[3] = {inv.x, inv.y, inv.z};
+    double tNear = -std::numeric_limits<double>::infinity(), tFar = best.t;
+    int entered = 0;
     for (int i = 0; i < 3; ++i) {
-        for (int side = 0; side < 2; ++side) {
-            const double value = axis(side ? kBookHigh : kBookLow, i);
-            Vec3 n{i == 0 ? 1.0 : 0.0, i == 1 ? 1.0 : 0.0, i == 2 ? 1.0 : 0.0};
-            n = n * (side ? 1.0 : -1.0);
-            const Material m = i == 1 ? Material::BookCover : Material::BookPages;
-            hitPlane(ray, i, value, n, m, best, [&](Vec3 p) {
-                for (int j = 0; j < 3; ++j)
-                    if (j != i && (axis(p, j) < axis(kBookLow, j) || axis(p, j) > axis(kBookHigh, j)))
-                        return false;
-                return true;
-            });
+        if (invDir[i] == 0.0) {
+            if (origin[i] < kBookMin[i] || origin[i] > kBookMax[i])
+                return;
+            continue;
         }
+        double t0 = (kBookMin[i] - origin[i]) * invDir[i], t1 = (kBookMax[i] - origin[i]) * invDir[i];
+        if (t0 > t1)
+            std::swap(t0, t1);
+        if (t0 > tNear) {
+            tNear = t0;
+            entered = i;
+        }
+        tFar = std::min(tFar, t1);
     }
+    if (tNear > tFar || tNear <= kHitEpsilon || tNear >= best.t)
+        return;
+    const double outward = dir[entered] > 0.0 ? -1.0 : 1.0;
+    const Vec3 normal{entered == 0 ? outward : 0.0, entered == 1 ? outward : 0.0,
+                      entered == 2 ? outward : 0.0};
+    best = {tNear, normal, entered == 1 ? Material::BookCover : Material::BookPages};
 }
 
-Hit castRay(const Ray& ray) {
+// Which of the small objects a ray may meet (false only where it surely misses them).
+struct Candidates {
+    bool apple = true;
+    bool book = true;
+};
+
+Hit castRay(const Ray& ray, Candidates candidates = {}) {
     Hit best;
-    hitPlane(ray, 1, 0.0, {0, 1, 0}, Material::Desk, best,
-             [](Vec3 p) { return std::abs(p.x) <= kDeskHalfWidth && p.z >= kDeskNear && p.z <= kDeskFar; });
-    hitPlane(ray, 1, kFloorY, {0, 1, 0}, Material::Floor, best, [](Vec3 p) { return p.z < kWallZ; });
-    const auto inWindow = [](Vec3 p) {
-        return p.x > kWindowLeft && p.x < kWindowRight && p.y > kWindowBottom && p.y < kWindowTop;
-    };
-    hitPlane(ray, 2, kWallZ, {0, 0, -1}, Material::Wall, best, [&](Vec3 p) { return !inWindow(p); });
-    hitPlane(ray, 2, kBlindsZ, {0, 0, -1}, Material::Blind, best, [&](Vec3 p) {
-        return inWindow(p) && p.y > kBlindsBottom && std::fmod(p.y - kBlindsBottom, kSlatPitch) < kSlatHeight;
-    });
-    hitSphere(ray, best);
-    hitBook(ray, best);
+    const Vec3 inv{inverseOrZero(ray.dir.x), inverseOrZero(ray.dir.y), inverseOrZero(ray.dir.z)};
+    hitHorizontal(ray, inv.y, best);
+    hitWallAndBlinds(ray, inv.z, best);
+    if (candidates.apple)
+        hitSphere(ray, best);
+    if (candidates.book)
+        hitBook(ray, inv, best);
     return best;
 }
 
@@ -136,12 +171,53 @@ CameraRays raysFor(const frame::Intrinsics& k, const frame::Pose& pose) {
     return {{m[12], m[13], m[14]}, {m[0], m[1], m[2]}, {m[4], m[5], m[6]}, {m[8], m[9], m[10]}, k};
 }
 
+// The pixels whose rays can meet the box [lo, hi]: the rectangle around its corners' projections, a pixel
+// wider (the projection of a convex box in front of the camera is the hull of its corners'). Every pixel
+// when a corner is not in front of the camera.
+struct PixelBox {
+    double u0 = -1e300, v0 = -1e300, u1 = 1e300, v1 = 1e300;
+    bool contains(int u, int v) const { return u >= u0 && u <= u1 && v >= v0 && v <= v1; }
+};
+
+PixelBox pixelsCovering(const CameraRays& rays, Vec3 lo, Vec3 hi) {
+    PixelBox box{1e300, 1e300, -1e300, -1e300};
+    for (int corner = 0; corner < 8; ++corner) {
+        const Vec3 p{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
+        const Vec3 c = p - rays.origin;
+        const double z = dot(c, rays.forward);
+        if (z <= kHitEpsilon)
+            return {};
+        const double u = rays.k.fx * dot(c, rays.right) / z + rays.k.cx;
+        const double v = rays.k.fy * dot(c, rays.down) / z + rays.k.cy;
+        box = {std::min(box.u0, u - 1), std::min(box.v0, v - 1), std::max(box.u1, u + 1),
+               std::max(box.v1, v + 1)};
+    }
+    return box;
+}
+
+// Casts the rays of every pixel, testing the apple and the book only where they can be seen.
+struct SceneCaster {
+    explicit SceneCaster(const CameraRays& r)
+        : rays(r), apple(pixelsCovering(r, kApple - Vec3{kAppleRadius, kAppleRadius, kAppleRadius},
+                                        kApple + Vec3{kAppleRadius, kAppleRadius, kAppleRadius})),
+          book(pixelsCovering(r, {kBookMin[0], kBookMin[1], kBookMin[2]},
+                              {kBookMax[0], kBookMax[1], kBookMax[2]})) {}
+
+    Hit at(const Ray& ray, int u, int v) const {
+        return castRay(ray, {apple.contains(u, v), book.contains(u, v)});
+    }
+
+    const CameraRays& rays;
+    PixelBox apple, book;
+};
+
 std::vector<Hit> castAll(const frame::Intrinsics& k, const frame::Pose& pose) {
     const CameraRays rays = raysFor(k, pose);
+    const SceneCaster caster(rays);
     std::vector<Hit> hits(static_cast<std::size_t>(k.width) * k.height);
     for (int v = 0; v < k.height; ++v)
         for (int u = 0; u < k.width; ++u)
-            hits[static_cast<std::size_t>(v) * k.width + u] = castRay(rays.at(u, v));
+            hits[static_cast<std::size_t>(v) * k.width + u] = caster.at(rays.at(u, v), u, v);
     return hits;
 }
 
@@ -149,10 +225,29 @@ float depthOf(const Hit& h) {
     return h.t <= SyntheticScene::kMaxRangeMeters ? static_cast<float>(h.t) : 0.0f;
 }
 
-// Cheap deterministic per-position value noise in [0, 1) for texture grain.
-double hash3(Vec3 p) {
-    const double s = std::sin(p.x * 127.1 + p.y * 311.7 + p.z * 74.7) * 43758.5453;
-    return s - std::floor(s);
+// sin(x) to about 2e-4, plenty for a texture, without a libm call (the textures evaluate several per
+// pixel): x reduced to [-pi/2, pi/2], then the Taylor series to x^7, whose error there is below
+// (pi/2)^9 / 9!.
+inline float fastSin(double x) {
+    const auto turns = static_cast<std::int64_t>(x * (0.5 / kPi) + (x >= 0.0 ? 0.5 : -0.5));
+    auto r = static_cast<float>(x - static_cast<double>(turns) * (2.0 * kPi));
+    constexpr auto kHalfPi = static_cast<float>(0.5 * kPi);
+    r = r > kHalfPi ? 2.0f * kHalfPi - r : (r < -kHalfPi ? -2.0f * kHalfPi - r : r);
+    const float r2 = r * r;
+    return r * (1.0f + r2 * (-1.0f / 6 + r2 * (1.0f / 120 + r2 * (-1.0f / 5040))));
+}
+
+// White noise in [0, 1) fixed to the world on a 1 mm grid: texture grain that stays put as the camera moves.
+double grain(Vec3 p) {
+    const auto cell = [](double v) {
+        return static_cast<std::uint64_t>(static_cast<std::int64_t>(v * 1000.0 + 1e6));
+    };
+    std::uint64_t h = cell(p.x) * 0x9E3779B97F4A7C15ull ^ cell(p.y) * 0xC2B2AE3D27D4EB4Full ^
+                      cell(p.z) * 0x165667B19E3779F9ull;
+    h ^= h >> 31;
+    h *= 0xBF58476D1CE4E5B9ull;
+    h ^= h >> 29;
+    return static_cast<double>(h >> 11) * 0x1.0p-53;
 }
 
 frame::Rgb albedo(Material m, Vec3 p) {
@@ -160,8 +255,8 @@ frame::Rgb albedo(Material m, Vec3 p) {
     case Material::Sky:
         return {0.72f, 0.83f, 0.95f};
     case Material::Desk: {
-        const double grain = 0.5 + 0.5 * std::sin(p.x * 70.0 + 4.0 * std::sin(p.z * 9.0));
-        const auto g = static_cast<float>(0.85 + 0.15 * grain + 0.05 * hash3(p * 50.0));
+        const float rings = 0.5f + 0.5f * fastSin(p.x * 70.0 + 4.0 * fastSin(p.z * 9.0));
+        const auto g = static_cast<float>(0.85 + 0.15 * rings + 0.05 * grain(p));
         return {0.58f * g, 0.40f * g, 0.23f * g};
     }
     case Material::Floor: {
@@ -170,7 +265,7 @@ frame::Rgb albedo(Material m, Vec3 p) {
         return dark ? frame::Rgb{0.30f, 0.30f, 0.32f} : frame::Rgb{0.48f, 0.47f, 0.45f};
     }
     case Material::Wall: {
-        const auto s = static_cast<float>(0.04 * std::sin(p.x * 12.0) * std::sin(p.y * 12.0));
+        const float s = 0.04f * fastSin(p.x * 12.0) * fastSin(p.y * 12.0);
         return {0.84f + s, 0.81f + s, 0.74f + s};
     }
     case Material::Blind:
@@ -187,16 +282,24 @@ frame::Rgb albedo(Material m, Vec3 p) {
     return {};
 }
 
+const Vec3 kLight = normalize({0.4, 1.0, -0.5}); // from above, behind the camera's right shoulder
+
 frame::Rgb shade(const Hit& hit, const Ray& ray) {
-    const Vec3 p = ray.origin + ray.dir * hit.t;
-    const frame::Rgb a = albedo(hit.material, p);
+    const frame::Rgb a = albedo(hit.material, ray.origin + ray.dir * hit.t);
     if (hit.material == Material::Sky) {
-        const auto up = static_cast<float>(std::clamp(normalize(ray.dir).y, 0.0, 1.0));
+        const auto up =
+            static_cast<float>(std::clamp(ray.dir.y / std::sqrt(dot(ray.dir, ray.dir)), 0.0, 1.0));
         return {a.r - 0.2f * up, a.g - 0.1f * up, a.b};
     }
-    static const Vec3 kLight = normalize({-0.4, 1.0, -0.5});
     const auto lambert = static_cast<float>(0.45 + 0.55 * std::max(0.0, dot(hit.normal, kLight)));
     return {a.r * lambert, a.g * lambert, a.b * lambert};
+}
+
+// frame::toByte's rounding, without its libm call: called three times per rendered pixel.
+std::uint8_t byteOf(float normalised) {
+    if (!(normalised > 0.0f))
+        return 0;
+    return static_cast<std::uint8_t>(std::min(normalised, 1.0f) * 255.0f + 0.5f);
 }
 
 } // namespace
@@ -207,13 +310,15 @@ frame::Intrinsics SyntheticScene::cameraIntrinsics(int width, int height) {
 }
 
 frame::Pose SyntheticScene::cameraPose(double timeSeconds, bool motion) {
-    const double sway = motion ? 0.15 * std::sin(2.0 * 3.14159265358979323846 * timeSeconds / 10.0) : 0.0;
+    // Positive sway moves the camera to its right, which is world -x (the world's +x is on its left).
+    const double sway = motion ? -0.15 * std::sin(2.0 * kPi * timeSeconds / 10.0) : 0.0;
     const Vec3 origin{sway, kCameraHeight, 0.0};
+    // Turned about the vertical by yaw so the apple stays where it is in the image at rest.
     const double yaw = std::atan2(kApple.x - origin.x, kApple.z) - std::atan2(kApple.x, kApple.z);
     const double cp = std::cos(kCameraPitchRadians), sp = std::sin(kCameraPitchRadians);
     const Vec3 forward{std::sin(yaw) * cp, -sp, std::cos(yaw) * cp};
-    const Vec3 right{std::cos(yaw), 0.0, -std::sin(yaw)};
-    const Vec3 down = cross(right, forward);
+    const Vec3 right{-std::cos(yaw), 0.0, std::sin(yaw)}; // horizontal: forward x up, normalised
+    const Vec3 down = cross(forward, right);              // right x down = forward: a rotation, det +1
     return {{right.x, right.y, right.z, 0, down.x, down.y, down.z, 0, forward.x, forward.y, forward.z, 0,
              origin.x, origin.y, origin.z, 1}};
 }
@@ -307,27 +412,35 @@ frame::DepthData SyntheticScene::sensorDepth(const frame::Intrinsics& k, const f
 
 frame::CapturedImage SyntheticScene::renderImage(const frame::Intrinsics& k, const frame::Pose& pose) const {
     const CameraRays rays = raysFor(k, pose);
+    const SceneCaster caster(rays);
     const int w = k.width, h = k.height;
-    const int cw = (w + 1) / 2, ch = (h + 1) / 2;
+    const int cw = (w + 1) / 2;
     auto bytes = std::make_shared<std::vector<std::uint8_t>>(
         frame::CapturedImage::byteSize(frame::PixelFormat::Nv12, w, h));
-    std::vector<float> cb(static_cast<std::size_t>(cw) * ch), cr(cb.size());
-    std::vector<int> count(cb.size());
-    for (int v = 0; v < h; ++v) {
-        for (int u = 0; u < w; ++u) {
-            const Ray ray = rays.at(u, v);
-            const frame::Ycbcr c = frame::rgbToYcbcr(shade(castRay(ray), ray));
-            (*bytes)[static_cast<std::size_t>(v) * w + u] = frame::toByte(c.y);
-            const std::size_t ci = static_cast<std::size_t>(v / 2) * cw + u / 2;
-            cb[ci] += c.cb;
-            cr[ci] += c.cr;
-            ++count[ci];
-        }
-    }
     std::uint8_t* chroma = bytes->data() + static_cast<std::size_t>(w) * h;
-    for (std::size_t i = 0; i < cb.size(); ++i) {
-        chroma[2 * i] = frame::toByte(cb[i] / static_cast<float>(count[i]));
-        chroma[2 * i + 1] = frame::toByte(cr[i] / static_cast<float>(count[i]));
+    // Chroma is the mean over each 2x2 block, so rows are rendered in pairs.
+    std::vector<float> cb(static_cast<std::size_t>(cw)), cr(cb.size());
+    std::vector<int> count(cb.size());
+    for (int v0 = 0; v0 < h; v0 += 2) {
+        std::fill(cb.begin(), cb.end(), 0.0f);
+        std::fill(cr.begin(), cr.end(), 0.0f);
+        std::fill(count.begin(), count.end(), 0);
+        for (int v = v0; v < std::min(v0 + 2, h); ++v) {
+            std::uint8_t* luma = bytes->data() + static_cast<std::size_t>(v) * w;
+            for (int u = 0; u < w; ++u) {
+                const Ray ray = rays.at(u, v);
+                const frame::Ycbcr c = frame::rgbToYcbcr(shade(caster.at(ray, u, v), ray));
+                luma[u] = byteOf(c.y);
+                cb[u / 2] += c.cb;
+                cr[u / 2] += c.cr;
+                ++count[u / 2];
+            }
+        }
+        std::uint8_t* row = chroma + static_cast<std::size_t>(v0 / 2) * 2 * cw;
+        for (int i = 0; i < cw; ++i) {
+            row[2 * i] = byteOf(cb[i] / static_cast<float>(count[i]));
+            row[2 * i + 1] = byteOf(cr[i] / static_cast<float>(count[i]));
+        }
     }
     return {frame::PixelFormat::Nv12, w, h, std::move(bytes)};
 }

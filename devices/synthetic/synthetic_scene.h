@@ -6,19 +6,21 @@
 
 namespace dc::devices {
 
-// The scene's layout in meters (world axes: y up; the desk top is the plane y = 0). Public so that tests
-// can compute the analytic ground truth independently of the ray caster.
+// The scene's layout in meters. World axes are right-handed with y up (the desk top is the plane y = 0);
+// the camera at rest looks along +z, so +x is on its left and the book, at positive x, lies left of the
+// apple in the image. Public so that tests can compute the analytic ground truth independently of the ray
+// caster.
 namespace scene {
 constexpr double kCameraHeight = 0.5;
 constexpr double kCameraPitchDegrees = 20.0; // looking down at the desk
-constexpr double kAppleCenter[3] = {0.06, 0.045, 0.72};
+constexpr double kAppleCenter[3] = {-0.06, 0.045, 0.72};
 constexpr double kAppleRadius = 0.045;
 constexpr double kDeskHalfWidth = 0.7, kDeskNear = 0.2, kDeskFar = 1.4;
 constexpr double kFloorY = -0.75;
 constexpr double kWallZ = 1.9;
-constexpr double kWindowLeft = -0.45, kWindowRight = 0.35, kWindowBottom = 0.3, kWindowTop = 1.1;
+constexpr double kWindowMinX = -0.35, kWindowMaxX = 0.45, kWindowBottom = 0.3, kWindowTop = 1.1;
 constexpr double kBlindsZ = 1.86, kBlindsBottom = 0.7, kSlatPitch = 0.05, kSlatHeight = 0.03;
-constexpr double kBookMin[3] = {-0.38, 0.0, 0.55}, kBookMax[3] = {-0.16, 0.04, 0.85};
+constexpr double kBookMin[3] = {0.16, 0.0, 0.55}, kBookMax[3] = {0.38, 0.04, 0.85};
 } // namespace scene
 
 // A deterministic procedural scene modelled on the Depth Cloud sample's figure: a desk with an
@@ -36,8 +38,9 @@ public:
     // The default capturedImage intrinsics (ARKit-like 1920x1440, ~67 degrees horizontal field of view),
     // scaled to the requested image size.
     static frame::Intrinsics cameraIntrinsics(int width = 1920, int height = 1440);
-    // Camera-to-world pose at time t. Without motion the camera is fixed; with motion it sways slowly
-    // sideways and turns to keep the apple in view, revealing the scene's depth.
+    // Camera-to-world pose at time t, a rigid transform (its rotation has determinant +1). Without motion
+    // the camera is fixed; with motion it sways slowly sideways and turns to keep the apple in view,
+    // revealing the scene's depth.
     static frame::Pose cameraPose(double timeSeconds, bool motion);
 
     // Exact depth along the camera's z axis (meters), 0 where nothing is within kMaxRangeMeters.

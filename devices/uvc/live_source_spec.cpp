@@ -1,9 +1,12 @@
 #include "devices/uvc/live_source_spec.h"
 
+#include "devices/uvc/v4l2/node_probe.h"
 #include "devices/uvc/v4l2/pixel_formats.h"
 
 #include <cctype>
+#include <cerrno>
 #include <charconv>
+#include <cstring>
 #include <linux/videodev2.h>
 #include <sstream>
 #include <vector>
@@ -85,6 +88,19 @@ Status parseOptions(const std::vector<std::string>& parts, std::size_t first, Uv
     return {};
 }
 
+Status checkDepthNode(const std::string& path) {
+    int error = 0;
+    if (v4l2::probeNode(v4l2::systemSyscalls(), path, error))
+        return {};
+    // Only what no retry can change is the argument's fault; a busy or forbidden node is reported when
+    // the device opens, like any failure while running.
+    if (error == 0 || error == -ENOENT || error == -ENOTTY || error == -ENXIO || error == -ENODEV ||
+        error == -ENOTDIR)
+        return Error{"v4l2:" + path + ": not a video capture node" +
+                     (error < 0 ? std::string(" (") + std::strerror(-error) + ")" : std::string())};
+    return {};
+}
+
 } // namespace
 
 bool isLiveSourceSpec(const std::string& spec) {
@@ -120,6 +136,10 @@ Expected<std::unique_ptr<Device>> openLiveSourceSpec(const std::string& spec) {
     auto config = parseLiveSourceSpec(spec);
     if (!config)
         return config.error();
+    if (!config->depthNode.empty()) {
+        if (Status s = checkDepthNode(config->depthNode); !s)
+            return s.error();
+    }
     return std::unique_ptr<Device>(std::make_unique<UvcDevice>(std::move(*config)));
 }
 

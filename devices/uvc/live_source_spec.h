@@ -19,6 +19,8 @@ inline constexpr const char* kLiveSourceSpecHelp = "v4l2:/dev/videoN[:OPTS] | us
 bool isLiveSourceSpec(const std::string& spec);
 // Parses without touching any device (a calibration file is read: a bad one is a bad argument).
 Expected<UvcConfig> parseLiveSourceSpec(const std::string& spec);
+// Parses, and opens a v4l2: node briefly: a path that is no video capture node (/dev/null, a typo) is a bad
+// argument, refused here rather than when the device opens.
 Expected<std::unique_ptr<Device>> openLiveSourceSpec(const std::string& spec);
 
 } // namespace dc::devices

@@ -85,6 +85,7 @@ Capabilities UvcDevice::capabilities() const {
     c.reconnects = true;
     c.approximateIntrinsics = !config_.calibration;
     c.monotonicTimestamps = true;
+    c.nominalFps = config_.fps; // the rate asked for; 0 (unknown) when the camera's default is used
     return c;
 }
 

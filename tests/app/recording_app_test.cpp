@@ -93,7 +93,7 @@ TEST_F(RecordingApp, RecordsExportsAndReplaysThroughTheViewer) {
 TEST_F(RecordingApp, RefusesToOverwriteUnlessAsked) {
     ASSERT_EQ(run("record --source synthetic:32x24@60 --frames 3 " + path("o.dcrec")).exitCode, 0);
     const RunResult again = run("record --source synthetic:32x24@60 --frames 3 " + path("o.dcrec"));
-    EXPECT_EQ(again.exitCode, 1);
+    EXPECT_EQ(again.exitCode, 2) << "a bad argument";
     EXPECT_NE(again.output.find("o.dcrec already exists (pass --overwrite to replace it)"), std::string::npos)
         << again.output;
     EXPECT_EQ(run("record --overwrite --source synthetic:32x24@60 --frames 3 " + path("o.dcrec")).exitCode,
@@ -146,7 +146,9 @@ TEST_F(RecordingApp, KilledRecorderLeavesAReplayablePrefix) {
               std::string::npos)
         << exported.output;
     const RunResult refused = run("record --source synthetic --frames 2 " + out);
-    EXPECT_EQ(refused.exitCode, 1) << "the interrupted recording is kept, not overwritten";
+    // The destination is refused before the source opens, like an existing output: a bad argument.
+    EXPECT_EQ(refused.exitCode, 2) << "the interrupted recording is kept, not overwritten";
+    EXPECT_EQ(RecordingReader::open(out + ".partial")->frameCount(), reader->frameCount());
     EXPECT_NE(refused.output.find("interrupted recording"), std::string::npos) << refused.output;
 }
 

@@ -6,6 +6,7 @@
 #include "devices/replay/stray_format.h"
 #include "devices/replay/tum_format.h"
 #include "exporting/export.h"
+#include "tests/pose_checks.h"
 #include "tests/recording/recording_test_support.h"
 
 #include <gtest/gtest.h>
@@ -79,6 +80,17 @@ TEST(StrayImport, RealArkitCaptureHasItsFramesSizesIntrinsicsPixelsAndPoses) {
     EXPECT_NEAR(m[0], 0.99978, 1e-4);   // 1 - 2(qy^2 + qz^2)
     EXPECT_NEAR(m[5], -0.99959, 1e-4);  // 1 - 2(qx^2 + qz^2)
     EXPECT_NEAR(m[10], -0.99976, 1e-4); // 1 - 2(qx^2 + qy^2)
+}
+
+TEST(StrayImport, EveryPoseOfTheRealCaptureIsRigid) {
+    auto source = openReplaySource(kStray);
+    ASSERT_TRUE(source) << source.error().message;
+    (*source)->setDecodeColor(false); // poses only: no need to decode the video
+    for (std::size_t i = 0; i < (*source)->frameCount(); ++i) {
+        auto f = loadFrame(**source, i);
+        ASSERT_TRUE(f && f->pose) << i;
+        ASSERT_TRUE(test::isRigid(*f->pose)) << "frame " << i;
+    }
 }
 
 TEST(StrayImport, SeekingTheVideoGivesTheSameImageAsReadingOn) {
@@ -265,7 +277,7 @@ TEST_F(TumSequence, AssociatesByTimestampAndConvertsDepthWithDefaultIntrinsics) 
 
 TEST_F(TumSequence, GroundTruthGivesPosesAndACalibrationOverridesTheIntrinsics) {
     writeText(dir_.path("groundtruth.txt"),
-              "# timestamp tx ty tz qx qy qz qw\n1.004 1 2 3 0 0 0 1\n1.198 4 5 6 0 0 0 1\n");
+              "# timestamp tx ty tz qx qy qz qw\n1.004 1 2 3 0.2 -0.4 0.1 0.9\n1.198 4 5 6 0 0 0 1\n");
     writeText(dir_.path("calib.yaml"), "%YAML:1.0\n---\nimage_width: 1280\nimage_height: 960\n"
                                        "camera_matrix: !!opencv-matrix\n   rows: 3\n   cols: 3\n   dt: d\n"
                                        "   data: [ 1000., 0., 640., 0., 1000., 480., 0., 0., 1. ]\n");
@@ -275,6 +287,7 @@ TEST_F(TumSequence, GroundTruthGivesPosesAndACalibrationOverridesTheIntrinsics) 
     auto first = loadFrame(**source, 0);
     ASSERT_TRUE(first && first->pose);
     EXPECT_EQ(first->pose->cameraToWorld[12], 1.0);
+    EXPECT_TRUE(test::isRigid(*first->pose)) << "a quaternion of norm 1.01 becomes a rotation";
     EXPECT_DOUBLE_EQ(first->cameraIntrinsics.fx, 500.0) << "made at 1280x960, applied at 640x480";
     EXPECT_DOUBLE_EQ(first->cameraIntrinsics.cx, 320.0);
     auto middle = loadFrame(**source, 1);

@@ -1,5 +1,6 @@
 // The recording format: lossless round trip, crash recovery and every damaged input the issue lists.
 
+#include "devices/recording/jpeg_codec.h"
 #include "devices/recording/recorder.h"
 #include "devices/recording/recording_reader.h"
 #include "devices/replay/importers.h"
@@ -155,7 +156,7 @@ TEST(RecordingFormat, FloatDepthIsStoredAsByteplanesAndDecodesBitExactForAnySize
     }
 }
 
-TEST(RecordingFormat, JpegColorIsDecodedAsRgbOfTheCapturedSize) {
+TEST(RecordingFormat, JpegColorDecodesToTheCapturedFormatAndSize) {
     const auto frames = test::syntheticFrames(2);
     TempDir dir;
     WriterOptions options;
@@ -165,10 +166,63 @@ TEST(RecordingFormat, JpegColorIsDecodedAsRgbOfTheCapturedSize) {
     ASSERT_TRUE(reader);
     auto f = reader->frame(1);
     ASSERT_TRUE(f) << f.error().message;
-    EXPECT_EQ(f->capturedImage.format, frame::PixelFormat::Rgb24);
+    EXPECT_EQ(f->capturedImage.format, frame::PixelFormat::Nv12);
     EXPECT_EQ(f->capturedImage.width, frames[1]->capturedImage.width);
     EXPECT_EQ(f->capturedImage.height, frames[1]->capturedImage.height);
     EXPECT_TRUE(test::sameBits(f->sceneDepth->depthMeters, frames[1]->sceneDepth->depthMeters));
+}
+
+// A colourful test image in `format`: Y, Cb and Cr vary independently, so swapped or converted planes
+// show up as large errors.
+frame::CapturedImage patternImage(frame::PixelFormat format, int w, int h) {
+    std::vector<std::uint8_t> bytes(frame::CapturedImage::byteSize(format, w, h));
+    for (std::size_t i = 0; i < bytes.size(); ++i)
+        bytes[i] = static_cast<std::uint8_t>(64 + (i * 7 % 61) + (i / static_cast<std::size_t>(3 * w)) % 64);
+    return {format, w, h, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
+}
+
+double meanAbsoluteDifference(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+    double sum = 0.0;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        sum += std::abs(static_cast<int>(a[i]) - static_cast<int>(b[i]));
+    return sum / static_cast<double>(a.size());
+}
+
+TEST(JpegCodec, YcbcrPlanesRoundTripWithoutColourConversion) {
+    for (const auto format : {frame::PixelFormat::Nv12, frame::PixelFormat::Yuyv}) {
+        for (const auto& [w, h] : {std::pair{64, 48}, std::pair{7, 5}}) {
+            SCOPED_TRACE(std::string(toString(format)) + " " + std::to_string(w) + "x" + std::to_string(h));
+            const frame::CapturedImage image = patternImage(format, w, h);
+            JpegEncoder encoder;
+            auto jpeg = encoder.encode(image, 100);
+            ASSERT_TRUE(jpeg) << jpeg.error().message;
+            const std::vector<std::uint8_t> stored(jpeg->begin(), jpeg->end());
+            auto decoded = JpegDecoder().decode(stored, w, h);
+            ASSERT_TRUE(decoded) << decoded.error().message;
+            EXPECT_EQ(decoded->format, format) << "the format as captured, not RGB";
+            ASSERT_EQ(decoded->bytes->size(), image.bytes->size());
+            // Byte for byte the same planes within JPEG's loss at quality 100: a colour conversion on the
+            // way (or swapped Cb and Cr) costs several levels on this pattern.
+            EXPECT_LT(meanAbsoluteDifference(*decoded->bytes, *image.bytes), 1.5);
+        }
+    }
+}
+
+TEST(JpegCodec, QualityReachesTheEncoderAndRgbIsStoredAsYcbcr) {
+    const frame::CapturedImage image = patternImage(frame::PixelFormat::Rgb24, 64, 48);
+    JpegEncoder encoder;
+    auto low = encoder.encode(image, 20);
+    ASSERT_TRUE(low);
+    const std::size_t lowSize = low->size();
+    auto high = encoder.encode(image, 95);
+    ASSERT_TRUE(high);
+    EXPECT_LT(lowSize, high->size());
+    const std::vector<std::uint8_t> stored(high->begin(), high->end());
+    auto decoded = JpegDecoder().decode(stored, 64, 48);
+    ASSERT_TRUE(decoded);
+    EXPECT_EQ(decoded->format, frame::PixelFormat::Nv12);
+    EXPECT_FALSE(JpegDecoder().decode(stored, 64, 47)) << "a JPEG of another size than its section";
+    EXPECT_FALSE(JpegDecoder().decode(std::span(stored).first(stored.size() / 2), 64, 48)) << "truncated";
 }
 
 TEST(RgbImage, WholeImageConversionMatchesPixelRgbForEveryFormat) {

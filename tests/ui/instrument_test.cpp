@@ -114,8 +114,7 @@ TEST_F(InstrumentTest, ConfidenceAndCameraPanelsReadOutTheSameSample) {
         const auto at = mouseOverDepthPixel(title, 100, 170);
         ASSERT_TRUE(at.has_value()) << title;
         const Probe p = *viewer_->hoverProbe();
-        EXPECT_FLOAT_EQ(p.depthMeters, shown().depth.data->depthMeters.at(100, 170))
-            << title;
+        EXPECT_FLOAT_EQ(p.depthMeters, shown().depth.data->depthMeters.at(100, 170)) << title;
     }
 }
 
@@ -340,6 +339,43 @@ TEST_F(InstrumentTest, SnapshotWritesEveryPanelAndThePointCloud) {
                                                     viewer_->settings().cloud.nearMeters);
     EXPECT_NE(header.find("element vertex " + std::to_string(points.size())), std::string::npos);
     std::filesystem::remove_all(parent);
+}
+
+TEST_F(InstrumentTest, RecordButtonNumbersTakesKeepsItsPlaceAndRecordsAsChosen) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("dc-takes-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    viewer_->settings().record = {dir.string(), true, 55};
+    frame(0.0);
+    const auto record = locate(kControlsTitle, kRecordButtonId);
+    ASSERT_TRUE(record);
+    const auto takeFrames = [&](double t) {
+        click(*record, t);
+        for (int i = 0; i < 200 && instrument_->recording().frames < 3; ++i)
+            nextFrame(t);
+    };
+    takeFrames(0.1);
+    engine::RecordingStatus take = instrument_->recording();
+    ASSERT_TRUE(take.recording);
+    EXPECT_EQ(take.path, (dir / "depthcloud-recording-001.dcrec").string());
+    EXPECT_EQ(take.options.color, devices::recording::ColorStorage::Jpeg);
+    EXPECT_EQ(take.options.jpegQuality, 55);
+    const auto stop = locate(kControlsTitle, kRecordButtonId);
+    ASSERT_TRUE(stop);
+    EXPECT_EQ(stop->x, record->x) << "Stop is where Record was";
+    EXPECT_EQ(stop->y, record->y);
+    click(*record, 0.2);
+    EXPECT_FALSE(instrument_->recording().recording);
+    EXPECT_TRUE(std::filesystem::exists(dir / "depthcloud-recording-001.dcrec"));
+
+    viewer_->settings().record.jpegColor = false;
+    takeFrames(0.3);
+    take = instrument_->recording();
+    EXPECT_EQ(take.path, (dir / "depthcloud-recording-002.dcrec").string());
+    EXPECT_EQ(take.options.color, devices::recording::ColorStorage::AsCaptured);
+    click(*record, 0.4);
+    EXPECT_TRUE(std::filesystem::exists(dir / "depthcloud-recording-002.dcrec"));
+    std::filesystem::remove_all(dir);
 }
 
 class InstrumentNoPose : public UiTest {

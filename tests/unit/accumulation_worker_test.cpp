@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <memory>
 #include <vector>
 
@@ -55,10 +56,16 @@ TEST(AccumulationWorker, AddsExactlyWhatTheAccumulatorItselfWouldAdd) {
 
 TEST(AccumulationWorker, ABudgetChangeReachesTheWorkerAndClearEmptiesIt) {
     AccumulationWorker worker;
+    const auto handedOver = std::chrono::steady_clock::now();
     worker.submit(requestFor(wallAt(0.0, 1.0f), 100));
     worker.waitIdle();
+    const double windowMs =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - handedOver).count();
     EXPECT_EQ(worker.size(), 100u) << "only the budget is kept";
-    EXPECT_GE(worker.lastAddMilliseconds(), 0.0);
+    // The add happened between the hand-over and waitIdle's return: its time, in milliseconds, lies
+    // within that window (a stale, unset or wrongly scaled figure does not).
+    EXPECT_GT(worker.lastAddMilliseconds(), 0.0);
+    EXPECT_LE(worker.lastAddMilliseconds(), windowMs);
     worker.clear();
     EXPECT_EQ(worker.size(), 0u);
     worker.waitIdle();

@@ -3,6 +3,9 @@
 
 #include <gtest/gtest.h>
 
+#include <semaphore>
+#include <thread>
+
 namespace dc::devices {
 namespace {
 
@@ -86,7 +89,72 @@ TEST(Session, ASlowConsumerSeesDropsCountedAndTheLatestFrame) {
     const SessionStats stats = session.stats();
     EXPECT_GT(stats.framesDropped, 5u);
     EXPECT_EQ(stats.framesDropped + 1, (*frame)->sequence + 1) << "every frame but the latest was dropped";
-    EXPECT_GT(stats.deviceFps, 50.0);
+}
+
+// Delivers one frame per permit the test releases and says when the capture thread asks for the next
+// one, so the test knows when each delivery could have started (its release) and when the session had
+// surely counted it (the capture thread is back asking).
+class GatedDevice final : public Device {
+public:
+    std::string description() const override { return "gated test camera"; }
+    Capabilities capabilities() const override { return {.sceneDepth = true}; }
+    void release() { permits_.release(); }
+    bool waitUntilAskedAgain() { return askedAgain_.try_acquire_for(std::chrono::seconds(10)); }
+
+protected:
+    Status doOpen() override { return {}; }
+    Status doStart() override { return {}; }
+    void doStop() override {}
+    CaptureResult doCapture(std::chrono::milliseconds timeout) override {
+        if (std::exchange(delivered_, false))
+            askedAgain_.release();
+        if (!permits_.try_acquire_for(timeout))
+            return {};
+        delivered_ = true;
+        auto f = std::make_shared<frame::Frame>();
+        f->sequence = sequence_++;
+        f->sceneDepth = frame::DepthData{frame::Plane<float>(4, 3, 1.0f), {}};
+        return {CaptureResult::Kind::Frame, std::move(f), {}};
+    }
+
+private:
+    std::counting_semaphore<> permits_{0};
+    std::counting_semaphore<> askedAgain_{0};
+    bool delivered_ = false; // capture thread only
+    std::uint64_t sequence_ = 0;
+};
+
+TEST(Session, DeviceFpsIsTheRecentDeliveryRate) {
+    using Clock = std::chrono::steady_clock;
+    auto owned = std::make_unique<GatedDevice>();
+    GatedDevice& device = *owned;
+    Session session(std::move(owned));
+    ASSERT_TRUE(session.start());
+    Clock::time_point released, counted;
+    const auto deliverOne = [&] {
+        released = Clock::now();
+        device.release();
+        ASSERT_TRUE(device.waitUntilAskedAgain());
+        counted = Clock::now();
+    };
+    for (int i = 0; i < 20; ++i) // a burst first: a lifetime average would still show it
+        ASSERT_NO_FATAL_FAILURE(deliverOne());
+    // Then 40 frames about 10 ms apart, more than the meter's window. Delivery i was counted between
+    // release(i) and counted(i), so every interval between two deliveries lies within
+    // [release(i+1) - counted(i), counted(i+1) - release(i)], and so does any average of them.
+    double shortestSeconds = 1e9, longestSeconds = 0.0;
+    for (int i = 0; i < 40; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+        const Clock::time_point previousReleased = released, previousCounted = counted;
+        ASSERT_NO_FATAL_FAILURE(deliverOne());
+        shortestSeconds =
+            std::min(shortestSeconds, std::chrono::duration<double>(released - previousCounted).count());
+        longestSeconds =
+            std::max(longestSeconds, std::chrono::duration<double>(counted - previousReleased).count());
+    }
+    const double fps = session.stats().deviceFps;
+    EXPECT_GE(fps, 1.0 / longestSeconds);
+    EXPECT_LE(fps, 1.0 / shortestSeconds);
 }
 
 TEST(Session, RefusesADeviceWithoutDepthWithTheSamplesMessage) {

@@ -1,5 +1,6 @@
 #include "devices/synthetic/synthetic_device.h"
 #include "devices/synthetic/synthetic_scene.h"
+#include "tests/pose_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -18,8 +19,8 @@ struct AnalyticCamera {
     // World direction of pixel (u, v), scaled so its camera-z component is 1.
     std::array<double, 3> dir(int u, int v) const {
         const double xn = (u - k.cx) / k.fx, yn = (v - k.cy) / k.fy;
-        // right = (1,0,0), down = (0,-cos,-sin), forward = (0,-sin,cos)
-        return {xn, -std::cos(pitch) * yn - std::sin(pitch), -std::sin(pitch) * yn + std::cos(pitch)};
+        // right = (-1,0,0) (world +x is on the camera's left), down = (0,-cos,-sin), forward = (0,-sin,cos)
+        return {-xn, -std::cos(pitch) * yn - std::sin(pitch), -std::sin(pitch) * yn + std::cos(pitch)};
     }
     // Depth at which the ray meets the desk plane y = 0.
     double deskDepth(int u, int v) const { return -oy / dir(u, v)[1]; }
@@ -165,6 +166,48 @@ TEST(SyntheticDevice, ExactModeDeliversTheGroundTruthWithPose) {
     EXPECT_EQ(r.frame->sceneDepth->depthMeters.pixels, truth.pixels);
     EXPECT_EQ(r.frame->capturedImage.width, 320);
     EXPECT_EQ(r.frame->capturedImage.format, frame::PixelFormat::Nv12);
+}
+
+TEST(SyntheticScene, PosesAreRotationsEverywhereOnTheSway) {
+    for (const bool motion : {false, true})
+        for (double t = 0.0; t < 10.0; t += 0.37) // the sway's whole 10 s period
+            EXPECT_TRUE(test::isRigid(SyntheticScene::cameraPose(t, motion)))
+                << "t = " << t << " motion " << motion;
+}
+
+SyntheticConfig smallMovingScene() {
+    SyntheticConfig config;
+    config.depthWidth = 32;
+    config.depthHeight = 24;
+    config.cameraWidth = 64;
+    config.cameraHeight = 48;
+    config.motion = true;
+    config.paced = false;
+    return config;
+}
+
+TEST(SyntheticDevice, FramesRenderedAheadAreDeliveredInOrderAsMakeFrameMakesThem) {
+    SyntheticDevice device(smallMovingScene());
+    EXPECT_DOUBLE_EQ(device.capabilities().nominalFps, 60.0) << "the rate it promises";
+    ASSERT_TRUE(device.open());
+    std::int64_t lastTimestampNs = 0;
+    for (int run = 0; run < 2; ++run) { // stop and start again: the sequence goes on
+        ASSERT_TRUE(device.start());
+        for (std::uint64_t i = 0; i < 6; ++i) {
+            const CaptureResult r = device.capture(std::chrono::seconds(10));
+            ASSERT_EQ(r.kind, CaptureResult::Kind::Frame);
+            const std::uint64_t sequence = 6 * static_cast<std::uint64_t>(run) + i;
+            EXPECT_EQ(r.frame->sequence, sequence);
+            EXPECT_GE(r.frame->timestampNs, lastTimestampNs);
+            lastTimestampNs = r.frame->timestampNs;
+            const frame::FramePtr expected = device.makeFrame(sequence, static_cast<double>(sequence) / 60.0);
+            EXPECT_EQ(r.frame->sceneDepth->depthMeters.pixels, expected->sceneDepth->depthMeters.pixels);
+            EXPECT_EQ(*r.frame->capturedImage.bytes, *expected->capturedImage.bytes);
+            EXPECT_EQ(r.frame->pose->cameraToWorld, expected->pose->cameraToWorld);
+            EXPECT_TRUE(test::isRigid(*r.frame->pose));
+        }
+        ASSERT_TRUE(device.stop());
+    }
 }
 
 TEST(SyntheticDevice, MotionMovesThePoseOverTime) {

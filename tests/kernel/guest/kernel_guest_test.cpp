@@ -198,7 +198,8 @@ TEST(Uvc, UnplugDisconnectsAndReplugResumesWithoutARestart) {
     ASSERT_FALSE(env("UDC_FILE").empty());
     usb::HotplugMonitor hotplug;
     ASSERT_TRUE(hotplug.start());
-    LiveDeviceWatcher picker(std::chrono::hours(1)); // no polling: only hotplug can update it here
+    LiveDeviceWatcher picker(std::chrono::hours(1)); // polling only as a fallback, which must not happen here
+    ASSERT_TRUE(picker.watchingEvents()) << "udev's monitor drives the device picker";
     bool pickerShows = false;
     EXPECT_TRUE(waitFor([&] { return pickerShowsCamera(picker, pickerShows); }, 20s)) << "listed at start";
     auto device = openLiveSourceSpec("usb:8086:0b07");
@@ -312,6 +313,51 @@ TEST(Vivid, Y16IsDepthWithTheConfiguredScale) {
     }
     EXPECT_GT(nonZero, kWidth * kHeight / 2) << "the pattern is not blank";
     (*device)->close();
+}
+
+// ---- cameras that are not on USB, seen by the picker through udev alone ----------------------------
+
+// The drivers of the depth nodes the picker lists now (when it published a new listing).
+bool pickerShowsDriver(LiveDeviceWatcher& watcher, std::vector<std::string>& drivers,
+                       const std::string& driver) {
+    if (auto listing = watcher.takeUpdate()) {
+        drivers.clear();
+        for (const LiveDeviceInfo& d : listing->devices)
+            for (const VideoNodeInfo& node : d.nodes)
+                if (node.path == d.depthNode)
+                    drivers.push_back(node.driver);
+    }
+    return std::find(drivers.begin(), drivers.end(), driver) != drivers.end();
+}
+
+// Asks init.sh, outside the chroot where the guest's modules are, to unplug or replug the loopback camera
+// (module and feeder) and waits until it has.
+bool askForLoopback(const std::string& what) {
+    const std::string request = env("LOOP_REQUEST");
+    if (request.empty() || !writeSysfs(request, what))
+        return false;
+    return waitFor([&] { return !std::ifstream(request).good(); }, 30s);
+}
+
+TEST(Virtual, ThePickerFollowsLoopbackAndVividWithoutPolling) {
+    ASSERT_FALSE(env("LOOP_NODE").empty());
+    ASSERT_FALSE(env("VIVID_NODE").empty());
+    LiveDeviceWatcher picker(std::chrono::hours(1)); // polling only as a fallback, which must not happen here
+    ASSERT_TRUE(picker.watchingEvents()) << "udev's monitor drives the device picker";
+    std::vector<std::string> drivers;
+    const auto shows = [&](const char* driver) { return pickerShowsDriver(picker, drivers, driver); };
+    ASSERT_TRUE(waitFor([&] { return shows("vivid") && shows("v4l2 loopback"); }, 20s)) << "listed at start";
+
+    const std::string vivid = "/sys/bus/platform/drivers/vivid/";
+    ASSERT_TRUE(writeSysfs(vivid + "unbind", "vivid.0"));
+    EXPECT_TRUE(waitFor([&] { return !shows("vivid"); }, 20s)) << "vivid's node went away";
+    ASSERT_TRUE(writeSysfs(vivid + "bind", "vivid.0"));
+    EXPECT_TRUE(waitFor([&] { return shows("vivid"); }, 20s)) << "vivid's node came back";
+
+    ASSERT_TRUE(askForLoopback("unplug"));
+    EXPECT_TRUE(waitFor([&] { return !shows("v4l2 loopback"); }, 20s)) << "the loopback camera went away";
+    ASSERT_TRUE(askForLoopback("replug"));
+    EXPECT_TRUE(waitFor([&] { return shows("v4l2 loopback"); }, 20s)) << "the loopback camera came back";
 }
 
 } // namespace

@@ -1,8 +1,11 @@
 #!/bin/busybox sh
 # /init of the kernel-tier VM. Kernel cmdline: rtest=uvc,loopback,vivid  dcbuild=HOST_BUILD_DIR
-# dcudev=HOST_UDEV_DIR. The host's / is mounted read-only at /host (virtio-9p) and our binaries run there
-# in a chroot with the host's libraries; the feeders run outside it. Prints "RESULT name PASS|FAIL"
-# lines, our gtest output, and "=== ALL-DONE failures=N", then powers off. Adapted from ../shared/vmkit.
+# dcudev=HOST_UDEV_DIR dcexport=TAG=PATH,... The host's / is mounted read-only at /host (virtio-9p) and our
+# binaries run there in a chroot with the host's libraries; the feeders run outside it. Each dcexport
+# directory is a 9p export of its own, mounted last at its host path so that nothing mounted here hides it.
+# The host's /tmp stays visible (a checkout may live there); the chroot's scratch is $SCRATCH on the guest's
+# /run. Prints "RESULT name PASS|FAIL" lines, our gtest output, and "=== ALL-DONE failures=N", then powers
+# off. Adapted from ../shared/vmkit.
 /bin/busybox --install -s /bin
 export PATH=/bin
 mount -t proc proc /proc
@@ -16,6 +19,8 @@ arg() { sed -n "s/.*[ ]$1=\([^ ]*\).*/\1/p" /proc/cmdline; }
 TESTS=$(arg rtest); [ -n "$TESTS" ] || TESTS=uvc,loopback,vivid
 BUILD=$(arg dcbuild)
 UDEV=$(arg dcudev)
+EXPORTS=$(arg dcexport)
+SCRATCH=/run/depthcloud-kernel
 VID=8086 PID=0b07
 echo "=== guest up at $(up)s, kernel $(uname -r), tests: $TESTS"
 FAILS=0
@@ -27,11 +32,20 @@ modprobe virtio_pci && modprobe 9pnet_virtio && modprobe 9p || { result host-mou
 mkdir -p /host
 mount -t 9p -o trans=virtio,version=9p2000.L,ro,cache=loose,msize=512000 hostroot /host || { result host-mount FAIL; finish; }
 mount -t proc proc /host/proc && mount -t sysfs sys /host/sys && mount -t devtmpfs dev /host/dev &&
-	mount -t tmpfs tmp /host/tmp && mount -t tmpfs run /host/run || { result chroot-mounts FAIL; finish; }
+	mount -t tmpfs run /host/run && mkdir -p /host$SCRATCH || { result chroot-mounts FAIL; finish; }
 modprobe configfs && mount -t configfs none /sys/kernel/config && mount -t configfs none /host/sys/kernel/config
-in_host() { chroot /host /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=/tmp "$@"; }
+for e in $(echo "$EXPORTS" | tr , ' '); do
+	dir=${e#*=}
+	mkdir -p "/host$dir" 2>/dev/null # exists already unless it is under a guest mount (/run)
+	mount -t 9p -o trans=virtio,version=9p2000.L,ro,cache=loose,msize=512000 "${e%%=*}" "/host$dir" ||
+		{ result export-mount FAIL; finish; }
+done
+in_host() { chroot /host /usr/bin/env -i PATH=/usr/sbin:/usr/bin:/sbin:/bin HOME=$SCRATCH TMPDIR=$SCRATCH "$@"; }
 GUEST_TEST=$BUILD/tests/kernel/kernel_guest_test
 DEPTHCLOUD=$BUILD/tool/depthcloud
+# One clear failure, not one per scenario, when the build directory is not what the chroot sees.
+if [ -x /host$GUEST_TEST ] && [ -x /host$DEPTHCLOUD ]; then result build-dir PASS; else
+	echo "the chroot sees no $GUEST_TEST or $DEPTHCLOUD"; result build-dir FAIL; fi
 # libusb learns of hotplug from udevd (no rules needed: it only relays the kernel's events)
 in_host /usr/bin/env LD_LIBRARY_PATH=$UDEV/usr/lib/x86_64-linux-gnu/systemd $UDEV/systemd-udevd --daemon \
 	&& result udevd PASS || result udevd FAIL
@@ -97,14 +111,39 @@ start_uvc() {
 	FILTER="$FILTER:Uvc.*"
 }
 
+LOOP_ARGS="devices=1 video_nr=10 exclusive_caps=1 card_label=loopdepth"
+start_loopwriter() {
+	loopwriter -d /dev/video10 -f 'Z16 ' -r 10 > /tmp/lw.log 2>&1 &
+	LOOPWRITER=$!
+	sleep 1
+}
+
 start_loopback() {
 	echo "--- v4l2loopback (patched for Z16)"
-	modprobe v4l2loopback devices=1 video_nr=10 exclusive_caps=1 card_label=loopdepth || { result loopback-load FAIL; return 1; }
-	loopwriter -d /dev/video10 -f 'Z16 ' -r 10 > /tmp/lw.log 2>&1 &
-	sleep 1
+	modprobe v4l2loopback $LOOP_ARGS || { result loopback-load FAIL; return 1; }
+	start_loopwriter
 	cat /tmp/lw.log
-	ENV="$ENV LOOP_NODE=/dev/video10"
+	ENV="$ENV LOOP_NODE=/dev/video10 LOOP_REQUEST=$SCRATCH/loopback-request"
 	FILTER="$FILTER:Loopback.*"
+	loopback_plugger &
+}
+
+# Unplugs ("unplug": the feeder stopped, the module removed) and replugs the loopback camera when the guest
+# test writes the request file, which is removed once done: its module loads here, outside the chroot.
+loopback_plugger() {
+	request=/host$SCRATCH/loopback-request
+	while :; do
+		case $(cat $request 2>/dev/null) in
+		unplug)
+			kill $LOOPWRITER
+			i=0; while ! rmmod v4l2loopback 2>/dev/null && [ $i -lt 50 ]; do sleep 0.1; i=$((i+1)); done
+			rm -f $request ;;
+		replug)
+			modprobe v4l2loopback $LOOP_ARGS && start_loopwriter
+			rm -f $request ;;
+		esac
+		sleep 0.1
+	done
 }
 
 start_vivid() {
@@ -115,8 +154,8 @@ start_vivid() {
 	# v4l2-ctl is the independent reference for what our code reads.
 	in_host v4l2-ctl -d $VIVID_NODE -c osd_text_mode=2 &&
 	in_host v4l2-ctl -d $VIVID_NODE --set-fmt-video=width=640,height=480,pixelformat='Y16 ' --stream-mmap \
-		--stream-count=2 --stream-to=/tmp/vivid.raw && result vivid-reference PASS || result vivid-reference FAIL
-	ENV="$ENV VIVID_NODE=$VIVID_NODE VIVID_RAW=/tmp/vivid.raw"
+		--stream-count=2 --stream-to=$SCRATCH/vivid.raw && result vivid-reference PASS || result vivid-reference FAIL
+	ENV="$ENV VIVID_NODE=$VIVID_NODE VIVID_RAW=$SCRATCH/vivid.raw"
 	FILTER="$FILTER:Vivid.*"
 }
 
@@ -131,12 +170,13 @@ check_devices_command() {
 
 # The whole application, headless, on the USB camera.
 check_headless() {
-	in_host $DEPTHCLOUD --source usb:$VID:$PID --headless --frames 3 --out /tmp/headless; rc=$?
-	ls -l /host/tmp/headless 2>&1 | sed 's/^/  headless: /'
-	sed 's/^/  summary.json: /' /host/tmp/headless/summary.json 2>/dev/null
-	if [ $rc = 0 ] && [ -s /host/tmp/headless/cloud.png ] && [ -s /host/tmp/headless/depth.png ] &&
-		grep -q '"frames": 3' /host/tmp/headless/summary.json && grep -q '"depthWidth": 640' /host/tmp/headless/summary.json &&
-		grep -q '"latencyMs": [0-9]' /host/tmp/headless/summary.json
+	out=$SCRATCH/headless
+	in_host $DEPTHCLOUD --source usb:$VID:$PID --headless --frames 3 --out $out; rc=$?
+	ls -l /host$out 2>&1 | sed 's/^/  headless: /'
+	sed 's/^/  summary.json: /' /host$out/summary.json 2>/dev/null
+	if [ $rc = 0 ] && [ -s /host$out/cloud.png ] && [ -s /host$out/depth.png ] &&
+		grep -q '"frames": 3' /host$out/summary.json && grep -q '"depthWidth": 640' /host$out/summary.json &&
+		grep -q '"latencyMs": [0-9]' /host$out/summary.json
 	then result headless-usb PASS; else result headless-usb FAIL; fi
 }
 
@@ -153,6 +193,7 @@ for t in $(echo $TESTS | tr , ' '); do
 	esac
 done
 [ $UVC = 1 ] && check_devices_command
+case $FILTER in *Loopback*Vivid*) FILTER="$FILTER:Virtual.*" ;; esac # both virtual cameras are up
 [ -n "$FILTER" ] && in_host /usr/bin/env $ENV $GUEST_TEST --gtest_filter="${FILTER#:}" --gtest_color=no
 [ $UVC = 1 ] && check_headless
 [ $UVC = 1 ] && tail -5 /tmp/feeder.log

@@ -1,0 +1,120 @@
+// The command line as a new user meets it: the binary run from a directory outside the repository (so no
+// ../shared), bad arguments refused with exit code 2 and one line naming the argument, failures while
+// running with exit code 1, help that prints names and agrees with the checks.
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// A fresh working directory under the temp dir, far from the checkout.
+class Cli : public ::testing::Test {
+protected:
+    void SetUp() override {
+        std::string pattern = (fs::temp_directory_path() / "depthcloud-cli-XXXXXX").string();
+        ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+        dir_ = pattern;
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    RunResult run(const std::string& arguments) const {
+        const std::string command =
+            "cd '" + dir_.string() + "' && " + DEPTHCLOUD_BINARY + " " + arguments + " > out.txt 2> err.txt";
+        const int status = std::system(command.c_str());
+        RunResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(dir_ / "out.txt"),
+                    readFile(dir_ / "err.txt")};
+        fs::remove(dir_ / "out.txt");
+        fs::remove(dir_ / "err.txt");
+        return r;
+    }
+
+    fs::path dir_;
+};
+
+std::size_t lines(const std::string& text) {
+    return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+bool printable(const std::string& text) {
+    return std::all_of(text.begin(), text.end(), [](char c) {
+        return c == '\n' || (static_cast<unsigned char>(c) >= 0x20 && c != 0x7f);
+    });
+}
+
+TEST_F(Cli, BadArgumentsExitWithTwoAndOneLineNamingTheArgument) {
+    struct Case {
+        const char* args;
+        const char* mentions;
+    };
+    const Case cases[] = {
+        {"--headless --source synthetic:99999x99999", "--source"},
+        {"--headless --source synthetic:7680x7680", "limit of 2764800 pixels"},
+        {"--headless --source v4l2:/dev/null", "v4l2:/dev/null: not a video capture node"},
+        {"--headless --confidence extreme", "--confidence: extreme not in {low,medium,high}"},
+        {"--headless --frames 0", "--frames"},
+        {"record --frames 0 a.dcrec", "--frames"},
+        {"record --frames 1 missing/a.dcrec", "no such directory missing"},
+        {"bench record --case nope", "--case"},
+        {"bench replay --data nowhere", "--data"},
+    };
+    for (const Case& c : cases) {
+        const RunResult r = run(c.args);
+        EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.mentions), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_EQ(lines(r.err), 1u) << "once, on one line: " << c.args << "\n" << r.err;
+    }
+}
+
+TEST_F(Cli, AnExistingRecordingIsABadArgumentAndStaysAsItWas) {
+    std::ofstream(dir_ / "take.dcrec") << "an earlier take";
+    const RunResult r = run("record --source synthetic:32x24 --frames 2 take.dcrec");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("take.dcrec already exists (pass --overwrite to replace it)"), std::string::npos);
+    EXPECT_EQ(readFile(dir_ / "take.dcrec"), "an earlier take");
+    EXPECT_FALSE(fs::exists(dir_ / "take.dcrec.partial"));
+}
+
+TEST_F(Cli, AFailureWhileRunningExitsWithOne) {
+    // Well-formed ids of a camera that is not plugged in: nothing is wrong with the argument.
+    const RunResult r = run("record --source usb:1234:5678 --frames 1 cam.dcrec");
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("1234:5678"), std::string::npos) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+}
+
+TEST_F(Cli, HelpPrintsConfidenceLevelsByName) {
+    const RunResult r = run("--help");
+    EXPECT_EQ(r.exitCode, 0);
+    EXPECT_NE(r.out.find("{low,medium,high}"), std::string::npos) << r.out;
+    EXPECT_TRUE(printable(r.out)) << "no raw control bytes in --help";
+}
+
+TEST_F(Cli, BenchReplayRunsOnSyntheticDataOutsideTheRepository) {
+    ASSERT_FALSE(fs::exists(dir_ / "../shared/data")) << "this test must run away from the checkout";
+    const RunResult r = run("bench replay --passes 1 --synthetic-frames 10");
+    EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("synthetic 640x480 recording (zstd, NV12)        10 frames"), std::string::npos)
+        << r.out;
+}
+
+} // namespace
