@@ -50,7 +50,8 @@ std::size_t sanitizeDepth(frame::Plane<float>& depthMeters);
 
 struct ReplayOpenOptions {
     std::string calibrationPath; // OpenCV YAML camera matrix that replaces the source's intrinsics
-    // A ROS bag's image topics to replay (topics=DEPTH[,COLOR]); empty: found by their encodings.
+    // A ROS bag's image topics to replay (topics=DEPTH[,COLOR]; without COLOR, no colour); empty: found
+    // by their encodings.
     std::string depthTopic;
     std::string colorTopic;
 };

@@ -145,10 +145,10 @@ Status BagSource::chooseTopics() {
     }
     std::sort(depths.begin(), depths.end());
     std::sort(colors.begin(), colors.end());
-    depthTopic_ =
-        options_.depthTopic.empty() && !depths.empty() ? depths.front().second : options_.depthTopic;
-    colorTopic_ =
-        options_.colorTopic.empty() && !colors.empty() ? colors.front().second : options_.colorTopic;
+    // Topics the user names are all there is: a depth topic alone replays without colour.
+    const bool chosen = !options_.depthTopic.empty();
+    depthTopic_ = chosen || depths.empty() ? options_.depthTopic : depths.front().second;
+    colorTopic_ = chosen || colors.empty() ? options_.colorTopic : colors.front().second;
     if (depthTopic_.empty())
         return Error{path_ + " has no depth image topic (sensor_msgs/Image in 16UC1, mono16 or 32FC1)"};
     if (Status s = checkTopic(depthTopic_, ImageKind::Depth, "depth"); !s)
