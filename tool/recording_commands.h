@@ -33,7 +33,8 @@ struct ExportOptionsCli {
 struct BenchReplayOptions {
     std::string stray = "../shared/data/arkit_dance_stray";
     int syntheticFrames = 150;
-    int passes = 5; // decodes of every frame per case; the median pass is reported
+    int bagFrames = 60; // 1280x720 frames for the ROS bag against recording case
+    int passes = 5;     // decodes of every frame per case; the median pass is reported
 };
 
 struct BenchRecordOptions {

@@ -141,4 +141,66 @@ std::optional<RosTransform> BagReader::firstTransform(const std::string& topic) 
                         {m->rotation.x, m->rotation.y, m->rotation.z, m->rotation.w}};
 }
 
+struct BagWriter::Impl {
+    std::string path;
+    rosbag::Bag bag;
+};
+
+BagWriter::BagWriter(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+BagWriter::~BagWriter() = default;
+
+Expected<std::unique_ptr<BagWriter>> BagWriter::create(const std::string& path) {
+    auto impl = std::make_unique<Impl>();
+    impl->path = path;
+    try {
+        impl->bag.open(path, rosbag::bagmode::Write);
+    } catch (const std::exception& e) {
+        return Error{"cannot create ROS bag " + path + ": " + e.what()};
+    }
+    return std::unique_ptr<BagWriter>(new BagWriter(std::move(impl)));
+}
+
+Status BagWriter::write(const std::string& topic, const RosImage& image) {
+    sensor_msgs::Image m;
+    m.header.stamp.fromNSec(static_cast<std::uint64_t>(image.stampNs));
+    m.header.frame_id = image.frameId;
+    m.encoding = image.encoding;
+    m.width = image.width;
+    m.height = image.height;
+    m.step = image.step;
+    m.is_bigendian = image.bigEndian ? 1 : 0;
+    m.data = image.data;
+    try {
+        impl_->bag.write(topic, m.header.stamp, m);
+    } catch (const std::exception& e) {
+        return Error{"cannot write " + topic + " to " + impl_->path + ": " + e.what()};
+    }
+    return {};
+}
+
+Status BagWriter::write(const std::string& topic, std::int64_t stampNs, const RosCameraInfo& info) {
+    sensor_msgs::CameraInfo m;
+    m.header.stamp.fromNSec(static_cast<std::uint64_t>(stampNs));
+    m.width = info.width;
+    m.height = info.height;
+    std::copy(info.k.begin(), info.k.end(), m.K.begin());
+    m.distortion_model = info.distortionModel;
+    m.D = info.d;
+    try {
+        impl_->bag.write(topic, m.header.stamp, m);
+    } catch (const std::exception& e) {
+        return Error{"cannot write " + topic + " to " + impl_->path + ": " + e.what()};
+    }
+    return {};
+}
+
+Status BagWriter::close() {
+    try {
+        impl_->bag.close();
+    } catch (const std::exception& e) {
+        return Error{"cannot finish ROS bag " + impl_->path + ": " + e.what()};
+    }
+    return {};
+}
+
 } // namespace dc::devices::ros

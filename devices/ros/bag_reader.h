@@ -43,4 +43,22 @@ private:
     std::unique_ptr<Impl> impl_;
 };
 
+// Writes images to a new ROS 1 bag (uncompressed, as RealSense Viewer records), each message at its header
+// stamp: the benchmark's peer and a way to hand frames to ROS tools. Not thread-safe.
+class BagWriter {
+public:
+    static Expected<std::unique_ptr<BagWriter>> create(const std::string& path);
+    ~BagWriter();
+
+    Status write(const std::string& topic, const RosImage& image);
+    Status write(const std::string& topic, std::int64_t stampNs, const RosCameraInfo& info);
+    // Writes the index; without it the bag is unreadable.
+    Status close();
+
+private:
+    struct Impl;
+    explicit BagWriter(std::unique_ptr<Impl> impl);
+    std::unique_ptr<Impl> impl_;
+};
+
 } // namespace dc::devices::ros
