@@ -147,7 +147,8 @@ TEST_F(BagReplay, EveryRealSenseColourEncodingDecodesToTheRecordedImage) {
         SCOPED_TRACE(encoding);
         expectRgb(*f, 3);
     }
-    // YUYV stays packed 4:2:2; the writer's pattern puts (r, g) of each pixel in its two bytes.
+    // YUYV (in an LZ4-compressed bag, as the Viewer writes) stays packed 4:2:2; the writer's pattern puts
+    // (r, g) of each pixel in its two bytes.
     auto source = open(bag("realsense_YUYV.bag"));
     ASSERT_TRUE(source);
     auto f = replay::loadFrame(*source, 2);
@@ -287,6 +288,43 @@ TEST_F(BagReplay, Png16ExportOfAMillimetreBagEqualsTheRecordedDepth) {
             for (int x = 0; x < kDepthW; ++x)
                 ASSERT_EQ(png.at<std::uint16_t>(y, x), depthUnits(x, y, i)) << name << " " << x << "," << y;
     }
+}
+
+TEST(RosImage, MessagesThatClaimMoreThanTheyHoldOrUnknownEncodingsAreRefused) {
+    RosImage image{0, "camera", "16UC1", 4, 2, 8, false, std::vector<std::uint8_t>(15)};
+    auto short16 = depthFromImage(image, 0.001);
+    ASSERT_FALSE(short16);
+    EXPECT_NE(short16.error().message.find("too few"), std::string::npos) << short16.error().message;
+    image.data.resize(16);
+    image.step = 7; // less than a row
+    EXPECT_FALSE(depthFromImage(image, 0.001));
+    image.step = 8;
+    ASSERT_TRUE(depthFromImage(image, 0.001));
+    image.width = 0;
+    EXPECT_FALSE(depthFromImage(image, 0.001));
+
+    RosImage yuyv{0, "camera", "YUYV", 3, 1, 6, false, std::vector<std::uint8_t>(6)};
+    auto odd = colorFromImage(yuyv);
+    ASSERT_FALSE(odd);
+    EXPECT_NE(odd.error().message.find("odd width"), std::string::npos);
+    RosImage bayer{0, "camera", "bayer_rggb8", 2, 2, 2, false, std::vector<std::uint8_t>(4)};
+    EXPECT_FALSE(colorFromImage(bayer));
+    EXPECT_FALSE(depthFromImage(bayer, 0.001));
+    EXPECT_EQ(imageKind("bayer_rggb8"), ImageKind::Other);
+}
+
+TEST(RosImage, BigEndianDepthAndUyvyColourAreReadAsTheyAreStored) {
+    // 0x0102 units big-endian, 1 mm each.
+    RosImage depth{0, "camera", "16UC1", 1, 1, 2, true, {0x01, 0x02}};
+    auto d = depthFromImage(depth, 0.001);
+    ASSERT_TRUE(d) << d.error().message;
+    EXPECT_EQ(d->at(0, 0), recording::depthFromUnits(0x0102, 0.001));
+    // ROS's yuv422 is UYVY: U Y0 V Y1 becomes Y0 U Y1 V.
+    RosImage uyvy{0, "camera", "yuv422", 2, 1, 4, false, {10, 20, 30, 40}};
+    auto c = colorFromImage(uyvy);
+    ASSERT_TRUE(c) << c.error().message;
+    ASSERT_EQ(c->format, frame::PixelFormat::Yuyv);
+    EXPECT_EQ(*c->bytes, (std::vector<std::uint8_t>{20, 10, 40, 30}));
 }
 
 } // namespace

@@ -93,9 +93,11 @@ def transform(t, angle_z):
 
 
 def realsense(path, color_encoding):
-    """RealSense Viewer's layout (librealsense's ROS bag format 3)."""
+    """RealSense Viewer's layout (librealsense's ROS bag format 3); the YUYV one LZ4-compressed, as the
+    Viewer's recorder compresses."""
     t0 = rospy.Time(START_S)
-    with rosbag.Bag(path, "w") as bag:
+    compression = rosbag.Compression.LZ4 if color_encoding == "YUYV" else rosbag.Compression.NONE
+    with rosbag.Bag(path, "w", compression=compression) as bag:
         s0, s1 = "/device_0/sensor_0", "/device_0/sensor_1"
         bag.write(s0 + "/option/Depth Units/value", Float32(0.0001), t0)
         bag.write(s0 + "/Depth_0/info/camera_info",
