@@ -199,7 +199,8 @@ void benchBagAgainstRecording(const BenchReplayOptions& o) {
     auto frames = syntheticFrames(config, o.bagFrames);
     for (std::size_t i = 0; i < frames.size(); ++i) {
         auto f = std::make_shared<frame::Frame>(*frames[i]);
-        f->timestampNs = static_cast<std::int64_t>(i) * 1'000'000'000 / 30;
+        // From 1 s: a bag refuses messages at time 0 (ros::TIME_MIN is 1 ns).
+        f->timestampNs = 1'000'000'000 + static_cast<std::int64_t>(i) * 1'000'000'000 / 30;
         frames[i] = f;
     }
     const std::string recordingPath = tempPath({}, "replay-720p"), bagPath = recordingPath + ".bag";
