@@ -52,8 +52,8 @@ struct ReplayOpenOptions {
     std::string calibrationPath; // OpenCV YAML camera matrix that replaces the source's intrinsics
     // A ROS bag's image topics to replay (topics=DEPTH[,COLOR]; without COLOR, no colour); empty: found
     // by their encodings.
-    std::string depthTopic;
-    std::string colorTopic;
+    std::string depthTopic{};
+    std::string colorTopic{};
 };
 
 // Opens PATH as whatever it is: a depthcloud recording (a file), a ROS bag (a .bag file), a Stray Scanner

@@ -14,8 +14,8 @@ namespace dc::devices::ros {
 struct BagOptions {
     // Image topics to replay; a depth topic alone replays without colour. Empty: both found by their
     // encodings (RealSense's Depth_0 and Color_0 first, then topics named depth and color).
-    std::string depthTopic;
-    std::string colorTopic;
+    std::string depthTopic{};
+    std::string colorTopic{};
     // A colour image belongs to the depth image nearest in time within this gap (TUM's associate.py default).
     double maxPairGapSeconds = 0.02;
 };
