@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Refuses an #include that points against the layers' arrows (../shared/CONVENTIONS.md, "Layers"):
 #   base <- frame <- devices <- exporting <- engine <- ui <- tool,  frame <- processing <- render <- ui,
-# and keeps GL, ImGui, V4L2 and libusb in the layers that own them. Prints each offending line as
+# and keeps GL, ImGui, V4L2, libusb and ROS in the layers that own them. Prints each offending line as
 # file:line: and exits 1. The build runs it before compiling anything (target check_layers); the include
 # roots make the same mistake a compile error, this says which arrow it breaks.
 # Usage: check-layers.sh [SOURCE_ROOT]
@@ -12,18 +12,20 @@ ours='base|frame|devices|processing|exporting|engine|render|ui|tool'
 gl='epoxy/|GLFW/|GL/|EGL/'
 imgui='imgui|backends/imgui'
 kernel='linux/videodev2|libusb'
+# ROS 1 headers (devices/ros only: they are C++17, see devices/ros/ros_messages.h).
+ros='^(rosbag|ros|sensor_msgs|std_msgs|geometry_msgs)/'
 
 # layer -> extended regex of the include paths it must not name
 declare -A forbidden=(
-    [base]="^(frame|devices|processing|exporting|engine|render|ui|tool)/|opencv2/|$gl|$imgui|$kernel"
-    [frame]="^(devices|processing|exporting|engine|render|ui|tool)/|$gl|$imgui|$kernel"
+    [base]="^(frame|devices|processing|exporting|engine|render|ui|tool)/|opencv2/|$gl|$imgui|$kernel|$ros"
+    [frame]="^(devices|processing|exporting|engine|render|ui|tool)/|$gl|$imgui|$kernel|$ros"
     [devices]="^(processing|exporting|engine|render|ui|tool)/|$gl|$imgui"
-    [processing]="^(devices|exporting|engine|render|ui|tool)/|$gl|$imgui|$kernel"
-    [exporting]="^(engine|render|ui|tool)/|$gl|$imgui|$kernel"
-    [engine]="^(render|ui|tool)/|$gl|$imgui|$kernel"
-    [render]="^(devices|exporting|engine|ui|tool)/|$imgui|$kernel"
+    [processing]="^(devices|exporting|engine|render|ui|tool)/|$gl|$imgui|$kernel|$ros"
+    [exporting]="^(engine|render|ui|tool)/|$gl|$imgui|$kernel|$ros"
+    [engine]="^(render|ui|tool)/|$gl|$imgui|$kernel|$ros"
+    [render]="^(devices|exporting|engine|ui|tool)/|$imgui|$kernel|$ros"
     # ui/ draws through ImGui's GLFW backend, so it may name GLFW's key codes; GL calls belong to render/.
-    [ui]="^(tool|devices/uvc)/|epoxy/|GL/|EGL/|$kernel"
+    [ui]="^(tool|devices/uvc)/|epoxy/|GL/|EGL/|$kernel|$ros"
 )
 
 # One pass over every include line of every layer: "file:line:text" in, one message per violation out.

@@ -9,6 +9,7 @@
 #include "devices/session.h"
 #include "devices/source_spec.h"
 #include "devices/synthetic/synthetic_device.h"
+#include "frame/rgb_image.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
 
@@ -18,6 +19,7 @@
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <sched.h>
 #include <sys/prctl.h>
@@ -25,6 +27,10 @@
 #include <thread>
 #include <unistd.h>
 #include <vector>
+
+#ifdef DC_HAVE_ROS
+#include "devices/ros/bag_reader.h"
+#endif
 
 namespace dc::tool {
 
@@ -39,7 +45,8 @@ double secondsSince(Clock::time_point start) {
 
 // Decodes every frame of `source` `passes` times; prints the median pass as frames per second and as a
 // multiple of real time (a single pass of a short recording lasts a fraction of a second: too noisy alone).
-void decodeAll(const std::string& name, devices::replay::ReplaySource& source, bool color, int passes) {
+// Returns the median seconds of one pass.
+double decodeAll(const std::string& name, devices::replay::ReplaySource& source, bool color, int passes) {
     source.setDecodeColor(color);
     const std::size_t n = source.frameCount();
     const double recordedSeconds = static_cast<double>(source.timestampNs(n - 1) - source.timestampNs(0)) *
@@ -58,6 +65,7 @@ void decodeAll(const std::string& name, devices::replay::ReplaySource& source, b
     std::printf("  %-44s %5zu frames, median of %d passes %6.2f s: %7.1f fps = %6.1fx real time%s\n",
                 name.c_str(), n, passes, median, static_cast<double>(n) / median, recordedSeconds / median,
                 failed ? (" (" + std::to_string(failed) + " failed)").c_str() : "");
+    return median;
 }
 
 // Frames of a synthetic camera, generated as fast as it can.
@@ -286,6 +294,88 @@ nlohmann::json toJson(const RecordCaseResult& r) {
 
 } // namespace
 
+#ifdef DC_HAVE_ROS
+// The frames as a RealSense-style bag: 16UC1 millimetres and rgb8, uncompressed, with camera_info.
+Status writeBag(const std::string& path, const std::vector<frame::FramePtr>& frames) {
+    auto bag = devices::ros::BagWriter::create(path);
+    if (!bag)
+        return bag.error();
+    const frame::Intrinsics k = frames.front()->depthIntrinsics();
+    devices::ros::RosCameraInfo info{static_cast<std::uint32_t>(k.width),
+                                     static_cast<std::uint32_t>(k.height),
+                                     {k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1},
+                                     "plumb_bob",
+                                     {0, 0, 0, 0, 0}};
+    if (Status s = (*bag)->write("/camera/depth/camera_info", frames.front()->timestampNs, info); !s)
+        return s;
+    for (const frame::FramePtr& f : frames) {
+        const auto& depth = f->sceneDepth->depthMeters;
+        devices::ros::RosImage d{f->timestampNs,
+                                 "camera",
+                                 "16UC1",
+                                 static_cast<std::uint32_t>(depth.width),
+                                 static_cast<std::uint32_t>(depth.height),
+                                 static_cast<std::uint32_t>(2 * depth.width),
+                                 false,
+                                 std::vector<std::uint8_t>(depth.pixels.size() * 2)};
+        for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
+            const auto mm =
+                static_cast<std::uint16_t>(std::clamp(depth.pixels[i] * 1000.0f + 0.5f, 0.0f, 65535.0f));
+            std::memcpy(&d.data[2 * i], &mm, 2);
+        }
+        const auto& image = f->capturedImage;
+        devices::ros::RosImage c{f->timestampNs,
+                                 "camera",
+                                 "rgb8",
+                                 static_cast<std::uint32_t>(image.width),
+                                 static_cast<std::uint32_t>(image.height),
+                                 static_cast<std::uint32_t>(3 * image.width),
+                                 false,
+                                 frame::toRgb24(image)};
+        if (Status s = (*bag)->write("/camera/depth/image_rect_raw", d); !s)
+            return s;
+        if (Status s = (*bag)->write("/camera/color/image_raw", c); !s)
+            return s;
+    }
+    return (*bag)->close();
+}
+
+// The same 1280x720 depth + colour frames from our recording and from a ROS bag, decoded alike.
+void benchBagAgainstRecording(const BenchReplayOptions& o) {
+    devices::SyntheticConfig config;
+    config.depthWidth = config.cameraWidth = 1280;
+    config.depthHeight = config.cameraHeight = 720;
+    config.motion = true;
+    auto frames = syntheticFrames(config, o.bagFrames);
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        auto f = std::make_shared<frame::Frame>(*frames[i]);
+        // From 1 s: a bag refuses messages at time 0 (ros::TIME_MIN is 1 ns).
+        f->timestampNs = 1'000'000'000 + static_cast<std::int64_t>(i) * 1'000'000'000 / 30;
+        frames[i] = f;
+    }
+    const std::string recordingPath = tempPath({}, "replay-720p"), bagPath = recordingPath + ".bag";
+    auto writer = devices::recording::RecordingWriter::create(recordingPath, {"synthetic 1280x720", {}});
+    for (std::size_t i = 0; writer && i < frames.size(); ++i)
+        (void)writer->append(*frames[i]);
+    const bool recorded = writer && writer->finish();
+    const Status bagged = writeBag(bagPath, frames);
+    auto recording = devices::replay::openRecordingSource(recordingPath);
+    auto bag = devices::replay::openReplaySource(bagPath);
+    if (recorded && bagged && recording && bag) {
+        const double ours =
+            decodeAll("synthetic 1280x720 recording (zstd, NV12)", **recording, true, o.passes);
+        const double ros = decodeAll("same frames as a ROS bag (16UC1 + rgb8)", **bag, true, o.passes);
+        std::printf("  %-44s %.2fx the recording's time per frame\n", "ROS bag / recording", ros / ours);
+    } else {
+        std::printf("  1280x720 bag case: %s\n",
+                    !bagged ? bagged.error().message.c_str() : "cannot write or open");
+    }
+    std::error_code ec;
+    fs::remove(recordingPath, ec);
+    fs::remove(bagPath, ec);
+}
+#endif
+
 int runBenchReplay(const BenchReplayOptions& o) {
     setLogQuiet(true);
     std::printf("bench replay: decode throughput, headless, one thread (goal: >= 20x real time)\n");
@@ -323,6 +413,9 @@ int runBenchReplay(const BenchReplayOptions& o) {
     }
     std::error_code ec;
     fs::remove(path, ec);
+#ifdef DC_HAVE_ROS
+    benchBagAgainstRecording(o);
+#endif
     return kExitOk;
 }
 

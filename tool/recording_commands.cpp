@@ -73,6 +73,10 @@ void addRecordingCommands(CLI::App& app, CLI::App& bench, RecordingCommands& c) 
         ->check(CLI::Range(10, 10000))
         ->capture_default_str();
     c.benchReplayCmd
+        ->add_option("--bag-frames", c.benchReplay.bagFrames,
+                     "1280x720 frames for the ROS bag against recording case")
+        ->check(CLI::Range(2, 3000));
+    c.benchReplayCmd
         ->add_option("--passes", c.benchReplay.passes, "passes over every case; the median is reported")
         ->check(CLI::Range(1, 1000))
         ->capture_default_str();

@@ -35,7 +35,8 @@ struct BenchReplayOptions {
     std::string
         data; // a capture to decode besides the synthetic recording (a .dcrec, Stray or TUM directory)
     int syntheticFrames = 150;
-    int passes = 5; // decodes of every frame per case; the median pass is reported
+    int bagFrames = 60; // 1280x720 frames for the ROS bag against recording case
+    int passes = 5;     // decodes of every frame per case; the median pass is reported
 };
 
 struct BenchRecordOptions {

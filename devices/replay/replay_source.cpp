@@ -3,6 +3,10 @@
 #include "base/log.h"
 #include "devices/replay/importers.h"
 
+#ifdef DC_HAVE_ROS
+#include "devices/ros/bag_source.h"
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
@@ -63,6 +67,16 @@ bool pathExists(const std::filesystem::path& p) {
     return std::filesystem::exists(p, ec);
 }
 
+Expected<std::unique_ptr<ReplaySource>> openBag(const std::string& path, const ReplayOpenOptions& options) {
+#ifdef DC_HAVE_ROS
+    return ros::openBagSource(path, {.depthTopic = options.depthTopic, .colorTopic = options.colorTopic});
+#else
+    (void)options;
+    return Error{path +
+                 ": this depthcloud was built without ROS (-DDC_ROS=OFF), so it cannot read .bag files"};
+#endif
+}
+
 } // namespace
 
 Expected<frame::Frame> loadFrame(ReplaySource& source, std::size_t i) {
@@ -105,7 +119,9 @@ Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path
     Expected<std::unique_ptr<ReplaySource>> source = Error{""};
     if (!pathExists(p))
         return Error{path + " does not exist"};
-    if (!isDirectory(p))
+    if (!isDirectory(p) && p.extension() == ".bag")
+        source = openBag(path, options);
+    else if (!isDirectory(p))
         source = openRecordingSource(path);
     else if (pathExists(p / "rgb.txt") || pathExists(p / "depth.txt"))
         source = openTumSource(path);

@@ -53,10 +53,14 @@ std::size_t sanitizeDepth(frame::Plane<float>& depthMeters);
 
 struct ReplayOpenOptions {
     std::string calibrationPath; // OpenCV YAML camera matrix that replaces the source's intrinsics
+    // A ROS bag's image topics to replay (topics=DEPTH[,COLOR]; without COLOR, no colour); empty: found
+    // by their encodings.
+    std::string depthTopic{};
+    std::string colorTopic{};
 };
 
-// Opens PATH as whatever it is: a depthcloud recording (a file), a Stray Scanner directory (depth/,
-// rgb.mp4, camera_matrix.csv, odometry.csv) or a TUM RGB-D directory (rgb.txt, depth.txt).
+// Opens PATH as whatever it is: a depthcloud recording (a file), a ROS bag (a .bag file), a Stray Scanner
+// directory (depth/, rgb.mp4, camera_matrix.csv, odometry.csv) or a TUM RGB-D directory (rgb.txt, depth.txt).
 Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path,
                                                          const ReplayOpenOptions& options = {});
 

@@ -24,6 +24,13 @@ bool applyOption(const std::string& option, ReplayOptions& replay, ReplayOpenOpt
         open.calibrationPath = option.substr(6);
         if (open.calibrationPath.empty())
             problem = "calib= needs a calibration file";
+    } else if (option.starts_with("topics=")) {
+        const std::string topics = option.substr(7);
+        const auto comma = topics.find(',');
+        open.depthTopic = topics.substr(0, comma);
+        open.colorTopic = comma == std::string::npos ? "" : topics.substr(comma + 1);
+        if (open.depthTopic.empty())
+            problem = "topics= needs a depth image topic (topics=DEPTH[,COLOR])";
     } else {
         return false;
     }

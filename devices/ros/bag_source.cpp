@@ -1,0 +1,299 @@
+#include "devices/ros/bag_source.h"
+
+#include "devices/replay/tum_format.h"
+#include "devices/ros/bag_reader.h"
+#include "frame/calibration.h"
+
+#include <algorithm>
+#include <filesystem>
+
+namespace dc::devices::ros {
+
+namespace {
+
+constexpr const char* kImageType = "sensor_msgs/Image";
+// Without camera_info the cloud still has a shape: RealSense depth's field of view, flagged approximate.
+constexpr double kFallbackFovDegrees = 87.0;
+
+// A RealSense stream's topics share a prefix: <prefix>/image/data, <prefix>/info/camera_info, <prefix>/tf/N.
+std::optional<std::string> realsensePrefix(const std::string& imageTopic) {
+    const std::string suffix = "/image/data";
+    if (!imageTopic.ends_with(suffix) || !imageTopic.starts_with("/device_"))
+        return std::nullopt;
+    return imageTopic.substr(0, imageTopic.size() - suffix.size());
+}
+
+// camera_info beside an image topic: RealSense's info/camera_info, or the namespace's camera_info as ROS
+// camera drivers publish it (/camera/depth/image_rect_raw -> /camera/depth/camera_info).
+std::string cameraInfoTopic(const std::string& imageTopic) {
+    if (auto prefix = realsensePrefix(imageTopic))
+        return *prefix + "/info/camera_info";
+    return imageTopic.substr(0, imageTopic.rfind('/')) + "/camera_info";
+}
+
+std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw) {
+    const auto [x, y, z, w] = xyzw;
+    return {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+            2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+            2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+}
+
+// librealsense records each stream's extrinsics to a reference stream as <prefix>/tf/<reference>: a point
+// in the stream's frame maps to the reference's as p_ref = R p + t. Depth -> colour goes through it:
+// p_color = Rc^T (Rd p + td - tc).
+BagExtrinsics depthToColor(const RosTransform& depth, const RosTransform& color) {
+    const auto rd = rotationFromQuaternion(depth.rotationXyzw);
+    const auto rc = rotationFromQuaternion(color.rotationXyzw);
+    BagExtrinsics out;
+    for (int i = 0; i < 3; ++i) {
+        for (int j = 0; j < 3; ++j) {
+            double r = 0.0;
+            for (int k = 0; k < 3; ++k)
+                r += rc[k * 3 + i] * rd[k * 3 + j];
+            out.rotation[i * 3 + j] = r;
+        }
+        double t = 0.0;
+        for (int k = 0; k < 3; ++k)
+            t += rc[k * 3 + i] * (depth.translationMeters[k] - color.translationMeters[k]);
+        out.translationMeters[i] = t;
+    }
+    return out;
+}
+
+// One image topic's messages with the timestamps replay uses.
+struct ImageStream {
+    std::size_t handle = 0;
+    std::vector<std::int64_t> timestampsNs;
+};
+
+class BagSource final : public replay::ReplaySource {
+public:
+    BagSource(std::string path, BagOptions options) : path_(std::move(path)), options_(std::move(options)) {}
+
+    Status open();
+
+    std::string description() const override {
+        return "ROS bag " + std::filesystem::path(path_).filename().string() + " (" + depthTopic_ +
+               (colorTopic_.empty() ? "" : ", " + colorTopic_) + ")";
+    }
+    Capabilities capabilities() const override {
+        return {.sceneDepth = true, .color = !colorTopic_.empty(), .approximateIntrinsics = !rig_.depth};
+    }
+    std::size_t frameCount() const override { return depth_.timestampsNs.size(); }
+    std::int64_t timestampNs(std::size_t i) const override { return depth_.timestampsNs[i]; }
+    Expected<frame::Frame> frame(std::size_t i) override;
+    std::vector<std::string> warnings() const override { return warnings_; }
+    void setDecodeColor(bool decode) override { decodeColor_ = decode; }
+
+    const BagRig& rig() const { return rig_; }
+
+private:
+    Status chooseTopics();
+    Status checkTopic(const std::string& topic, ImageKind want, const char* what) const;
+    Expected<ImageStream> index(const std::string& topic);
+    void readCalibration();
+    void pairColor();
+
+    std::string path_;
+    BagOptions options_;
+    std::unique_ptr<BagReader> bag_;
+    std::string depthTopic_, colorTopic_;
+    ImageStream depth_, color_;
+    std::vector<std::optional<std::size_t>> colorOf_; // per depth image
+    double metersPerUnit_ = kRosDepthMetersPerUnit;
+    BagRig rig_;
+    std::vector<std::string> warnings_;
+    bool decodeColor_ = true;
+};
+
+ImageKind kindOf(const BagReader& bag, const std::string& topic) {
+    const auto image = bag.firstImage(topic);
+    return image ? imageKind(image->encoding) : ImageKind::Other;
+}
+
+Status BagSource::checkTopic(const std::string& topic, ImageKind want, const char* what) const {
+    const auto& topics = bag_->topics();
+    const auto found = std::find_if(topics.begin(), topics.end(),
+                                    [&](const BagReader::Topic& t) { return t.name == topic; });
+    if (found == topics.end())
+        return Error{path_ + " has no topic " + topic};
+    if (found->type != kImageType)
+        return Error{path_ + ": topic " + topic + " is " + found->type + ", not " + kImageType};
+    if (const auto image = bag_->firstImage(topic); !image || imageKind(image->encoding) != want)
+        return Error{path_ + ": topic " + topic + " is not a " + what + " image (encoding '" +
+                     (image ? image->encoding : "unreadable") + "')"};
+    return {};
+}
+
+Status BagSource::chooseTopics() {
+    // RealSense names its streams; other bags are ranked by the words their drivers use.
+    auto rank = [](const std::string& topic, ImageKind kind) {
+        const bool depth = kind == ImageKind::Depth;
+        if (topic.find(depth ? "/Depth_" : "/Color_") != std::string::npos)
+            return 0;
+        return topic.find(depth ? "depth" : "color") != std::string::npos ? 1 : 2;
+    };
+    std::vector<std::pair<int, std::string>> depths, colors;
+    for (const BagReader::Topic& t : bag_->topics()) {
+        if (t.type != kImageType)
+            continue;
+        const ImageKind kind = kindOf(*bag_, t.name);
+        if (kind == ImageKind::Depth)
+            depths.emplace_back(rank(t.name, kind), t.name);
+        else if (kind == ImageKind::Color)
+            colors.emplace_back(rank(t.name, kind), t.name);
+    }
+    std::sort(depths.begin(), depths.end());
+    std::sort(colors.begin(), colors.end());
+    // Topics the user names are all there is: a depth topic alone replays without colour.
+    const bool chosen = !options_.depthTopic.empty();
+    depthTopic_ = chosen || depths.empty() ? options_.depthTopic : depths.front().second;
+    colorTopic_ = chosen || colors.empty() ? options_.colorTopic : colors.front().second;
+    if (depthTopic_.empty())
+        return Error{path_ + " has no depth image topic (sensor_msgs/Image in 16UC1, mono16 or 32FC1)"};
+    if (Status s = checkTopic(depthTopic_, ImageKind::Depth, "depth"); !s)
+        return s;
+    if (!colorTopic_.empty())
+        return checkTopic(colorTopic_, ImageKind::Color, "colour");
+    return {};
+}
+
+Expected<ImageStream> BagSource::index(const std::string& topic) {
+    auto handle = bag_->indexTopic(topic);
+    if (!handle)
+        return handle.error();
+    ImageStream stream{*handle, {}};
+    std::size_t backwards = 0;
+    for (std::size_t i = 0; i < bag_->messageCount(*handle); ++i) {
+        // Header stamps are the sensor's clock (what a live subscriber sees); a driver that leaves them
+        // zero gets the recording time.
+        auto image = bag_->image(*handle, i);
+        if (!image)
+            return Error{path_ + ": " + image.error().message};
+        std::int64_t ns = image->stampNs != 0 ? image->stampNs : bag_->recordedNs(*handle, i);
+        // Replay needs non-decreasing time: a stamp that jumps back keeps the one before it.
+        if (!stream.timestampsNs.empty() && ns < stream.timestampsNs.back()) {
+            ns = stream.timestampsNs.back();
+            ++backwards;
+        }
+        stream.timestampsNs.push_back(ns);
+    }
+    if (backwards > 0)
+        warnings_.push_back(path_ + ": " + std::to_string(backwards) + " images on " + topic +
+                            " are stamped before the one recorded ahead of them; they keep its time");
+    return stream;
+}
+
+void BagSource::readCalibration() {
+    if (auto info = bag_->firstCameraInfo(cameraInfoTopic(depthTopic_))) {
+        if (auto record = cameraInfoRecord(*info))
+            rig_.depth = *record;
+        else
+            warnings_.push_back(path_ + ": depth " + record.error().message);
+    }
+    if (!colorTopic_.empty())
+        if (auto info = bag_->firstCameraInfo(cameraInfoTopic(colorTopic_)))
+            if (auto record = cameraInfoRecord(*info))
+                rig_.color = *record;
+    const auto depthPrefix = realsensePrefix(depthTopic_);
+    if (depthPrefix) {
+        // /device_0/sensor_0/Depth_0 -> /device_0/sensor_0/option/Depth Units/value
+        const std::string sensor = depthPrefix->substr(0, depthPrefix->rfind('/'));
+        if (auto units = bag_->firstFloat32(sensor + "/option/Depth Units/value"); units && *units > 0.0f)
+            metersPerUnit_ = *units;
+    }
+    const auto colorPrefix = realsensePrefix(colorTopic_);
+    if (depthPrefix && colorPrefix) {
+        auto depthTf = bag_->firstTransform(*depthPrefix + "/tf/0");
+        auto colorTf = bag_->firstTransform(*colorPrefix + "/tf/0");
+        if (depthTf && colorTf)
+            rig_.depthToColor = depthToColor(*depthTf, *colorTf);
+    }
+    if (!rig_.depth)
+        warnings_.push_back(path_ + ": no camera_info for " + depthTopic_ + " (looked for " +
+                            cameraInfoTopic(depthTopic_) + "); the cloud's geometry is approximate");
+}
+
+void BagSource::pairColor() {
+    std::vector<double> depthTimes, colorTimes;
+    for (std::int64_t ns : depth_.timestampsNs)
+        depthTimes.push_back(ns * 1e-9);
+    for (std::int64_t ns : color_.timestampsNs)
+        colorTimes.push_back(ns * 1e-9);
+    colorOf_.assign(depthTimes.size(), std::nullopt);
+    for (auto [d, c] : replay::associateByTimestamp(depthTimes, colorTimes, options_.maxPairGapSeconds))
+        colorOf_[d] = c;
+}
+
+Status BagSource::open() {
+    auto bag = BagReader::open(path_);
+    if (!bag)
+        return bag.error();
+    bag_ = std::move(*bag);
+    if (Status s = chooseTopics(); !s)
+        return s;
+    readCalibration();
+    auto depth = index(depthTopic_);
+    if (!depth)
+        return depth.error();
+    depth_ = std::move(*depth);
+    if (!colorTopic_.empty()) {
+        auto color = index(colorTopic_);
+        if (!color)
+            return color.error();
+        color_ = std::move(*color);
+    }
+    pairColor();
+    return {};
+}
+
+Expected<frame::Frame> BagSource::frame(std::size_t i) {
+    auto fail = [&](const Error& e) {
+        return Error{path_ + ": frame " + std::to_string(i) + ": " + e.message};
+    };
+    frame::Frame frame;
+    frame.sequence = i;
+    frame.timestampNs = depth_.timestampsNs[i];
+    auto depthImage = bag_->image(depth_.handle, i);
+    if (!depthImage)
+        return fail(depthImage.error());
+    auto depth = depthFromImage(*depthImage, metersPerUnit_);
+    if (!depth)
+        return fail(depth.error());
+    // Until two-sensor registration lands, the cloud unprojects with the image intrinsics scaled to the
+    // depth map, so they are the depth camera's, at the colour image's size: geometry exact, colour as
+    // before.
+    const frame::Intrinsics depthK =
+        rig_.depth ? rig_.depth->intrinsics
+                   : frame::intrinsicsFromFieldOfView(depth->width, depth->height, kFallbackFovDegrees);
+    frame.cameraIntrinsics = depthK.scaledTo(depth->width, depth->height);
+    frame.sceneDepth = frame::DepthData{std::move(*depth), {}};
+    if (decodeColor_ && colorOf_[i]) {
+        auto colorImage = bag_->image(color_.handle, *colorOf_[i]);
+        if (!colorImage)
+            return fail(colorImage.error());
+        auto color = colorFromImage(*colorImage);
+        if (!color)
+            return fail(color.error());
+        frame.cameraIntrinsics = depthK.scaledTo(color->width, color->height);
+        frame.capturedImage = std::move(*color);
+    }
+    return frame;
+}
+
+} // namespace
+
+Expected<std::unique_ptr<replay::ReplaySource>> openBagSource(const std::string& path,
+                                                              const BagOptions& options) {
+    auto source = std::make_unique<BagSource>(path, options);
+    if (Status s = source->open(); !s)
+        return s.error();
+    return std::unique_ptr<replay::ReplaySource>(std::move(source));
+}
+
+const BagRig* bagRig(const replay::ReplaySource& source) {
+    const auto* bag = dynamic_cast<const BagSource*>(&source);
+    return bag ? &bag->rig() : nullptr;
+}
+
+} // namespace dc::devices::ros

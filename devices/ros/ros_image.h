@@ -1,0 +1,36 @@
+#pragma once
+
+#include "base/expected.h"
+#include "frame/frame.h"
+
+#include "devices/ros/ros_messages.h"
+
+#include <string>
+#include <vector>
+
+// sensor_msgs images and camera_info as depthcloud frames: shared by bag replay and the live ROS source.
+namespace dc::devices::ros {
+
+// What an image topic carries, from its encoding.
+enum class ImageKind { Depth, Color, Other };
+ImageKind imageKind(const std::string& encoding);
+
+// The depth unit that REP 118 gives each depth encoding: 16UC1 (and RealSense's mono16 Z16) in
+// millimetres unless the recording says otherwise, 32FC1 in meters.
+inline constexpr double kRosDepthMetersPerUnit = 0.001;
+
+// A depth image in meters; `metersPerUnit` scales 16-bit encodings (32FC1 is meters already).
+Expected<frame::Plane<float>> depthFromImage(const RosImage& image, double metersPerUnit);
+// A colour image as the frame stores it: YUYV stays packed 4:2:2, the rest becomes packed RGB.
+Expected<frame::CapturedImage> colorFromImage(const RosImage& image);
+
+// A stream's lens as camera_info records it, kept whole for two-sensor registration.
+struct CameraInfoRecord {
+    frame::Intrinsics intrinsics;   // K at width x height
+    std::string distortionModel;    // "plumb_bob", "Brown Conrady", "Inverse Brown Conrady", ...
+    std::vector<double> distortion; // D, in the model's order (OpenCV's k1 k2 p1 p2 k3 for plumb_bob)
+};
+// Fails when K cannot place points (zero focal length) or the size is zero.
+Expected<CameraInfoRecord> cameraInfoRecord(const RosCameraInfo& info);
+
+} // namespace dc::devices::ros
