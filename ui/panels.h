@@ -3,6 +3,7 @@
 #include "devices/device.h"
 #include "devices/replay/replay_device.h"
 #include "processing/pipeline.h"
+#include "ui/file_picker.h"
 #include "ui/log_store.h"
 #include "ui/panel_image.h"
 #include "ui/probe.h"
@@ -189,9 +190,12 @@ struct SourceList {
 struct SourcePanelState {
     std::array<char, 512> spec{};
     std::string error; // why the last attempt to open a source failed
+    FilePickerState files;
+    bool filesOpen = false; // the file picker's window, opened by Browse
 };
 
-// The source picker; returns the spec the user chose to open.
+// The source picker, with a file picker for recordings and captures (Browse); returns the spec the user
+// chose to open.
 std::optional<std::string> drawSourcePanel(const SourceList& list, SourcePanelState& state, bool* open);
 
 struct TimelineView {
