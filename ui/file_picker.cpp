@@ -149,6 +149,8 @@ bool handleKeys(FilePickerState& state, std::optional<std::size_t>& activated) {
 void drawLocationRow(FilePickerState& state) {
     if (ImGui::Button("Up"))
         goToParent(state);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("The parent folder [Backspace]");
     ImGui::SameLine();
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 10.0f);
     if (ImGui::BeginCombo("##recent", "Recent folders")) {
@@ -197,9 +199,9 @@ std::optional<std::size_t> drawEntries(FilePickerState& state, bool scrollToSele
             ImGui::PopStyleColor();
         if (scrollToSelected && state.selected == i)
             ImGui::SetScrollHereY();
-        if (*kindLabel(e.kind)) {
-            ImGui::SameLine(ImGui::GetWindowContentRegionMax().x - ImGui::GetFontSize() * 10.0f);
-            ImGui::TextDisabled("%s", kindLabel(e.kind));
+        if (const char* kind = kindLabel(e.kind); *kind) {
+            ImGui::SameLine(ImGui::GetWindowContentRegionMax().x - ImGui::CalcTextSize(kind).x);
+            ImGui::TextDisabled("%s", kind);
         }
         ImGui::PopID();
     }
