@@ -13,6 +13,7 @@ packages=(
     libzstd-dev libxxhash-dev clang libclang-rt-14-dev
     xvfb xauth xdotool python3-open3d
     qemu-system-x86 busybox-static cpio kmod v4l-utils xz-utils patch
+    help2man mmdebstrap debian-archive-keyring desktop-file-utils
 )
 
 missing=()

@@ -7,6 +7,7 @@
 #include "tool/live_commands.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
+#include "tool/version.h"
 
 #include <CLI/CLI.hpp>
 
@@ -55,8 +56,10 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
     const std::map<std::string, dc::frame::Confidence> levels{{"low", dc::frame::Confidence::Low},
                                                               {"medium", dc::frame::Confidence::Medium},
                                                               {"high", dc::frame::Confidence::High}};
-    app.add_option("--confidence", o.confidence, "lowest confidence drawn in the cloud: low|medium|high")
-        ->transform(CLI::CheckedTransformer(levels, CLI::ignore_case));
+    // The transformer's own description would list the enum's values as raw bytes.
+    app.add_option("--confidence", o.confidence, "lowest confidence drawn in the cloud")
+        ->transform(CLI::CheckedTransformer(levels, CLI::ignore_case).description(""))
+        ->type_name("low|medium|high");
     app.add_flag("--reset", o.reset, "start with default settings and layout");
 }
 
@@ -84,7 +87,7 @@ int main(int argc, char** argv) {
     CLI::App app{"depthcloud: a live, colored point cloud of what a depth camera measures, with depth and "
                  "confidence panels",
                  "depthcloud"};
-    app.set_version_flag("--version", std::string("depthcloud ") + DEPTHCLOUD_VERSION);
+    app.set_version_flag("--version", versionLine());
     ViewerOptions viewer;
     addViewerOptions(app, viewer);
 

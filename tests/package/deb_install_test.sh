@@ -1,0 +1,59 @@
+#!/usr/bin/env bash
+# Builds the .deb with CPack, installs it with apt into a fresh Debian 12 root that mmdebstrap makes from
+# Debian's mirror (a plain chroot: no container), and runs `depthcloud --headless --frames 5` inside it, on
+# Mesa's llvmpipe through EGL. So the package's Depends, derived by dpkg-shlibdeps, must be all it needs.
+#
+# Usage: deb_install_test.sh BUILD_DIR. Needs root for chroot and the mounts mmdebstrap makes (CI runs as
+# root); exits 77 (skipped) otherwise. Downloaded packages are kept in BUILD_DIR/package-test/apt-cache, so
+# only the first run downloads. DC_DEBIAN_MIRROR overrides the mirror (default http://deb.debian.org).
+set -euo pipefail
+
+build=$(realpath "$1")
+work=$build/package-test
+cache=$work/apt-cache
+mirror=${DC_DEBIAN_MIRROR:-http://deb.debian.org}
+
+if [ "$(id -u)" -ne 0 ]; then
+    echo "deb_install_test: needs root (chroot, mounts); skipped" >&2
+    exit 77
+fi
+for tool in cpack mmdebstrap desktop-file-validate; do
+    command -v "$tool" >/dev/null || { echo "deb_install_test: $tool is missing (scripts/setup.sh)" >&2; exit 1; }
+done
+
+rm -rf "$work/deb" "$work/snapshots" "$work/tmp"
+mkdir -p "$work/deb" "$cache" "$work/tmp"
+start=$(date +%s)
+cpack --config "$build/CPackConfig.cmake" -G DEB -B "$work/deb" >"$work/cpack.log" 2>&1 ||
+    { cat "$work/cpack.log" >&2; exit 1; }
+deb=$(ls "$work"/deb/depthcloud_*.deb)
+echo "deb_install_test: $(basename "$deb"), $(stat -c %s "$deb") bytes, built in $(($(date +%s) - start)) s"
+dpkg-deb --field "$deb" Depends
+dpkg-deb --extract "$deb" "$work/deb/contents"
+desktop-file-validate "$work/deb/contents/usr/share/applications/depthcloud.desktop"
+
+# The root lives in the build directory, not in a small /tmp.
+export TMPDIR=$work/tmp
+start=$(date +%s)
+mmdebstrap --mode=root --variant=apt --format=null \
+    --include="$deb" --hook-dir=/usr/share/mmdebstrap/hooks/file-mirror-automount \
+    --skip=essential/unlink --dpkgopt=force-unsafe-io --aptopt='Acquire::Languages "none"' \
+    --setup-hook='mkdir -p "$1"/var/cache/apt/archives/' \
+    --setup-hook="sync-in $cache /var/cache/apt/archives/" \
+    --customize-hook="sync-out /var/cache/apt/archives $cache" \
+    --customize-hook='chroot "$1" depthcloud --version' \
+    --customize-hook='chroot "$1" depthcloud --headless --frames 5 --out /tmp/snapshots' \
+    --customize-hook="copy-out /tmp/snapshots $work" \
+    bookworm /dev/null \
+    "deb $mirror/debian bookworm main" \
+    "deb $mirror/debian bookworm-updates main" \
+    "deb $mirror/debian-security bookworm-security main"
+echo "deb_install_test: installed and ran in a fresh root in $(($(date +%s) - start)) s"
+
+for png in cloud depth confidence camera; do
+    [ -s "$work/snapshots/$png.png" ] || { echo "deb_install_test: no $png.png from the installed binary" >&2; exit 1; }
+done
+grep -q '"frames": *5' "$work/snapshots/summary.json" ||
+    { echo "deb_install_test: summary.json does not count 5 frames" >&2; cat "$work/snapshots/summary.json" >&2; exit 1; }
+rm -rf "$work/tmp"
+echo "deb_install_test: passed"
