@@ -17,22 +17,27 @@ if [ "$(id -u)" -ne 0 ]; then
     echo "deb_install_test: needs root (chroot, mounts); skipped" >&2
     exit 77
 fi
+fail() {
+    echo "deb_install_test: $*" >&2
+    exit 1
+}
 for tool in cpack mmdebstrap desktop-file-validate; do
-    command -v "$tool" >/dev/null || { echo "deb_install_test: $tool is missing (scripts/setup.sh)" >&2; exit 1; }
+    command -v "$tool" >/dev/null || fail "$tool is missing (scripts/setup.sh installs it)"
 done
 
 rm -rf "$work/deb" "$work/snapshots" "$work/tmp"
 mkdir -p "$work/deb" "$cache" "$work/tmp"
 start=$(date +%s)
 cpack --config "$build/CPackConfig.cmake" -G DEB -B "$work/deb" >"$work/cpack.log" 2>&1 ||
-    { cat "$work/cpack.log" >&2; exit 1; }
+    fail "cpack failed: $(cat "$work/cpack.log")"
 deb=$(ls "$work"/deb/depthcloud_*.deb)
 echo "deb_install_test: $(basename "$deb"), $(stat -c %s "$deb") bytes, built in $(($(date +%s) - start)) s"
 dpkg-deb --field "$deb" Depends
 dpkg-deb --extract "$deb" "$work/deb/contents"
 desktop-file-validate "$work/deb/contents/usr/share/applications/depthcloud.desktop"
 
-# The root lives in the build directory, not in a small /tmp.
+# The root lives in the build directory, not in a small /tmp. The essential packages stay in the root's apt
+# cache (essential/unlink skipped) so that sync-out keeps them too; dpkg need not fsync a root it discards.
 export TMPDIR=$work/tmp
 start=$(date +%s)
 mmdebstrap --mode=root --variant=apt --format=null \
@@ -51,9 +56,8 @@ mmdebstrap --mode=root --variant=apt --format=null \
 echo "deb_install_test: installed and ran in a fresh root in $(($(date +%s) - start)) s"
 
 for png in cloud depth confidence camera; do
-    [ -s "$work/snapshots/$png.png" ] || { echo "deb_install_test: no $png.png from the installed binary" >&2; exit 1; }
+    [ -s "$work/snapshots/$png.png" ] || fail "no $png.png from the installed binary"
 done
-grep -q '"frames": *5' "$work/snapshots/summary.json" ||
-    { echo "deb_install_test: summary.json does not count 5 frames" >&2; cat "$work/snapshots/summary.json" >&2; exit 1; }
+grep -q '"frames": *5' "$work/snapshots/summary.json" || fail "summary.json does not count 5 frames"
 rm -rf "$work/tmp"
 echo "deb_install_test: passed"
