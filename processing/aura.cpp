@@ -7,8 +7,12 @@
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
+#include <array>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <numeric>
 #include <optional>
 #include <vector>
 
@@ -56,6 +60,36 @@ struct Basin {
     int seed = 0; // the nearest pixel
 };
 
+// The measured pixels' indices, nearest first and ties by index: a least-significant-digit radix sort of the
+// depths' bits, a byte a pass (a positive float's bits order as the float does). Several times faster than
+// std::sort here, where the sort is most of the matte's cost.
+std::vector<int> nearestFirst(const frame::Plane<float>& depth) {
+    std::vector<std::uint32_t> keys;
+    std::vector<int> order;
+    for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
+        if (measured(depth.pixels[i])) {
+            keys.push_back(std::bit_cast<std::uint32_t>(depth.pixels[i]));
+            order.push_back(static_cast<int>(i));
+        }
+    }
+    std::vector<std::uint32_t> sortedKeys(keys.size());
+    std::vector<int> sortedOrder(order.size());
+    for (int shift = 0; shift < 32; shift += 8) {
+        std::array<std::size_t, 257> next{};
+        for (std::uint32_t k : keys)
+            ++next[((k >> shift) & 0xffu) + 1];
+        std::partial_sum(next.begin(), next.end(), next.begin());
+        for (std::size_t i = 0; i < keys.size(); ++i) {
+            const std::size_t at = next[(keys[i] >> shift) & 0xffu]++;
+            sortedKeys[at] = keys[i];
+            sortedOrder[at] = order[i];
+        }
+        keys.swap(sortedKeys);
+        order.swap(sortedOrder);
+    }
+    return order;
+}
+
 class BasinForest {
 public:
     explicit BasinForest(const frame::Plane<float>& depth)
@@ -64,13 +98,7 @@ public:
     // Adds every measured pixel, nearest first, and returns every basin (those still alive at the end never
     // died). Each merge ends the basin that began farther.
     std::vector<Basin> grow() {
-        std::vector<int> order;
-        for (int i = 0; i < static_cast<int>(depth_.pixels.size()); ++i)
-            if (measured(depth_.pixels[i]))
-                order.push_back(i);
-        std::sort(order.begin(), order.end(), [&](int a, int b) {
-            return depth_.pixels[a] < depth_.pixels[b] || (depth_.pixels[a] == depth_.pixels[b] && a < b);
-        });
+        const std::vector<int> order = nearestFirst(depth_);
         std::vector<Basin> basins;
         for (int i : order)
             add(i, basins);
