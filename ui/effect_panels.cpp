@@ -54,10 +54,10 @@ bool drawAuraPanel(const PanelImage& image, processing::AuraSettings& aura, bool
     bool changed = ImGui::Combo("Subject", &matte, "nearest region\0near range\0");
     aura.matte = static_cast<processing::AuraMatte>(matte);
     ImGui::SameLine();
-    if (aura.matte == processing::AuraMatte::NearRange)
+    if (aura.matte == processing::AuraMatte::NearRange) {
         changed |=
             ImGui::DragFloatRange2("Range", &aura.nearMeters, &aura.farMeters, 0.01f, 0.0f, 10.0f, "%.2f m");
-    else {
+    } else {
         changed |= ImGui::SliderFloat("Depth", &aura.regionDepthMeters, 0.05f, 3.0f, "%.2f m");
         ImGui::SameLine();
         changed |= ImGui::SliderFloat("Stands out", &aura.separationMeters, 0.005f, 0.5f, "%.3f m",
