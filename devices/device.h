@@ -26,6 +26,14 @@ struct Capabilities {
 inline constexpr const char* kApproximateIntrinsicsMessage =
     "approximate geometry: no calibration file, intrinsics assume a default field of view (add calib=FILE)";
 
+// What the consumers of a source's frames need right now, so the source can leave out what nobody shows
+// (a replay skips decoding its video; a live camera could skip converting its colour).
+struct SourceDemand {
+    bool cameraImage = true;
+
+    bool operator==(const SourceDemand&) const = default;
+};
+
 // Closed -> Open -> Streaming -> Stopped (-> Streaming again, or -> Closed). Disconnected and Stalled are
 // entered from Streaming by live devices when the hardware goes away or stops delivering.
 enum class DeviceState { Closed, Open, Streaming, Stopped, Disconnected, Stalled };
@@ -66,8 +74,11 @@ public:
     // Disconnected -> Streaming when the camera is back (capabilities().reconnects); called on the capture
     // thread, which retries until it succeeds or the session stops.
     Status reconnect();
-    // Wakes a capture() blocked on the capture thread. The one method another thread may call.
+    // Wakes a capture() blocked on the capture thread. May be called from any thread.
     virtual void interruptCapture() {}
+    // Tells the device what its consumers need from the frames it has not produced yet. May be called from
+    // any thread, at any state; a device that cannot leave anything out ignores it.
+    virtual void setDemand(const SourceDemand&) {}
 
 protected:
     Device() = default;

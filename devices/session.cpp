@@ -122,6 +122,11 @@ void Session::setFrameTap(std::function<void(const frame::FramePtr&)> tap) {
     tap_ = std::move(tap);
 }
 
+void Session::setFrameListener(std::function<void()> listener) {
+    std::lock_guard lock(tapMutex_);
+    listener_ = std::move(listener);
+}
+
 void Session::onFrame(frame::FramePtr frame) {
     {
         std::lock_guard lock(tapMutex_);
@@ -135,6 +140,9 @@ void Session::onFrame(frame::FramePtr frame) {
     mailbox_.post(std::move(frame));
     deliveries_.tick();
     deviceFps_ = deliveries_.perSecond();
+    std::lock_guard lock(tapMutex_);
+    if (listener_)
+        listener_();
 }
 
 void Session::push(SessionEvent event) {

@@ -60,6 +60,11 @@ public:
     // Called on the capture thread with every frame before it is posted (a recorder's push). The tap
     // must return at once; an empty function removes it. Thread-safe.
     void setFrameTap(std::function<void(const frame::FramePtr&)> tap);
+    // Called on the capture thread after each frame is posted, so a consumer waiting on something else
+    // too (the frame processor) can wake up and take it. Must return at once; empty removes it. Thread-safe.
+    void setFrameListener(std::function<void()> listener);
+    // Forwarded to the device (Device::setDemand); thread-safe.
+    void setDemand(const SourceDemand& demand) { device_->setDemand(demand); }
     DeviceState state() const { return state_.load(); }
     const std::string& description() const { return description_; }
     const Capabilities& capabilities() const { return capabilities_; }
@@ -86,6 +91,7 @@ private:
     base::RollingStats ages_{31}; // ages of the frames consumers took, for latencyMs
     std::mutex tapMutex_;
     std::function<void(const frame::FramePtr&)> tap_;
+    std::function<void()> listener_; // guarded by tapMutex_
     mutable std::mutex eventsMutex_;
     std::vector<SessionEvent> events_;
 };

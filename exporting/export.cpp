@@ -109,12 +109,15 @@ Expected<ExportResult> exportFrames(devices::replay::ReplaySource& source, const
         options.outDirectory + (options.format == ExportFormat::Png16 ? "/depth" : ""), ec);
     if (ec)
         return Error{"cannot create " + options.outDirectory + ": " + ec.message()};
-    source.setDecodeColor(options.format != ExportFormat::Png16);
+    // Processing may need the colour even for depth-only output (upsampling is guided by it).
+    source.setDecodeColor(options.format != ExportFormat::Png16 || options.transform);
     StrayWriter stray(options.outDirectory, meanFps(source, range));
     ExportResult result;
     const std::size_t total = range.end - range.first;
     for (std::size_t i = range.first; i < range.end; ++i) {
         auto frame = devices::replay::loadFrame(source, i);
+        if (frame && options.transform)
+            *frame = options.transform(std::move(*frame));
         if (!frame || !frame->sceneDepth) {
             logWarning("export: skipping frame " + std::to_string(i) + ": " +
                        (frame ? std::string("it has no depth") : frame.error().message));

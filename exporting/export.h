@@ -31,6 +31,9 @@ struct ExportOptions {
     std::string outDirectory;
     FrameRange frames;             // end == 0: to the last frame
     bool worldCoordinates = false; // PLY: points through the frame's pose (when it has one)
+    // Applied to each frame before it is written, in order (the instrument's processing: smoothing and
+    // upsampling make the depth that was shown, which then replaces sceneDepth). None: frames as recorded.
+    std::function<frame::Frame(frame::Frame)> transform;
 };
 
 struct ExportResult {

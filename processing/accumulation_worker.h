@@ -19,8 +19,12 @@ namespace dc::processing {
 // points between two adds and never waits for one.
 class AccumulationWorker {
 public:
+    // The shown cloud's samples (held, so the producer may move on) and the pose that places them.
     struct Request {
-        frame::FramePtr frame;
+        std::shared_ptr<const frame::DepthData> depth;
+        frame::Intrinsics intrinsics;
+        std::shared_ptr<const RgbImage> colors;
+        frame::Pose pose;
         frame::Confidence minLevel = frame::Confidence::Low;
         float nearMeters = 0.0f;
         std::size_t budget = PointAccumulator::kDefaultBudget;

@@ -233,15 +233,23 @@ frame::Plane<std::uint8_t> subjectMatte(const frame::DepthData& depth, const fra
 RgbaImage renderAura(const frame::Frame& frame, const AuraSettings& settings, DepthSource source,
                      double timeSeconds) {
     const auto [width, height] = halfCameraSize(frame.capturedImage);
-    std::vector<std::uint8_t> rgb = cameraRgb(frame.capturedImage, width, height);
-    if (rgb.empty())
+    return renderAura(cameraRgbImage(frame.capturedImage, width, height), shownDepth(frame, source),
+                      frame.depthIntrinsics(), settings, timeSeconds);
+}
+
+RgbaImage renderAura(const RgbImage& cameraImage, const frame::DepthData* depth,
+                     const frame::Intrinsics& depthIntrinsics, const AuraSettings& settings,
+                     double timeSeconds) {
+    if (cameraImage.empty())
         return {};
+    const int width = cameraImage.width, height = cameraImage.height;
+    const std::vector<std::uint8_t>& rgb = cameraImage.pixels;
     const cv::Size work(std::max(1, static_cast<int>(width * kWorkScale)),
                         std::max(1, static_cast<int>(height * kWorkScale)));
     cv::Mat white(work, CV_32F, cv::Scalar(0.0f));
-    if (const frame::DepthData* depth = shownDepth(frame, source); depth && !depth->depthMeters.empty()) {
+    if (depth && !depth->depthMeters.empty()) {
         cv::Mat matte;
-        cv::resize(asMat(subjectMatte(*depth, frame.depthIntrinsics(), settings)), matte, work, 0, 0,
+        cv::resize(asMat(subjectMatte(*depth, depthIntrinsics, settings)), matte, work, 0, 0,
                    cv::INTER_NEAREST);
         const int ring = std::max(1, static_cast<int>(std::lround(settings.ringPixels * kWorkScale)));
         cv::Mat dilated;

@@ -26,5 +26,10 @@ frame::Plane<std::uint8_t> subjectMatte(const frame::DepthData& depth, const fra
 // without a camera image; the camera image without depth.
 RgbaImage renderAura(const frame::Frame& frame, const AuraSettings& settings, DepthSource source,
                      double timeSeconds);
+// The same from a camera image already at the output size, the depth that makes the matte (null: none) and
+// that depth's camera intrinsics.
+RgbaImage renderAura(const RgbImage& cameraImage, const frame::DepthData* depth,
+                     const frame::Intrinsics& depthIntrinsics, const AuraSettings& settings,
+                     double timeSeconds);
 
 } // namespace dc::processing

@@ -108,4 +108,11 @@ std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width
     return {};
 }
 
+RgbImage cameraRgbImage(const frame::CapturedImage& image, int width, int height) {
+    std::vector<std::uint8_t> rgb = cameraRgb(image, width, height);
+    if (rgb.empty())
+        return {};
+    return {width, height, std::move(rgb)};
+}
+
 } // namespace dc::processing

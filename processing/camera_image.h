@@ -19,6 +19,14 @@ struct GrayView {
     bool empty() const { return pixels == nullptr || width <= 0 || height <= 0; }
 };
 
+// An 8-bit RGB image, rows top to bottom without padding: point colours, the camera panel's image.
+struct RgbImage {
+    int width = 0;
+    int height = 0;
+    std::vector<std::uint8_t> pixels;
+    bool empty() const { return pixels.empty(); }
+};
+
 // An 8-bit RGBA image, rows top to bottom without padding, ready for a texture or writeRgbaPng.
 struct RgbaImage {
     int width = 0;
@@ -36,6 +44,9 @@ GrayView lumaView(const frame::CapturedImage& image, std::vector<std::uint8_t>& 
 // full-range BT.601 as the sample's matrix (frame::ycbcrToRgb, to 0.2 levels). Empty for an empty or
 // malformed image.
 std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width, int height);
+
+// cameraRgb as an RgbImage (empty when cameraRgb is).
+RgbImage cameraRgbImage(const frame::CapturedImage& image, int width, int height);
 
 // Half the camera image's size, rounded up: the resolution of the fog and aura images (960x720 for ARKit's
 // 1920x1440), which the point-cloud sample also uses for its depth texture.

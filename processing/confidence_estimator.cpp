@@ -127,19 +127,22 @@ frame::Plane<std::uint8_t> estimateConfidence(const frame::Plane<float>& depth,
 }
 
 bool ConfidenceEstimatorStage::wanted(const ProcessingSettings&, const Needs& needs) const {
-    return needs.anyDepth();
+    return needs.confidence;
 }
 
 frame::FramePtr ConfidenceEstimatorStage::process(frame::FramePtr frame, const ProcessingSettings&) {
     if (!frame || !frame->sceneDepth || !frame->sceneDepth->confidence.empty() ||
         frame->sceneDepth->depthMeters.empty())
         return frame;
+    if (!current_ || current_->timestampNs != frame->timestampNs) {
+        previous_ = std::move(current_);
+        current_ = frame;
+    }
     auto estimated = std::make_shared<frame::Frame>(*frame);
     frame::DepthData& depth = *estimated->sceneDepth;
-    depth.confidence =
-        estimateConfidence(depth.depthMeters, previous_.empty() ? nullptr : &previous_, params_);
+    const frame::Plane<float>* previous = previous_ ? &previous_->sceneDepth->depthMeters : nullptr;
+    depth.confidence = estimateConfidence(depth.depthMeters, previous, params_);
     depth.confidenceEstimated = true;
-    previous_ = depth.depthMeters;
     return estimated;
 }
 

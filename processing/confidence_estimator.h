@@ -35,7 +35,8 @@ frame::Plane<std::uint8_t> estimateConfidence(const frame::Plane<float>& depthMe
                                               const ConfidenceEstimatorParams& params = {});
 
 // The pipeline stage: fills sceneDepth.confidence with the estimate (and sets confidenceEstimated) when the
-// source gave none; frames with sensor confidence pass through untouched. Runs whenever depth is shown.
+// source gave none; frames with sensor confidence pass through untouched. Runs only while something reads
+// confidence (Needs::confidence).
 class ConfidenceEstimatorStage final : public Stage {
 public:
     explicit ConfidenceEstimatorStage(ConfidenceEstimatorParams params = {}) : params_(params) {}
@@ -43,11 +44,17 @@ public:
     std::string_view name() const override { return kConfidenceEstimateStage; }
     bool wanted(const ProcessingSettings& settings, const Needs& needs) const override;
     frame::FramePtr process(frame::FramePtr frame, const ProcessingSettings& settings) override;
-    void reset() override { previous_ = {}; }
+    void reset() override {
+        previous_.reset();
+        current_.reset();
+    }
 
 private:
     ConfidenceEstimatorParams params_;
-    frame::Plane<float> previous_;
+    // The frames estimated last and before it (frames are shared and immutable: holding them costs nothing),
+    // so a redo of the current frame compares with the same previous depth.
+    frame::FramePtr previous_;
+    frame::FramePtr current_;
 };
 
 } // namespace dc::processing

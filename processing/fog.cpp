@@ -52,10 +52,14 @@ std::vector<float> keptWeight(const frame::DepthData& depth, bool overlay) {
 
 RgbaImage renderFog(const frame::Frame& frame, const FogSettings& settings, DepthSource source) {
     const auto [width, height] = halfCameraSize(frame.capturedImage);
-    std::vector<std::uint8_t> rgb = cameraRgb(frame.capturedImage, width, height);
-    if (rgb.empty())
+    return renderFog(cameraRgbImage(frame.capturedImage, width, height), shownDepth(frame, source), settings);
+}
+
+RgbaImage renderFog(const RgbImage& cameraImage, const frame::DepthData* depth, const FogSettings& settings) {
+    if (cameraImage.empty())
         return {};
-    const frame::DepthData* depth = shownDepth(frame, source);
+    const int width = cameraImage.width, height = cameraImage.height;
+    const std::vector<std::uint8_t>& rgb = cameraImage.pixels;
     const frame::DepthData none{frame::Plane<float>(1, 1), {}};
     const bool fogged = depth && !depth->depthMeters.empty();
     const frame::DepthData& d = fogged ? *depth : none;

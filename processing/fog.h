@@ -17,5 +17,8 @@ namespace dc::processing {
 // keeps it to a few milliseconds on two cores. Empty when the frame has no camera image; the plain camera
 // image when it has no depth.
 RgbaImage renderFog(const frame::Frame& frame, const FogSettings& settings, DepthSource source);
+// The same from a camera image already at the output size (the engine converts it once for fog and aura)
+// and the depth to fog with (null: none).
+RgbaImage renderFog(const RgbImage& cameraImage, const frame::DepthData* depth, const FogSettings& settings);
 
 } // namespace dc::processing

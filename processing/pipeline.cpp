@@ -39,9 +39,12 @@ frame::FramePtr Pipeline::run(frame::FramePtr frame, const ProcessingSettings& s
         if (!stage->wanted(settings, needs))
             continue;
         const auto start = std::chrono::steady_clock::now();
+        const frame::FramePtr in = frame;
         frame = stage->process(std::move(frame), settings);
         const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
-        timings_.push_back({std::string(stage->name()), took.count()});
+        // A stage that passed the frame through did no work (sensor confidence needs no estimate).
+        if (frame != in)
+            timings_.push_back({std::string(stage->name()), took.count()});
     }
     return frame;
 }

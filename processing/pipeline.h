@@ -23,6 +23,8 @@ struct ProcessingSettings {
     DepthSource depthSource = DepthSource::Smoothed;
     FogSettings fog;
     AuraSettings aura;
+
+    bool operator==(const ProcessingSettings&) const = default;
 };
 
 // The depth map that `source` selects in `frame` (smoothed when asked for and present, else sceneDepth);
@@ -39,12 +41,17 @@ struct Needs {
     bool cameraPanel = true;
     bool fogPanel = false;
     bool auraPanel = false;
+    // Something reads confidence: the confidence panel, a level above "all", the fog's confidence overlay.
+    bool confidence = true;
 
     bool anyDepth() const { return cloud || depthPanel || confidencePanel || fogPanel || auraPanel; }
+    bool operator==(const Needs&) const = default;
 };
 
 // One processing step: takes a frame and returns a new one (frames are immutable; a stage that changes
-// nothing returns its input).
+// nothing returns its input). A stage with temporal state treats a frame with the same timestamp as the one
+// it processed last as that frame again (a redo after a settings change, or the same capture re-delivered
+// with its colour): it starts from the state it had before that frame, so a redo never advances history.
 class Stage {
 public:
     virtual ~Stage() = default;
@@ -68,7 +75,8 @@ public:
     frame::FramePtr run(frame::FramePtr frame, const ProcessingSettings& settings, const Needs& needs);
     void reset();
     bool hasStage(std::string_view name) const;
-    // Timings of the stages that ran in the last run() (stages skipped are absent).
+    // Timings of the stages that made something in the last run() (stages skipped, or that passed the frame
+    // through, are absent).
     const std::vector<StageTiming>& lastTimings() const { return timings_; }
 
 private:

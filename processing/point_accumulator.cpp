@@ -4,6 +4,7 @@
 #include "processing/confidence_filter.h"
 #include "processing/parallel.h"
 #include "processing/point_cloud.h"
+#include "processing/point_colors.h"
 
 #include <algorithm>
 #include <bit>
@@ -20,12 +21,6 @@ constexpr std::size_t kChunk = 256;
 constexpr int kMinRowsPerThread = 32;
 constexpr std::size_t kInitialTable = 4096;
 constexpr std::uint64_t kCellMask = 0x1fffff;
-
-std::uint32_t packRgba(const frame::Rgb& c) {
-    return static_cast<std::uint32_t>(frame::toByte(c.r)) |
-           static_cast<std::uint32_t>(frame::toByte(c.g)) << 8 |
-           static_cast<std::uint32_t>(frame::toByte(c.b)) << 16 | 0xff000000u;
-}
 
 // The camera-to-world transform in float, row-major 3x4: enough precision for points within a few
 // kilometres of the origin at a millimetre voxel.
@@ -57,71 +52,7 @@ std::uint64_t cellOf(float v, float voxelMeters) {
            kCellMask;
 }
 
-frame::CapturedImage tinyImage(frame::PixelFormat format, int width, std::vector<std::uint8_t> bytes) {
-    return {format, width, 1, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
-}
-
 } // namespace
-
-CameraColourTable::CameraColourTable()
-    : ycbcr_(new std::uint32_t[std::size_t{1} << 24]), pairsFilled_((std::size_t{1} << 16) / 64) {
-    for (int v = 0; v < 256; ++v) {
-        const auto b = static_cast<std::uint8_t>(v);
-        rgbByte_[static_cast<std::size_t>(v)] =
-            packRgba(frame::pixelRgb(tinyImage(frame::PixelFormat::Rgb24, 1, {b, b, b}), 0, 0)) & 0xffu;
-    }
-}
-
-bool CameraColourTable::use(const frame::CapturedImage& image) {
-    if (image.empty() || image.width <= 0 || image.height <= 0 ||
-        image.bytes->size() < frame::CapturedImage::byteSize(image.format, image.width, image.height))
-        return false;
-    bytes_ = image.bytes->data();
-    format_ = image.format;
-    width_ = static_cast<std::size_t>(image.width);
-    height_ = static_cast<std::size_t>(image.height);
-    return true;
-}
-
-// The same addressing as frame::pixelRgb; the conversion itself is pixelRgb's, through the table.
-std::uint32_t CameraColourTable::rgba(int xi, int yi) {
-    const auto x = static_cast<std::size_t>(xi), y = static_cast<std::size_t>(yi);
-    switch (format_) {
-    case frame::PixelFormat::Nv12: {
-        const std::uint8_t* chroma = bytes_ + width_ * height_ + ((y / 2) * ((width_ + 1) / 2) + x / 2) * 2;
-        return ycbcr(bytes_[y * width_ + x], chroma[0], chroma[1]);
-    }
-    case frame::PixelFormat::Yuyv: {
-        const std::uint8_t* pair = bytes_ + y * 4 * ((width_ + 1) / 2) + (x / 2) * 4;
-        return ycbcr(pair[(x & 1) * 2], pair[1], pair[3]);
-    }
-    case frame::PixelFormat::Rgb24: {
-        const std::uint8_t* p = bytes_ + (y * width_ + x) * 3;
-        return rgbByte_[p[0]] | rgbByte_[p[1]] << 8 | rgbByte_[p[2]] << 16 | 0xff000000u;
-    }
-    }
-    return 0xff808080u;
-}
-
-std::uint32_t CameraColourTable::ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr) {
-    const std::uint32_t pair = static_cast<std::uint32_t>(cb) << 8 | cr;
-    if (!(pairsFilled_[pair / 64] >> (pair % 64) & 1))
-        fillPair(pair);
-    return ycbcr_[std::size_t{pair} << 8 | y];
-}
-
-// pixelRgb of a 2x1 NV12 image for each luma, so the table holds exactly what pixelRgb computes.
-void CameraColourTable::fillPair(std::uint32_t pair) {
-    auto bytes = std::make_shared<std::vector<std::uint8_t>>(4);
-    (*bytes)[2] = static_cast<std::uint8_t>(pair >> 8);
-    (*bytes)[3] = static_cast<std::uint8_t>(pair & 0xff);
-    const frame::CapturedImage image{frame::PixelFormat::Nv12, 2, 1, bytes};
-    for (std::uint32_t y = 0; y < 256; ++y) {
-        (*bytes)[0] = static_cast<std::uint8_t>(y);
-        ycbcr_[std::size_t{pair} << 8 | y] = packRgba(frame::pixelRgb(image, 0, 0));
-    }
-    pairsFilled_[pair / 64] |= std::uint64_t{1} << (pair % 64);
-}
 
 PointAccumulator::PointAccumulator(std::size_t budget, float voxelMeters) : voxelMeters_(voxelMeters) {
     configure(budget, voxelMeters);
@@ -218,10 +149,10 @@ bool PointAccumulator::evictOldest() {
 
 // Row v's samples as candidates at out[0, width): kept ones in world coordinates with their voxel, the
 // others marked unkept. Touches nothing else, so rows may run on several threads.
-void PointAccumulator::gatherRow(const frame::Frame& frame, const std::array<float, 12>& m, int v,
+void PointAccumulator::gatherRow(const CloudSamples& samples, const std::array<float, 12>& m, int v,
                                  frame::Confidence minLevel, float nearMeters, Candidate* out) const {
-    const frame::DepthData& depth = *frame.sceneDepth;
-    const frame::Intrinsics k = frame.depthIntrinsics();
+    const frame::DepthData& depth = *samples.depth;
+    const frame::Intrinsics& k = samples.intrinsics;
     for (int u = 0; u < depth.depthMeters.width; ++u) {
         Candidate& c = out[u];
         const float z = depth.depthMeters.at(u, v);
@@ -260,10 +191,9 @@ std::uint64_t PointAccumulator::touchFor(std::size_t begin, std::size_t end) con
     return sink;
 }
 
-std::size_t PointAccumulator::insertCandidates(const frame::Frame& frame) {
-    const int w = frame.sceneDepth->depthMeters.width, h = frame.sceneDepth->depthMeters.height;
-    const bool imageUsable = colours_.use(frame.capturedImage);
-    const std::uint32_t fallback = imageUsable ? 0 : packRgba(frame::pixelRgb(frame.capturedImage, 0, 0));
+std::size_t PointAccumulator::insertCandidates(const CloudSamples& samples) {
+    const int w = samples.depth->depthMeters.width;
+    const std::uint8_t gray[3] = {128, 128, 128}; // pixelRgb's colour without an image
     std::size_t added = 0;
     for (std::size_t i = 0; i < candidates_.size(); ++i) {
         if (i % kChunk == 0)
@@ -280,12 +210,9 @@ std::size_t PointAccumulator::insertCandidates(const frame::Frame& frame) {
         if (table_[at].key != c.blockKey)
             at = addBlock(at, c.blockKey);
         table_[at].bits |= bit;
-        const auto [ix, iy] = cameraPixelOf(c.u, c.v, w, h, frame.capturedImage);
-        const std::uint32_t rgba = imageUsable
-                                       ? colours_.rgba(std::clamp(ix, 0, frame.capturedImage.width - 1),
-                                                       std::clamp(iy, 0, frame.capturedImage.height - 1))
-                                       : fallback;
-        store({c.point.x, c.point.y, c.point.z, rgba}, c.blockKey << 6 | c.bit);
+        const std::uint8_t* rgb =
+            samples.colors ? &samples.colors->pixels[(static_cast<std::size_t>(c.v) * w + c.u) * 3] : gray;
+        store({c.point.x, c.point.y, c.point.z, packRgba(rgb)}, c.blockKey << 6 | c.bit);
         ++added;
     }
     return added;
@@ -301,19 +228,26 @@ void PointAccumulator::store(const WorldPoint& point, std::uint64_t voxel) {
     count_ = std::min(count_ + 1, points_.size());
 }
 
-std::size_t PointAccumulator::add(const frame::Frame& frame, frame::Confidence minLevel, float nearMeters) {
-    if (!frame.pose || !frame.sceneDepth || !frame.cameraIntrinsics.valid())
+std::size_t PointAccumulator::add(const CloudSamples& samples, const frame::Pose& pose,
+                                  frame::Confidence minLevel, float nearMeters) {
+    if (!samples.usable())
         return 0;
-    const int w = frame.sceneDepth->depthMeters.width, h = frame.sceneDepth->depthMeters.height;
-    if (w <= 0 || h <= 0)
-        return 0;
-    const std::array<float, 12> m = rowMajor(*frame.pose);
+    const int w = samples.depth->depthMeters.width, h = samples.depth->depthMeters.height;
+    const std::array<float, 12> m = rowMajor(pose);
     candidates_.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
     parallelRanges(h, kMinRowsPerThread, [&](int begin, int end) {
         for (int v = begin; v < end; ++v)
-            gatherRow(frame, m, v, minLevel, nearMeters, &candidates_[static_cast<std::size_t>(v) * w]);
+            gatherRow(samples, m, v, minLevel, nearMeters, &candidates_[static_cast<std::size_t>(v) * w]);
     });
-    return insertCandidates(frame);
+    return insertCandidates(samples);
+}
+
+std::size_t PointAccumulator::add(const frame::Frame& frame, frame::Confidence minLevel, float nearMeters) {
+    if (!frame.pose || !frame.sceneDepth)
+        return 0;
+    const auto& d = frame.sceneDepth->depthMeters;
+    const RgbImage colors = pointColors(frame.capturedImage, d.width, d.height);
+    return add({&*frame.sceneDepth, frame.depthIntrinsics(), &colors}, *frame.pose, minLevel, nearMeters);
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> PointAccumulator::takeDirty() {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "frame/frame.h"
+#include "processing/point_cloud.h"
 
 #include <array>
 #include <cstddef>
@@ -18,30 +19,6 @@ struct WorldPoint {
     std::uint32_t rgba = 0;
 };
 
-// The packed RGBA colour of camera-image pixels, exactly as packing frame::pixelRgb's result gives it,
-// at the cost of a table look-up: the table holds pixelRgb's own results for every YCbCr triplet, filled
-// one chroma pair (256 lumas) at a time when a pair is first met, so only the colours a scene uses take
-// memory.
-class CameraColourTable {
-public:
-    CameraColourTable();
-    // Prepares for the pixels of `image`; false when the image is empty or malformed.
-    bool use(const frame::CapturedImage& image);
-    // The colour of pixel (x, y), which must lie inside the image last passed to use().
-    std::uint32_t rgba(int x, int y);
-
-private:
-    std::uint32_t ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr);
-    void fillPair(std::uint32_t pair);
-
-    std::unique_ptr<std::uint32_t[]> ycbcr_;   // [cb][cr][y], rows valid where pairsFilled_ says so
-    std::vector<std::uint64_t> pairsFilled_;   // one bit per (cb, cr)
-    std::array<std::uint32_t, 256> rgbByte_{}; // RGB24: each channel's byte as pixelRgb and packing give it
-    const std::uint8_t* bytes_ = nullptr;
-    frame::PixelFormat format_ = frame::PixelFormat::Nv12;
-    std::size_t width_ = 0, height_ = 0;
-};
-
 // The WWDC20 "accumulate" mode: every posed frame adds its points, in world coordinates, to a bounded
 // budget. The oldest points leave first when the budget is full, and a point whose voxel already holds
 // one is not added again, so a camera dwelling on a surface does not fill the budget with copies of it.
@@ -52,8 +29,8 @@ private:
 // last point does. At a fine voxel nearly every sample lands in a block far from the previous one in
 // memory, so the cost is cache misses: adding first computes the whole frame's voxels (on two threads),
 // then loads the entries a chunk of samples and its evictions will need in independent passes, so that
-// the misses overlap, before the sequential de-dup and eviction. Colours come from a CameraColourTable and
-// are looked up only for the samples that are new.
+// the misses overlap, before the sequential de-dup and eviction. Colours are the samples' own (the
+// shown cloud's), packed only for the samples that are new.
 class PointAccumulator {
 public:
     static constexpr std::size_t kDefaultBudget = 1'000'000;
@@ -63,8 +40,11 @@ public:
 
     // Changes the budget or voxel size; either change clears what was accumulated.
     void configure(std::size_t budget, float voxelMeters);
-    // Adds the frame's kept samples (confidence and near limit as the cloud draws them). A frame without
-    // a pose or depth adds nothing. Returns the number of points added.
+    // Adds the kept samples (confidence and near limit as the cloud draws them), moved into the world by
+    // `pose`. Unusable samples add nothing. Returns the number of points added.
+    std::size_t add(const CloudSamples& samples, const frame::Pose& pose, frame::Confidence minLevel,
+                    float nearMeters);
+    // The raw frame's samples (buildPointCloud's), through its pose; nothing without one.
     std::size_t add(const frame::Frame& frame, frame::Confidence minLevel, float nearMeters);
     void clear();
 
@@ -104,10 +84,10 @@ private:
     void eraseEntry(std::size_t at);
     void resetBlocks();
     bool evictOldest();
-    void gatherRow(const frame::Frame& frame, const std::array<float, 12>& m, int v,
+    void gatherRow(const CloudSamples& samples, const std::array<float, 12>& m, int v,
                    frame::Confidence minLevel, float nearMeters, Candidate* out) const;
     std::uint64_t touchFor(std::size_t begin, std::size_t end) const;
-    std::size_t insertCandidates(const frame::Frame& frame);
+    std::size_t insertCandidates(const CloudSamples& samples);
     void store(const WorldPoint& point, std::uint64_t voxel);
 
     float voxelMeters_;
@@ -117,7 +97,6 @@ private:
     int tableShift_ = 0;
     std::size_t tableCount_ = 0;
     std::vector<Candidate> candidates_; // scratch, kept to reuse its allocation
-    CameraColourTable colours_;
     std::uint64_t touched_ = 0; // what touchFor loaded, kept so that its loads are not optimised away
     std::size_t next_ = 0;
     std::size_t count_ = 0;

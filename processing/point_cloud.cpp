@@ -2,18 +2,26 @@
 
 #include "frame/color.h"
 #include "processing/confidence_filter.h"
+#include "processing/point_colors.h"
 
 namespace dc::processing {
 
-std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confidence minLevel,
+bool CloudSamples::usable() const {
+    if (!depth || !intrinsics.valid())
+        return false;
+    const auto& d = depth->depthMeters;
+    return d.width > 0 && d.height > 0 && d.pixels.size() == static_cast<std::size_t>(d.width) * d.height &&
+           (!colors || (colors->width == d.width && colors->height == d.height));
+}
+
+std::vector<CloudPoint> buildPointCloud(const CloudSamples& samples, frame::Confidence minLevel,
                                         float nearMeters) {
     std::vector<CloudPoint> points;
-    if (!frame.sceneDepth || !frame.cameraIntrinsics.valid())
+    if (!samples.usable())
         return points;
-    const frame::DepthData& depth = *frame.sceneDepth;
-    const frame::Intrinsics k = frame.depthIntrinsics();
+    const frame::DepthData& depth = *samples.depth;
     const int w = depth.depthMeters.width, h = depth.depthMeters.height;
-    const auto& image = frame.capturedImage;
+    const std::uint8_t gray = frame::toByte(0.5f);
     points.reserve(depth.depthMeters.pixels.size());
     for (int v = 0; v < h; ++v) {
         for (int u = 0; u < w; ++u) {
@@ -21,13 +29,22 @@ std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confid
             const std::uint8_t c = depth.confidence.empty() ? 2 : depth.confidence.at(u, v);
             if (!keepSample(z, c, minLevel, nearMeters))
                 continue;
-            const auto [x, y, zz] = unproject(u, v, z, k);
-            const auto [cx, cy] = cameraPixelOf(u, v, w, h, image);
-            const frame::Rgb rgb = frame::pixelRgb(image, cx, cy);
-            points.push_back({x, y, zz, frame::toByte(rgb.r), frame::toByte(rgb.g), frame::toByte(rgb.b), c});
+            const auto [x, y, zz] = unproject(u, v, z, samples.intrinsics);
+            const std::uint8_t* rgb =
+                samples.colors ? &samples.colors->pixels[(static_cast<std::size_t>(v) * w + u) * 3] : nullptr;
+            points.push_back({x, y, zz, rgb ? rgb[0] : gray, rgb ? rgb[1] : gray, rgb ? rgb[2] : gray, c});
         }
     }
     return points;
+}
+
+std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confidence minLevel,
+                                        float nearMeters) {
+    if (!frame.sceneDepth)
+        return {};
+    const auto& d = frame.sceneDepth->depthMeters;
+    const RgbImage colors = pointColors(frame.capturedImage, d.width, d.height);
+    return buildPointCloud({&*frame.sceneDepth, frame.depthIntrinsics(), &colors}, minLevel, nearMeters);
 }
 
 } // namespace dc::processing

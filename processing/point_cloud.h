@@ -1,6 +1,7 @@
 #pragma once
 
 #include "frame/frame.h"
+#include "processing/camera_image.h"
 
 #include <array>
 #include <cstdint>
@@ -32,8 +33,21 @@ inline std::array<int, 2> cameraPixelOf(int u, int v, int depthWidth, int depthH
                              static_cast<float>(depthHeight))};
 }
 
-// The CPU twin of the rendered cloud: one point per kept depth sample (processing::keepSample), colored by
-// the camera image at the matching pixel. Empty when the frame has no depth or invalid intrinsics.
+// What a cloud is made of: one depth map (with its confidence), the intrinsics that place it, and the colour
+// of each sample. Every reader of the shown cloud (the renderer, picking, accumulation, the snapshot PLY)
+// takes the same samples, so they all see the same points.
+struct CloudSamples {
+    const frame::DepthData* depth = nullptr;
+    frame::Intrinsics intrinsics;     // of depth's resolution
+    const RgbImage* colors = nullptr; // depth's size; null: every point mid-gray
+    bool usable() const;
+};
+
+// The CPU twin of the rendered cloud: one point per kept depth sample (processing::keepSample) with its
+// colour. Empty when there is no depth or the intrinsics are invalid.
+std::vector<CloudPoint> buildPointCloud(const CloudSamples& samples, frame::Confidence minLevel,
+                                        float nearMeters);
+// The raw frame's cloud: sceneDepth coloured by pointColors() of its camera image.
 std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confidence minLevel,
                                         float nearMeters);
 

@@ -61,9 +61,10 @@ void addRow(const std::uint8_t* __restrict src, const float* __restrict add, std
     }
 }
 
-std::array<cv::Mat, 3> rgbPlanes(std::vector<std::uint8_t>& rgb, int width, int height) {
+std::array<cv::Mat, 3> rgbPlanes(const std::vector<std::uint8_t>& rgb, int width, int height) {
     std::array<cv::Mat, 3> planes;
-    cv::split(cv::Mat(height, width, CV_8UC3, rgb.data()), planes.data());
+    // cv::Mat wants a mutable pointer; split only reads it.
+    cv::split(cv::Mat(height, width, CV_8UC3, const_cast<std::uint8_t*>(rgb.data())), planes.data());
     return planes;
 }
 

@@ -44,7 +44,7 @@ void addRow(const std::uint8_t* __restrict src, const float* __restrict add, std
             int n);
 
 // Packed RGB as three planes, and three planes (plus opaque alpha) back into one RGBA row.
-std::array<cv::Mat, 3> rgbPlanes(std::vector<std::uint8_t>& rgb, int width, int height);
+std::array<cv::Mat, 3> rgbPlanes(const std::vector<std::uint8_t>& rgb, int width, int height);
 void mergeRgba(const std::uint8_t* r, const std::uint8_t* g, const std::uint8_t* b, std::uint8_t* rgba,
                int n);
 

@@ -19,6 +19,8 @@ struct SmoothingParams {
     float jumpMeters = 0.10f;
     // Frames a pixel that loses its measurement keeps its last smoothed value (0 = holes show at once).
     int holeFrames = 3;
+
+    bool operator==(const SmoothingParams&) const = default;
 };
 
 enum class UpsamplingMethod {
@@ -46,6 +48,8 @@ struct UpsamplingParams {
     bool fitWeighted = true;
     // Residual spread (meters) below which a window counts as a good fit: about the sensor's noise.
     float fitNoiseMeters = 0.005f;
+
+    bool operator==(const UpsamplingParams&) const = default;
 };
 
 // Fog (ARKit's "Creating a fog effect using scene depth"): the camera image mixed with a fog color in
@@ -57,6 +61,8 @@ struct FogSettings {
     // The sample's debug overlay: red mixed in with weight 1 - confidence / 2 (solid red at low, half at
     // medium, none at high confidence).
     bool confidenceOverlay = false;
+
+    bool operator==(const FogSettings&) const = default;
 };
 
 enum class AuraMatte {
@@ -86,6 +92,8 @@ struct AuraSettings {
     float pulseHz = 3.18f;
     float whiteGain = 1.0f;
     float yellowGain = 2.0f; // the article doubles the yellow layer
+
+    bool operator==(const AuraSettings&) const = default;
 };
 
 } // namespace dc::processing

@@ -15,10 +15,14 @@ frame::FramePtr SmoothingStage::process(frame::FramePtr frame, const ProcessingS
     if (!frame || !frame->sceneDepth || frame->smoothedSceneDepth)
         return frame;
     const std::int64_t t = frame->timestampNs;
+    auto out = std::make_shared<frame::Frame>(*frame);
+    if (lastTimestampNs_ == t) {
+        out->smoothedSceneDepth = smoother_.redo(*frame->sceneDepth, settings.smoothingParams);
+        return out;
+    }
     if (lastTimestampNs_ && (t < *lastTimestampNs_ || t - *lastTimestampNs_ > kMaxGapNs))
         smoother_.reset();
     lastTimestampNs_ = t;
-    auto out = std::make_shared<frame::Frame>(*frame);
     out->smoothedSceneDepth = smoother_.smooth(*frame->sceneDepth, settings.smoothingParams);
     return out;
 }

@@ -23,7 +23,7 @@ public:
 
 private:
     TemporalSmoother smoother_;
-    std::optional<std::int64_t> lastTimestampNs_;
+    std::optional<std::int64_t> lastTimestampNs_; // of the frame smoothed last
 };
 
 } // namespace dc::processing

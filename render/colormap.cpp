@@ -1,5 +1,7 @@
 #include "render/colormap.h"
 
+#include <cstdio>
+
 #include <algorithm>
 #include <cmath>
 
@@ -108,13 +110,23 @@ std::array<float, 3> colormapColor(Colormap colormap, float normalised) {
     return {a[0] + (b[0] - a[0]) * f, a[1] + (b[1] - a[1]) * f, a[2] + (b[2] - a[2]) * f};
 }
 
-const char* const kColormapGlsl = R"glsl(
-uniform vec3 colormapStops[17];
+std::string colormapGlsl(Colormap colormap) {
+    std::string glsl = "\nconst vec3 colormapStops[17] = vec3[](";
+    char stop[96];
+    const ColormapStops& stops = colormapStops(colormap);
+    for (std::size_t i = 0; i < stops.size(); ++i) {
+        // Nine significant digits: the float each stop is on the CPU, exactly.
+        std::snprintf(stop, sizeof stop, "%svec3(%.9g, %.9g, %.9g)", i == 0 ? "" : ", ", stops[i][0], stops[i][1],
+                      stops[i][2]);
+        glsl += stop;
+    }
+    return glsl + R"glsl();
 vec3 colormapColor(float normalised) {
     float x = (normalised > 0.0 ? min(normalised, 1.0) : 0.0) * 16.0;
     int i = min(int(x), 15);
     return mix(colormapStops[i], colormapStops[i + 1], x - float(i));
 }
 )glsl";
+}
 
 } // namespace dc::render

@@ -1,6 +1,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 
 namespace dc::render {
 
@@ -24,8 +25,10 @@ const ColormapStops& colormapStops(Colormap colormap);
 // `normalised` is clamped to [0, 1]; NaN maps like 0.
 std::array<float, 3> colormapColor(Colormap colormap, float normalised);
 
-// GLSL for shaders: `uniform vec3 colormapStops[17]` (upload colormapStops() into it) and
-// `vec3 colormapColor(float normalised)`, the same interpolation as the C++ function.
-extern const char* const kColormapGlsl;
+// GLSL for shaders: `colormapStops[17]`, the stops of `colormap` as constants, and
+// `vec3 colormapColor(float normalised)`, the same interpolation as the C++ function. A program per
+// colormap rather than a uniform array: Mesa's llvmpipe was seen to draw with a uniform array's previous
+// contents now and then after it had been updated, which painted a depth panel in the wrong colormap.
+std::string colormapGlsl(Colormap colormap);
 
 } // namespace dc::render

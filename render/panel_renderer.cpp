@@ -7,6 +7,7 @@
 
 #include <string>
 #include <utility>
+#include <vector>
 
 namespace dc::render {
 
@@ -49,26 +50,16 @@ void main() {
 constexpr const char* kConfidenceMain = R"glsl(
 void main() {
     uint level = texelFetch(confidenceMap, texelUnder(textureSize(confidenceMap, 0)), 0).r;
-    vec3 color = level == 0u ? vec3(1.0, 0.0, 0.0)
-               : level == 1u ? vec3(0.0, 1.0, 0.0)
-               : level == 2u ? vec3(0.0, 0.0, 1.0)
-                             : vec3(0.0);
-    fragColor = vec4(color, 1.0);
-}
-)glsl";
-
-constexpr const char* kCameraMain = R"glsl(
-void main() {
-    fragColor = vec4(cameraColor(imageCoord()), 1.0);
+    fragColor = vec4(confidenceColor(level), 1.0);
 }
 )glsl";
 
 // Thinner than any depth range worth showing; keeps a collapsed range from dividing by zero.
 constexpr float kMinRangeMeters = 1e-6f;
 
-Expected<gl::Program> linkPanel(const char* name, const char* main) {
+Expected<gl::Program> linkPanel(const char* name, const char* main, Colormap colormap = Colormap::Jet) {
     const std::string fragment =
-        std::string("#version 330 core\n") + kFrameTexturesGlsl + kColormapGlsl + kPanelCommon + main;
+        std::string("#version 330 core\n") + kFrameTexturesGlsl + colormapGlsl(colormap) + kPanelCommon + main;
     Expected<gl::Program> program = gl::Program::link(kFullscreenVertexShader, fragment);
     if (!program)
         return Error{std::string(name) + " panel shaders: " + program.error().message};
@@ -79,19 +70,19 @@ Expected<gl::Program> linkPanel(const char* name, const char* main) {
 } // namespace
 
 Status PanelRenderer::init() {
-    std::pair<Panel*, Expected<gl::Program>> panels[] = {
-        {&depth_, linkPanel("depth", kDepthMain)},
-        {&confidence_, linkPanel("confidence", kConfidenceMain)},
-        {&camera_, linkPanel("camera", kCameraMain)}};
+    std::vector<std::pair<Panel*, Expected<gl::Program>>> panels;
+    for (int c = 0; c < kColormapCount; ++c)
+        panels.emplace_back(&depth_[static_cast<std::size_t>(c)],
+                            linkPanel("depth", kDepthMain, static_cast<Colormap>(c)));
+    panels.emplace_back(&confidence_, linkPanel("confidence", kConfidenceMain));
     for (auto& [panel, program] : panels) {
         if (!program)
             return program.error();
         panel->program = std::move(program).value();
         panel->viewportSize = panel->program.uniformLocation("viewportSize");
+        panel->minMeters = panel->program.uniformLocation("minMeters");
+        panel->inverseRangeMeters = panel->program.uniformLocation("inverseRangeMeters");
     }
-    depthMinMeters_ = depth_.program.uniformLocation("minMeters");
-    depthInverseRange_ = depth_.program.uniformLocation("inverseRangeMeters");
-    depthColormapStops_ = depth_.program.uniformLocation("colormapStops");
     emptyVertexArray_ = gl::VertexArray::create();
     glUseProgram(0);
     return Status::success();
@@ -99,22 +90,16 @@ Status PanelRenderer::init() {
 
 void PanelRenderer::renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters,
                                 float maxMeters, Colormap colormap) {
-    if (!begin(target, textures, depth_, textures.hasDepth()))
+    const Panel& panel = depth_[static_cast<std::size_t>(colormap)];
+    if (!begin(target, textures, panel, textures.hasDepth()))
         return;
-    glUniform3fv(depthColormapStops_, kColormapStopCount, colormapStops(colormap).front().data());
-    glUniform1f(depthMinMeters_, minMeters);
-    glUniform1f(depthInverseRange_, 1.0f / glm::max(maxMeters - minMeters, kMinRangeMeters));
+    glUniform1f(panel.minMeters, minMeters);
+    glUniform1f(panel.inverseRangeMeters, 1.0f / glm::max(maxMeters - minMeters, kMinRangeMeters));
     draw();
 }
 
 void PanelRenderer::renderConfidence(RenderTarget& target, const FrameTextures& textures) {
     if (begin(target, textures, confidence_, textures.hasDepth()))
-        draw();
-}
-
-void PanelRenderer::renderCamera(RenderTarget& target, const FrameTextures& textures) {
-    // Any upload creates the camera textures (mid-gray without an image), with or without depth.
-    if (begin(target, textures, camera_, textures.lumaTexture() != 0))
         draw();
 }
 

@@ -6,10 +6,12 @@
 #include "render/gl_objects.h"
 #include "render/render_target.h"
 
+#include <array>
+
 namespace dc::render {
 
-// The 2D panels beside the cloud: depth as a jet colormap, confidence as red/green/blue, and the camera
-// image. Each fills its whole target with one fullscreen triangle; the caller sizes the target, usually to
+// The 2D data panels beside the cloud: depth in a colormap, confidence as red/green/blue (the camera panel
+// shows the engine's image as it is). Each fills its whole target with one fullscreen triangle; the caller sizes the target, usually to
 // the data's own resolution. Depth and confidence show the sample under each pixel without filtering, so
 // a panel at native size is pixel-exact. All leave framebuffer 0 bound.
 class PanelRenderer {
@@ -22,25 +24,21 @@ public:
                      Colormap colormap = Colormap::Jet);
     // Low red, medium green, high blue (the sample's colors); black without depth.
     void renderConfidence(RenderTarget& target, const FrameTextures& textures);
-    // The camera image converted to RGB; mid-gray without one.
-    void renderCamera(RenderTarget& target, const FrameTextures& textures);
 
 private:
     struct Panel {
         gl::Program program;
         GLint viewportSize = -1;
+        GLint minMeters = -1;
+        GLint inverseRangeMeters = -1;
     };
 
     bool begin(RenderTarget& target, const FrameTextures& textures, const Panel& panel, bool hasData) const;
     void draw() const;
 
     gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
-    Panel depth_;
+    std::array<Panel, kColormapCount> depth_; // one per colormap (colormapGlsl says why)
     Panel confidence_;
-    Panel camera_;
-    GLint depthMinMeters_ = -1;
-    GLint depthInverseRange_ = -1;
-    GLint depthColormapStops_ = -1;
 };
 
 } // namespace dc::render

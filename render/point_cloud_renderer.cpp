@@ -1,5 +1,6 @@
 #include "render/point_cloud_renderer.h"
 
+#include "render/colormap.h"
 #include "render/point_shaders.h"
 
 #include "render/render_pass.h"
@@ -19,6 +20,9 @@ uniform vec4 depthIntrinsics; // fx, fy, cx, cy in depth-map pixels
 uniform uint minConfidence;
 uniform float nearMeters;
 uniform float pointSizePixels;
+uniform int coloring; // render::PointColoring
+uniform float minMeters;
+uniform float inverseRangeMeters;
 
 out vec3 pointColor;
 
@@ -36,9 +40,9 @@ void main() {
     }
     vec2 xy = (vec2(pixel) - depthIntrinsics.zw) * z / depthIntrinsics.xy;
     gl_Position = viewProjection * vec4(xy, z, 1.0);
-    // The camera image covers the same field of view at its own resolution: sample at the centre of the
-    // area this depth pixel covers.
-    pointColor = cameraColor((vec2(pixel) + 0.5) / vec2(size));
+    pointColor = coloring == 0 ? texelFetch(colorMap, pixel, 0).rgb
+               : coloring == 1 ? colormapColor((z - minMeters) * inverseRangeMeters)
+                               : confidenceColor(confidence);
 }
 )glsl";
 
@@ -68,12 +72,34 @@ void main() {
 
 } // namespace
 
+const char* toString(PointColoring coloring) {
+    switch (coloring) {
+    case PointColoring::Camera:
+        return "camera";
+    case PointColoring::Depth:
+        return "depth";
+    case PointColoring::Confidence:
+        return "confidence";
+    }
+    return "camera";
+}
+
 Status PointCloudRenderer::init() {
-    const std::string vertexShader = std::string("#version 330 core\n") + kFrameTexturesGlsl + kVertexMain;
-    Expected<gl::Program> program = gl::Program::link(vertexShader, kPointColorFragmentShader);
-    if (!program)
-        return Error{"point cloud shaders: " + program.error().message};
-    program_ = std::move(program).value();
+    for (int c = 0; c < kColormapCount; ++c) {
+        const std::string vertexShader = std::string("#version 330 core\n") + kFrameTexturesGlsl +
+                                         colormapGlsl(static_cast<Colormap>(c)) + kVertexMain;
+        Expected<gl::Program> program = gl::Program::link(vertexShader, kPointColorFragmentShader);
+        if (!program)
+            return Error{"point cloud shaders: " + program.error().message};
+        CloudProgram& cloud = programs_[static_cast<std::size_t>(c)];
+        cloud.program = std::move(program).value();
+        const gl::Program& p = cloud.program;
+        FrameTextures::connectSamplers(p);
+        cloud.uniforms = {p.uniformLocation("viewProjection"),  p.uniformLocation("depthIntrinsics"),
+                          p.uniformLocation("minConfidence"),   p.uniformLocation("nearMeters"),
+                          p.uniformLocation("pointSizePixels"), p.uniformLocation("coloring"),
+                          p.uniformLocation("minMeters"),       p.uniformLocation("inverseRangeMeters")};
+    }
     Expected<gl::Program> anchors = gl::Program::link(kAnchorVertexShader, kPointColorFragmentShader);
     if (!anchors)
         return Error{"anchor shaders: " + anchors.error().message};
@@ -82,10 +108,6 @@ Status PointCloudRenderer::init() {
     anchorPositions_ = anchorProgram_.uniformLocation("anchors");
     anchorHalfSize_ = anchorProgram_.uniformLocation("halfSize");
     emptyVertexArray_ = gl::VertexArray::create();
-    FrameTextures::connectSamplers(program_);
-    uniforms_ = {program_.uniformLocation("viewProjection"), program_.uniformLocation("depthIntrinsics"),
-                 program_.uniformLocation("minConfidence"), program_.uniformLocation("nearMeters"),
-                 program_.uniformLocation("pointSizePixels")};
     glUseProgram(0);
     return Status::success();
 }
@@ -98,10 +120,11 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
     beginPass(target, params.background, true);
     if (params.accumulated) {
         params.accumulated->draw(params.worldToClip, params.pointSizePixels);
-    } else if (program_ && textures.hasDepth() && textures.depthIntrinsics().valid()) {
+    } else if (const CloudProgram& cloud = programs_[static_cast<std::size_t>(params.colormap)];
+               cloud.program && textures.hasDepth() && textures.depthIntrinsics().valid()) {
         glEnable(GL_PROGRAM_POINT_SIZE);
-        glUseProgram(program_.id());
-        setUniforms(textures, params);
+        glUseProgram(cloud.program.id());
+        setUniforms(cloud.uniforms, textures, params);
         textures.bind();
         glBindVertexArray(emptyVertexArray_.id());
         const GLsizei count = textures.depthWidth() * textures.depthHeight();
@@ -124,14 +147,18 @@ void PointCloudRenderer::drawAnchors(const CloudParams& params) const {
     glDrawArraysInstanced(GL_TRIANGLES, 0, 36, count);
 }
 
-void PointCloudRenderer::setUniforms(const FrameTextures& textures, const CloudParams& params) const {
+void PointCloudRenderer::setUniforms(const Uniforms& u, const FrameTextures& textures,
+                                     const CloudParams& params) const {
     const frame::Intrinsics& k = textures.depthIntrinsics();
-    glUniformMatrix4fv(uniforms_.viewProjection, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
-    glUniform4f(uniforms_.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy),
-                static_cast<float>(k.cx), static_cast<float>(k.cy));
-    glUniform1ui(uniforms_.minConfidence, static_cast<GLuint>(params.minConfidence));
-    glUniform1f(uniforms_.nearMeters, params.nearMeters);
-    glUniform1f(uniforms_.pointSizePixels, params.pointSizePixels);
+    glUniformMatrix4fv(u.viewProjection, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
+    glUniform4f(u.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy), static_cast<float>(k.cx),
+                static_cast<float>(k.cy));
+    glUniform1ui(u.minConfidence, static_cast<GLuint>(params.minConfidence));
+    glUniform1f(u.nearMeters, params.nearMeters);
+    glUniform1f(u.pointSizePixels, params.pointSizePixels);
+    glUniform1i(u.coloring, static_cast<GLint>(params.coloring));
+    glUniform1f(u.minMeters, params.rangeMinMeters);
+    glUniform1f(u.inverseRangeMeters, 1.0f / std::max(params.rangeMaxMeters - params.rangeMinMeters, 1e-6f));
 }
 
 } // namespace dc::render

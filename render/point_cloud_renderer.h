@@ -3,16 +3,24 @@
 #include "base/expected.h"
 #include "frame/frame.h"
 #include "render/accumulated_points.h"
+#include "render/colormap.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"
 #include "render/render_target.h"
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstddef>
 #include <vector>
 
 namespace dc::render {
+
+// What gives each point its colour: the camera image (the sample's look), the depth through the depth
+// panel's colormap and range, or the confidence level as the confidence panel shows it.
+enum class PointColoring { Camera, Depth, Confidence };
+inline constexpr int kPointColoringCount = 3;
+const char* toString(PointColoring coloring);
 
 struct CloudParams {
     // Maps a point of the depth camera's frame (OpenCV axes: x right, y down, z forward; meters) to clip
@@ -23,6 +31,10 @@ struct CloudParams {
     // Samples closer than this are not drawn, like the sample's fragment shader does below 1 m.
     float nearMeters = 0.1f;
     float pointSizePixels = 2.0f;
+    PointColoring coloring = PointColoring::Camera;
+    Colormap colormap = Colormap::Jet; // PointColoring::Depth, over [rangeMinMeters, rangeMaxMeters]
+    float rangeMinMeters = 0.0f;
+    float rangeMaxMeters = 2.5f;
     glm::vec3 background{0.0f, 0.0f, 0.0f}; // linear RGB in [0, 1]
     // Anchors, in the same frame as the points, drawn as small lit cubes among them (depth-tested).
     std::vector<glm::vec3> anchors;
@@ -35,8 +47,8 @@ struct CloudParams {
 
 inline constexpr std::size_t kMaxDrawnAnchors = 32;
 
-// Draws one point per depth sample, placed by unprojecting it through the depth intrinsics and colored
-// by the camera image, the Depth Cloud sample's pointCloudVertexShader. All the work happens in the
+// Draws one point per depth sample, placed by unprojecting it through the depth intrinsics and coloured
+// as CloudParams says (by default the camera's colour, the Depth Cloud sample's pointCloudVertexShader). All the work happens in the
 // vertex shader: no vertex buffer, one vertex per depth pixel addressed by gl_VertexID.
 class PointCloudRenderer {
 public:
@@ -55,18 +67,25 @@ private:
         GLint minConfidence = -1;
         GLint nearMeters = -1;
         GLint pointSizePixels = -1;
+        GLint coloring = -1;
+        GLint minMeters = -1;
+        GLint inverseRangeMeters = -1;
+    };
+    // A cloud program per colormap (colormapGlsl says why), with its uniforms.
+    struct CloudProgram {
+        gl::Program program;
+        Uniforms uniforms;
     };
 
-    void setUniforms(const FrameTextures& textures, const CloudParams& params) const;
+    void setUniforms(const Uniforms& uniforms, const FrameTextures& textures, const CloudParams& params) const;
     void drawAnchors(const CloudParams& params) const;
 
-    gl::Program program_;
+    std::array<CloudProgram, kColormapCount> programs_;
     gl::Program anchorProgram_;
     GLint anchorViewProjection_ = -1;
     GLint anchorPositions_ = -1;
     GLint anchorHalfSize_ = -1;
     gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
-    Uniforms uniforms_;
     std::size_t lastPointCount_ = 0;
 };
 

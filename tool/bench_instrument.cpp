@@ -6,6 +6,7 @@
 #include "devices/synthetic/synthetic_device.h"
 #include "frame/image_io.h"
 #include "processing/accumulation_worker.h"
+#include "processing/point_colors.h"
 #include "processing/point_accumulator.h"
 #include "render/accumulated_points.h"
 #include "render/gl_context.h"
@@ -55,6 +56,22 @@ struct RenderThreadResult {
     std::uint64_t skipped = 0;
 };
 
+// The accumulation request of each frame, as the frame processor makes it: the raw depth, its colours.
+std::vector<processing::AccumulationWorker::Request> requestsFor(const BenchInstrumentOptions& o,
+                                                                 const std::vector<frame::FramePtr>& frames) {
+    std::vector<processing::AccumulationWorker::Request> requests;
+    for (const frame::FramePtr& f : frames) {
+        const auto& d = f->sceneDepth->depthMeters;
+        requests.push_back({std::shared_ptr<const frame::DepthData>(f, &*f->sceneDepth), f->depthIntrinsics(),
+                            std::make_shared<const processing::RgbImage>(
+                                processing::pointColors(f->capturedImage, d.width, d.height)),
+                            *f->pose, frame::Confidence::Low, 0.1f,
+                            static_cast<std::size_t>(o.budgetThousands) * 1000,
+                            static_cast<float>(o.voxelMillimetres * 1e-3)});
+    }
+    return requests;
+}
+
 // What the viewer's frame pays in accumulate mode: handing the frame to the worker and uploading what it
 // added, at a camera's 30 fps, with the worker adding on the other core.
 RenderThreadResult benchRenderThread(const BenchInstrumentOptions& o,
@@ -63,14 +80,11 @@ RenderThreadResult benchRenderThread(const BenchInstrumentOptions& o,
     render::AccumulatedPoints gpu;
     if (!gpu.init())
         return {};
-    const processing::AccumulationWorker::Request request{nullptr, frame::Confidence::Low, 0.1f,
-                                                          static_cast<std::size_t>(o.budgetThousands) * 1000,
-                                                          static_cast<float>(o.voxelMillimetres * 1e-3)};
+    const auto requests = requestsFor(o, frames);
+    const std::size_t budget = requests.front().budget;
     std::size_t next = 0;
-    for (; worker.size() < request.budget && next < 4 * frames.size(); ++next) {
-        auto fill = request;
-        fill.frame = frames[next % frames.size()];
-        worker.submit(fill);
+    for (; worker.size() < budget && next < 4 * frames.size(); ++next) {
+        worker.submit(requests[next % requests.size()]);
         worker.waitIdle();
     }
     const std::uint64_t skippedBefore = worker.skipped();
@@ -80,9 +94,7 @@ RenderThreadResult benchRenderThread(const BenchInstrumentOptions& o,
     for (int i = 0; i < o.frames; ++i, ++next) {
         std::this_thread::sleep_until(due += std::chrono::microseconds(33'333));
         const auto start = Clock::now();
-        auto r = request;
-        r.frame = frames[next % frames.size()];
-        worker.submit(r);
+        worker.submit(requests[next % requests.size()]);
         worker.tryRead(sync);
         glFinish();
         ms.add(msSince(start));
@@ -124,11 +136,12 @@ std::pair<double, double> benchStatsPanel(const BenchInstrumentOptions& o) {
     devices::SyntheticConfig c;
     c.cameraWidth = 640;
     c.cameraHeight = 480;
-    if (!gui.init(1280, 720))
+    render::ViewRenderer renderer;
+    if (!gui.init(1280, 720) || !renderer.init())
         return {0, 0};
-    ui::Viewer viewer(std::make_unique<devices::SyntheticDevice>(c), ui::Settings{});
-    if (!viewer.init())
-        return {0, 0};
+    engine::Instrument instrument(std::make_unique<devices::SyntheticDevice>(c), "synthetic");
+    ui::Viewer viewer(instrument, renderer, ui::Settings{});
+    instrument.start();
     base::RollingStats ms(static_cast<std::size_t>(o.frames));
     for (int i = 0; i < o.frames + 20; ++i) {
         gui.newFrame(1.0f / 60.0f);

@@ -33,7 +33,7 @@ struct BenchCase {
 struct CaseResult {
     BenchCase c;
     double medianMs = 0, maxMs = 0;
-    std::vector<processing::StageTiming> stages;
+    std::vector<engine::StageSummary> stages;
 };
 
 // Eight distinct noisy frames, made before timing starts so the capture thread costs nothing while the
@@ -60,9 +60,12 @@ Expected<CaseResult> runCase(const BenchCase& c, const BenchOptions& o) {
     ui::HeadlessUi gui;
     if (Status s = gui.init(o.width, o.height); !s)
         return s.error();
-    ui::Viewer viewer(std::move(device), ui::Settings{});
-    if (Status s = viewer.init(); !s)
+    render::ViewRenderer renderer;
+    if (Status s = renderer.init(); !s)
         return s.error();
+    engine::Instrument instrument(std::move(device), "synthetic frames");
+    ui::Viewer viewer(instrument, renderer, ui::Settings{});
+    instrument.start();
     base::RollingStats frameMs(static_cast<std::size_t>(o.frames));
     for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
         const auto start = Clock::now();
@@ -75,7 +78,7 @@ Expected<CaseResult> runCase(const BenchCase& c, const BenchOptions& o) {
         if (i >= kWarmupFrames)
             frameMs.add(ms);
     }
-    return CaseResult{c, frameMs.median(), frameMs.max(), viewer.statusLine().stageMedians};
+    return CaseResult{c, frameMs.median(), frameMs.max(), viewer.summary().stages};
 }
 
 void printResult(const CaseResult& r, const BenchOptions& o) {
@@ -88,7 +91,7 @@ void printResult(const CaseResult& r, const BenchOptions& o) {
                 r.medianMs / r.c.bareGlPointsBaselineMs);
     std::printf("  stage medians:");
     for (const auto& s : r.stages)
-        std::printf(" %s %.2f ms", s.name.c_str(), s.milliseconds);
+        std::printf(" %s %.2f ms", s.name.c_str(), s.medianMs);
     std::printf("\n");
 }
 
@@ -112,7 +115,7 @@ int runBenchRender(const BenchOptions& options) {
         printResult(*r, options);
         nlohmann::json stages = nlohmann::json::object();
         for (const auto& s : r->stages)
-            stages[s.name] = s.milliseconds;
+            stages[s.name] = s.medianMs;
         results.push_back({{"depth", std::to_string(c.depthWidth) + "x" + std::to_string(c.depthHeight)},
                            {"frameMedianMs", r->medianMs},
                            {"frameMaxMs", r->maxMs},

@@ -10,6 +10,7 @@
 #include "frame/image_io.h"
 #include "tool/options.h"
 #include "tool/summary.h"
+#include "ui/input_queue.h"
 #include "ui/viewer.h"
 
 #include <backends/imgui_impl_glfw.h>
@@ -63,11 +64,44 @@ struct ImGuiScope {
     bool glReady = false;
 };
 
-// Ctrl+Q quits. Handled as an event rather than polled through ImGui 1.86, whose key state misses a press
-// and release that both fall between two frames. ImGui's backend chains to this callback.
-void quitOnCtrlQ(GLFWwindow* window, int key, int, int action, int mods) {
+// Every key, character, button, scroll and cursor event goes into the queue, which feeds ImGui one frame's
+// worth at a time (ui::InputQueue says why); these replace the ImGui backend's own callbacks for them.
+ui::InputQueue& queueOf(GLFWwindow* window) {
+    return *static_cast<ui::InputQueue*>(glfwGetWindowUserPointer(window));
+}
+
+void onKey(GLFWwindow* window, int key, int, int action, int mods) {
+    // Ctrl+Q quits at once, whatever the queue holds.
     if (key == GLFW_KEY_Q && action == GLFW_PRESS && (mods & GLFW_MOD_CONTROL))
         glfwSetWindowShouldClose(window, GLFW_TRUE);
+    if (action != GLFW_REPEAT) // ImGui repeats held keys itself
+        queueOf(window).push({ui::InputEvent::Kind::Key, key, action == GLFW_PRESS, 0.0f, 0.0f});
+}
+
+void onChar(GLFWwindow* window, unsigned codepoint) {
+    queueOf(window).push({ui::InputEvent::Kind::Char, static_cast<int>(codepoint), false, 0.0f, 0.0f});
+}
+
+void onMouseButton(GLFWwindow* window, int button, int action, int) {
+    queueOf(window).push({ui::InputEvent::Kind::MouseButton, button, action == GLFW_PRESS, 0.0f, 0.0f});
+}
+
+void onCursor(GLFWwindow* window, double x, double y) {
+    queueOf(window).push(
+        {ui::InputEvent::Kind::CursorPos, 0, false, static_cast<float>(x), static_cast<float>(y)});
+}
+
+void onScroll(GLFWwindow* window, double x, double y) {
+    queueOf(window).push({ui::InputEvent::Kind::Scroll, 0, false, static_cast<float>(x), static_cast<float>(y)});
+}
+
+void queueInput(GLFWwindow* window, ui::InputQueue& queue) {
+    glfwSetWindowUserPointer(window, &queue);
+    glfwSetKeyCallback(window, onKey);
+    glfwSetCharCallback(window, onChar);
+    glfwSetMouseButtonCallback(window, onMouseButton);
+    glfwSetCursorPosCallback(window, onCursor);
+    glfwSetScrollCallback(window, onScroll);
 }
 
 WindowPtr openWindow() {
@@ -109,12 +143,13 @@ Status saveScreenshot(GLFWwindow* window, const std::string& path) {
     return frame::writeRgbaPng(path, w, h, flipped.data());
 }
 
-void drawFrame(GLFWwindow* window, ui::Viewer& viewer, double t) {
+void drawFrame(GLFWwindow* window, ui::Viewer& viewer, ui::InputQueue& input, double t) {
     glfwPollEvents();
     viewer.update(t);
     const auto uiStart = Clock::now();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
+    input.apply(ImGui::GetIO());
     ImGui::NewFrame();
     viewer.drawUi();
     ImGui::Render();
@@ -137,7 +172,7 @@ std::vector<ui::SourceEntry> cameraEntries(const devices::LiveDeviceListing& lis
     return entries;
 }
 
-int writeOutputs(GLFWwindow* window, const ui::Viewer& viewer, const std::string& dir) {
+int writeOutputs(GLFWwindow* window, ui::Viewer& viewer, const std::string& dir) {
     Status s = saveScreenshot(window, dir + "/screenshot.png");
     if (s)
         s = viewer.savePanels(dir);
@@ -168,7 +203,6 @@ int runGui(const ViewerOptions& options) {
                      "depthcloud: error: no OpenGL 3.3 context available for a window; use --headless\n");
         return kExitFailure;
     }
-    glfwSetKeyCallback(window.get(), quitOnCtrlQ);
     glfwMakeContextCurrent(window.get());
     glfwSwapInterval(1);
 
@@ -192,24 +226,29 @@ int runGui(const ViewerOptions& options) {
     int status = kExitOk;
     {
         ImGuiScope imgui(window.get(), iniPath);
-        ui::Viewer viewer(std::move(*device), settings);
-        viewer.setSourceSpec(options.source);
-        if (Status s = viewer.init(); !s) {
+        ui::InputQueue input;
+        queueInput(window.get(), input);
+        render::ViewRenderer renderer;
+        if (Status s = renderer.init(); !s) {
             std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
             return kExitFailure;
         }
+        engine::Instrument instrument(std::move(*device), options.source);
+        ui::Viewer viewer(instrument, renderer, settings);
+        instrument.start();
         devices::LiveDeviceWatcher cameras;
         const auto start = Clock::now();
         for (int frame = 0;; ++frame) {
             if (auto listing = cameras.takeUpdate())
                 viewer.setLiveSources(cameraEntries(*listing));
-            drawFrame(window.get(), viewer, std::chrono::duration<double>(Clock::now() - start).count());
+            drawFrame(window.get(), viewer, input, std::chrono::duration<double>(Clock::now() - start).count());
             // Closing the window ends the run like the last of --frames: --out still gets its files.
             const bool last =
                 glfwWindowShouldClose(window.get()) || (options.frames && frame + 1 >= *options.frames);
             if (last && !options.outDirectory.empty())
                 status = writeOutputs(window.get(), viewer, options.outDirectory);
             glfwSwapBuffers(window.get());
+            viewer.presented();
             if (last)
                 break;
         }

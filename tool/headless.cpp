@@ -1,8 +1,6 @@
 #include "base/files.h"
 #include "base/log.h"
-#include "devices/replay/replay_device.h"
 #include "devices/source_spec.h"
-#include "frame/image_io.h"
 #include "render/gl_context.h"
 #include "tool/options.h"
 #include "tool/summary.h"
@@ -27,20 +25,21 @@ int fail(const std::string& message) {
     return kExitFailure;
 }
 
-bool replayEnded(const ui::Viewer& viewer) {
-    const auto& replay = viewer.replayControl();
+bool replayEnded(const engine::Instrument& instrument) {
+    const auto& replay = instrument.replay();
     return replay && replay->status().atEnd && !replay->status().loop;
 }
 
-// Waits up to kFrameTimeout for the next frame, in short slices so that the end of a recording is noticed
-// at once rather than after the whole timeout.
+// Waits up to kFrameTimeout for the next frame's result, in short slices so that the end of a recording is
+// noticed at once rather than after the whole timeout.
 bool waitForFrame(ui::Viewer& viewer, double timeSeconds) {
     constexpr std::chrono::milliseconds kSlice{50};
     for (auto waited = std::chrono::milliseconds(0); waited < kFrameTimeout; waited += kSlice) {
         if (viewer.update(timeSeconds, kSlice))
             return true;
-        if (replayEnded(viewer)) // the last frame may have arrived just before the end was flagged
-            return viewer.update(timeSeconds, std::chrono::milliseconds(0));
+        // The last frame may have arrived just before the end was flagged.
+        if (replayEnded(viewer.instrument()))
+            return viewer.update(timeSeconds, kSlice);
     }
     return false;
 }
@@ -55,32 +54,36 @@ int runHeadless(const ViewerOptions& options) {
     auto device = devices::openSourceSpec(options.source);
     if (!device)
         return fail(device.error().message);
+    render::ViewRenderer renderer;
+    if (Status s = renderer.init(); !s)
+        return fail(s.error().message);
+    engine::Instrument instrument(std::move(*device), options.source);
     ui::Settings settings; // headless snapshots use defaults, never a user's saved view
     if (options.confidence)
         settings.cloud.minConfidence = *options.confidence;
-    ui::Viewer viewer(std::move(*device), settings);
-    if (Status s = viewer.init(); !s)
-        return fail(s.error().message);
-    if (!viewer.sourceRunning())
-        return fail(viewer.sourceMessage());
+    ui::Viewer viewer(instrument, renderer, settings);
     viewer.resizeCloud(kCloudWidth, kCloudHeight);
+    instrument.start();
+    const engine::InstrumentStatus started = instrument.status();
+    if (!started.running)
+        return fail(started.message);
 
     const int frames = options.frames.value_or(60);
     int shown = 0;
     while (shown < frames) {
         if (waitForFrame(viewer, shown * kHeadlessFrameSeconds)) {
+            viewer.presented();
             ++shown;
             continue;
         }
-        if (replayEnded(viewer) && shown > 0) {
-            std::fprintf(stderr,
-                         "depthcloud: note: the recording ended after %d frames (--frames asked for %d)\n",
+        if (replayEnded(instrument) && shown > 0) {
+            std::fprintf(stderr, "depthcloud: note: the recording ended after %d frames (--frames asked for %d)\n",
                          shown, frames);
             break;
         }
-        return fail("no frame from " + viewer.statusLine().source + " within " +
-                    std::to_string(kFrameTimeout.count()) + " s" +
-                    (viewer.sourceMessage().empty() ? "" : ": " + viewer.sourceMessage()));
+        const engine::InstrumentStatus s = instrument.status();
+        return fail("no frame from " + s.source + " within " + std::to_string(kFrameTimeout.count()) + " s" +
+                    (s.message.empty() ? "" : ": " + s.message));
     }
     if (Status s = viewer.savePanels(options.outDirectory); !s)
         return fail(s.error().message);

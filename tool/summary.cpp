@@ -6,15 +6,19 @@ namespace dc::tool {
 
 std::string summaryJson(const ui::ViewerSummary& s, const std::string& renderer, const std::string& mode) {
     nlohmann::json stages = nlohmann::json::object();
-    for (const auto& t : s.stageMedians)
-        stages[t.name] = t.milliseconds;
+    for (const auto& t : s.stages)
+        stages[t.name] = t.medianMs;
+    const engine::FrameCounts& f = s.frames;
+    // frames + framesDropped + the few still on their way = framesDelivered; rates over the same window.
     nlohmann::json j{{"mode", mode},
                      {"source", s.source},
                      {"renderer", renderer},
-                     {"frames", s.framesShown},
-                     {"framesDropped", s.framesDropped},
-                     {"deviceFps", s.deviceFps},
-                     {"viewerFps", s.viewerFps},
+                     {"frames", f.shown},
+                     {"framesDropped", f.dropped},
+                     {"framesDelivered", f.delivered},
+                     {"deviceFps", f.deliveredPerSecond},
+                     {"viewerFps", f.shownPerSecond},
+                     {"uiFps", s.uiFps},
                      {"pointsDrawn", s.pointsDrawn},
                      {"depthWidth", s.depthWidth},
                      {"depthHeight", s.depthHeight},

@@ -25,6 +25,9 @@ bool viewSection(CloudSettings& cloud) {
     ImGui::PushStyleColor(ImGuiCol_Text, ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled));
     ImGui::TextWrapped("Drag to orbit, right-drag to pan, wheel to zoom, double-click to reset.");
     ImGui::PopStyleColor();
+    int coloring = static_cast<int>(cloud.coloring);
+    changed |= ImGui::Combo("Colour points by", &coloring, "camera\0depth (colormap)\0confidence\0");
+    cloud.coloring = static_cast<render::PointColoring>(coloring);
     changed |= ImGui::SliderFloat("Point size", &cloud.pointSizePixels, 1.0f, 8.0f, "%.1f px");
     changed |= ImGui::SliderFloat("Near limit", &cloud.nearMeters, 0.0f, 2.0f, "%.2f m");
     return changed;

@@ -11,9 +11,9 @@ ImTextureID textureOf(const PanelImage& image) {
     return reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(image.textureId));
 }
 
-// Texture coordinates of a visible part of an upright image in a bottom-up render target.
-ImVec2 flippedUv(ImVec2 fraction) {
-    return {fraction.x, 1.0f - fraction.y};
+// Texture coordinates of a visible part of the image, upright either way.
+ImVec2 uvOf(const PanelImage& image, ImVec2 fraction) {
+    return image.bottomUp ? ImVec2(fraction.x, 1.0f - fraction.y) : fraction;
 }
 
 } // namespace
@@ -42,7 +42,7 @@ ImageRect drawImage(const PanelImage& image, ImageFit fit, const char* emptyMess
     }
     ImGui::SetCursorScreenPos(shown.min);
     ImGui::Image(textureOf(image), {shown.max.x - shown.min.x, shown.max.y - shown.min.y},
-                 flippedUv(shown.visibleMin), flippedUv(shown.visibleMax));
+                 uvOf(image, shown.visibleMin), uvOf(image, shown.visibleMax));
     return shown;
 }
 
@@ -51,7 +51,7 @@ void drawOverlay(const PanelImage& overlay, const ImageRect& shown, float opacit
         return;
     const ImU32 tint = ImGui::GetColorU32(ImVec4(1.0f, 1.0f, 1.0f, opacity));
     ImGui::GetWindowDrawList()->AddImage(textureOf(overlay), shown.min, shown.max,
-                                         flippedUv(shown.visibleMin), flippedUv(shown.visibleMax), tint);
+                                         uvOf(overlay, shown.visibleMin), uvOf(overlay, shown.visibleMax), tint);
 }
 
 std::optional<ImVec2> imageFractionUnderMouse(const ImageRect& shown) {

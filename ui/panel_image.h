@@ -6,11 +6,13 @@
 
 namespace dc::ui {
 
-// A panel's content rendered into a GL texture by render/, with its size in pixels.
+// A panel's content as a GL texture made by render/, with its size in pixels. Render targets hold their
+// rows bottom-up (OpenGL); images uploaded from the CPU top-down.
 struct PanelImage {
     unsigned textureId = 0;
     int width = 0;
     int height = 0;
+    bool bottomUp = true;
 
     bool empty() const { return textureId == 0 || width <= 0 || height <= 0; }
 };

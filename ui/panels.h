@@ -1,7 +1,7 @@
 #pragma once
 
-#include "devices/device.h"
 #include "devices/replay/replay_device.h"
+#include "engine/instrument.h"
 #include "processing/pipeline.h"
 #include "ui/file_picker.h"
 #include "ui/log_store.h"
@@ -93,19 +93,12 @@ struct CameraPanelResult {
 CameraPanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay,
                                   const CameraView& view, const ProbeSource& probe, bool* open);
 
-struct RecordView {
-    bool recording = false;
-    std::uint64_t framesWritten = 0;
-    std::uint64_t framesDropped = 0;
-    std::uint64_t bytesWritten = 0;
-};
-
 struct RecordPanelState {
     std::array<char, 512> path{"depthcloud-recording.dcrec"};
 };
 
 // The record button (inside the controls panel); returns true when it was pressed.
-bool drawRecordControls(const RecordView& view, RecordPanelState& state);
+bool drawRecordControls(const engine::RecordingStatus& view, RecordPanelState& state);
 
 // What the controls need to know but must not change.
 struct ControlsContext {
@@ -114,7 +107,7 @@ struct ControlsContext {
     std::size_t anchorCount = 0;
     bool hasPose = false; // accumulate needs world coordinates
     std::size_t accumulatedPoints = 0;
-    RecordView record;
+    engine::RecordingStatus record;
     RecordPanelState* recordState = nullptr;
 };
 
@@ -135,9 +128,8 @@ struct StatusLine {
     std::string source;
     std::string state;
     std::string message; // an error or warning about the source, shown in red
-    double deviceFps = 0.0;
-    double viewerFps = 0.0;
-    std::uint64_t framesDropped = 0;
+    engine::FrameCounts frames;
+    double uiFps = 0.0;
     std::uint64_t pointsDrawn = 0;
     std::vector<processing::StageTiming> stageMedians;
     std::optional<double> latencyMs; // median device timestamp to screen; none when clocks differ
@@ -151,9 +143,8 @@ struct StageHistory {
 };
 
 struct StatsView {
-    double deviceFps = 0.0;
-    double viewerFps = 0.0;
-    std::uint64_t framesDropped = 0;
+    engine::FrameCounts frames;
+    double uiFps = 0.0;
     std::uint64_t pointsDrawn = 0;
     std::optional<double> latencyMs; // median device timestamp to screen; none when clocks differ
     double residentMebibytes = 0.0;

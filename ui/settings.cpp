@@ -131,6 +131,9 @@ void sanitize(CloudSettings& c) {
     const auto level = static_cast<int>(c.minConfidence);
     if (level < 0 || level > 2)
         c.minConfidence = d.cloud.minConfidence;
+    const auto coloring = static_cast<int>(c.coloring);
+    if (coloring < 0 || coloring >= render::kPointColoringCount)
+        c.coloring = d.cloud.coloring;
 }
 
 void sanitize(Settings& s) {
@@ -170,6 +173,7 @@ std::string settingsToJson(const Settings& s) {
     j["cloud"] = {{"minConfidence", static_cast<int>(c.minConfidence)},
                   {"pointSizePixels", c.pointSizePixels},
                   {"nearMeters", c.nearMeters},
+                  {"coloring", static_cast<int>(c.coloring)},
                   {"autoRotate", c.motion.enabled},
                   {"rotationSpeed", c.motion.speed},
                   {"scaleMovement", c.motion.scaleMovement},
@@ -217,6 +221,9 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     s.cloud.minConfidence = static_cast<frame::Confidence>(std::clamp(level, 0, 2));
     read(c, "pointSizePixels", s.cloud.pointSizePixels);
     read(c, "nearMeters", s.cloud.nearMeters);
+    int coloring = static_cast<int>(s.cloud.coloring);
+    read(c, "coloring", coloring);
+    s.cloud.coloring = static_cast<render::PointColoring>(coloring); // sanitize() checks the range
     read(c, "autoRotate", s.cloud.motion.enabled);
     read(c, "rotationSpeed", s.cloud.motion.speed);
     read(c, "scaleMovement", s.cloud.motion.scaleMovement);

@@ -5,6 +5,7 @@
 #include "processing/pipeline.h"
 #include "render/colormap.h"
 #include "render/orbit_camera.h"
+#include "render/point_cloud_renderer.h"
 
 #include <string>
 #include <vector>
@@ -29,6 +30,7 @@ struct CloudSettings {
     frame::Confidence minConfidence = frame::Confidence::Low; // points below are not drawn
     float pointSizePixels = 2.0f;
     float nearMeters = 0.1f; // points nearer than this are not drawn (the sample drops the nearest too)
+    render::PointColoring coloring = render::PointColoring::Camera;
     render::AutoMotion motion;
     render::OrbitView orbit;
 };

@@ -29,9 +29,12 @@ void drawStatsPanel(const StatsView& s, bool* open) {
         ImGui::End();
         return;
     }
-    ImGui::Text("device %.1f fps, viewer %.1f fps", s.deviceFps, s.viewerFps);
-    ImGui::Text("dropped %llu, points %llu", static_cast<unsigned long long>(s.framesDropped),
-                static_cast<unsigned long long>(s.pointsDrawn));
+    const engine::FrameCounts& f = s.frames;
+    ImGui::Text("device %.1f fps, shown %.1f fps, UI %.1f fps", f.deliveredPerSecond, f.shownPerSecond, s.uiFps);
+    ImGui::Text("frames: %llu delivered = %llu shown + %llu dropped (+ in flight)",
+                static_cast<unsigned long long>(f.delivered), static_cast<unsigned long long>(f.shown),
+                static_cast<unsigned long long>(f.dropped));
+    ImGui::Text("points %llu", static_cast<unsigned long long>(s.pointsDrawn));
     if (s.latencyMs)
         ImGui::Text("device to screen %.1f ms (median)", *s.latencyMs);
     else

@@ -98,14 +98,14 @@ TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& 
     return actions;
 }
 
-bool drawRecordControls(const RecordView& view, RecordPanelState& state) {
+bool drawRecordControls(const engine::RecordingStatus& view, RecordPanelState& state) {
     bool toggle = false;
     if (view.recording) {
         ImGui::PushStyleColor(ImGuiCol_Button, ImVec4(0.7f, 0.15f, 0.15f, 1.0f));
         toggle = ImGui::Button("Stop recording");
         ImGui::PopStyleColor();
-        ImGui::Text("%llu frames, %llu dropped, %.1f MB", static_cast<unsigned long long>(view.framesWritten),
-                    static_cast<unsigned long long>(view.framesDropped),
+        ImGui::Text("%llu frames, %llu dropped, %.1f MB", static_cast<unsigned long long>(view.frames),
+                    static_cast<unsigned long long>(view.dropped),
                     static_cast<double>(view.bytesWritten) / 1e6);
     } else {
         ImGui::SetNextItemWidth(-ImGui::GetFontSize() * 5.0f);

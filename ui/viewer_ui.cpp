@@ -25,7 +25,11 @@ Layout defaultLayout(float statusHeight) {
 }
 
 PanelImage imageOf(const render::RenderTarget& target) {
-    return {target.colorTexture(), target.width(), target.height()};
+    return {target.colorTexture(), target.width(), target.height(), true};
+}
+
+PanelImage imageOf(const render::RgbaTexture& texture) {
+    return {texture.id(), texture.width(), texture.height(), false};
 }
 
 } // namespace
@@ -86,27 +90,8 @@ void Viewer::drawUi() {
     workSize_ = l.size;
     PanelVisibility& show = settings_.panels;
 
-    if (show.controls) {
-        placePanel(kControlsTitle, 0, 0, l.leftWidth, l.size.y);
-        const ControlsContext context{pipeline_.hasStage(processing::kSmoothingStage),
-                                      pipeline_.hasStage(processing::kUpsamplingStage),
-                                      anchors_.size(),
-                                      frame_ && frame_->pose,
-                                      accumulation_.size(),
-                                      recordView(),
-                                      &recordState_};
-        const ControlsResult r = drawControlsPanel(settings_, context, &show.controls);
-        if (r.snapshot)
-            (void)saveSnapshot(kSnapshotDirectory);
-        if (r.toggleRecording)
-            (void)(recording_ ? stopRecording() : startRecording(recordState_.path.data()));
-        if (r.clearAccumulation)
-            accumulation_.clear();
-        if (r.clearAnchors)
-            anchors_.clear();
-        if (r.undoAnchor)
-            anchors_.undo();
-    }
+    if (show.controls)
+        drawControls(l.leftWidth, l.size.y);
     if (show.cloud)
         drawCloud(l.leftWidth, 0, l.size.x - l.leftWidth - l.rightWidth, l.size.y);
     drawSidePanels(l.size.x - l.rightWidth, l.rightWidth, l.size.y / 3.0f);
@@ -123,15 +108,13 @@ void Viewer::drawUi() {
         drawSourcePicker(l.leftWidth + 40.0f, 40.0f);
     if (show.fog) {
         placePanel(kFogTitle, l.leftWidth + 60.0f, 60.0f, 520.0f, 440.0f);
-        drawFogPanel({fogTexture_.id(), fogTexture_.width(), fogTexture_.height()}, settings_.processing.fog,
-                     &show.fog);
+        drawFogPanel(imageOf(renderer_.fogTexture()), settings_.processing.fog, &show.fog);
     }
     if (show.aura) {
         placePanel(kAuraTitle, l.leftWidth + 80.0f, 80.0f, 520.0f, 440.0f);
-        drawAuraPanel({auraTexture_.id(), auraTexture_.width(), auraTexture_.height()},
-                      settings_.processing.aura, &show.aura);
+        drawAuraPanel(imageOf(renderer_.auraTexture()), settings_.processing.aura, &show.aura);
     }
-    if (replay_ && show.timeline)
+    if (instrument_.replay() && show.timeline)
         drawTimeline(l.leftWidth, l.size.y - 150.0f, l.size.x - l.leftWidth - l.rightWidth);
     handleReplayKeys();
     drawToasts(log, statusHeight);
@@ -139,14 +122,38 @@ void Viewer::drawUi() {
         showProbeTooltip(*hoverProbe_);
 }
 
+void Viewer::drawControls(float width, float height) {
+    placePanel(kControlsTitle, 0, 0, width, height);
+    const ControlsContext context{true,
+                                  true,
+                                  anchors_.size(),
+                                  shown_ && shown_->frame->pose,
+                                  instrument_.accumulation().size(),
+                                  instrument_.recording(),
+                                  &recordState_};
+    const ControlsResult r = drawControlsPanel(settings_, context, &settings_.panels.controls);
+    if (r.snapshot)
+        (void)saveSnapshot(kSnapshotDirectory);
+    if (r.toggleRecording)
+        (void)(instrument_.recording().recording ? instrument_.stopRecording()
+                                                 : instrument_.startRecording(recordState_.path.data()));
+    if (r.clearAccumulation)
+        instrument_.accumulation().clear();
+    if (r.clearAnchors)
+        anchors_.clear();
+    if (r.undoAnchor)
+        anchors_.undo();
+}
+
 void Viewer::drawCloud(float x, float y, float w, float h) {
     placePanel(kCloudTitle, x, y, w, h);
     const CloudPanelResult r =
-        drawCloudPanel(imageOf(cloudTarget_), settings_.cloud, cloudOverlay(), cloudMessage(),
+        drawCloudPanel(imageOf(renderer_.cloudTarget()), settings_.cloud, cloudOverlay(), cloudMessage(),
                        zoomed_ == kCloudTitle, &settings_.panels.cloud);
     afterPanel(kCloudTitle, r.panel);
+    const render::RenderTarget& target = renderer_.cloudTarget();
     if (r.wantedWidth > 0 && r.wantedHeight > 0 &&
-        (r.wantedWidth != cloudTarget_.width() || r.wantedHeight != cloudTarget_.height()))
+        (r.wantedWidth != target.width() || r.wantedHeight != target.height()))
         resizeCloud(r.wantedWidth, r.wantedHeight);
     onCloudPointer(r);
 }
@@ -156,19 +163,20 @@ void Viewer::drawSidePanels(float x, float w, float h) {
     const ProbeSource probe = probeSource();
     if (show.depth) {
         placePanel(kDepthTitle, x, 0, w, h);
-        afterPanel(kDepthTitle, drawDepthPanel(imageOf(depthTarget_), legend_, probe, &show.depth));
+        afterPanel(kDepthTitle, drawDepthPanel(imageOf(renderer_.depthTarget()), legend_, probe, &show.depth));
     }
     if (show.confidence) {
         placePanel(kConfidenceTitle, x, h, w, h);
-        afterPanel(kConfidenceTitle,
-                   drawConfidencePanel(imageOf(confidenceTarget_),
-                                       session_->capabilities().confidence || estimatedConfidence(),
-                                       estimatedConfidence(), probe, &show.confidence));
+        const bool estimated = !probe.empty() && probe.depth->confidenceEstimated;
+        const bool available = instrument_.capabilities().confidence || estimated;
+        afterPanel(kConfidenceTitle, drawConfidencePanel(imageOf(renderer_.confidenceTarget()), available,
+                                                         estimated, probe, &show.confidence));
     }
     if (show.camera) {
         placePanel(kCameraTitle, x, 2.0f * h, w, h);
-        const CameraPanelResult r = drawCameraPanel(imageOf(cameraTarget_), imageOf(depthTarget_),
-                                                    settings_.camera, probe, &show.camera);
+        const CameraPanelResult r = drawCameraPanel(imageOf(renderer_.cameraTexture()),
+                                                    imageOf(renderer_.depthTarget()), settings_.camera, probe,
+                                                    &show.camera);
         afterPanel(kCameraTitle, r.panel);
         if (r.shownWidth > 0)
             cameraShownWidth_ = r.shownWidth;
@@ -177,7 +185,7 @@ void Viewer::drawSidePanels(float x, float w, float h) {
 
 void Viewer::drawSourcePicker(float x, float y) {
     placePanel(kSourceTitle, x, y, 420.0f, 360.0f);
-    SourceList list{currentSpec_, liveSources_, {}, {}};
+    SourceList list{instrument_.spec(), liveSources_, {}, {}};
     for (const std::string& spec : settings_.recentSources)
         list.recent.push_back({spec, spec});
     list.builtIn = {{"Synthetic desk, 256x192 @ 60 Hz", "synthetic"},
@@ -189,54 +197,59 @@ void Viewer::drawSourcePicker(float x, float y) {
 
 void Viewer::drawTimeline(float x, float y, float w) {
     placePanel(kTimelineTitle, x, y, w, 140.0f);
-    TimelineView view{replay_->status(), exportJob_ && !exportJob_->finished(), 0, 0};
-    if (exportJob_)
-        std::tie(view.exportDone, view.exportTotal) = exportJob_->progress();
+    const engine::ExportJob* job = instrument_.exportJob();
+    TimelineView view{instrument_.replay()->status(), job && !job->finished(), 0, 0};
+    if (job)
+        std::tie(view.exportDone, view.exportTotal) = job->progress();
     applyTimeline(drawTimelinePanel(view, timelineState_, &settings_.panels.timeline));
 }
 
 void Viewer::applyTimeline(const TimelineActions& a) {
+    devices::replay::ReplayControl& replay = *instrument_.replay();
     if (a.seekIndex)
-        seekReplay(*a.seekIndex);
+        instrument_.seekReplay(*a.seekIndex);
     if (a.step != 0)
-        stepReplay(a.step);
+        instrument_.stepReplay(a.step);
     if (a.play)
-        *a.play ? replay_->play() : replay_->pause();
+        *a.play ? replay.play() : replay.pause();
     if (a.loop)
-        replay_->setLoop(*a.loop);
+        replay.setLoop(*a.loop);
     if (a.speed)
-        replay_->setSpeed(*a.speed);
-    if (a.cancelExport && exportJob_)
-        exportJob_->cancel();
+        replay.setSpeed(*a.speed);
+    if (a.cancelExport)
+        instrument_.cancelExport();
+    // The range is written as the instrument shows it: smoothed, upsampled, as the settings say.
     if (a.exportRange)
-        (void)startExport(static_cast<exporting::ExportFormat>(timelineState_.format),
-                          timelineState_.outDirectory.data(), timelineState_.rangeStart,
-                          timelineState_.rangeEnd);
+        (void)instrument_.startExport(static_cast<exporting::ExportFormat>(timelineState_.format),
+                                      timelineState_.outDirectory.data(), timelineState_.rangeStart,
+                                      timelineState_.rangeEnd, demand_);
 }
 
 // Space plays or pauses, the arrows step a frame, Home and End jump to the ends (as in video players).
 void Viewer::handleReplayKeys() {
-    if (!replay_ || ImGui::GetIO().WantTextInput)
+    const auto& replay = instrument_.replay();
+    if (!replay || ImGui::GetIO().WantTextInput)
         return;
     const auto pressed = [](ImGuiKey key) {
         return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), key != ImGuiKey_Space);
     };
     if (pressed(ImGuiKey_Space))
-        replay_->status().playing ? replay_->pause() : replay_->play();
+        replay->status().playing ? replay->pause() : replay->play();
     if (pressed(ImGuiKey_LeftArrow))
-        stepReplay(-1);
+        instrument_.stepReplay(-1);
     if (pressed(ImGuiKey_RightArrow))
-        stepReplay(1);
+        instrument_.stepReplay(1);
     if (pressed(ImGuiKey_Home))
-        seekReplay(0);
+        instrument_.seekReplay(0);
     if (pressed(ImGuiKey_End))
-        seekReplay(std::max<std::size_t>(replay_->status().count, 1) - 1);
+        instrument_.seekReplay(std::max<std::size_t>(replay->status().count, 1) - 1);
 }
 
 // Hovering the cloud reads out the point under the mouse; a click drops an anchor on it. The first click
 // of a double-click (which resets the view) must not leave an anchor behind.
 void Viewer::onCloudPointer(const CloudPanelResult& r) {
-    if (!shownDepth() || !r.hoverPixels)
+    const ProbeSource source = probeSource();
+    if (source.empty() || !r.hoverPixels)
         return;
     const double now = ImGui::GetTime();
     if (r.doubleClicked && lastAnchorTime_ >= 0.0 &&
@@ -247,45 +260,38 @@ void Viewer::onCloudPointer(const CloudPanelResult& r) {
     render::PickQuery query;
     query.viewProjection = cloudViewProjection_;
     query.cursorPixels = {r.hoverPixels->x, r.hoverPixels->y};
-    query.imageSize = {static_cast<float>(cloudTarget_.width()), static_cast<float>(cloudTarget_.height())};
+    const render::RenderTarget& target = renderer_.cloudTarget();
+    query.imageSize = {static_cast<float>(target.width()), static_cast<float>(target.height())};
     query.radiusPixels = std::max(3.0f, settings_.cloud.pointSizePixels);
     query.minConfidence = settings_.cloud.minConfidence;
     query.nearMeters = settings_.cloud.nearMeters;
-    const ProbeSource source = probeSource();
     const auto picked = render::pickCloudSample(*source.depth, source.intrinsics, query);
     if (!picked)
         return;
     hoverProbe_ = probeAt(source, picked->u, picked->v);
     if (r.clickPixels && !r.doubleClicked) {
-        anchors_.add(picked->point, frame_->pose);
+        anchors_.add(picked->point, shown_->frame->pose);
         lastAnchorTime_ = now;
     }
 }
 
-bool Viewer::estimatedConfidence() const {
-    const frame::DepthData* depth = shownDepth();
-    return depth && depth->confidenceEstimated;
-}
-
 // The last frame stays on screen, marked, while a live camera is away (seed 003's interruption).
-std::string Viewer::cloudMessage() const {
-    if (!sourceRunning_)
-        return sourceMessage_;
-    switch (session_->state()) {
-    case devices::DeviceState::Disconnected:
+std::string Viewer::cloudMessage() {
+    const engine::InstrumentStatus s = instrument_.status();
+    if (!s.running)
+        return s.message;
+    if (s.state == devices::toString(devices::DeviceState::Disconnected))
         return "Disconnected: showing the last frame; streaming resumes when the camera is back.";
-    case devices::DeviceState::Stalled:
+    if (s.state == devices::toString(devices::DeviceState::Stalled))
         return "Stalled: the camera stopped delivering frames.";
-    default:
-        return {};
-    }
+    return {};
 }
 
 CloudOverlay Viewer::cloudOverlay() const {
     CloudOverlay overlay;
-    if (anchors_.empty() || !frame_)
+    if (anchors_.empty() || !shown_)
         return overlay;
-    for (const glm::vec3& p : anchors_.inCameraFrame(frame_->pose)) {
+    for (const glm::vec3& p : anchors_.inCameraFrame(shown_->frame->pose)) {
         const glm::vec4 clip = cloudViewProjection_ * glm::vec4(p, 1.0f);
         const float w = clip.w > 1e-6f ? clip.w : 1e-6f;
         overlay.anchors.emplace_back(0.5f * (clip.x / w + 1.0f), 0.5f * (1.0f - clip.y / w));

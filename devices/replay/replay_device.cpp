@@ -115,7 +115,24 @@ Status ReplayDevice::doStart() {
     return {};
 }
 
+void ReplayDevice::setDemand(const SourceDemand& demand) {
+    std::lock_guard lock(control_->mutex_);
+    if (control_->wantColor_ == demand.cameraImage)
+        return;
+    control_->wantColor_ = demand.cameraImage;
+    if (demand.cameraImage && !lastHadColor_ && !control_->status_.playing && capabilities().color &&
+        delivered_ > 0) {
+        control_->refresh_ = true;
+        ++control_->changes_;
+        control_->changed_.notify_all();
+    }
+}
+
 std::optional<std::pair<std::size_t, frame::Frame>> ReplayDevice::decodeFrom(std::size_t index) {
+    {
+        std::lock_guard lock(control_->mutex_);
+        source_->setDecodeColor(control_->wantColor_);
+    }
     const std::size_t count = source_->frameCount();
     for (std::size_t tried = 0; tried < count; ++tried) {
         auto frame = loadFrame(*source_, index);
@@ -140,6 +157,8 @@ CaptureResult ReplayDevice::deliver(std::size_t index, frame::Frame frame, std::
     status.timestampNs = source_->timestampNs(index);
     frame.sequence = delivered_++;
     frame.replay = frame::ReplayPosition{index, source_->frameCount(), generation};
+    lastHadColor_ = !frame.capturedImage.empty();
+    status.colorDecodes += lastHadColor_ ? 1 : 0;
     return {CaptureResult::Kind::Frame, std::make_shared<const frame::Frame>(std::move(frame)), {}};
 }
 
@@ -169,6 +188,15 @@ CaptureResult ReplayDevice::doCapture(std::chrono::milliseconds timeout) {
             appliedGeneration_ = seek.generation;
             lastDue_ = Clock::now();
             return deliver(decoded->first, std::move(decoded->second), seek.generation);
+        }
+        if (std::exchange(c.refresh_, false)) {
+            const std::size_t index = c.status_.index;
+            lock.unlock();
+            auto decoded = decodeFrom(index);
+            lock.lock();
+            if (decoded && !c.pendingSeek_)
+                return deliver(decoded->first, std::move(decoded->second), appliedGeneration_);
+            continue;
         }
         if (c.status_.playing) {
             if (auto result = playNext(lock, deadline))

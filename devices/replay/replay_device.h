@@ -30,6 +30,7 @@ struct ReplayStatus {
     bool atEnd = false;               // paused on the last frame because loop is off
     std::uint64_t seekGeneration = 0; // the generation of the latest seek or step requested
     std::uint64_t framesSkipped = 0;  // frames that failed to decode and were skipped
+    std::uint64_t colorDecodes = 0;   // frames delivered with their camera image decoded
     std::string lastProblem;          // why the last skipped frame failed
 };
 
@@ -67,6 +68,8 @@ private:
     ReplayStatus status_;
     std::optional<Seek> pendingSeek_;
     std::uint64_t changes_ = 0; // bumped by every request, so the device notices any of them
+    bool wantColor_ = true;     // the consumers' SourceDemand::cameraImage
+    bool refresh_ = false;      // deliver the current frame again (now with its colour)
 };
 
 // Plays a ReplaySource through the Device interface, paced by the recorded timestamps (scaled by the
@@ -80,6 +83,10 @@ public:
     Capabilities capabilities() const override { return source_->capabilities(); }
     // Shared with the UI; stays valid after the device is gone.
     std::shared_ptr<ReplayControl> control() const { return control_; }
+    // Frames decoded from now on carry their camera image only when it is wanted. When it becomes wanted
+    // again while paused on a frame decoded without it, that frame is decoded again, exactly, and delivered
+    // once more (same index, same seek generation).
+    void setDemand(const SourceDemand& demand) override;
 
 protected:
     Status doOpen() override;
@@ -103,6 +110,7 @@ private:
     bool wasPlaying_ = false;
     // Pacing: the current frame was due at lastDue_; the next follows at the recorded spacing.
     Clock::time_point lastDue_;
+    bool lastHadColor_ = true; // whether the frame delivered last carried its camera image
 };
 
 } // namespace dc::devices::replay

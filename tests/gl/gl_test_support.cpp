@@ -1,5 +1,7 @@
 #include "gl_test_support.h"
 
+#include "processing/point_colors.h"
+
 #include <algorithm>
 #include <cstdlib>
 #include <memory>
@@ -139,6 +141,22 @@ glm::mat4 pinholeViewProjection(const frame::Intrinsics& k, int width, int heigh
     m[3][2] = -2.0f * farMeters * nearMeters / (farMeters - nearMeters);
     m[2][3] = 1.0f; // clip w = z: the perspective divide
     return m;
+}
+
+void uploadFrame(FrameTextures& textures, const frame::Frame& frame) {
+    processing::ShownDepth shown;
+    if (frame.sceneDepth) {
+        shown.data = std::make_shared<const frame::DepthData>(*frame.sceneDepth);
+        shown.intrinsics = frame.depthIntrinsics();
+    }
+    textures.uploadDepth(shown);
+    if (!shown.data) {
+        textures.uploadColors(nullptr);
+        return;
+    }
+    const processing::RgbImage colors =
+        processing::pointColors(frame.capturedImage, shown.width(), shown.height());
+    textures.uploadColors(&colors);
 }
 
 } // namespace dc::render::test

@@ -2,6 +2,7 @@
 
 #include "frame/color.h"
 #include "frame/frame.h"
+#include "render/frame_textures.h"
 #include "render/gl_context.h"
 
 #include <epoxy/gl.h>
@@ -57,6 +58,10 @@ frame::CapturedImage rgb24Image(int width, int height, const ColorFunction& colo
 // `depthIntrinsics` at the depth map's resolution, as ARKit's do.
 frame::Frame makeFrame(frame::DepthData depth, frame::CapturedImage image,
                        const frame::Intrinsics& cameraIntrinsics);
+
+// Uploads the frame as the engine shows a raw frame: sceneDepth with Frame::depthIntrinsics(), and the
+// colour of each point (processing::pointColors of the camera image).
+void uploadFrame(FrameTextures& textures, const frame::Frame& frame);
 
 // A pinhole projection through `k` into a `width` x `height` target: the centre of depth pixel (u, v)
 // lands on the centre of target pixel (u, v) counted from the top-left, as RenderTarget::readRgba()

@@ -54,7 +54,7 @@ TEST_F(PanelRendererTest, DepthPanelIsTheJetColormapOfEachSample) {
     depth.depthMeters.at(4, 2) = std::numeric_limits<float>::quiet_NaN();
     depth.depthMeters.at(5, 4) = -1.0f;
     depth.depthMeters.at(6, 7) = std::numeric_limits<float>::infinity();
-    textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
+    uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
     ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
@@ -72,7 +72,7 @@ class DepthColormapTest : public PanelRendererTest, public ::testing::WithParamI
 
 TEST_P(DepthColormapTest, DepthPanelFollowsTheChosenColormap) {
     const frame::DepthData depth = rampDepth();
-    textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
+    uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
     ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters, GetParam());
     const std::vector<std::uint8_t> rgba = target_.readRgba();
@@ -118,7 +118,7 @@ TEST(Colormap, RampsRunTheirWholeRangeAndClampOutside) {
 
 TEST_F(PanelRendererTest, LargerDepthPanelRepeatsEachSampleWithoutBlending) {
     const frame::DepthData depth = rampDepth();
-    textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
+    uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
     ASSERT_TRUE(target_.resize(kWidth * 3, kHeight * 3).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
@@ -132,7 +132,7 @@ TEST_F(PanelRendererTest, LargerDepthPanelRepeatsEachSampleWithoutBlending) {
 }
 
 TEST_F(PanelRendererTest, CollapsedDepthRangeDoesNotBreakTheShader) {
-    textures_.upload(makeFrame(rampDepth(), {}, kIntrinsics), false);
+    uploadFrame(textures_, makeFrame(rampDepth(), {}, kIntrinsics));
     ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
     renderer_.renderDepth(target_, textures_, 2.0f, 2.0f);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
@@ -146,7 +146,7 @@ TEST_F(PanelRendererTest, ConfidencePanelIsRedGreenBlue) {
     for (int v = 0; v < kHeight; ++v)
         for (int u = 0; u < kWidth; ++u)
             depth.confidence.at(u, v) = static_cast<std::uint8_t>((u + 2 * v) % 4); // 3 is out of range
-    textures_.upload(makeFrame(depth, {}, kIntrinsics), false);
+    uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
     ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
     renderer_.renderConfidence(target_, textures_);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
@@ -158,57 +158,15 @@ TEST_F(PanelRendererTest, ConfidencePanelIsRedGreenBlue) {
                 << "at " << u << ", " << v;
 }
 
-// Bilinear chroma blends neighbouring blocks at their borders; block interiors must be exact.
-void expectCameraPanel(const std::vector<std::uint8_t>& rgba, const frame::CapturedImage& image, int block,
-                       int tolerance) {
-    for (int y = 0; y < image.height; ++y) {
-        for (int x = 0; x < image.width; ++x) {
-            if (x % block < 2 || x % block >= block - 2 || y % block < 2 || y % block >= block - 2)
-                continue;
-            const Rgba expected = toRgba(frame::pixelRgb(image, x, y));
-            ASSERT_TRUE(near(pixelAt(rgba, image.width, x, y), expected, tolerance))
-                << "at " << x << ", " << y;
-        }
-    }
-}
-
-class CameraPanelTest : public PanelRendererTest, public ::testing::WithParamInterface<frame::PixelFormat> {};
-
-TEST_P(CameraPanelTest, CameraPanelShowsTheImage) {
-    constexpr int kImageWidth = 64, kImageHeight = 48, kBlock = 8;
-    const ColorFunction colors = blockColors(kBlock);
-    const frame::CapturedImage image =
-        GetParam() == frame::PixelFormat::Nv12   ? nv12Image(kImageWidth, kImageHeight, colors)
-        : GetParam() == frame::PixelFormat::Yuyv ? yuyvImage(kImageWidth, kImageHeight, colors)
-                                                 : rgb24Image(kImageWidth, kImageHeight, colors);
-    textures_.upload(makeFrame(rampDepth(), image, kIntrinsics), false);
-    EXPECT_EQ(textures_.cameraWidth(), kImageWidth);
-    EXPECT_EQ(textures_.cameraHeight(), kImageHeight);
-    ASSERT_TRUE(target_.resize(kImageWidth, kImageHeight).ok());
-    renderer_.renderCamera(target_, textures_);
-    const std::vector<std::uint8_t> rgba = target_.readRgba();
-    ASSERT_TRUE(noGlError());
-    // RGB24 takes a round trip through 8-bit YCbCr on upload.
-    expectCameraPanel(rgba, image, kBlock, GetParam() == frame::PixelFormat::Rgb24 ? 3 : 2);
-}
-
-INSTANTIATE_TEST_SUITE_P(Formats, CameraPanelTest,
-                         ::testing::Values(frame::PixelFormat::Nv12, frame::PixelFormat::Yuyv,
-                                           frame::PixelFormat::Rgb24),
-                         [](const auto& info) { return std::string(frame::toString(info.param)); });
-
-TEST_F(PanelRendererTest, PanelsWithoutDepthAreBlackAndTheCameraPanelStillWorks) {
+TEST_F(PanelRendererTest, PanelsWithoutDepthAreBlack) {
     frame::Frame frame = makeFrame(rampDepth(), nv12Image(16, 16, blockColors(16)), kIntrinsics);
     frame.sceneDepth.reset();
-    textures_.upload(frame, false);
+    uploadFrame(textures_, frame);
     ASSERT_TRUE(target_.resize(16, 16).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
     EXPECT_EQ(pixelAt(target_.readRgba(), 16, 8, 8), kBlack);
     renderer_.renderConfidence(target_, textures_);
     EXPECT_EQ(pixelAt(target_.readRgba(), 16, 8, 8), kBlack);
-    renderer_.renderCamera(target_, textures_);
-    EXPECT_TRUE(
-        near(pixelAt(target_.readRgba(), 16, 8, 8), toRgba(frame::pixelRgb(frame.capturedImage, 8, 8)), 2));
     EXPECT_TRUE(noGlError());
 }
 

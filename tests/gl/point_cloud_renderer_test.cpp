@@ -1,5 +1,6 @@
 #include "gl_test_support.h"
 
+#include "render/colormap.h"
 #include "render/frame_textures.h"
 #include "render/point_cloud_renderer.h"
 #include "render/render_target.h"
@@ -36,7 +37,7 @@ protected:
     // Renders `depth` seen straight from the depth camera, so pixel (u, v) of the target shows depth
     // sample (u, v), and returns the target's pixels.
     std::vector<std::uint8_t> renderStraightOn(frame::DepthData depth, frame::Confidence minConfidence) {
-        textures_.upload(makeFrame(std::move(depth), image_, kCameraIntrinsics), false);
+        uploadFrame(textures_, makeFrame(std::move(depth), image_, kCameraIntrinsics));
         CloudParams params;
         params.viewProjection = pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight);
         params.minConfidence = minConfidence;
@@ -97,7 +98,7 @@ TEST_F(PointCloudRendererTest, PointsAreUnprojectedWithTheirDepth) {
     // Moving the eye 1/6 m to the left shifts a plane at depth z right by fx / 6 / z pixels: 10 px at 1 m,
     // 5 px at 2 m. A shader ignoring z (or the intrinsics) would shift both planes alike.
     for (const float z : {1.0f, 2.0f}) {
-        textures_.upload(makeFrame(plane(z), image_, kCameraIntrinsics), false);
+        uploadFrame(textures_, makeFrame(plane(z), image_, kCameraIntrinsics));
         CloudParams params;
         params.viewProjection =
             pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight) *
@@ -152,14 +153,13 @@ TEST_F(PointCloudRendererTest, WithoutCameraImageThePointsAreMidGray) {
     image_ = {};
     const std::vector<std::uint8_t> rgba = renderStraightOn(plane(1.0f), frame::Confidence::Low);
     ASSERT_TRUE(noGlError());
-    EXPECT_FALSE(textures_.hasCameraImage());
     EXPECT_TRUE(near(pixelAt(rgba, kDepthWidth, 5, 7), Rgba{128, 128, 128, 255}, 1));
 }
 
 TEST_F(PointCloudRendererTest, WithoutDepthOnlyTheBackgroundIsDrawn) {
     frame::Frame frame = makeFrame(plane(1.0f), image_, kCameraIntrinsics);
     frame.sceneDepth.reset();
-    textures_.upload(frame, false);
+    uploadFrame(textures_, frame);
     CloudParams params;
     params.background = kBackground;
     renderer_.render(target_, textures_, params);
@@ -175,7 +175,7 @@ TEST_F(PointCloudRendererTest, WithoutDepthOnlyTheBackgroundIsDrawn) {
 TEST_F(PointCloudRendererTest, LargerPointsCoverTheirNeighbourhood) {
     frame::DepthData depth = plane(0.0f);
     depth.depthMeters.at(30, 20) = 1.0f;
-    textures_.upload(makeFrame(std::move(depth), image_, kCameraIntrinsics), false);
+    uploadFrame(textures_, makeFrame(std::move(depth), image_, kCameraIntrinsics));
     CloudParams params;
     params.viewProjection = pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight);
     params.pointSizePixels = 3.0f;
@@ -189,6 +189,39 @@ TEST_F(PointCloudRendererTest, LargerPointsCoverTheirNeighbourhood) {
             lit += pixelAt(rgba, kDepthWidth, u, v) != background();
     EXPECT_EQ(lit, 9);
     EXPECT_TRUE(near(pixelAt(rgba, kDepthWidth, 29, 21), cameraColor(30, 20), 2));
+}
+
+// Each colouring of the points: the depth through the colormap over the given range, and the confidence
+// in the confidence panel's colours.
+TEST_F(PointCloudRendererTest, PointsTakeTheDepthColormapOrTheConfidenceColours) {
+    frame::DepthData depth = plane(1.0f);
+    for (int v = 0; v < kDepthHeight; ++v)
+        for (int u = 0; u < kDepthWidth; ++u) {
+            depth.depthMeters.at(u, v) = 1.0f + static_cast<float>(u) / kDepthWidth;
+            depth.confidence.at(u, v) = static_cast<std::uint8_t>(v % 3);
+        }
+    uploadFrame(textures_, makeFrame(depth, image_, kCameraIntrinsics));
+    CloudParams params;
+    params.viewProjection = pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight);
+    params.pointSizePixels = 1.0f;
+    params.coloring = PointColoring::Depth;
+    params.colormap = Colormap::Viridis;
+    params.rangeMinMeters = 1.0f;
+    params.rangeMaxMeters = 2.0f;
+    renderer_.render(target_, textures_, params);
+    std::vector<std::uint8_t> rgba = target_.readRgba();
+    ASSERT_TRUE(noGlError());
+    for (int u = 0; u < kDepthWidth; u += 7) {
+        const float t = (depth.depthMeters.at(u, 10) - 1.0f) / 1.0f;
+        ASSERT_TRUE(near(pixelAt(rgba, kDepthWidth, u, 10), toRgba(colormapColor(Colormap::Viridis, t)), 2))
+            << "u " << u;
+    }
+    params.coloring = PointColoring::Confidence;
+    renderer_.render(target_, textures_, params);
+    rgba = target_.readRgba();
+    const Rgba levels[] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}};
+    for (int v = 0; v < kDepthHeight; v += 5)
+        ASSERT_EQ(pixelAt(rgba, kDepthWidth, 12, v), levels[v % 3]) << "v " << v;
 }
 
 } // namespace

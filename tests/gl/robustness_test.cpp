@@ -20,13 +20,12 @@ protected:
 
     // Uploads `frame` and draws every view into targets of the given size.
     ::testing::AssertionResult renderAll(const frame::Frame& frame, int width, int height) {
-        textures_.upload(frame, false);
+        uploadFrame(textures_, frame);
         if (!target_.resize(width, height).ok())
             return ::testing::AssertionFailure() << "cannot size the target";
         cloud_.render(target_, textures_, CloudParams{});
         panels_.renderDepth(target_, textures_, 0.5f, 3.0f);
         panels_.renderConfidence(target_, textures_);
-        panels_.renderCamera(target_, textures_);
         if (target_.readRgba().size() != static_cast<std::size_t>(width) * height * 4)
             return ::testing::AssertionFailure() << "wrong readback size";
         return noGlError();
@@ -67,7 +66,6 @@ TEST_F(RobustnessTest, FramesWithoutDepthConfidenceOrImage) {
     noConfidence.sceneDepth->confidence = {};
     EXPECT_TRUE(renderAll(noConfidence, 4, 4));
     EXPECT_FALSE(textures_.hasConfidence());
-    EXPECT_FALSE(textures_.hasCameraImage());
 
     EXPECT_TRUE(renderAll(frame::Frame{}, 2, 2));
 }
@@ -79,10 +77,9 @@ TEST_F(RobustnessTest, MalformedInputsAreTreatedAsMissing) {
     EXPECT_TRUE(renderAll(frame, 4, 4));
     EXPECT_TRUE(textures_.hasDepth());
     EXPECT_FALSE(textures_.hasConfidence());
-    EXPECT_FALSE(textures_.hasCameraImage());
 
     frame.cameraIntrinsics = {}; // depth without usable intrinsics cannot be unprojected
-    textures_.upload(frame, false);
+    uploadFrame(textures_, frame);
     cloud_.render(target_, textures_, CloudParams{});
     EXPECT_EQ(cloud_.lastPointCount(), 0u);
     EXPECT_TRUE(noGlError());
@@ -94,26 +91,10 @@ TEST_F(RobustnessTest, TexturesFollowChangingFrameSizes) {
     EXPECT_TRUE(renderAll(makeFrame(depthOf(3, 2, 1.0f), nv12Image(6, 4, colors), kIntrinsics), 3, 2));
     EXPECT_TRUE(renderAll(makeFrame(depthOf(8, 6, 1.0f), nv12Image(16, 12, colors), kIntrinsics), 40, 30));
     EXPECT_EQ(textures_.depthWidth(), 8);
-    EXPECT_EQ(textures_.cameraWidth(), 16);
-}
-
-TEST_F(RobustnessTest, SmoothedDepthIsUsedOnlyWhenPreferredAndPresent) {
-    frame::Frame frame = makeFrame(depthOf(4, 4, 1.0f), nv12Image(8, 8, blockColors(2)), kIntrinsics);
-    frame.smoothedSceneDepth = depthOf(2, 2, 1.0f);
-    textures_.upload(frame, true);
-    EXPECT_EQ(textures_.depthWidth(), 2);
-    EXPECT_DOUBLE_EQ(textures_.depthIntrinsics().fx, 2.0); // scaled to the smoothed map, not sceneDepth
-    textures_.upload(frame, false);
-    EXPECT_EQ(textures_.depthWidth(), 4);
-    EXPECT_DOUBLE_EQ(textures_.depthIntrinsics().fx, frame.depthIntrinsics().fx);
-    frame.smoothedSceneDepth.reset();
-    textures_.upload(frame, true);
-    EXPECT_EQ(textures_.depthWidth(), 4);
-    EXPECT_TRUE(noGlError());
 }
 
 TEST_F(RobustnessTest, RenderingIntoAnUnsizedTargetOrBeforeInitDoesNothing) {
-    textures_.upload(makeFrame(depthOf(4, 4, 1.0f), {}, kIntrinsics), false);
+    uploadFrame(textures_, makeFrame(depthOf(4, 4, 1.0f), {}, kIntrinsics));
     RenderTarget unsized;
     cloud_.render(unsized, textures_, CloudParams{});
     panels_.renderDepth(unsized, textures_, 0.0f, 1.0f);

@@ -75,7 +75,7 @@ protected:
 
 TEST_F(Export, PlyPerFrameParsesBackToTheCloudOfThatFrame) {
     std::vector<std::size_t> progress;
-    auto result = exportFrames(*source_, {ExportFormat::Ply, dir_.path("ply"), {2, 5}, false},
+    auto result = exportFrames(*source_, {ExportFormat::Ply, dir_.path("ply"), {2, 5}, false, {}},
                                [&](std::size_t done, std::size_t total) {
                                    EXPECT_EQ(total, 3u);
                                    progress.push_back(done);
@@ -107,7 +107,7 @@ std::string readText(const std::string& path) {
 // Open3D (Debian's python3-open3d for Debian's /usr/bin/python3, installed by scripts/setup.sh) reads what
 // CloudCompare and other tools will read: the same points with the same colours.
 TEST_F(Export, OpenThreeDLoadsThePly) {
-    ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Ply, dir_.path("o3d"), {3, 4}, false}));
+    ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Ply, dir_.path("o3d"), {3, 4}, false, {}}));
     const std::string ply = dir_.path("o3d/000003.ply"), out = dir_.path("o3d.txt");
     const std::string command =
         "/usr/bin/python3 -c 'import sys, open3d as o3d; p = o3d.io.read_point_cloud(sys.argv[1]); "
@@ -131,7 +131,7 @@ TEST_F(Export, OpenThreeDLoadsThePly) {
 }
 
 TEST_F(Export, PlyInWorldCoordinatesAppliesThePose) {
-    ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Ply, dir_.path("w"), {1, 2}, true}));
+    ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Ply, dir_.path("w"), {1, 2}, true, {}}));
     const PlyFile ply = parsePly(test::readBytes(dir_.path("w/000001.ply")));
     const auto camera = processing::buildPointCloud(*frames_[1], frame::Confidence::Low, 0.0f);
     ASSERT_EQ(ply.vertices, camera.size());
@@ -158,7 +158,7 @@ TEST_F(Export, StrayLayoutImportsBackWithTheSameFrames) {
     auto rotatedSource = devices::replay::openRecordingSource(dir_.path("rotated.dcrec"));
     ASSERT_TRUE(rotatedSource);
     source_ = std::move(*rotatedSource);
-    auto result = exportFrames(*source_, {ExportFormat::Stray, dir_.path("stray"), {}, false});
+    auto result = exportFrames(*source_, {ExportFormat::Stray, dir_.path("stray"), {}, false, {}});
     ASSERT_TRUE(result) << result.error().message;
     auto back = devices::replay::openReplaySource(dir_.path("stray"));
     ASSERT_TRUE(back) << back.error().message;
@@ -182,7 +182,7 @@ TEST_F(Export, StrayLayoutImportsBackWithTheSameFrames) {
 }
 
 TEST_F(Export, Png16HoldsMillimetres) {
-    ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Png16, dir_.path("png"), {0, 1}, false}));
+    ASSERT_TRUE(exportFrames(*source_, {ExportFormat::Png16, dir_.path("png"), {0, 1}, false, {}}));
     const cv::Mat png = cv::imread(dir_.path("png/depth/000000.png"), cv::IMREAD_UNCHANGED);
     ASSERT_EQ(png.type(), CV_16UC1);
     const auto& depth = frames_[0]->sceneDepth->depthMeters;
@@ -193,7 +193,7 @@ TEST_F(Export, Png16HoldsMillimetres) {
 }
 
 TEST_F(Export, CancelAndBadRangesAreErrors) {
-    auto cancelled = exportFrames(*source_, {ExportFormat::Png16, dir_.path("c"), {}, false},
+    auto cancelled = exportFrames(*source_, {ExportFormat::Png16, dir_.path("c"), {}, false, {}},
                                   [](std::size_t done, std::size_t) { return done < 2; });
     ASSERT_FALSE(cancelled);
     EXPECT_NE(cancelled.error().message.find("cancelled after 2 frames"), std::string::npos);

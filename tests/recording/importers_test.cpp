@@ -102,7 +102,7 @@ protected:
         auto recording = openRecordingSource(dir_.path("r.dcrec"));
         ASSERT_TRUE(recording);
         auto written =
-            exporting::exportFrames(**recording, {exporting::ExportFormat::Stray, dir_.path("s"), {}, false});
+            exporting::exportFrames(**recording, {exporting::ExportFormat::Stray, dir_.path("s"), {}, false, {}});
         ASSERT_TRUE(written) << written.error().message;
     }
     std::string path(const std::string& name) const { return dir_.path("s/" + name); }

@@ -41,13 +41,13 @@ protected:
         fs::create_directories(dir_);
         recording_ = (dir_ / "scene.dcrec").string();
         // A recording made by the real recorder, the same path as `depthcloud record`.
-        ASSERT_TRUE(viewer_->startRecording(recording_).ok());
-        for (int i = 0; i < 200 && viewer_->recordView().framesWritten < kFrames; ++i)
+        ASSERT_TRUE(instrument_->startRecording(recording_).ok());
+        for (int i = 0; i < 200 && instrument_->recording().frames < kFrames; ++i)
             viewer_->update(0.0, std::chrono::milliseconds(20));
-        ASSERT_TRUE(viewer_->stopRecording().ok());
+        ASSERT_TRUE(instrument_->stopRecording().ok());
         ASSERT_TRUE(fs::exists(recording_));
         ASSERT_TRUE(viewer_->openSource("replay:" + recording_ + ":paused").ok());
-        ASSERT_NE(viewer_->replayControl(), nullptr);
+        ASSERT_NE(instrument_->replay(), nullptr);
         waitForIndex(0);
     }
 
@@ -61,14 +61,14 @@ protected:
         for (int i = 0; i < 100; ++i) {
             viewer_->update(0.0, std::chrono::milliseconds(20));
             frame(0.0);
-            const auto& f = viewer_->currentFrame();
-            if (f && f->replay && f->replay->index == index)
+            const auto& s = viewer_->shown();
+            if (s && s->frame->replay && s->frame->replay->index == index)
                 return true;
         }
         return false;
     }
 
-    std::size_t shownIndex() const { return viewer_->currentFrame()->replay->index; }
+    std::size_t shownIndex() const { return shown().frame->replay->index; }
 
     static constexpr std::uint64_t kFrames = 24;
     fs::path dir_;
@@ -76,11 +76,11 @@ protected:
 };
 
 TEST_F(TimelineTest, SeeksAndStepsShowExactlyTheFrameAskedFor) {
-    const std::size_t count = viewer_->replayControl()->status().count;
+    const std::size_t count = instrument_->replay()->status().count;
     ASSERT_GE(count, kFrames);
     for (const std::size_t target :
          {std::size_t{17}, std::size_t{3}, count - 1, std::size_t{0}, std::size_t{11}}) {
-        viewer_->seekReplay(target);
+        instrument_->seekReplay(target);
         // The first frame accepted after the seek is the target: never a stale one in between.
         for (int i = 0; i < 100; ++i) {
             if (viewer_->update(0.0, std::chrono::milliseconds(20)))
@@ -98,7 +98,7 @@ TEST_F(TimelineTest, SeeksAndStepsShowExactlyTheFrameAskedFor) {
     pressKey(ImGui::GetKeyIndex(ImGuiKey_Home), 0.0);
     ASSERT_TRUE(waitForIndex(0));
     pressKey(ImGui::GetKeyIndex(ImGuiKey_Space), 0.0);
-    EXPECT_TRUE(viewer_->replayControl()->status().playing) << "space plays";
+    EXPECT_TRUE(instrument_->replay()->status().playing) << "space plays";
 }
 
 TEST_F(TimelineTest, TheTimelineButtonsDriveTheReplay) {
@@ -109,7 +109,7 @@ TEST_F(TimelineTest, TheTimelineButtonsDriveTheReplay) {
     const auto loop = locate(kTimelineTitle, "Loop", 1.0f);
     ASSERT_TRUE(loop.has_value());
     click(*loop, 0.0);
-    EXPECT_TRUE(viewer_->replayControl()->status().loop);
+    EXPECT_TRUE(instrument_->replay()->status().loop);
 }
 
 TEST_F(TimelineTest, ExportFromTheUiWritesWhatTheCliWrites) {
@@ -131,15 +131,15 @@ TEST_F(TimelineTest, ExportFromTheUiWritesWhatTheCliWrites) {
     std::vector<double> before, during;
     for (int i = 0; i < 10; ++i)
         timedFrame(before);
-    ASSERT_TRUE(viewer_->startExport(exporting::ExportFormat::Ply, ui.string(), 4, 9).ok());
+    ASSERT_TRUE(instrument_->startExport(exporting::ExportFormat::Ply, ui.string(), 4, 9, viewer_->demand()).ok());
     // The UI keeps drawing while the export runs on its worker: count and time the frames drawn meanwhile.
-    while (during.size() < 600 && !viewer_->exportJob()->finished())
+    while (during.size() < 600 && !instrument_->exportJob()->finished())
         timedFrame(during);
-    ASSERT_TRUE(viewer_->exportJob()->finished());
+    ASSERT_TRUE(instrument_->exportJob()->finished());
     ASSERT_FALSE(during.empty()) << "the export blocked the UI: it was finished before a frame was drawn";
     std::printf("UI frame time before the export: %s; during it: %s\n", describe(before).c_str(),
                 describe(during).c_str());
-    const auto result = viewer_->exportJob()->result();
+    const auto result = instrument_->exportJob()->result();
     ASSERT_TRUE(result && result->ok()) << (result ? result->error().message : "no result");
     EXPECT_EQ((*result)->framesWritten, 5u);
     const std::string command = std::string(DEPTHCLOUD_BINARY) + " export --source replay:" + recording_ +

@@ -2,10 +2,13 @@
 
 // The fixture of the headless UI tests: the real panel functions in Debian's ImGui 1.86 (IM_ASSERT live),
 // drawn with the OpenGL3 renderer into an offscreen target on Mesa llvmpipe, driven by injected mouse and
-// keyboard input.
+// keyboard input; behind them the real engine (instrument, frame processor) and view renderer, put
+// together as the tool does.
 
 #include "devices/synthetic/synthetic_device.h"
+#include "engine/instrument.h"
 #include "render/gl_context.h"
+#include "render/view_renderer.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"
 
@@ -29,30 +32,58 @@ inline devices::SyntheticConfig smallScene() {
 class UiTest : public ::testing::Test {
 protected:
     void SetUp() override {
+        ASSERT_NO_FATAL_FAILURE(initGl());
+        ASSERT_NO_FATAL_FAILURE(startViewer(smallScene()));
+    }
+
+    void initGl(int width = 1280, int height = 720) {
         auto ctx = render::EglContext::createHeadless();
         ASSERT_TRUE(ctx.ok()) << ctx.error().message;
         context_.emplace(std::move(*ctx));
-        ASSERT_TRUE(gui_.init(1280, 720).ok());
-        startViewer(smallScene());
+        ASSERT_TRUE(gui_.init(width, height).ok());
+        ASSERT_TRUE(renderer_.init().ok());
     }
 
-    void startViewer(const devices::SyntheticConfig& config) {
-        viewer_ = std::make_unique<Viewer>(std::make_unique<devices::SyntheticDevice>(config), Settings{});
-        ASSERT_TRUE(viewer_->init().ok());
-        ASSERT_TRUE(viewer_->sourceRunning()) << viewer_->sourceMessage();
+    void startViewer(const devices::SyntheticConfig& config, Settings settings = {}) {
+        ASSERT_NO_FATAL_FAILURE(
+            start(std::make_unique<devices::SyntheticDevice>(config), "synthetic", std::move(settings)));
         // Let the first frame arrive so every panel has content.
         ASSERT_TRUE(viewer_->update(0.0, std::chrono::seconds(5)));
         frame(0.0);
     }
 
-    void TearDown() override { viewer_.reset(); }
+    // The instrument on `device`, and a viewer on it; nothing waited for.
+    void start(std::unique_ptr<devices::Device> device, std::string spec, Settings settings = {}) {
+        viewer_.reset();
+        instrument_.reset();
+        instrument_ = std::make_unique<engine::Instrument>(std::move(device), std::move(spec));
+        viewer_ = std::make_unique<Viewer>(*instrument_, renderer_, std::move(settings));
+        instrument_->start();
+    }
 
-    // One UI frame at time t: the viewer renders, the panels are drawn with whatever input is set.
+    void TearDown() override {
+        viewer_.reset();
+        instrument_.reset();
+    }
+
+    // One UI frame at time t: the viewer renders, the panels are drawn with whatever input is set, and the
+    // frame counts as shown.
     void frame(double t) {
         gui_.newFrame(1.0f / 60.0f);
         viewer_->update(t);
         viewer_->drawUi();
         gui_.render();
+        viewer_->presented();
+    }
+
+    // Frames until a new device frame's result is shown (or 5 s pass).
+    bool nextFrame(double t) {
+        gui_.newFrame(1.0f / 60.0f);
+        const bool fresh = viewer_->update(t, std::chrono::seconds(5));
+        viewer_->drawUi();
+        gui_.render();
+        viewer_->presented();
+        return fresh;
     }
 
     // Finds a widget by label inside a panel by hovering candidate positions until ImGui reports the
@@ -94,8 +125,10 @@ protected:
 
     std::vector<std::uint8_t> cloudSnapshot(double t) {
         viewer_->update(t);
-        return viewer_->cloudTarget().readRgba();
+        return renderer_.cloudTarget().readRgba();
     }
+
+    const processing::ShownFrame& shown() const { return *viewer_->shown(); }
 
     static std::size_t litPixels(const std::vector<std::uint8_t>& rgba) {
         std::size_t n = 0;
@@ -106,6 +139,8 @@ protected:
 
     std::optional<render::EglContext> context_;
     HeadlessUi gui_;
+    render::ViewRenderer renderer_;
+    std::unique_ptr<engine::Instrument> instrument_;
     std::unique_ptr<Viewer> viewer_;
 };
 

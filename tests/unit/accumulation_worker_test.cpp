@@ -1,4 +1,5 @@
 #include "processing/accumulation_worker.h"
+#include "processing/point_colors.h"
 
 #include <gtest/gtest.h>
 
@@ -22,8 +23,12 @@ frame::FramePtr wallAt(double x, float depth, int w = 16, int h = 12) {
     return f;
 }
 
-AccumulationWorker::Request requestFor(frame::FramePtr frame, std::size_t budget = 1000) {
-    return {std::move(frame), frame::Confidence::Low, 0.0f, budget, 0.001f};
+// The request the frame processor makes of a frame shown raw: its depth and the colours of its points.
+AccumulationWorker::Request requestFor(const frame::FramePtr& frame, std::size_t budget = 1000) {
+    const auto& d = frame->sceneDepth->depthMeters;
+    return {std::shared_ptr<const frame::DepthData>(frame, &*frame->sceneDepth), frame->depthIntrinsics(),
+            std::make_shared<const RgbImage>(pointColors(frame->capturedImage, d.width, d.height)),
+            *frame->pose, frame::Confidence::Low, 0.0f, budget, 0.001f};
 }
 
 TEST(AccumulationWorker, AddsExactlyWhatTheAccumulatorItselfWouldAdd) {

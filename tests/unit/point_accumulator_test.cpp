@@ -1,4 +1,5 @@
 #include "processing/point_accumulator.h"
+#include "processing/point_colors.h"
 
 #include "devices/synthetic/synthetic_scene.h"
 #include "frame/color.h"

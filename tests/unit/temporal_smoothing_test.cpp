@@ -110,6 +110,26 @@ TEST(SmoothingStage, RestartsWhenTimeRunsBackwardsOrJumpsAhead) {
         << "a seek forwards restarts the history";
 }
 
+TEST(SmoothingStage, ARedoOfTheSameFrameStartsFromTheHistoryBeforeIt) {
+    SmoothingStage stage;
+    ProcessingSettings settings;
+    settings.smoothing = true;
+    settings.smoothingParams.alpha = 0.4f;
+    stage.process(frameAt(1'000'000'000, 1.0f), settings);
+    const frame::FramePtr second = frameAt(1'016'000'000, 1.05f);
+    const auto at = [&](const ProcessingSettings& s) {
+        return stage.process(second, s)->smoothedSceneDepth->depthMeters.at(0, 0);
+    };
+    EXPECT_NEAR(at(settings), 1.02f, 1e-6f);
+    EXPECT_NEAR(at(settings), 1.02f, 1e-6f) << "the same frame again is no new frame";
+    settings.smoothingParams.alpha = 1.0f;
+    EXPECT_NEAR(at(settings), 1.05f, 1e-6f) << "new parameters apply to the history before the frame";
+    settings.smoothingParams.alpha = 0.4f;
+    EXPECT_NEAR(stage.process(frameAt(1'032'000'000, 1.05f), settings)->smoothedSceneDepth->depthMeters.at(0, 0),
+                1.05f, 1e-6f)
+        << "the next frame continues from the redone one";
+}
+
 TEST(SmoothingStage, PassesASourcesOwnSmoothedDepthThrough) {
     SmoothingStage stage;
     auto f = std::make_shared<frame::Frame>(*frameAt(0, 1.0f));
@@ -126,7 +146,7 @@ TEST(SmoothingStage, RunsOnlyWhileTheSmoothedDepthIsShown) {
     settings.depthSource = DepthSource::Raw;
     EXPECT_FALSE(stage.wanted(settings, {}));
     settings.depthSource = DepthSource::Smoothed;
-    Needs nothingShown{false, false, false, true, false, false};
+    Needs nothingShown{false, false, false, true, false, false, false};
     EXPECT_FALSE(stage.wanted(settings, nothingShown));
     nothingShown.fogPanel = true;
     EXPECT_TRUE(stage.wanted(settings, nothingShown)) << "fog shows depth";

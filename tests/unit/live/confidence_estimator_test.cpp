@@ -101,14 +101,29 @@ frame::FramePtr frameWith(Plane<float> depth, Plane<std::uint8_t> confidence = {
 TEST(ConfidenceEstimatorStage, FillsMissingConfidenceLabelledEstimatedAndLeavesSensorConfidence) {
     ConfidenceEstimatorStage stage;
     EXPECT_TRUE(stage.wanted({}, {}));
-    EXPECT_FALSE(stage.wanted({}, {.cloud = false, .depthPanel = false, .confidencePanel = false}))
-        << "nobody shows depth";
+    EXPECT_FALSE(stage.wanted({}, {.confidence = false})) << "nothing reads confidence";
     const frame::FramePtr out = stage.process(frameWith(wall()), {});
     ASSERT_EQ(out->sceneDepth->confidence.width, 16);
     EXPECT_TRUE(out->sceneDepth->confidenceEstimated);
     const frame::FramePtr sensor = frameWith(wall(), Plane<std::uint8_t>(16, 12, kLow));
     EXPECT_EQ(stage.process(sensor, {}), sensor) << "sensor confidence passes untouched";
     EXPECT_FALSE(sensor->sceneDepth->confidenceEstimated);
+}
+
+TEST(ConfidenceEstimatorStage, ARedoOfTheSameFrameComparesWithTheSameFrameBefore) {
+    ConfidenceEstimatorStage stage;
+    auto first = std::make_shared<frame::Frame>(*frameWith(wall()));
+    first->timestampNs = 1;
+    stage.process(first, {});
+    Plane<float> moved = wall();
+    for (float& d : moved.pixels)
+        d += 0.2f; // a jump against the previous frame: Low everywhere the change counts
+    auto second = std::make_shared<frame::Frame>(*frameWith(moved));
+    second->timestampNs = 2;
+    const auto once = stage.process(second, {})->sceneDepth->confidence;
+    const auto again = stage.process(second, {})->sceneDepth->confidence;
+    EXPECT_EQ(again.pixels, once.pixels) << "the redo must not compare the frame with itself";
+    EXPECT_NE(once.pixels, estimateConfidence(moved, nullptr).pixels) << "the frame before counted";
 }
 
 TEST(ConfidenceEstimatorStage, IsInTheDefaultPipeline) {

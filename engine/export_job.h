@@ -1,6 +1,7 @@
 #pragma once
 
 #include "base/expected.h"
+#include "engine/demand.h"
 #include "exporting/export.h"
 
 #include <atomic>
@@ -10,7 +11,12 @@
 #include <string>
 #include <thread>
 
-namespace dc::ui {
+namespace dc::engine {
+
+// The depth an export writes, processed as `demand` says (smoothing, upsampling, depth source) by a
+// ProcessingGraph of its own, frame after frame in order: each written frame's sceneDepth is the depth
+// the instrument would show for it. Null when the demand asks for no processing (frames as recorded).
+std::function<frame::Frame(frame::Frame)> processedDepth(const Demand& demand);
 
 // An export of a replay source's frame range running on its own thread, so the UI stays responsive; the
 // UI polls progress() and may cancel(). It opens its own copy of the source (sources are not thread-safe)
@@ -44,4 +50,4 @@ private:
     std::thread thread_;
 };
 
-} // namespace dc::ui
+} // namespace dc::engine

@@ -1,9 +1,33 @@
-#include "ui/export_job.h"
+#include "engine/export_job.h"
 
 #include "base/log.h"
 #include "devices/replay/replay_spec.h"
+#include "engine/processing_graph.h"
 
-namespace dc::ui {
+namespace dc::engine {
+
+std::function<frame::Frame(frame::Frame)> processedDepth(const Demand& demand) {
+    const processing::ProcessingSettings& p = demand.processing;
+    const bool smoothed = p.smoothing && p.depthSource == processing::DepthSource::Smoothed;
+    if (!smoothed && !p.upsampling)
+        return {};
+    Demand depthOnly;
+    depthOnly.processing = p;
+    depthOnly.pointColors = false;
+    depthOnly.depthImage = false;
+    depthOnly.confidencePanel = true; // exports carry confidence: estimate it where the source has none
+    auto graph = std::make_shared<ProcessingGraph>();
+    return [graph, depthOnly](frame::Frame frame) {
+        auto in = std::make_shared<const frame::Frame>(std::move(frame));
+        const processing::ShownFramePtr shown = graph->run(in, depthOnly, 1, true);
+        frame::Frame out = *in;
+        out.smoothedSceneDepth.reset();
+        if (shown->depth.data)
+            out.sceneDepth = *shown->depth.data;
+        return out;
+    };
+}
+
 
 Expected<std::unique_ptr<ExportJob>> ExportJob::start(const std::string& replaySpec,
                                                       const exporting::ExportOptions& options) {
@@ -45,4 +69,4 @@ std::optional<Expected<exporting::ExportResult>> ExportJob::result() const {
     return result_;
 }
 
-} // namespace dc::ui
+} // namespace dc::engine

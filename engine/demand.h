@@ -1,0 +1,50 @@
+#pragma once
+
+#include "frame/frame.h"
+#include "processing/pipeline.h"
+
+#include <cstddef>
+
+namespace dc::engine {
+
+// What the UI shows this frame, in data terms (rerun's "query"): which products are visible, at what size,
+// with which settings. The frame processor runs exactly the stages this needs, again whenever it changes,
+// and a source is told the part that concerns it (SourceDemand). Plain data, compared as a whole.
+struct Demand {
+    bool cloud = true;           // the point-cloud panel is visible
+    bool pointColors = true;     // its points take the camera's colour (rather than a depth or confidence map)
+    bool depthImage = true;      // the depth panel, or the camera panel's depth overlay
+    bool confidencePanel = true; // the confidence panel
+    int cameraPanelWidth = 0;    // pixels the camera panel is shown at; 0 = hidden
+    bool fog = false;
+    bool aura = false;
+    bool automaticRange = false; // the colormap follows the data (shown depth's percentiles)
+    // Which samples become points: the count, accumulation and the snapshot PLY keep what the cloud draws.
+    frame::Confidence minConfidence = frame::Confidence::Low;
+    float nearMeters = 0.1f;
+    processing::ProcessingSettings processing;
+    bool accumulate = false; // posed frames add their points to the world cloud
+    std::size_t accumulateBudget = 1'000'000;
+    float accumulateVoxelMeters = 0.005f;
+
+    bool operator==(const Demand&) const = default;
+
+    // Anything that shows depth or is derived from it.
+    bool needsDepth() const {
+        return cloud || depthImage || confidencePanel || fog || aura || accumulate || automaticRange;
+    }
+    // The confidence panel, a level above "all", or the fog's confidence overlay.
+    bool readsConfidence() const {
+        return confidencePanel || minConfidence != frame::Confidence::Low ||
+               (fog && processing.fog.confidenceOverlay);
+    }
+    // One colour per shown depth sample: camera-coloured points and accumulation.
+    bool needsPointColors() const { return (cloud && pointColors) || accumulate; }
+    // The camera image, for any product above or as the guide of upsampling.
+    bool needsCameraImage() const {
+        return needsPointColors() || cameraPanelWidth > 0 || fog || aura ||
+               (processing.upsampling && needsDepth());
+    }
+};
+
+} // namespace dc::engine

@@ -1,0 +1,192 @@
+#include "engine/frame_processor.h"
+
+#include <utility>
+
+namespace dc::engine {
+
+namespace {
+
+bool decodedBeforeSeek(const frame::Frame& frame, std::uint64_t awaitedSeek) {
+    return frame.replay && frame.replay->seekGeneration < awaitedSeek;
+}
+
+} // namespace
+
+FrameProcessor::FrameProcessor(StageStats& stages, processing::AccumulationWorker& accumulation)
+    : stages_(stages), accumulation_(accumulation), thread_([this] { run(); }) {}
+
+FrameProcessor::~FrameProcessor() {
+    setSession(nullptr);
+    {
+        std::lock_guard lock(mutex_);
+        stopping_ = true;
+    }
+    wake_.notify_all();
+    thread_.join();
+}
+
+void FrameProcessor::setSession(std::shared_ptr<devices::Session> session) {
+    std::shared_ptr<devices::Session> old;
+    {
+        std::lock_guard lock(mutex_);
+        old = std::exchange(session_, session);
+        ++epoch_;
+        reset_ = true;
+        frameReady_ = session != nullptr; // frames may be waiting already
+        awaitedSeek_ = 0;
+        slot_.reset();
+    }
+    // Once setFrameListener returns, the old session's capture thread no longer calls into us.
+    if (old)
+        old->setFrameListener({});
+    if (session)
+        session->setFrameListener([this] { onFrame(); });
+    wake_.notify_all();
+}
+
+void FrameProcessor::onFrame() {
+    {
+        std::lock_guard lock(mutex_);
+        frameReady_ = true;
+        arrival_ = Clock::now();
+    }
+    wake_.notify_all();
+}
+
+std::uint64_t FrameProcessor::setDemand(const Demand& demand) {
+    std::lock_guard lock(mutex_);
+    if (demand == demand_ && generation_ > 0)
+        return generation_;
+    demand_ = demand;
+    ++generation_;
+    wake_.notify_all();
+    return generation_;
+}
+
+void FrameProcessor::afterSeek(std::uint64_t seekGeneration) {
+    {
+        std::lock_guard lock(mutex_);
+        awaitedSeek_ = std::max(awaitedSeek_, seekGeneration);
+        reset_ = true;
+    }
+    wake_.notify_all();
+}
+
+bool FrameProcessor::hasWork() const {
+    return stopping_ || (generation_ > 0 && (frameReady_ || reset_ || generation_ != doneGeneration_));
+}
+
+void FrameProcessor::run() {
+    std::unique_lock lock(mutex_);
+    for (;;) {
+        wake_.wait(lock, [this] { return hasWork(); });
+        if (stopping_)
+            return;
+        const Work work{session_,      epoch_, demand_, generation_, awaitedSeek_, std::exchange(reset_, false),
+                        std::exchange(frameReady_, false), arrival_};
+        lock.unlock();
+        std::optional<processing::ShownFramePtr> result = process(work);
+        lock.lock();
+        doneGeneration_ = work.generation;
+        runs_ = graph_.allRuns();
+        counts_.framesSkipped = skipped_;
+        if (result && work.epoch == epoch_)
+            publish(std::move(*result), work);
+    }
+}
+
+std::optional<processing::ShownFramePtr> FrameProcessor::process(const Work& work) {
+    if (work.reset) {
+        graph_.reset();
+        if (!work.session || (current_ && decodedBeforeSeek(*current_, work.awaitedSeek)))
+            current_.reset();
+    }
+    bool fresh = false;
+    bool taken = false;
+    if (work.frameSignal && work.session) {
+        std::optional<frame::FramePtr> next = work.session->takeLatest();
+        if (next && *next && !decodedBeforeSeek(**next, work.awaitedSeek)) {
+            // The same capture delivered again (a replay re-decoding it with its colour) is no new frame.
+            fresh = !current_ || (*next)->timestampNs != current_->timestampNs;
+            current_ = std::move(*next);
+            taken = true;
+        }
+        skipped_ += next && *next && !fresh ? 1 : 0;
+    }
+    const bool changed = taken || work.reset || work.generation != lastGeneration_;
+    if (!current_ || !changed)
+        return std::nullopt;
+    lastGeneration_ = work.generation;
+    processing::ShownFramePtr shown = graph_.run(current_, work.demand, work.generation, fresh);
+    for (const processing::StageTiming& t : shown->timings)
+        stages_.add(t.name, t.milliseconds);
+    if (fresh)
+        accumulate(*shown, work.demand);
+    return shown;
+}
+
+// Accumulation adds exactly the points the cloud shows, once per new frame.
+void FrameProcessor::accumulate(const processing::ShownFrame& shown, const Demand& demand) {
+    if (!demand.accumulate || !shown.frame->pose || !shown.depth.data)
+        return;
+    accumulation_.submit({shown.depth.data, shown.depth.intrinsics, shown.pointColors, *shown.frame->pose,
+                          demand.minConfidence, demand.nearMeters, demand.accumulateBudget,
+                          demand.accumulateVoxelMeters});
+}
+
+void FrameProcessor::publish(processing::ShownFramePtr result, const Work& work) {
+    if (result->newFrame) {
+        ++counts_.framesProcessed;
+        if (work.frameSignal)
+            latencyMs_.add(std::chrono::duration<double, std::milli>(Clock::now() - work.arrival).count());
+    } else {
+        ++counts_.redone;
+    }
+    if (slot_ && (*slot_)->newFrame) {
+        if ((*slot_)->frame->timestampNs != result->frame->timestampNs) {
+            ++counts_.framesUnshown;
+        } else if (!result->newFrame) {
+            // A redo of a frame not yet taken: it is still that frame's first showing.
+            auto carried = std::make_shared<processing::ShownFrame>(*result);
+            carried->newFrame = true;
+            result = std::move(carried);
+        }
+    }
+    slot_ = std::move(result);
+    published_.notify_all();
+}
+
+std::optional<processing::ShownFramePtr> FrameProcessor::take() {
+    std::lock_guard lock(mutex_);
+    if (slot_)
+        ++counts_.resultsTaken;
+    return std::exchange(slot_, std::nullopt);
+}
+
+std::optional<processing::ShownFramePtr>
+FrameProcessor::waitFor(std::chrono::milliseconds timeout,
+                        const std::function<bool(const processing::ShownFrame&)>& ready) {
+    std::unique_lock lock(mutex_);
+    if (!published_.wait_for(lock, timeout, [&] { return slot_ && ready(**slot_); }))
+        return std::nullopt;
+    ++counts_.resultsTaken;
+    return std::exchange(slot_, std::nullopt);
+}
+
+ProcessorCounts FrameProcessor::counts() const {
+    std::lock_guard lock(mutex_);
+    return counts_;
+}
+
+base::RollingStats FrameProcessor::latencyMs() const {
+    std::lock_guard lock(mutex_);
+    return latencyMs_;
+}
+
+std::uint64_t FrameProcessor::stageRuns(std::string_view stage) const {
+    std::lock_guard lock(mutex_);
+    const auto it = runs_.find(stage);
+    return it == runs_.end() ? 0 : it->second;
+}
+
+} // namespace dc::engine

@@ -1,0 +1,108 @@
+#pragma once
+
+#include "base/rolling_stats.h"
+#include "devices/session.h"
+#include "engine/demand.h"
+#include "engine/processing_graph.h"
+#include "engine/stage_stats.h"
+#include "processing/accumulation_worker.h"
+
+#include <chrono>
+#include <condition_variable>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <thread>
+
+namespace dc::engine {
+
+struct ProcessorCounts {
+    std::uint64_t framesProcessed = 0; // new frames made into a result
+    std::uint64_t redone = 0;          // results made again for a changed demand, with no new frame
+    std::uint64_t framesUnshown = 0;   // new frames whose result was replaced by a newer frame's before it was taken
+    std::uint64_t framesSkipped = 0;   // taken from the source but not new: decoded before a seek, or re-delivered
+    std::uint64_t resultsTaken = 0;
+};
+
+// The frame processor: its own thread takes the newest frame from the session (latest wins: it never
+// queues) and the newest demand from the UI, runs the ProcessingGraph, and hands the ShownFrame to the GL
+// thread, latest wins again. A demand that changes makes it run again on the current frame, whatever the
+// source is doing (paused, ended, stalled, disconnected). Posed frames also go to accumulation from here.
+class FrameProcessor {
+public:
+    using Clock = std::chrono::steady_clock;
+
+    FrameProcessor(StageStats& stages, processing::AccumulationWorker& accumulation);
+    ~FrameProcessor();
+    FrameProcessor(const FrameProcessor&) = delete;
+    FrameProcessor& operator=(const FrameProcessor&) = delete;
+
+    // The source whose frames to process (null: none). A new source starts from nothing: its temporal
+    // state, remembered results and the current frame are dropped.
+    void setSession(std::shared_ptr<devices::Session> session);
+    // Returns the generation of `demand`: the current one when it equals the demand in force, a new one
+    // (and a run on the current frame) when it differs.
+    std::uint64_t setDemand(const Demand& demand);
+    // After a replay seek: frames decoded before it are dropped, and temporal stages start over.
+    void afterSeek(std::uint64_t seekGeneration);
+
+    // The newest result not taken yet.
+    std::optional<processing::ShownFramePtr> take();
+    // Waits up to `timeout` for a result that satisfies `ready` and takes it (none at the timeout).
+    std::optional<processing::ShownFramePtr> waitFor(std::chrono::milliseconds timeout,
+                                                     const std::function<bool(const processing::ShownFrame&)>& ready);
+
+    ProcessorCounts counts() const;
+    // Frame arrival to result ready, milliseconds, for new frames (median and percentiles in the stats).
+    base::RollingStats latencyMs() const;
+    std::uint64_t stageRuns(std::string_view stage) const;
+
+private:
+    struct Work {
+        std::shared_ptr<devices::Session> session;
+        std::uint64_t epoch = 0;
+        Demand demand;
+        std::uint64_t generation = 0;
+        std::uint64_t awaitedSeek = 0;
+        bool reset = false;
+        bool frameSignal = false;
+        Clock::time_point arrival;
+    };
+
+    void run();
+    bool hasWork() const; // with mutex_ held
+    std::optional<processing::ShownFramePtr> process(const Work& work);
+    void accumulate(const processing::ShownFrame& shown, const Demand& demand);
+    void publish(processing::ShownFramePtr result, const Work& work); // with mutex_ held
+    void onFrame();
+
+    StageStats& stages_;
+    processing::AccumulationWorker& accumulation_;
+    ProcessingGraph graph_;      // processor thread only
+    frame::FramePtr current_;    // processor thread only: the frame results are made of
+    std::uint64_t lastGeneration_ = 0; // processor thread only: the demand of the last result
+    std::uint64_t skipped_ = 0;        // processor thread only; copied to counts_ under mutex_
+
+    mutable std::mutex mutex_;
+    std::condition_variable wake_;      // work for the thread
+    std::condition_variable published_; // a result for the GL thread
+    std::shared_ptr<devices::Session> session_;
+    std::uint64_t epoch_ = 0; // counts sessions, so a result of the old one is never published
+    Demand demand_;
+    std::uint64_t generation_ = 0; // 0: no demand yet, so nothing is processed (nobody asked for anything)
+    std::uint64_t doneGeneration_ = 0;
+    std::uint64_t awaitedSeek_ = 0;
+    bool reset_ = false;
+    bool frameReady_ = false;
+    Clock::time_point arrival_;
+    bool stopping_ = false;
+    std::optional<processing::ShownFramePtr> slot_;
+    ProcessorCounts counts_;
+    base::RollingStats latencyMs_;
+    std::map<std::string, std::uint64_t, std::less<>> runs_; // a copy of graph_'s, for other threads
+    std::thread thread_;
+};
+
+} // namespace dc::engine

@@ -1,0 +1,236 @@
+#include "engine/instrument.h"
+
+#include "base/clock.h"
+#include "base/log.h"
+#include "devices/source_spec.h"
+
+#include <algorithm>
+
+namespace dc::engine {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+// Rates are counted over this much recent time: long enough to be steady, short enough to fall to zero
+// soon after a source pauses or ends.
+constexpr std::chrono::milliseconds kRateWindow{1000};
+
+} // namespace
+
+Instrument::Instrument(std::unique_ptr<devices::Device> device, std::string spec)
+    : spec_(std::move(spec)), processor_(std::make_unique<FrameProcessor>(stages_, accumulation_)) {
+    adoptReplay(*device);
+    session_ = std::make_shared<devices::Session>(std::move(device));
+}
+
+Instrument::~Instrument() {
+    exportJob_.reset();
+    if (recording_)
+        (void)stopRecording();
+    session_->stop();
+    processor_.reset();
+}
+
+// A replay hands the UI its timeline; every other source has none.
+void Instrument::adoptReplay(devices::Device& device) {
+    const auto* replay = dynamic_cast<const devices::replay::ReplayDevice*>(&device);
+    replay_ = replay ? replay->control() : nullptr;
+}
+
+void Instrument::start() {
+    startSession();
+}
+
+void Instrument::startSession() {
+    message_.clear();
+    state_ = "closed";
+    // Before the capture thread starts, so that not even the first frame decodes what nobody shows.
+    session_->setDemand({demand_.needsCameraImage()});
+    if (Status s = session_->start(); !s) {
+        message_ = s.error().message;
+        running_ = false;
+        logError(session_->description() + ": " + message_);
+        return;
+    }
+    running_ = true;
+    processor_->setSession(session_);
+}
+
+Status Instrument::openSource(const std::string& spec) {
+    auto device = devices::openSourceSpec(spec);
+    if (!device) {
+        logError(spec + ": " + device.error().message);
+        return device.error();
+    }
+    switchSource(std::move(*device), spec);
+    return {};
+}
+
+void Instrument::switchSource(std::unique_ptr<devices::Device> device, std::string spec) {
+    if (recording_)
+        (void)stopRecording();
+    processor_->setSession(nullptr);
+    session_->stop();
+    adoptReplay(*device);
+    session_ = std::make_shared<devices::Session>(std::move(device));
+    spec_ = std::move(spec);
+    // Another source means another world: nothing measured in the old one carries over.
+    accumulation_.clear();
+    stages_.clear();
+    latencyMs_ = base::RollingStats();
+    shown_ = 0;
+    countHistory_.clear();
+    lastShownTimestampNs_ = ~0ull;
+    startSession();
+    logInfo("source: " + session_->description());
+}
+
+std::uint64_t Instrument::setDemand(const Demand& demand) {
+    if (!(demand.needsCameraImage() == demand_.needsCameraImage()) && running_)
+        session_->setDemand({demand.needsCameraImage()});
+    demand_ = demand;
+    demandGeneration_ = processor_->setDemand(demand);
+    return demandGeneration_;
+}
+
+std::optional<processing::ShownFramePtr> Instrument::update() {
+    drainEvents();
+    return processor_->take();
+}
+
+std::optional<processing::ShownFramePtr> Instrument::waitForResult(std::chrono::milliseconds timeout,
+                                                                   bool newFrame) {
+    drainEvents();
+    const std::uint64_t generation = demandGeneration_;
+    const std::uint64_t last = lastShownTimestampNs_;
+    return processor_->waitFor(timeout, [&](const processing::ShownFrame& shown) {
+        const bool answers = shown.demandGeneration >= generation;
+        const bool unseen = static_cast<std::uint64_t>(shown.frame->timestampNs) != last;
+        return answers && (!newFrame || (shown.newFrame && unseen));
+    });
+}
+
+void Instrument::presented(const processing::ShownFrame& shown) {
+    if (!shown.newFrame)
+        return;
+    ++shown_;
+    lastShownTimestampNs_ = static_cast<std::uint64_t>(shown.frame->timestampNs);
+    // Only sources stamping frames with the monotonic clock have a latency; a recording's clock has none.
+    if (session_->capabilities().monotonicTimestamps) {
+        const double ms = static_cast<double>(base::monotonicNowNs() - shown.frame->timestampNs) * 1e-6;
+        latencyMs_.add(ms);
+    }
+}
+
+void Instrument::drainEvents() {
+    for (const devices::SessionEvent& e : session_->drainEvents()) {
+        state_ = devices::toString(e.state);
+        if (e.kind == devices::SessionEvent::Kind::EndOfStream)
+            state_ = "end of stream";
+        if (!e.message.empty())
+            message_ = e.message;
+    }
+}
+
+FrameCounts Instrument::countFrames() {
+    const devices::SessionStats session = session_->stats();
+    const ProcessorCounts processor = processor_->counts();
+    FrameCounts c{session.framesCaptured, shown_,
+                  session.framesDropped + processor.framesUnshown + processor.framesSkipped, 0.0, 0.0};
+    const auto now = Clock::now();
+    countHistory_.push_back({now, c.delivered, c.shown});
+    while (countHistory_.size() > 2 && now - countHistory_[1].at >= kRateWindow)
+        countHistory_.pop_front();
+    const CountSample& first = countHistory_.front();
+    const double seconds = std::chrono::duration<double>(now - first.at).count();
+    if (seconds > 0.0) {
+        c.deliveredPerSecond = static_cast<double>(c.delivered - first.delivered) / seconds;
+        c.shownPerSecond = static_cast<double>(c.shown - first.shown) / seconds;
+    }
+    return c;
+}
+
+InstrumentStatus Instrument::status() {
+    drainEvents();
+    InstrumentStatus s{session_->description(), state_, message_, running_, countFrames(), std::nullopt,
+                       std::nullopt, stages_.recent()};
+    if (replay_ && running_) {
+        const devices::replay::ReplayStatus r = replay_->status();
+        if (r.atEnd && !r.loop)
+            s.state = "ended";
+        else if (!r.playing)
+            s.state = "paused";
+    }
+    if (latencyMs_.count() > 0)
+        s.latencyMs = latencyMs_.median();
+    return s;
+}
+
+void Instrument::seekReplay(std::size_t index) {
+    if (replay_)
+        processor_->afterSeek(replay_->seekToIndex(index));
+}
+
+void Instrument::stepReplay(int frames) {
+    if (replay_)
+        processor_->afterSeek(replay_->step(frames));
+}
+
+Status Instrument::startRecording(const std::string& path) {
+    if (recording_)
+        return Error{"already recording to " + recording_->path()};
+    auto r = devices::recording::SessionRecording::start(*session_, path);
+    if (!r) {
+        logError("record: " + r.error().message);
+        return r.error();
+    }
+    recording_ = std::move(*r);
+    logInfo("recording to " + path);
+    return {};
+}
+
+Status Instrument::stopRecording() {
+    if (!recording_)
+        return {};
+    Status s = recording_->stop();
+    const devices::recording::RecorderStats stats = recording_->stats();
+    const std::string path = recording_->path();
+    recording_.reset();
+    if (!s) {
+        logError("recording " + path + ": " + s.error().message);
+        return s;
+    }
+    logInfo("recorded " + std::to_string(stats.framesWritten) + " frames (" + std::to_string(stats.framesDropped) +
+            " dropped) to " + path);
+    return {};
+}
+
+RecordingStatus Instrument::recording() const {
+    if (!recording_)
+        return {};
+    const devices::recording::RecorderStats s = recording_->stats();
+    // Frames accepted are written or about to be: the same count the final message gives once they are.
+    return {true, recording_->path(), s.framesWritten + s.queueDepth, s.framesDropped, s.bytesWritten};
+}
+
+Status Instrument::startExport(exporting::ExportFormat format, const std::string& directory, std::size_t first,
+                               std::size_t end, const Demand& demand) {
+    if (!replay_)
+        return Error{"export needs a replay source"};
+    if (exportJob_ && !exportJob_->finished())
+        return Error{"an export is already running"};
+    exporting::ExportOptions options;
+    options.format = format;
+    options.outDirectory = directory;
+    options.frames = {first, end};
+    options.transform = processedDepth(demand);
+    auto job = ExportJob::start(spec_, options);
+    if (!job) {
+        logError("export: " + job.error().message);
+        return job.error();
+    }
+    exportJob_ = std::move(*job);
+    return {};
+}
+
+} // namespace dc::engine

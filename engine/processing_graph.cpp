@@ -1,0 +1,185 @@
+#include "engine/processing_graph.h"
+
+#include "processing/aura.h"
+#include "processing/camera_image.h"
+#include "processing/confidence_filter.h"
+#include "processing/depth_statistics.h"
+#include "processing/fog.h"
+
+#include <algorithm>
+#include <chrono>
+
+namespace dc::engine {
+
+namespace {
+
+constexpr int kCameraWidthStep = 64;
+
+processing::Needs needsOf(const Demand& d) {
+    // Pipeline stages run for anything that shows depth; the camera panel alone does not.
+    processing::Needs needs;
+    needs.cloud = d.cloud || d.accumulate || d.automaticRange;
+    needs.depthPanel = d.depthImage;
+    needs.confidencePanel = d.confidencePanel;
+    needs.cameraPanel = d.cameraPanelWidth > 0;
+    needs.fogPanel = d.fog;
+    needs.auraPanel = d.aura;
+    needs.confidence = d.readsConfidence() && d.needsDepth();
+    return needs;
+}
+
+// The settings the depth pipeline reads; fog and aura settings do not change the shown depth.
+processing::ProcessingSettings depthSettings(const processing::ProcessingSettings& s) {
+    processing::ProcessingSettings depth = s;
+    depth.fog = {};
+    depth.aura = {};
+    return depth;
+}
+
+} // namespace
+
+int cameraPanelImageWidth(int imageWidth, int shownWidth) {
+    const int stepped = (shownWidth + kCameraWidthStep - 1) / kCameraWidthStep * kCameraWidthStep;
+    return std::clamp(stepped, 1, std::max(imageWidth, 1));
+}
+
+bool ProcessingGraph::DepthKey::operator==(const DepthKey& o) const {
+    return frame == o.frame && settings == o.settings && needs == o.needs;
+}
+
+ProcessingGraph::ProcessingGraph() : pipeline_(processing::makeDefaultPipeline()) {}
+
+void ProcessingGraph::reset() {
+    pipeline_.reset();
+    depth_.clear();
+    pointColors_.clear();
+    cameraImage_.clear();
+    effectsImage_.clear();
+    fog_.clear();
+    aura_.clear();
+    range_.clear();
+    count_.clear();
+}
+
+std::uint64_t ProcessingGraph::runs(std::string_view stage) const {
+    const auto it = runs_.find(stage);
+    return it == runs_.end() ? 0 : it->second;
+}
+
+template <class Key, class Value, class Make>
+const Value& ProcessingGraph::cached(Memo<Key, Value>& memo, const Key& key, std::string_view stage,
+                                     Make&& make) {
+    if (memo.key && *memo.key == key)
+        return memo.value;
+    const auto start = std::chrono::steady_clock::now();
+    memo.value = make();
+    memo.key = key;
+    const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
+    timings_->push_back({std::string(stage), took.count()});
+    ++runs_[std::string(stage)];
+    return memo.value;
+}
+
+processing::ShownFramePtr ProcessingGraph::run(const frame::FramePtr& frame, const Demand& demand,
+                                               std::uint64_t generation, bool newFrame) {
+    auto shown = std::make_shared<processing::ShownFrame>();
+    shown->frame = frame;
+    shown->demandGeneration = generation;
+    shown->newFrame = newFrame;
+    timings_ = &shown->timings;
+    if (demand.needsDepth())
+        shown->depth = shownDepth(frame, demand);
+    addImages(*shown, *frame, demand);
+    addEffects(*shown, *frame, demand);
+    addDepthProducts(*shown, demand);
+    timings_ = nullptr;
+    return shown;
+}
+
+// The depth pipeline (confidence estimate, smoothing, upsampling) and the one map it makes the shown one.
+processing::ShownDepth ProcessingGraph::shownDepth(const frame::FramePtr& frame, const Demand& demand) {
+    const DepthKey key{frame, depthSettings(demand.processing), needsOf(demand)};
+    if (depth_.key && *depth_.key == key)
+        return depth_.value;
+    const frame::FramePtr out = pipeline_.run(frame, key.settings, key.needs);
+    for (const processing::StageTiming& t : pipeline_.lastTimings()) {
+        timings_->push_back(t);
+        ++runs_[t.name];
+    }
+    processing::ShownDepth shown;
+    if (const frame::DepthData* depth = processing::shownDepth(*out, demand.processing.depthSource)) {
+        shown.data = std::shared_ptr<const frame::DepthData>(out, depth); // keeps the processed frame alive
+        shown.intrinsics = out->cameraIntrinsics.scaledTo(shown.width(), shown.height());
+        shown.smoothed = processing::showsSmoothed(*out, demand.processing.depthSource);
+        shown.upsampled = frame->sceneDepth && frame->sceneDepth->depthMeters.width != shown.width();
+    }
+    depth_.key = key;
+    depth_.value = shown;
+    return shown;
+}
+
+// The images that come from the camera alone: the points' colours and the camera panel's picture.
+void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Frame& frame,
+                                const Demand& demand) {
+    const frame::CapturedImage& image = frame.capturedImage;
+    if (demand.needsPointColors() && shown.depth.data) {
+        const int w = shown.depth.width(), h = shown.depth.height();
+        shown.pointColors = cached(pointColors_, ImageKey{image.bytes, w, h}, kPointColorsStage, [&] {
+            return std::make_shared<const processing::RgbImage>(
+                processing::pointColors(image, w, h, colourTable_));
+        });
+    }
+    if (demand.cameraPanelWidth > 0 && !image.empty()) {
+        const int w = cameraPanelImageWidth(image.width, demand.cameraPanelWidth);
+        const int h = std::max(1, image.height * w / std::max(image.width, 1));
+        shown.cameraImage = cached(cameraImage_, ImageKey{image.bytes, w, h}, kCameraImageStage, [&] {
+            return std::make_shared<const processing::RgbImage>(processing::cameraRgbImage(image, w, h));
+        });
+    }
+}
+
+// Fog and aura share one conversion of the camera image to their size.
+void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Frame& frame,
+                                 const Demand& demand) {
+    if ((!demand.fog && !demand.aura) || frame.capturedImage.empty())
+        return;
+    const frame::CapturedImage& image = frame.capturedImage;
+    const auto [w, h] = processing::halfCameraSize(image);
+    const auto camera = cached(effectsImage_, ImageKey{image.bytes, w, h}, kEffectsImageStage, [&] {
+        return std::make_shared<const processing::RgbImage>(processing::cameraRgbImage(image, w, h));
+    });
+    const processing::ProcessingSettings& p = demand.processing;
+    if (demand.fog) {
+        const EffectKey key{camera, shown.depth.data, p.fog, {}, 0};
+        shown.fog = cached(fog_, key, kFogStage, [&] {
+            return std::make_shared<const processing::RgbaImage>(
+                processing::renderFog(*camera, shown.depth.data.get(), p.fog));
+        });
+    }
+    if (demand.aura) {
+        // The pulse follows the frame's own clock: a paused frame keeps its look, a replay looks the same
+        // every time.
+        const EffectKey key{camera, shown.depth.data, {}, p.aura, frame.timestampNs};
+        shown.aura = cached(aura_, key, kAuraStage, [&] {
+            return std::make_shared<const processing::RgbaImage>(
+                processing::renderAura(*camera, shown.depth.data.get(), frame.depthIntrinsics(), p.aura,
+                                       static_cast<double>(frame.timestampNs) * 1e-9));
+        });
+    }
+}
+
+void ProcessingGraph::addDepthProducts(processing::ShownFrame& shown, const Demand& demand) {
+    const std::shared_ptr<const frame::DepthData>& depth = shown.depth.data;
+    if (!depth)
+        return;
+    if (demand.automaticRange)
+        shown.automaticRange = cached(range_, depth, kDepthRangeStage,
+                                      [&] { return processing::percentileRange(depth->depthMeters); });
+    if (demand.cloud || demand.accumulate)
+        shown.pointCount =
+            cached(count_, CountKey{depth, demand.minConfidence, demand.nearMeters}, kPointCountStage, [&] {
+                return processing::countDrawablePoints(*depth, demand.minConfidence, demand.nearMeters);
+            });
+}
+
+} // namespace dc::engine

@@ -1,0 +1,109 @@
+#pragma once
+
+#include "engine/demand.h"
+#include "processing/pipeline.h"
+#include "processing/point_colors.h"
+#include "processing/shown_frame.h"
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+
+namespace dc::engine {
+
+// Stage names beyond the pipeline's, as the stats show them.
+inline constexpr std::string_view kPointColorsStage = "point colours";
+inline constexpr std::string_view kCameraImageStage = "camera image";
+inline constexpr std::string_view kEffectsImageStage = "effects image";
+inline constexpr std::string_view kFogStage = "fog";
+inline constexpr std::string_view kAuraStage = "aura";
+inline constexpr std::string_view kDepthRangeStage = "depth range";
+inline constexpr std::string_view kPointCountStage = "point count";
+
+// The camera panel's image is made at the size it is shown, in steps (so resizing the panel does not
+// redo it every frame), never above the image's own size.
+int cameraPanelImageWidth(int imageWidth, int shownWidth);
+
+// Turns one frame and one demand into the ShownFrame the GL thread draws, running only the stages the
+// demand needs and, of those, only the ones whose inputs changed since the last run (each stage remembers
+// the inputs of its last result): a colormap change redoes nothing here, an upsampling change redoes
+// upsampling and what depends on the shown depth, and a new frame redoes what it feeds. Single-threaded;
+// the frame processor owns one, export another.
+class ProcessingGraph {
+public:
+    ProcessingGraph();
+
+    // `newFrame`: the frame is a new capture, not the current one again (which temporal stages must not
+    // count twice; they recognise it by its timestamp either way).
+    processing::ShownFramePtr run(const frame::FramePtr& frame, const Demand& demand, std::uint64_t generation,
+                                  bool newFrame);
+    // Drops temporal state and every remembered result (a seek, a new source).
+    void reset();
+    // How many times `stage` has run: tests count work, not time.
+    std::uint64_t runs(std::string_view stage) const;
+    const std::map<std::string, std::uint64_t, std::less<>>& allRuns() const { return runs_; }
+
+private:
+    // The last result of one stage and the inputs it was made from. Inputs hold shared pointers, so an
+    // input that still matches is the very same object, never a new one at a recycled address.
+    template <class Key, class Value> struct Memo {
+        std::optional<Key> key;
+        Value value{};
+        void clear() {
+            key.reset();
+            value = {};
+        }
+    };
+    struct DepthKey {
+        frame::FramePtr frame;
+        processing::ProcessingSettings settings;
+        processing::Needs needs;
+        bool operator==(const DepthKey&) const;
+    };
+    struct ImageKey {
+        std::shared_ptr<const std::vector<std::uint8_t>> bytes;
+        int width = 0;
+        int height = 0;
+        bool operator==(const ImageKey&) const = default;
+    };
+    struct EffectKey {
+        std::shared_ptr<const processing::RgbImage> image;
+        std::shared_ptr<const frame::DepthData> depth;
+        processing::FogSettings fog;
+        processing::AuraSettings aura;
+        std::int64_t timestampNs = 0;
+        bool operator==(const EffectKey&) const = default;
+    };
+    struct CountKey {
+        std::shared_ptr<const frame::DepthData> depth;
+        frame::Confidence minConfidence = frame::Confidence::Low;
+        float nearMeters = 0.0f;
+        bool operator==(const CountKey&) const = default;
+    };
+
+    // Runs `make` for `key` unless the memo already holds its result; timed and counted under `stage`.
+    template <class Key, class Value, class Make>
+    const Value& cached(Memo<Key, Value>& memo, const Key& key, std::string_view stage, Make&& make);
+    processing::ShownDepth shownDepth(const frame::FramePtr& frame, const Demand& demand);
+    void addImages(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
+    void addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
+    void addDepthProducts(processing::ShownFrame& shown, const Demand& demand);
+
+    processing::Pipeline pipeline_;
+    processing::CameraColourTable colourTable_;
+    Memo<DepthKey, processing::ShownDepth> depth_;
+    Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> pointColors_;
+    Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;
+    Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> effectsImage_;
+    Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> fog_;
+    Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> aura_;
+    Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;
+    Memo<CountKey, std::size_t> count_;
+    std::map<std::string, std::uint64_t, std::less<>> runs_;
+    std::vector<processing::StageTiming>* timings_ = nullptr; // of the result being made
+};
+
+} // namespace dc::engine

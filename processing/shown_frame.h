@@ -1,0 +1,57 @@
+#pragma once
+
+#include "frame/frame.h"
+#include "processing/camera_image.h"
+#include "processing/pipeline.h"
+#include "processing/point_cloud.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <vector>
+
+namespace dc::processing {
+
+// The one depth the instrument shows: raw, smoothed, upsampled or decimated as the settings say, with its
+// confidence and the intrinsics at its own resolution. The cloud, the point count, hover and anchors,
+// accumulation, the snapshot PLY and export all read this map and nothing else.
+struct ShownDepth {
+    std::shared_ptr<const frame::DepthData> data;
+    frame::Intrinsics intrinsics;
+    bool smoothed = false;  // temporally smoothed (the source's own or ours)
+    bool upsampled = false; // guided-upsampled to (a fraction of) the camera image's size
+
+    int width() const { return data ? data->depthMeters.width : 0; }
+    int height() const { return data ? data->depthMeters.height : 0; }
+};
+
+// A depth range in meters, e.g. the automatic colormap range.
+struct DepthRangeMeters {
+    float minMeters = 0.0f;
+    float maxMeters = 0.0f;
+    bool operator==(const DepthRangeMeters&) const = default;
+};
+
+// What one frame looks like under one demand: everything the GL thread uploads and draws, and nothing it
+// did not ask for (an image no panel shows is null). Immutable once published; each product is shared, so
+// a product that did not change between two results is the same object and need not be uploaded again.
+struct ShownFrame {
+    frame::FramePtr frame; // the capture: sequence, timestamp, pose, replay position
+    ShownDepth depth;      // data null when the frame has no depth
+    std::shared_ptr<const RgbImage> pointColors; // one per shown depth sample, when points take the camera's
+    std::shared_ptr<const RgbImage> cameraImage; // the camera panel, at the size it is shown
+    std::shared_ptr<const RgbaImage> fog;
+    std::shared_ptr<const RgbaImage> aura;
+    std::optional<DepthRangeMeters> automaticRange; // when the colormap follows the data
+    std::size_t pointCount = 0;                     // points the cloud draws of `depth`
+    std::uint64_t demandGeneration = 0;             // the demand this answers
+    bool newFrame = false;                          // a device frame's first result (not a redo)
+    std::vector<StageTiming> timings;               // the stages that ran for this result
+
+    CloudSamples samples() const { return {depth.data.get(), depth.intrinsics, pointColors.get()}; }
+};
+
+using ShownFramePtr = std::shared_ptr<const ShownFrame>;
+
+} // namespace dc::processing

@@ -1,0 +1,313 @@
+// The engine seen from the UI: a settings change is shown at once whatever the source is doing, nothing is
+// computed or decoded for a panel nobody shows, and every reader of the cloud sees the same depth.
+
+#include "devices/frame_list_device.h"
+#include "devices/replay/replay_device.h"
+#include "devices/replay/replay_source.h"
+#include "devices/source_spec.h"
+#include "processing/camera_image.h"
+#include "processing/confidence_filter.h"
+#include "ui_fixture.h"
+
+#include <epoxy/gl.h>
+
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <thread>
+#include <unistd.h>
+
+namespace dc::ui::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct PlyPoint {
+    float x, y, z;
+    std::uint8_t r, g, b, confidence;
+};
+
+// Our binary PLY (exporting/ply.cpp): a text header, then x y z as float and r g b confidence as bytes.
+std::vector<PlyPoint> readPly(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes{std::istreambuf_iterator<char>(in), {}};
+    const std::size_t body = bytes.find("end_header\n") + 11;
+    std::vector<PlyPoint> points((bytes.size() - body) / 16);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const char* p = bytes.data() + body + i * 16;
+        std::memcpy(&points[i].x, p, 12);
+        std::memcpy(&points[i].r, p + 12, 4);
+    }
+    return points;
+}
+
+// The points the cloud's vertex shader draws, from what it reads: the depth, confidence and colour
+// textures on the GPU and the depth intrinsics it is given.
+std::vector<PlyPoint> drawnPoints(const render::FrameTextures& t, frame::Confidence minLevel, float near) {
+    const int w = t.depthWidth(), h = t.depthHeight();
+    const auto n = static_cast<std::size_t>(w) * h;
+    std::vector<float> depth(n);
+    std::vector<std::uint8_t> confidence(n), rgb(n * 3);
+    glPixelStorei(GL_PACK_ALIGNMENT, 1);
+    glBindTexture(GL_TEXTURE_2D, t.depthTexture());
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RED, GL_FLOAT, depth.data());
+    glBindTexture(GL_TEXTURE_2D, t.confidenceTexture());
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RED_INTEGER, GL_UNSIGNED_BYTE, confidence.data());
+    glBindTexture(GL_TEXTURE_2D, t.colorTexture());
+    glGetTexImage(GL_TEXTURE_2D, 0, GL_RGB, GL_UNSIGNED_BYTE, rgb.data());
+    std::vector<PlyPoint> points;
+    for (int v = 0; v < h; ++v) {
+        for (int u = 0; u < w; ++u) {
+            const std::size_t i = static_cast<std::size_t>(v) * w + u;
+            if (!processing::keepSample(depth[i], confidence[i], minLevel, near))
+                continue;
+            const auto [x, y, z] = processing::unproject(u, v, depth[i], t.depthIntrinsics());
+            points.push_back({x, y, z, rgb[i * 3], rgb[i * 3 + 1], rgb[i * 3 + 2], confidence[i]});
+        }
+    }
+    return points;
+}
+
+class EngineUiTest : public UiTest {
+protected:
+    void SetUp() override {
+        ASSERT_NO_FATAL_FAILURE(initGl());
+        ASSERT_NO_FATAL_FAILURE(startViewer(smallScene()));
+        dir_ = fs::temp_directory_path() / ("dc-engine-ui-" + std::to_string(::getpid()));
+        fs::create_directories(dir_);
+    }
+
+    void TearDown() override {
+        UiTest::TearDown();
+        fs::remove_all(dir_);
+    }
+
+    // A paused replay of a few synthetic frames recorded through the real recorder.
+    void startPausedReplay() {
+        const std::string path = (dir_ / "scene.dcrec").string();
+        ASSERT_TRUE(instrument_->startRecording(path).ok());
+        for (int i = 0; i < 400 && instrument_->recording().frames < 6; ++i)
+            nextFrame(0.0);
+        ASSERT_TRUE(instrument_->stopRecording().ok());
+        ASSERT_TRUE(viewer_->openSource("replay:" + path + ":paused").ok());
+        viewer_->settings().cloud.motion.enabled = false;
+        ASSERT_TRUE(nextFrame(0.0));
+        viewer_->setRedoWait(std::chrono::seconds(10));
+    }
+
+    std::uint64_t shownSequence() const { return shown().frame->sequence; }
+
+    fs::path dir_;
+};
+
+// Everything the issue lists, one change at a time, each checked in the very next drawn frame.
+void expectEachSettingShowsInTheNextFrame(UiTest& t, Viewer& viewer, const render::ViewRenderer& renderer,
+                                          const std::function<void()>& frame) {
+    const auto sequence = viewer.shown()->frame->sequence;
+    Settings& s = viewer.settings();
+
+    const auto depthBefore = renderer.depthTarget().readRgba();
+    s.depthRange.colormap = render::Colormap::Viridis;
+    frame();
+    EXPECT_EQ(viewer.depthLegend().colormap, render::Colormap::Viridis);
+    EXPECT_NE(renderer.depthTarget().readRgba(), depthBefore) << "the depth panel is redrawn in viridis";
+
+    const std::uint64_t rawPoints = viewer.statusLine().pointsDrawn;
+    s.processing.upsampling = true;
+    frame();
+    EXPECT_TRUE(viewer.shown()->depth.upsampled);
+    EXPECT_EQ(viewer.shown()->depth.width(), 320) << "half the 640x480 camera image";
+    EXPECT_GT(viewer.statusLine().pointsDrawn, rawPoints * 3 / 2) << "320x240 points where there were 256x192";
+    EXPECT_EQ(viewer.statusLine().pointsDrawn, viewer.shown()->pointCount);
+
+    s.processing.upsampling = false;
+    s.processing.smoothing = true;
+    s.processing.depthSource = processing::DepthSource::Smoothed;
+    frame();
+    EXPECT_TRUE(viewer.shown()->depth.smoothed);
+    EXPECT_EQ(viewer.statusLine().pointsDrawn, viewer.shown()->pointCount);
+
+    s.processing.depthSource = processing::DepthSource::Raw;
+    frame();
+    EXPECT_FALSE(viewer.shown()->depth.smoothed);
+
+    s.panels.fog = true;
+    frame();
+    EXPECT_GT(renderer.fogTexture().width(), 0) << "the fog panel has its image at once";
+    EXPECT_EQ(viewer.shown()->frame->sequence, sequence) << "all of it without a new device frame";
+    (void)t;
+}
+
+TEST_F(EngineUiTest, APausedReplayShowsEverySettingChangeInTheNextFrame) {
+    ASSERT_NO_FATAL_FAILURE(startPausedReplay());
+    ASSERT_FALSE(instrument_->replay()->status().playing);
+    expectEachSettingShowsInTheNextFrame(*this, *viewer_, renderer_, [this] { frame(0.0); });
+}
+
+// Delivers two frames of the synthetic scene, then stays Stalled.
+class StallingDevice final : public devices::Device {
+public:
+    std::string description() const override { return "stalling camera"; }
+    devices::Capabilities capabilities() const override { return synthetic_.capabilities(); }
+
+protected:
+    Status doOpen() override { return synthetic_.open(); }
+    Status doStart() override { return synthetic_.start(); }
+    void doStop() override {}
+    devices::CaptureResult doCapture(std::chrono::milliseconds timeout) override {
+        if (++captures_ > 2) {
+            std::this_thread::sleep_for(std::min(timeout, std::chrono::milliseconds(20)));
+            return {devices::CaptureResult::Kind::Stalled, nullptr, "stalling camera: no frame"};
+        }
+        return synthetic_.capture(timeout);
+    }
+
+private:
+    devices::SyntheticDevice synthetic_{smallScene()};
+    int captures_ = 0;
+};
+
+TEST_F(EngineUiTest, AStalledCameraShowsEverySettingChangeInTheNextFrame) {
+    start(std::make_unique<StallingDevice>(), "stalling");
+    viewer_->settings().cloud.motion.enabled = false;
+    // Until the camera has stalled and both its frames are on screen.
+    for (int i = 0; i < 100 && (viewer_->statusLine().state != "stalled" || viewer_->statusLine().frames.shown < 2); ++i)
+        frame(0.0);
+    ASSERT_EQ(viewer_->statusLine().state, "stalled");
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    expectEachSettingShowsInTheNextFrame(*this, *viewer_, renderer_, [this] { frame(0.0); });
+}
+
+TEST_F(EngineUiTest, TheConfidenceEstimateRunsOnlyWhileSomethingReadsConfidence) {
+    // A depth camera without confidence: the estimate is the only source of it.
+    devices::SyntheticConfig config = smallScene();
+    auto frames = std::vector<frame::FramePtr>();
+    devices::SyntheticDevice device(config);
+    ASSERT_TRUE(device.open() && device.start());
+    for (int i = 0; i < 4; ++i) {
+        auto f = std::make_shared<frame::Frame>(*device.capture(std::chrono::seconds(1)).frame);
+        f->sceneDepth->confidence = {};
+        frames.push_back(f);
+    }
+    Settings settings;
+    settings.panels.confidence = false;
+    start(std::make_unique<devices::FrameListDevice>(frames, 120.0), "no confidence", settings);
+    for (int i = 0; i < 10; ++i)
+        nextFrame(0.0);
+    const engine::FrameProcessor& processor = instrument_->processor();
+    EXPECT_EQ(processor.stageRuns("confidence estimate"), 0u) << "nothing reads confidence";
+    viewer_->settings().cloud.minConfidence = frame::Confidence::Medium;
+    for (int i = 0; i < 4; ++i)
+        nextFrame(0.0);
+    EXPECT_GT(processor.stageRuns("confidence estimate"), 0u) << "the level above all reads it";
+    EXPECT_TRUE(shown().depth.data->confidenceEstimated);
+}
+
+TEST_F(EngineUiTest, WithSmoothingOrUpsamplingTheSnapshotHoldsExactlyThePointsDrawn) {
+    viewer_->settings().cloud.motion.enabled = false;
+    viewer_->settings().cloud.minConfidence = frame::Confidence::Medium;
+    for (const bool upsampling : {false, true}) {
+        viewer_->settings().processing.smoothing = !upsampling;
+        viewer_->settings().processing.upsampling = upsampling;
+        for (int i = 0; i < 3; ++i)
+            nextFrame(0.0);
+        ASSERT_EQ(shown().depth.upsampled, upsampling);
+        ASSERT_EQ(shown().depth.smoothed, !upsampling);
+        const auto dir = viewer_->saveSnapshot((dir_ / (upsampling ? "up" : "smooth")).string());
+        ASSERT_TRUE(dir.ok()) << dir.error().message;
+        const std::vector<PlyPoint> ply = readPly(fs::path(*dir) / "cloud.ply");
+        const std::vector<PlyPoint> drawn =
+            drawnPoints(renderer_.textures(), frame::Confidence::Medium, viewer_->settings().cloud.nearMeters);
+        ASSERT_EQ(ply.size(), drawn.size()) << (upsampling ? "upsampling" : "smoothing");
+        ASSERT_EQ(ply.size(), shown().pointCount);
+        for (std::size_t i = 0; i < ply.size(); ++i) {
+            ASSERT_NEAR(ply[i].x, drawn[i].x, 1e-6f) << i;
+            ASSERT_NEAR(ply[i].y, drawn[i].y, 1e-6f) << i;
+            ASSERT_NEAR(ply[i].z, drawn[i].z, 1e-6f) << i;
+            ASSERT_EQ(ply[i].r, drawn[i].r) << i;
+            ASSERT_EQ(ply[i].confidence, drawn[i].confidence) << i;
+        }
+    }
+}
+
+TEST_F(EngineUiTest, AccumulationAddsTheSamePointsTheSnapshotHolds) {
+    // One posed frame of the moving scene, delivered again and again: the accumulator holds that frame's
+    // shown points (later deliveries land in voxels already held), in the order the snapshot lists them.
+    devices::SyntheticConfig moving = smallScene();
+    moving.motion = true;
+    devices::SyntheticDevice scene(moving);
+    ASSERT_TRUE(scene.open().ok());
+    const frame::FramePtr posed = scene.makeFrame(0, 0.7);
+    ASSERT_TRUE(posed->pose.has_value());
+    Settings settings;
+    settings.cloud.motion.enabled = false;
+    settings.processing.upsampling = true; // so the shown depth is not the sensor's
+    settings.accumulate = {true, 1000, 0.5f};
+    start(std::make_unique<devices::FrameListDevice>(std::vector<frame::FramePtr>{posed}, 30.0), "posed",
+          settings);
+    for (int i = 0; i < 4; ++i)
+        ASSERT_TRUE(nextFrame(0.0));
+    instrument_->accumulation().waitIdle();
+    ASSERT_TRUE(shown().depth.upsampled);
+    const auto dir = viewer_->saveSnapshot((dir_ / "acc").string());
+    ASSERT_TRUE(dir.ok()) << dir.error().message;
+    const std::vector<PlyPoint> ply = readPly(fs::path(*dir) / "cloud.ply");
+    // Frames keep coming and the worker may be adding one (which adds nothing new): read between two.
+    std::vector<processing::WorldPoint> world;
+    const auto read = [&](processing::PointAccumulator& points) {
+        world.assign(points.slots().begin(), points.slots().begin() + static_cast<std::ptrdiff_t>(points.size()));
+    };
+    for (int i = 0; i < 1000 && !instrument_->accumulation().tryRead(read); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    // At a 0.5 mm voxel the desk's points, millimetres apart, each keep their own voxel.
+    ASSERT_EQ(world.size(), ply.size());
+    const auto& m = posed->pose->cameraToWorld; // column-major
+    for (std::size_t i = 0; i < ply.size(); ++i) {
+        const double x = ply[i].x, y = ply[i].y, z = ply[i].z;
+        ASSERT_NEAR(world[i].x, m[0] * x + m[4] * y + m[8] * z + m[12], 1e-5) << i;
+        ASSERT_NEAR(world[i].y, m[1] * x + m[5] * y + m[9] * z + m[13], 1e-5) << i;
+        ASSERT_NEAR(world[i].z, m[2] * x + m[6] * y + m[10] * z + m[14], 1e-5) << i;
+        const std::uint32_t rgb = ply[i].r | ply[i].g << 8 | ply[i].b << 16;
+        ASSERT_EQ(world[i].rgba & 0xffffffu, rgb) << i;
+    }
+}
+
+// The ARKit capture replayed as a user would, with the camera panel hidden and the points coloured by
+// depth: its video is not decoded at all; showing the panel brings exactly that frame's image.
+TEST_F(EngineUiTest, AReplayDecodesItsVideoOnlyWhileSomethingShowsIt) {
+    Settings settings;
+    settings.panels.camera = false;
+    settings.cloud.coloring = render::PointColoring::Depth;
+    settings.cloud.motion.enabled = false;
+    auto device = devices::openSourceSpec("replay:../shared/data/arkit_dance_stray:paused");
+    ASSERT_TRUE(device.ok()) << device.error().message;
+    start(std::move(*device), "replay", settings);
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    ASSERT_TRUE(nextFrame(0.0));
+    for (int i = 1; i <= 5; ++i) {
+        instrument_->seekReplay(static_cast<std::size_t>(10 * i));
+        ASSERT_TRUE(nextFrame(0.0));
+    }
+    EXPECT_EQ(shown().frame->replay->index, 50u);
+    EXPECT_EQ(instrument_->replay()->status().colorDecodes, 0u) << "no panel and no point needs the video";
+    EXPECT_EQ(shown().cameraImage, nullptr);
+
+    viewer_->settings().panels.camera = true;
+    frame(0.0);
+    for (int i = 0; i < 100 && !viewer_->shown()->cameraImage; ++i)
+        frame(0.0);
+    ASSERT_NE(shown().cameraImage, nullptr);
+    EXPECT_EQ(shown().frame->replay->index, 50u) << "the same frame, now with its image";
+    EXPECT_EQ(instrument_->replay()->status().colorDecodes, 1u);
+    // The image is exactly frame 50's, decoded on its own by a second reader.
+    auto source = devices::replay::openReplaySource("../shared/data/arkit_dance_stray");
+    ASSERT_TRUE(source.ok());
+    auto reference = devices::replay::loadFrame(**source, 50);
+    ASSERT_TRUE(reference.ok());
+    const processing::RgbImage& image = *shown().cameraImage;
+    EXPECT_EQ(processing::cameraRgbImage(reference->capturedImage, image.width, image.height).pixels, image.pixels);
+}
+
+} // namespace
+} // namespace dc::ui::test
