@@ -4,11 +4,13 @@
 #include "base/log.h"
 #include "exporting/ply.h"
 #include "frame/image_io.h"
+#include "processing/camera_image.h"
 #include "processing/depth_statistics.h"
 #include "processing/point_cloud.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -110,6 +112,11 @@ void Viewer::adopt(processing::ShownFramePtr shown) {
     if (!pivotSet_ && shown_->depth.data) {
         pivotDepthMeters_ = processing::medianDepth(shown_->depth.data->depthMeters);
         pivotSet_ = true;
+        const frame::Intrinsics& k = shown_->depth.intrinsics;
+        char line[160];
+        std::snprintf(line, sizeof line, "calibration: depth %dx%d, fx %.1f fy %.1f, cx %.1f cy %.1f",
+                      shown_->depth.width(), shown_->depth.height(), k.fx, k.fy, k.cx, k.cy);
+        logInfo(line);
     }
 }
 
@@ -124,7 +131,8 @@ render::CloudParams Viewer::cloudParams(double timeSeconds) const {
     const CloudSettings& cloud = settings_.cloud;
     const render::OrbitView view = combine(cloud.orbit, render::autoOffset(cloud.motion, timeSeconds));
     const render::RenderTarget& target = renderer_.cloudTarget();
-    const float aspect = static_cast<float>(target.width()) / static_cast<float>(std::max(target.height(), 1));
+    const float aspect =
+        static_cast<float>(target.width()) / static_cast<float>(std::max(target.height(), 1));
     params.viewProjection = render::cloudViewProjection(
         view, pivotDepthMeters_, render::verticalFovRadians(shown_->depth.intrinsics), aspect);
     params.minConfidence = cloud.minConfidence;
@@ -163,10 +171,16 @@ bool Viewer::accumulating() const {
 void Viewer::updateLegend() {
     const DepthRange& r = settings_.depthRange;
     legend_ = {r.minMeters, r.maxMeters, r.colormap, r.automatic};
-    if (r.automatic && shown_ && shown_->automaticRange) {
-        legend_.minMeters = shown_->automaticRange->minMeters;
-        legend_.maxMeters = shown_->automaticRange->maxMeters;
+    if (!r.automatic || !shown_ || !shown_->automaticRange)
+        return;
+    // Once per device frame: a redo of the same frame (a setting changed) must not move the range again.
+    if (!followedRange_ || shown_->frame->sequence != followedSequence_) {
+        followedRange_ =
+            processing::followRange(followedRange_, *shown_->automaticRange, kRangeFollowFraction);
+        followedSequence_ = shown_->frame->sequence;
     }
+    legend_.minMeters = followedRange_->minMeters;
+    legend_.maxMeters = followedRange_->maxMeters;
 }
 
 ProbeSource Viewer::probeSource() const {
@@ -186,7 +200,18 @@ Status Viewer::openSource(const std::string& spec) {
     anchors_.clear();
     shown_.reset();
     pivotSet_ = false;
+    followedRange_.reset();
     return {};
+}
+
+Status Viewer::openPath(const std::string& path) {
+    Expected<std::string> spec = sourceSpecForPath(path);
+    if (!spec) {
+        sourcePanel_.error = spec.error().message;
+        logWarning(spec.error().message);
+        return spec.error();
+    }
+    return openSource(*spec);
 }
 
 Status Viewer::savePanels(const std::string& directory) const {
@@ -200,10 +225,14 @@ Status Viewer::savePanels(const std::string& directory) const {
         if (Status s = target->savePng(directory + "/" + name); !s)
             return s;
     }
-    // A depth-only camera has no image to show: its camera panel is simply not written.
-    if (!shown_ || !shown_->cameraImage)
+    // The camera's own image at its full resolution (the panel shows it scaled to the panel); a depth-only
+    // camera has none, and its camera panel is simply not written.
+    if (!shown_ || shown_->frame->capturedImage.empty())
         return {};
-    const processing::RgbImage& image = *shown_->cameraImage;
+    const frame::CapturedImage& captured = shown_->frame->capturedImage;
+    const processing::RgbImage image = processing::cameraRgbImage(captured, captured.width, captured.height);
+    if (image.empty())
+        return Error{"cannot write camera.png: the camera image is malformed"};
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(image.width) * image.height * 4, 255);
     for (std::size_t i = 0, n = rgba.size() / 4; i < n; ++i)
         std::copy_n(&image.pixels[i * 3], 3, &rgba[i * 4]);
@@ -232,8 +261,8 @@ Expected<std::string> Viewer::saveSnapshot(const std::string& parent) const {
 
 StatusLine Viewer::statusLine() {
     const engine::InstrumentStatus s = instrument_.status();
-    StatusLine line{s.source, s.state, s.message, s.frames, uiFrames_.perSecond(), pointsShown(), {},
-                    s.latencyMs};
+    StatusLine line{s.source,      s.state, s.message,  s.frames, uiFrames_.perSecond(),
+                    pointsShown(), {},      s.latencyMs};
     for (const engine::StageSummary& stage : s.stages)
         line.stageMedians.push_back({stage.name, stage.medianMs});
     return line;
@@ -253,8 +282,8 @@ StatsView Viewer::statsView() {
 
 ViewerSummary Viewer::summary() {
     const engine::InstrumentStatus s = instrument_.status();
-    ViewerSummary summary{s.source, s.frames, uiFrames_.perSecond(), pointsShown(), 0, 0,
-                          instrument_.stages().all(), s.latencyMs};
+    ViewerSummary summary{s.source, s.frames, uiFrames_.perSecond(),      pointsShown(),
+                          0,        0,        instrument_.stages().all(), s.latencyMs};
     if (shown_) {
         summary.depthWidth = shown_->depth.width();
         summary.depthHeight = shown_->depth.height();
