@@ -54,7 +54,9 @@ protected:
 
     // Moves the mouse over a 2D panel until the readout reports depth pixel (u, v): the panel's scale is
     // measured from two readouts, then corrected pixel by pixel, so no layout figure is assumed.
-    std::optional<ImVec2> mouseOverDepthPixel(const char* title, int u, int v) {
+    // With `tolerance`, a readout that many pixels off counts too: a panel smaller than the depth map shows
+    // some samples at no whole screen pixel.
+    std::optional<ImVec2> mouseOverDepthPixel(const char* title, int u, int v, int tolerance = 0) {
         const ImVec2 c = centreOf(title);
         const auto a = hoverAt({c.x - 50.0f, c.y - 30.0f});
         const auto b = hoverAt({c.x + 50.0f, c.y + 30.0f});
@@ -64,14 +66,19 @@ protected:
         const float sy = 60.0f / static_cast<float>(b->v - a->v);
         ImVec2 at{c.x - 50.0f + sx * static_cast<float>(u - a->u) + 0.5f * sx,
                   c.y - 30.0f + sy * static_cast<float>(v - a->v) + 0.5f * sy};
-        for (int i = 0; i < 12; ++i) {
+        // Quarter-pixel steps: a panel smaller than the depth map shows a sample less than a screen pixel
+        // tall.
+        for (int i = 0; i < 24; ++i) {
             const auto p = hoverAt(at);
             if (!p)
                 return std::nullopt;
+            if (std::abs(p->u - u) <= tolerance && std::abs(p->v - v) <= tolerance &&
+                (i >= 12 || tolerance == 0))
+                return at;
             if (p->u == u && p->v == v)
                 return at;
-            at.x += 0.5f * sx * static_cast<float>((u > p->u) - (u < p->u));
-            at.y += 0.5f * sy * static_cast<float>((v > p->v) - (v < p->v));
+            at.x += 0.25f * sx * static_cast<float>((u > p->u) - (u < p->u));
+            at.y += 0.25f * sy * static_cast<float>((v > p->v) - (v < p->v));
         }
         return std::nullopt;
     }
@@ -111,10 +118,10 @@ TEST_F(InstrumentTest, HoverOnTheDepthPanelReadsTheKnownDepthAtAKnownPixel) {
 
 TEST_F(InstrumentTest, ConfidenceAndCameraPanelsReadOutTheSameSample) {
     for (const char* title : {kConfidenceTitle, kCameraTitle}) {
-        const auto at = mouseOverDepthPixel(title, 100, 170);
+        const auto at = mouseOverDepthPixel(title, 100, 170, 1);
         ASSERT_TRUE(at.has_value()) << title;
         const Probe p = *viewer_->hoverProbe();
-        EXPECT_FLOAT_EQ(p.depthMeters, shown().depth.data->depthMeters.at(100, 170)) << title;
+        EXPECT_FLOAT_EQ(p.depthMeters, shown().depth.data->depthMeters.at(p.u, p.v)) << title;
     }
 }
 
