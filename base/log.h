@@ -15,7 +15,9 @@ const char* toString(LogLevel level);
 // it must only copy the message.
 void log(LogLevel level, const std::string& message);
 // Installs `sink` in place of any other and returns a token for removeLogSink(), which removes it only if it
-// is still the one installed: a sink's owner going away late must not remove its successor's sink.
+// is still the one installed: a sink's owner going away late must not remove its successor's sink. The
+// sink first hears what was logged while none was installed (the last 200 messages), so the log panel
+// shows the start-up messages.
 std::uint64_t setLogSink(std::function<void(LogLevel, const std::string&)> sink);
 void removeLogSink(std::uint64_t token);
 void setLogQuiet(bool quiet); // keep stderr for warnings and errors only (headless runs, tests)

@@ -164,8 +164,9 @@ void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Fra
         // every time.
         const EffectKey key{camera, shown.depth.data, {}, p.aura, frame.timestampNs};
         shown.aura = cached(aura_, key, kAuraStage, [&] {
-            return std::make_shared<const processing::RgbaImage>(processing::renderAura(
-                *camera, shown.depth.data.get(), p.aura, static_cast<double>(frame.timestampNs) * 1e-9));
+            return std::make_shared<const processing::RgbaImage>(
+                processing::renderAura(*camera, shown.depth.data.get(), frame.depthIntrinsics(), p.aura,
+                                       static_cast<double>(frame.timestampNs) * 1e-9));
         });
     }
 }

@@ -8,12 +8,13 @@
 
 namespace dc::processing {
 
-// The subject the aura surrounds, 1 inside and 0 outside, at the depth map's resolution (or at most 480
-// pixels wide, nearest-sampled, for large maps: the ring is blurred by tens of pixels anyway). NearRange:
-// measured depths within [nearMeters, farMeters]. NearestRegion: the 4-connected surface grown from the
-// nearest measurement (its 1st percentile, so one stray sample does not decide) over neighbour steps
-// below regionJumpMeters, at most regionDepthMeters behind its start.
-frame::Plane<std::uint8_t> subjectMatte(const frame::DepthData& depth, const AuraSettings& settings);
+// The subject the aura surrounds, 1 inside and 0 outside, at the depth map's resolution (or at most 256
+// pixels wide, nearest-sampled, for upsampled maps: the ring is made at 240 pixels wide anyway). NearRange:
+// measured depths within [nearMeters, farMeters]. NearestRegion: the nearest region that stands out from
+// what surrounds it (AuraSettings says how), all 0 when none does. `intrinsics` are the depth map's (any
+// resolution of the same camera); they give the pixels' physical size.
+frame::Plane<std::uint8_t> subjectMatte(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
+                                        const AuraSettings& settings);
 
 // The "super saiyan" aura: the matte dilated by a ringPixels-wide square window (separable) minus the matte
 // itself is a ring; a small tent blur of it adds white, a large one yellow (twice as strong), their sizes
@@ -25,8 +26,10 @@ frame::Plane<std::uint8_t> subjectMatte(const frame::DepthData& depth, const Aur
 // without a camera image; the camera image without depth.
 RgbaImage renderAura(const frame::Frame& frame, const AuraSettings& settings, DepthSource source,
                      double timeSeconds);
-// The same from a camera image already at the output size and the depth that makes the matte (null: none).
-RgbaImage renderAura(const RgbImage& cameraImage, const frame::DepthData* depth, const AuraSettings& settings,
+// The same from a camera image already at the output size, the depth that makes the matte (null: none) and
+// that depth's camera intrinsics.
+RgbaImage renderAura(const RgbImage& cameraImage, const frame::DepthData* depth,
+                     const frame::Intrinsics& depthIntrinsics, const AuraSettings& settings,
                      double timeSeconds);
 
 } // namespace dc::processing

@@ -36,6 +36,14 @@ std::optional<DepthRangeMeters> percentileRange(const frame::Plane<float>& depth
     return DepthRangeMeters{low, high};
 }
 
+DepthRangeMeters followRange(const std::optional<DepthRangeMeters>& shown, const DepthRangeMeters& frame,
+                             float fraction) {
+    if (!shown)
+        return frame;
+    return {shown->minMeters + fraction * (frame.minMeters - shown->minMeters),
+            shown->maxMeters + fraction * (frame.maxMeters - shown->maxMeters)};
+}
+
 float medianDepth(const frame::Plane<float>& depthMeters) {
     std::vector<float> valid = validSamples(depthMeters, 4);
     return valid.empty() ? 1.0f : quantile(valid, 0.5);

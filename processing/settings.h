@@ -74,7 +74,7 @@ struct FogSettings {
 };
 
 enum class AuraMatte {
-    NearestRegion, // the connected surface nearest to the camera
+    NearestRegion, // the nearest region that stands out from its surroundings (AuraSettings)
     NearRange,     // everything between nearMeters and farMeters
 };
 
@@ -83,9 +83,17 @@ struct AuraSettings {
     AuraMatte matte = AuraMatte::NearestRegion;
     float nearMeters = 0.2f; // NearRange
     float farMeters = 1.0f;  // NearRange
-    // NearestRegion: neighbours whose depths differ by less than this belong to the same subject, and the
-    // subject extends at most regionDepthMeters behind its nearest point.
-    float regionJumpMeters = 0.04f;
+    // NearestRegion. The subject is the nearest region of the depth map that stands out from what surrounds
+    // it: the pixels connected to a nearest point through depths below the depth at which they first touch
+    // a region that began nearer (an apple ends where it meets the desk it rests on). It counts when it
+    // reaches separationMeters behind its nearest point before that (the apple reaches 4 cm; a book lying
+    // on the desk 1.5 cm: it barely rises from the desk), and when its front, what lies within
+    // separationMeters of its nearest point, covers at least minSizeMeters squared (sensor speckle covers
+    // far less) and stays clear of the image's border: a front at the border continues out of view
+    // towards the camera, as the floor or the desk the camera looks down at. The matte ends
+    // regionDepthMeters behind the subject's nearest point at most. No subject: no ring.
+    float separationMeters = 0.03f;
+    float minSizeMeters = 0.04f;
     float regionDepthMeters = 0.6f;
     int ringPixels = 15; // width of the dilation window that makes the ring, in output pixels
     // The blurs' sizes oscillate as the article's sin(frame / 3) at 60 frames per second.

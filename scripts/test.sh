@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
-# Command 2: install what is missing, build, and run every test tier (unit, gl, ui, app, kernel), then the unit
-# and gl tiers again under AddressSanitizer + UndefinedBehaviorSanitizer, the threaded tests under
-# ThreadSanitizer, and the fuzz targets briefly.
+# Command 2: install what is missing, build, and run every test tier (unit, gl, ui, app, kernel, package),
+# then the unit and gl tiers again under AddressSanitizer + UndefinedBehaviorSanitizer, the threaded tests
+# under ThreadSanitizer, and the fuzz targets briefly.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -11,7 +11,7 @@ cmake -S . -B build -DCMAKE_BUILD_TYPE=RelWithDebInfo -DDC_BUILD_TESTS=ON -DDC_W
 cmake --build build -j"$jobs"
 
 # Every tier the issues require must have tests; an empty label would pass silently.
-for label in unit gl ui app kernel; do
+for label in unit gl ui app kernel package; do
     count=$(ctest --test-dir build -N -L "^${label}\$" | sed -n 's/^Total Tests: //p')
     if [ "${count:-0}" -eq 0 ]; then
         echo "test.sh: no tests carry the label '$label'" >&2

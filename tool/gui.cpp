@@ -22,6 +22,7 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <utility>
 #include <vector>
 
 namespace dc::tool {
@@ -66,8 +67,19 @@ struct ImGuiScope {
 
 // Every key, character, button, scroll and cursor event goes into the queue, which feeds ImGui one frame's
 // worth at a time (ui::InputQueue says why); these replace the ImGui backend's own callbacks for them.
+struct WindowInput {
+    ui::InputQueue queue;
+    std::vector<std::string> dropped; // files and folders dropped on the window, to open as sources
+};
+
 ui::InputQueue& queueOf(GLFWwindow* window) {
-    return *static_cast<ui::InputQueue*>(glfwGetWindowUserPointer(window));
+    return static_cast<WindowInput*>(glfwGetWindowUserPointer(window))->queue;
+}
+
+void onDrop(GLFWwindow* window, int count, const char** paths) {
+    auto& dropped = static_cast<WindowInput*>(glfwGetWindowUserPointer(window))->dropped;
+    for (int i = 0; i < count; ++i)
+        dropped.emplace_back(paths[i]);
 }
 
 void onKey(GLFWwindow* window, int key, int, int action, int mods) {
@@ -92,11 +104,13 @@ void onCursor(GLFWwindow* window, double x, double y) {
 }
 
 void onScroll(GLFWwindow* window, double x, double y) {
-    queueOf(window).push({ui::InputEvent::Kind::Scroll, 0, false, static_cast<float>(x), static_cast<float>(y)});
+    queueOf(window).push(
+        {ui::InputEvent::Kind::Scroll, 0, false, static_cast<float>(x), static_cast<float>(y)});
 }
 
-void queueInput(GLFWwindow* window, ui::InputQueue& queue) {
-    glfwSetWindowUserPointer(window, &queue);
+void queueInput(GLFWwindow* window, WindowInput& input) {
+    glfwSetWindowUserPointer(window, &input);
+    glfwSetDropCallback(window, onDrop);
     glfwSetKeyCallback(window, onKey);
     glfwSetCharCallback(window, onChar);
     glfwSetMouseButtonCallback(window, onMouseButton);
@@ -113,11 +127,15 @@ WindowPtr openWindow() {
 }
 
 ui::Settings loadSettings(const std::string& path, bool reset) {
-    if (reset)
+    if (reset) {
+        logInfo("settings: defaults and the default layout (--reset)");
         return {};
+    }
     std::ifstream in(path);
-    if (!in)
+    if (!in) {
+        logInfo("settings: defaults (" + path + " does not exist yet)");
         return {};
+    }
     std::stringstream text;
     text << in.rdbuf();
     auto settings = ui::settingsFromJson(text.str());
@@ -125,6 +143,7 @@ ui::Settings loadSettings(const std::string& path, bool reset) {
         logWarning(path + ": " + settings.error().message + "; starting with default settings");
         return {};
     }
+    logInfo("settings: " + path);
     return *settings;
 }
 
@@ -226,13 +245,16 @@ int runGui(const ViewerOptions& options) {
     int status = kExitOk;
     {
         ImGuiScope imgui(window.get(), iniPath);
-        ui::InputQueue input;
+        WindowInput input;
         queueInput(window.get(), input);
         render::ViewRenderer renderer;
         if (Status s = renderer.init(); !s) {
             std::fprintf(stderr, "depthcloud: error: %s\n", s.error().message.c_str());
             return kExitFailure;
         }
+        const auto glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+        logInfo(std::string("renderer: OpenGL on ") + (glRenderer ? glRenderer : "an unknown renderer"));
+        logInfo("source: " + options.source);
         engine::Instrument instrument(std::move(*device), options.source);
         ui::Viewer viewer(instrument, renderer, settings);
         instrument.start();
@@ -241,7 +263,10 @@ int runGui(const ViewerOptions& options) {
         for (int frame = 0;; ++frame) {
             if (auto listing = cameras.takeUpdate())
                 viewer.setLiveSources(cameraEntries(*listing));
-            drawFrame(window.get(), viewer, input, std::chrono::duration<double>(Clock::now() - start).count());
+            drawFrame(window.get(), viewer, input.queue,
+                      std::chrono::duration<double>(Clock::now() - start).count());
+            for (const std::string& path : std::exchange(input.dropped, {}))
+                (void)viewer.openPath(path);
             // Closing the window ends the run like the last of --frames: --out still gets its files.
             const bool last =
                 glfwWindowShouldClose(window.get()) || (options.frames && frame + 1 >= *options.frames);

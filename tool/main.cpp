@@ -8,6 +8,7 @@
 #include "tool/live_commands.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
+#include "tool/version.h"
 
 #include <CLI/CLI.hpp>
 
@@ -91,7 +92,7 @@ int main(int argc, char** argv) {
     CLI::App app{"depthcloud: a live, colored point cloud of what a depth camera measures, with depth and "
                  "confidence panels",
                  "depthcloud"};
-    app.set_version_flag("--version", std::string("depthcloud ") + DEPTHCLOUD_VERSION);
+    app.set_version_flag("--version", versionLine());
     ViewerOptions viewer;
     addViewerOptions(app, viewer);
 

@@ -40,6 +40,12 @@ double Anchors::segmentMeters(std::size_t i) const {
     return glm::length(glm::dvec3(world_[i + 1]) - glm::dvec3(world_[i]));
 }
 
+double Anchors::closingMeters() const {
+    if (world_.size() < 3)
+        return 0.0;
+    return glm::length(glm::dvec3(world_.front()) - glm::dvec3(world_.back()));
+}
+
 double Anchors::areaSquareMeters() const {
     if (world_.size() < 3)
         return 0.0;

@@ -29,6 +29,8 @@ public:
 
     // Straight-line distance from anchor i to anchor i + 1, meters.
     double segmentMeters(std::size_t i) const;
+    // The edge from the last anchor back to the first, which closes the polygon; 0 with fewer than three.
+    double closingMeters() const;
     // Area of the polygon through the anchors in order (its vector area, so a planar polygon gets its exact
     // area), square meters; 0 with fewer than three.
     double areaSquareMeters() const;

@@ -1,5 +1,7 @@
 #include "ui/panels.h"
 
+#include <algorithm>
+#include <cfloat>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -10,17 +12,25 @@ namespace {
 constexpr float kOrbitRadiansPerPixel = 0.008f;
 constexpr float kPanMetersPerPixel = 0.002f;
 constexpr float kZoomPerWheelStep = 1.1f;
+// A press is a click until the mouse moves this far from where it went down.
+constexpr float kClickSlopPixels = 3.0f;
+
+// A drag of `button` on the view, moved past the click slop. Not in the frame of the press: the mouse may
+// have jumped there within that frame, and the jump is no drag.
+bool dragging(ImGuiMouseButton button) {
+    return ImGui::IsItemActive() && ImGui::IsMouseDragging(button, kClickSlopPixels) &&
+           !ImGui::IsMouseClicked(button);
+}
 
 bool applyMouse(CloudSettings& cloud) {
     const ImGuiIO& io = ImGui::GetIO();
     bool changed = false;
-    if (ImGui::IsItemActive() && ImGui::IsMouseDragging(ImGuiMouseButton_Left, 0.0f)) {
+    if (dragging(ImGuiMouseButton_Left)) {
         cloud.orbit.yawRadians += io.MouseDelta.x * kOrbitRadiansPerPixel;
         cloud.orbit.pitchRadians += io.MouseDelta.y * kOrbitRadiansPerPixel;
         changed = true;
     }
-    if (ImGui::IsItemActive() && (ImGui::IsMouseDragging(ImGuiMouseButton_Right, 0.0f) ||
-                                  ImGui::IsMouseDragging(ImGuiMouseButton_Middle, 0.0f))) {
+    if (dragging(ImGuiMouseButton_Right) || dragging(ImGuiMouseButton_Middle)) {
         cloud.orbit.panMeters.x += io.MouseDelta.x * kPanMetersPerPixel;
         cloud.orbit.panMeters.y -= io.MouseDelta.y * kPanMetersPerPixel;
         changed = true;
@@ -38,29 +48,73 @@ bool applyMouse(CloudSettings& cloud) {
     return changed;
 }
 
-// Anchors as dots with their number, measured segments as lines labelled at their middle.
-void drawOverlay(const CloudOverlay& overlay, ImVec2 origin, ImVec2 size) {
+// The centroid of a simple polygon (the mean of its corners when it has no area, e.g. collinear anchors).
+ImVec2 centroid(const std::vector<ImVec2>& p) {
+    double area2 = 0.0, cx = 0.0, cy = 0.0, mx = 0.0, my = 0.0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const ImVec2 a = p[i], b = p[(i + 1) % p.size()];
+        const double cross = static_cast<double>(a.x) * b.y - static_cast<double>(b.x) * a.y;
+        area2 += cross;
+        cx += (a.x + b.x) * cross;
+        cy += (a.y + b.y) * cross;
+        mx += a.x;
+        my += a.y;
+    }
+    const double n = static_cast<double>(p.size());
+    if (std::abs(area2) < 1.0)
+        return {static_cast<float>(mx / n), static_cast<float>(my / n)};
+    return {static_cast<float>(cx / (3.0 * area2)), static_cast<float>(cy / (3.0 * area2))};
+}
+
+// Anchors as numbered dots, the edges between them (closed into a polygon from three on), each edge's
+// length at its midpoint and the area at the centroid, on dark backdrops, moved apart where they collide.
+std::vector<LabelBox> drawOverlay(const CloudOverlay& overlay, ImVec2 origin, ImVec2 size) {
     ImDrawList* draw = ImGui::GetWindowDrawList();
-    const auto at = [&](ImVec2 f) { return ImVec2(origin.x + f.x * size.x, origin.y + f.y * size.y); };
+    std::vector<ImVec2> points;
+    for (const ImVec2 f : overlay.anchors)
+        points.emplace_back(origin.x + f.x * size.x, origin.y + f.y * size.y);
     const ImU32 line = IM_COL32(255, 214, 64, 255);
+    const ImVec2 middle = points.size() >= 3 ? centroid(points) : ImVec2(origin.x + size.x * 0.5f, origin.y);
+    std::vector<std::string> texts;
+    std::vector<ImVec2> at, away, sizes;
+    const float fontSize = ImGui::GetFontSize() * 1.25f;
+    ImFont* font = ImGui::GetFont();
+    const auto textSize = [&](const std::string& t) {
+        return font->CalcTextSizeA(fontSize, FLT_MAX, 0.0f, t.c_str());
+    };
     for (const auto& [first, label] : overlay.segments) {
         const auto i = static_cast<std::size_t>(first);
-        if (i + 1 >= overlay.anchors.size())
+        if (i >= points.size() || points.size() < 2)
             continue;
-        const ImVec2 a = at(overlay.anchors[i]);
-        const ImVec2 b = at(overlay.anchors[i + 1]);
+        const ImVec2 a = points[i], b = points[(i + 1) % points.size()];
         draw->AddLine(a, b, line, 2.0f);
-        const ImVec2 mid{(a.x + b.x) * 0.5f + 6.0f, (a.y + b.y) * 0.5f - 6.0f};
-        draw->AddText(mid, IM_COL32(255, 255, 255, 255), label.c_str());
+        const ImVec2 mid{(a.x + b.x) * 0.5f, (a.y + b.y) * 0.5f};
+        // Away from the polygon's middle, so a label moved off its edge moves outwards.
+        const float dx = mid.x - middle.x, dy = mid.y - middle.y, len = std::hypot(dx, dy);
+        texts.push_back(label);
+        at.push_back(mid);
+        away.push_back(len > 1e-3f ? ImVec2(dx / len, dy / len) : ImVec2(0.0f, -1.0f));
+        sizes.push_back(textSize(label));
     }
-    for (std::size_t i = 0; i < overlay.anchors.size(); ++i) {
-        const ImVec2 p = at(overlay.anchors[i]);
-        draw->AddCircle(p, 6.0f, line, 12, 2.0f);
-        draw->AddText({p.x + 8.0f, p.y + 2.0f}, IM_COL32(255, 255, 255, 255), std::to_string(i + 1).c_str());
+    if (!overlay.summary.empty() && points.size() >= 3) {
+        texts.push_back(overlay.summary);
+        at.push_back(middle);
+        away.emplace_back(0.0f, 1.0f);
+        sizes.push_back(textSize(overlay.summary));
     }
-    if (!overlay.summary.empty())
-        draw->AddText({origin.x + 12.0f, origin.y + size.y - ImGui::GetTextLineHeight() - 8.0f},
-                      IM_COL32(255, 255, 255, 255), overlay.summary.c_str());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        draw->AddCircle(points[i], 6.0f, line, 12, 2.0f);
+        draw->AddText({points[i].x + 8.0f, points[i].y + 2.0f}, IM_COL32(255, 255, 255, 255),
+                      std::to_string(i + 1).c_str());
+    }
+    std::vector<LabelBox> boxes = placeLabels(at, sizes, away);
+    for (std::size_t i = 0; i < boxes.size(); ++i) {
+        const LabelBox& b = boxes[i];
+        draw->AddRectFilled({b.min.x - 4.0f, b.min.y - 2.0f}, {b.max.x + 4.0f, b.max.y + 2.0f},
+                            IM_COL32(0, 0, 0, 170), 4.0f);
+        draw->AddText(font, fontSize, b.min, IM_COL32(255, 255, 255, 255), texts[i].c_str());
+    }
+    return boxes;
 }
 
 // The mouse over the view in cloud-image pixels, and whether the left button was clicked (released
@@ -71,7 +125,6 @@ void readPointer(CloudPanelResult& result, ImVec2 origin, ImVec2 size) {
         return;
     const ImVec2 at{io.MousePos.x - origin.x, io.MousePos.y - origin.y};
     result.hoverPixels = at;
-    constexpr float kClickSlopPixels = 3.0f;
     // The release that ends a double-click (a view reset) is not a click of its own.
     if (ImGui::IsMouseReleased(ImGuiMouseButton_Left) &&
         io.MouseClickedLastCount[ImGuiMouseButton_Left] < 2 &&
@@ -82,6 +135,31 @@ void readPointer(CloudPanelResult& result, ImVec2 origin, ImVec2 size) {
 }
 
 } // namespace
+
+std::vector<LabelBox> placeLabels(const std::vector<ImVec2>& anchors, const std::vector<ImVec2>& sizes,
+                                  const std::vector<ImVec2>& away) {
+    // Boxes keep a small gap (the backdrop's margin) between them.
+    constexpr float kGap = 6.0f;
+    const auto overlaps = [](const LabelBox& a, const LabelBox& b) {
+        return a.min.x < b.max.x + kGap && b.min.x < a.max.x + kGap && a.min.y < b.max.y + kGap &&
+               b.min.y < a.max.y + kGap;
+    };
+    std::vector<LabelBox> placed;
+    for (std::size_t i = 0; i < anchors.size(); ++i) {
+        const ImVec2 half{sizes[i].x * 0.5f, sizes[i].y * 0.5f};
+        LabelBox box;
+        for (int step = 0; step < 200; ++step) {
+            const ImVec2 c{anchors[i].x + away[i].x * 4.0f * static_cast<float>(step),
+                           anchors[i].y + away[i].y * 4.0f * static_cast<float>(step)};
+            box = {{c.x - half.x, c.y - half.y}, {c.x + half.x, c.y + half.y}, anchors[i]};
+            if (std::none_of(placed.begin(), placed.end(),
+                             [&](const LabelBox& p) { return overlaps(box, p); }))
+                break;
+        }
+        placed.push_back(box);
+    }
+    return placed;
+}
 
 CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const CloudOverlay& overlay,
                                 const std::string& message, bool zoomed, bool* open) {
@@ -112,7 +190,7 @@ CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, c
                 reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(image.textureId)), origin,
                 {origin.x + avail.x, origin.y + avail.y}, kFlippedUv0, kFlippedUv1);
         }
-        drawOverlay(overlay, origin, avail);
+        result.labels = drawOverlay(overlay, origin, avail);
         ImGui::SetCursorScreenPos(
             {origin.x + avail.x - ImGui::CalcTextSize("Restore").x - 24.0f, origin.y + 8.0f});
         result.panel.toggleZoom = ImGui::SmallButton(zoomed ? "Restore" : "Zoom");

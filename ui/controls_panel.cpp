@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <iterator>
+#include <utility>
 
 namespace dc::ui {
 
@@ -72,7 +74,8 @@ bool depthSection(DepthRange& range) {
     range.colormap = static_cast<render::Colormap>(colormap);
     changed |= ImGui::Checkbox("Automatic range", &range.automatic);
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Follow each frame's 2nd to 98th depth percentile.");
+        ImGui::SetTooltip(
+            "Follow the 2nd to 98th depth percentile, smoothed over frames; off: the fixed range.");
     ImGui::BeginDisabled(range.automatic);
     changed |= ImGui::DragFloatRange2("Depth range", &range.minMeters, &range.maxMeters, 0.01f, 0.0f, 100.0f,
                                       "%.2f m", "%.2f m", ImGuiSliderFlags_AlwaysClamp);
@@ -216,16 +219,31 @@ bool processingSection(processing::ProcessingSettings& p, const ControlsContext&
     return changed;
 }
 
-bool panelsSection(PanelVisibility& panels) {
-    bool changed = ImGui::Checkbox(kCloudTitle, &panels.cloud);
-    changed |= ImGui::Checkbox(kDepthTitle, &panels.depth);
-    changed |= ImGui::Checkbox(kConfidenceTitle, &panels.confidence);
-    changed |= ImGui::Checkbox(kCameraTitle, &panels.camera);
-    changed |= ImGui::Checkbox("Stats [S]", &panels.stats);
-    changed |= ImGui::Checkbox("Log [L]", &panels.log);
-    changed |= ImGui::Checkbox("Source [O]", &panels.source);
-    changed |= ImGui::Checkbox("Fog [F]", &panels.fog);
-    changed |= ImGui::Checkbox("Aura [A]", &panels.aura);
+bool panelsSection(PanelVisibility& panels, ControlsResult& result) {
+    // Two columns: the list stays short enough to fit under the View group at 1280x720.
+    const float column = ImGui::GetWindowContentRegionMin().x +
+                         0.5f * (ImGui::GetWindowContentRegionMax().x - ImGui::GetWindowContentRegionMin().x);
+    const std::pair<const char*, bool*> toggles[] = {{kCloudTitle, &panels.cloud},
+                                                     {kDepthTitle, &panels.depth},
+                                                     {kConfidenceTitle, &panels.confidence},
+                                                     {kCameraTitle, &panels.camera},
+                                                     {"Timeline [T]", &panels.timeline},
+                                                     {"Stats [S]", &panels.stats},
+                                                     {"Log [L]", &panels.log},
+                                                     {"Source [O]", &panels.source},
+                                                     {"Fog [F]", &panels.fog},
+                                                     {"Aura [A]", &panels.aura}};
+    bool changed = false;
+    for (std::size_t i = 0; i < std::size(toggles); ++i) {
+        if (i % 2 == 1)
+            ImGui::SameLine(column);
+        changed |= ImGui::Checkbox(toggles[i].first, toggles[i].second);
+        if (toggles[i].second == &panels.timeline && ImGui::IsItemHovered())
+            ImGui::SetTooltip("The strip under the panels while the source is a recording.");
+    }
+    result.resetLayout = ImGui::Button("Reset layout");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("The default panels in their default places for this window size.");
     return changed;
 }
 
@@ -238,28 +256,33 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
         return result;
     }
     ImGui::PushItemWidth(-ImGui::GetFontSize() * 8.5f); // room for the longest label
-    if (context.recordState) {
+    // Grouped so that at 1280x720 the common groups (View, Panels) fit without scrolling; the others open
+    // with a click and ImGui remembers which are open.
+    bool changed = false;
+    if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+        changed |= confidenceSection(settings.cloud);
+        changed |= viewSection(settings.cloud);
+        changed |= depthSection(settings.depthRange);
+    }
+    if (ImGui::CollapsingHeader("Panels", ImGuiTreeNodeFlags_DefaultOpen))
+        changed |= panelsSection(settings.panels, result);
+    if (ImGui::CollapsingHeader("Measure", ImGuiTreeNodeFlags_DefaultOpen)) {
+        anchorsSection(context, result);
+        changed |= accumulateSection(settings.accumulate, context, result);
+    }
+    if (ImGui::CollapsingHeader("Camera panel"))
+        changed |= cameraSection(settings.camera);
+    if (ImGui::CollapsingHeader("Processing")) {
+        changed |= processingSection(settings.processing, context);
+        changed |= drawingSection(settings.cloud, context);
+    }
+    if (context.recordState && ImGui::CollapsingHeader("Record")) {
         result.toggleRecording = drawRecordControls(context.record, settings.record, *context.recordState);
         result.snapshot = ImGui::Button("Snapshot [P]");
         if (ImGui::IsItemHovered())
-            ImGui::SetTooltip("Every panel as PNG and the cloud as PLY, into depthcloud-snapshots/.");
-        ImGui::Separator();
+            ImGui::SetTooltip("Every panel's image at full resolution as PNG and the cloud as PLY, into "
+                              "depthcloud-snapshots/.");
     }
-    bool changed = confidenceSection(settings.cloud);
-    ImGui::Separator();
-    changed |= viewSection(settings.cloud);
-    ImGui::Separator();
-    anchorsSection(context, result);
-    changed |= accumulateSection(settings.accumulate, context, result);
-    ImGui::Separator();
-    changed |= depthSection(settings.depthRange);
-    ImGui::Separator();
-    changed |= cameraSection(settings.camera);
-    ImGui::Separator();
-    changed |= processingSection(settings.processing, context);
-    changed |= drawingSection(settings.cloud, context);
-    ImGui::Separator();
-    changed |= panelsSection(settings.panels);
     ImGui::PopItemWidth();
     ImGui::End();
     if (changed)
@@ -290,8 +313,9 @@ bool handleShortcuts(Settings& settings) {
         fired = true;
     }
     const std::pair<int, bool*> panelKeys[] = {
-        {'C', &settings.panels.controls}, {'S', &settings.panels.stats}, {'L', &settings.panels.log},
-        {'O', &settings.panels.source},   {'F', &settings.panels.fog},   {'A', &settings.panels.aura}};
+        {'C', &settings.panels.controls}, {'S', &settings.panels.stats},  {'L', &settings.panels.log},
+        {'T', &settings.panels.timeline}, {'O', &settings.panels.source}, {'F', &settings.panels.fog},
+        {'A', &settings.panels.aura}};
     for (const auto& [key, shown] : panelKeys) {
         if (ImGui::IsKeyPressed(key, false)) {
             *shown = !*shown;

@@ -32,6 +32,9 @@ bool drawFogPanel(const PanelImage& image, processing::FogSettings& fog, bool* o
     ImGui::PushItemWidth(ImGui::GetFontSize() * 8.0f);
     bool changed = ImGui::SliderFloat("Fog max", &fog.fogMaxMeters, 0.5f, 10.0f, "%.1f m");
     ImGui::SameLine();
+    // The sample's Gaussian blur of the depth before the fog (sigma 5): softer fog edges at depth steps.
+    changed |= ImGui::SliderFloat("Blur", &fog.blurSigmaPixels, 0.0f, 20.0f, "sigma %.1f px");
+    ImGui::SameLine();
     changed |= ImGui::ColorEdit3("Fog color", fog.color.data(), ImGuiColorEditFlags_NoInputs);
     ImGui::SameLine();
     changed |= ImGui::Checkbox("Confidence overlay", &fog.confidenceOverlay);
@@ -51,11 +54,18 @@ bool drawAuraPanel(const PanelImage& image, processing::AuraSettings& aura, bool
     bool changed = ImGui::Combo("Subject", &matte, "nearest region\0near range\0");
     aura.matte = static_cast<processing::AuraMatte>(matte);
     ImGui::SameLine();
-    if (aura.matte == processing::AuraMatte::NearRange)
+    if (aura.matte == processing::AuraMatte::NearRange) {
         changed |=
             ImGui::DragFloatRange2("Range", &aura.nearMeters, &aura.farMeters, 0.01f, 0.0f, 10.0f, "%.2f m");
-    else
+    } else {
         changed |= ImGui::SliderFloat("Depth", &aura.regionDepthMeters, 0.05f, 3.0f, "%.2f m");
+        ImGui::SameLine();
+        changed |= ImGui::SliderFloat("Stands out", &aura.separationMeters, 0.005f, 0.5f, "%.3f m",
+                                      ImGuiSliderFlags_Logarithmic);
+        if (ImGui::IsItemHovered())
+            ImGui::SetTooltip("How far behind its nearest point a subject must reach before it meets what it "
+                              "rests on");
+    }
     ImGui::SameLine();
     changed |= ImGui::SliderInt("Ring", &aura.ringPixels, 1, 60, "%d px");
     ImGui::PopItemWidth();

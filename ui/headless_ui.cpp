@@ -24,10 +24,12 @@ Status HeadlessUi::init(int width, int height) {
     io.DisplaySize = ImVec2(static_cast<float>(width), static_cast<float>(height));
     // The named keys as GLFW's backend maps them, so shortcuts behave the same with and without a window.
     const std::pair<ImGuiKey, int> keys[] = {
-        {ImGuiKey_Escape, GLFW_KEY_ESCAPE},  {ImGuiKey_Space, GLFW_KEY_SPACE},
-        {ImGuiKey_LeftArrow, GLFW_KEY_LEFT}, {ImGuiKey_RightArrow, GLFW_KEY_RIGHT},
-        {ImGuiKey_Home, GLFW_KEY_HOME},      {ImGuiKey_End, GLFW_KEY_END},
-        {ImGuiKey_Enter, GLFW_KEY_ENTER},    {ImGuiKey_Tab, GLFW_KEY_TAB}};
+        {ImGuiKey_Escape, GLFW_KEY_ESCAPE},       {ImGuiKey_Space, GLFW_KEY_SPACE},
+        {ImGuiKey_LeftArrow, GLFW_KEY_LEFT},      {ImGuiKey_RightArrow, GLFW_KEY_RIGHT},
+        {ImGuiKey_UpArrow, GLFW_KEY_UP},          {ImGuiKey_DownArrow, GLFW_KEY_DOWN},
+        {ImGuiKey_Home, GLFW_KEY_HOME},           {ImGuiKey_End, GLFW_KEY_END},
+        {ImGuiKey_Enter, GLFW_KEY_ENTER},         {ImGuiKey_KeyPadEnter, GLFW_KEY_KP_ENTER},
+        {ImGuiKey_Backspace, GLFW_KEY_BACKSPACE}, {ImGuiKey_Tab, GLFW_KEY_TAB}};
     for (const auto& [key, code] : keys)
         io.KeyMap[key] = code;
     if (!ImGui_ImplOpenGL3_Init("#version 330 core"))

@@ -3,6 +3,7 @@
 #include "devices/replay/replay_device.h"
 #include "engine/instrument.h"
 #include "processing/pipeline.h"
+#include "ui/file_picker.h"
 #include "ui/log_store.h"
 #include "ui/panel_image.h"
 #include "ui/probe.h"
@@ -44,10 +45,24 @@ struct PanelResult {
 
 // A mark drawn over the cloud: an anchor (a label at a point) or a measured segment between two.
 struct CloudOverlay {
-    std::vector<ImVec2> anchors;                       // in the cloud image, fractions of its size
-    std::vector<std::pair<int, std::string>> segments; // (first anchor of the segment, label)
-    std::string summary;                               // e.g. the area of the anchors' polygon
+    std::vector<ImVec2> anchors; // in the cloud image, fractions of its size
+    // (first anchor of the edge, label); the edge from the last anchor back to the first closes a polygon
+    std::vector<std::pair<int, std::string>> segments;
+    std::string summary; // the polygon's area, drawn at its centroid
 };
+
+// A measurement label as drawn on screen: its box and the point it labels (an edge's midpoint, the
+// polygon's centroid).
+struct LabelBox {
+    ImVec2 min;
+    ImVec2 max;
+    ImVec2 anchor;
+};
+
+// Boxes of `sizes` centred on `anchors`, each moved away from its anchor (along `away`, a unit direction per
+// label) in steps until it overlaps none placed before it; the first stays where it is.
+std::vector<LabelBox> placeLabels(const std::vector<ImVec2>& anchors, const std::vector<ImVec2>& sizes,
+                                  const std::vector<ImVec2>& away);
 
 struct CloudPanelResult {
     PanelResult panel;
@@ -57,6 +72,7 @@ struct CloudPanelResult {
     std::optional<ImVec2> hoverPixels; // the mouse over the cloud, in cloud-image pixels
     std::optional<ImVec2> clickPixels; // a left click (not a drag) on the cloud, in cloud-image pixels
     bool doubleClicked = false;        // the view was reset by a double-click
+    std::vector<LabelBox> labels;      // the measurement labels drawn, on screen
 };
 
 // The rotating cloud. Left-drag orbits, right- or middle-drag pans, the wheel zooms, a double-click resets
@@ -127,6 +143,7 @@ struct ControlsResult {
     bool clearAccumulation = false;
     bool toggleRecording = false;
     bool snapshot = false;
+    bool resetLayout = false;
 };
 
 // Every setting.
@@ -190,9 +207,12 @@ struct SourceList {
 struct SourcePanelState {
     std::array<char, 512> spec{};
     std::string error; // why the last attempt to open a source failed
+    FilePickerState files;
+    bool filesOpen = false; // the file picker's window, opened by Browse
 };
 
-// The source picker; returns the spec the user chose to open.
+// The source picker, with a file picker for recordings and captures (Browse); returns the spec the user
+// chose to open.
 std::optional<std::string> drawSourcePanel(const SourceList& list, SourcePanelState& state, bool* open);
 
 struct TimelineView {
@@ -221,8 +241,10 @@ struct TimelineActions {
     bool cancelExport = false;
 };
 
-// Play/pause, step, first/last, loop, speed, a frame scrubber with the time, and the range export.
-TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& state, bool* open);
+// Play/pause, step, first/last, loop, speed, a frame scrubber with the time, and the range export; `flags`
+// dock it (the viewer places it as a strip).
+TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& state, bool* open,
+                                  ImGuiWindowFlags flags = 0);
 
 // Seed 002's fog and seed 004's aura, each with its own controls above the image; return whether a
 // setting changed.

@@ -45,12 +45,14 @@ json processingToJson(const processing::ProcessingSettings& p) {
             {"depthNoiseMeters", up.depthNoiseMeters},
             {"smoothness", up.smoothness},
             {"fogMaxMeters", p.fog.fogMaxMeters},
+            {"fogBlurSigmaPixels", p.fog.blurSigmaPixels},
             {"fogColor", p.fog.color},
             {"fogConfidenceOverlay", p.fog.confidenceOverlay},
             {"auraMatte", static_cast<int>(p.aura.matte)},
             {"auraNearMeters", p.aura.nearMeters},
             {"auraFarMeters", p.aura.farMeters},
             {"auraRegionDepthMeters", p.aura.regionDepthMeters},
+            {"auraSeparationMeters", p.aura.separationMeters},
             {"auraRingPixels", p.aura.ringPixels}};
 }
 
@@ -79,12 +81,14 @@ void processingFromJson(const json& j, processing::ProcessingSettings& p) {
     read(j, "depthNoiseMeters", up.depthNoiseMeters);
     read(j, "smoothness", up.smoothness);
     read(j, "fogMaxMeters", p.fog.fogMaxMeters);
+    read(j, "fogBlurSigmaPixels", p.fog.blurSigmaPixels);
     read(j, "fogColor", p.fog.color);
     read(j, "fogConfidenceOverlay", p.fog.confidenceOverlay);
     readEnum(j, "auraMatte", p.aura.matte, 2);
     read(j, "auraNearMeters", p.aura.nearMeters);
     read(j, "auraFarMeters", p.aura.farMeters);
     read(j, "auraRegionDepthMeters", p.aura.regionDepthMeters);
+    read(j, "auraSeparationMeters", p.aura.separationMeters);
     read(j, "auraRingPixels", p.aura.ringPixels);
 }
 
@@ -104,6 +108,7 @@ void sanitize(processing::ProcessingSettings& p) {
         std::clamp(finiteOr(up.depthNoiseMeters, d.upsamplingParams.depthNoiseMeters), 1e-4f, 1.0f);
     up.smoothness = std::clamp(finiteOr(up.smoothness, d.upsamplingParams.smoothness), 0.01f, 100.0f);
     p.fog.fogMaxMeters = std::clamp(finiteOr(p.fog.fogMaxMeters, d.fog.fogMaxMeters), 0.1f, 100.0f);
+    p.fog.blurSigmaPixels = std::clamp(finiteOr(p.fog.blurSigmaPixels, d.fog.blurSigmaPixels), 0.0f, 50.0f);
     for (float& c : p.fog.color)
         c = std::clamp(finiteOr(c, 0.8f), 0.0f, 1.0f);
     p.aura.nearMeters = std::clamp(finiteOr(p.aura.nearMeters, d.aura.nearMeters), 0.0f, 50.0f);
@@ -111,6 +116,8 @@ void sanitize(processing::ProcessingSettings& p) {
         std::clamp(finiteOr(p.aura.farMeters, d.aura.farMeters), p.aura.nearMeters + 0.01f, 100.0f);
     p.aura.regionDepthMeters =
         std::clamp(finiteOr(p.aura.regionDepthMeters, d.aura.regionDepthMeters), 0.01f, 10.0f);
+    p.aura.separationMeters =
+        std::clamp(finiteOr(p.aura.separationMeters, d.aura.separationMeters), 0.001f, 5.0f);
     p.aura.ringPixels = std::clamp(p.aura.ringPixels, 1, 100);
 }
 

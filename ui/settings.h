@@ -44,9 +44,11 @@ struct CloudSettings {
 };
 
 struct DepthRange {
-    float minMeters = 0.0f;
-    float maxMeters = 2.5f; // the sample's range: fine detail in a room-sized scene
-    bool automatic = false; // follow the frame's 2nd to 98th depth percentiles instead
+    float minMeters = 0.0f; // the fixed range: the sample's 0 to 2.5 m
+    float maxMeters = 2.5f;
+    // The colours follow the data (the 2nd to 98th depth percentiles, smoothed over time) unless the user
+    // fixes the range (one click): a fixed 0 to 2.5 m paints most of a room-scale capture one colour.
+    bool automatic = true;
     render::Colormap colormap = render::Colormap::Jet;
 };
 

@@ -1,5 +1,9 @@
 #include "ui/panels.h"
 
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
 namespace dc::ui {
 
 namespace {
@@ -18,6 +22,23 @@ std::optional<std::string> sourceList(const char* heading, const std::vector<Sou
             ImGui::SetTooltip("%s", e.spec.c_str());
     }
     return chosen;
+}
+
+// The folders of recent replays, after the picker's own recent folders: where the user's data lives.
+void addRecentReplayFolders(const std::vector<SourceEntry>& recent, FilePickerState& files) {
+    for (const SourceEntry& e : recent) {
+        if (!e.spec.starts_with("replay:"))
+            continue;
+        // Options follow the path after colons: ":loop" leaves the parent as it is, and a parent that is no
+        // folder (one cut out of ":calib=DIR/FILE") is skipped.
+        const std::filesystem::path folder = std::filesystem::path(e.spec.substr(7)).parent_path();
+        std::error_code ec;
+        const bool known = std::find(files.recentFolders.begin(), files.recentFolders.end(),
+                                     folder.string()) != files.recentFolders.end();
+        if (!known && files.recentFolders.size() < kMaxRecentFolders &&
+            std::filesystem::is_directory(folder, ec))
+            files.recentFolders.push_back(folder.string());
+    }
 }
 
 } // namespace
@@ -43,12 +64,22 @@ std::optional<std::string> drawSourcePanel(const SourceList& list, SourcePanelSt
     ImGui::SameLine();
     if ((ImGui::Button("Open") || entered) && state.spec[0] != '\0')
         chosen = std::string(state.spec.data());
+    if (ImGui::Button("Browse...")) {
+        addRecentReplayFolders(list.recent, state.files);
+        state.filesOpen = true;
+    }
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Pick a recording (.dcrec, .bag), a Stray Scanner or a TUM RGB-D folder");
     if (!state.error.empty()) {
         ImGui::PushTextWrapPos(0.0f);
         ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", state.error.c_str());
         ImGui::PopTextWrapPos();
     }
     ImGui::End();
+    if (state.filesOpen) {
+        if (auto picked = drawFilePicker(state.files, &state.filesOpen))
+            chosen = std::move(picked);
+    }
     return chosen;
 }
 

@@ -83,9 +83,10 @@ void rangeAndExport(const TimelineView& v, TimelinePanelState& state, TimelineAc
 
 } // namespace
 
-TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& state, bool* open) {
+TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& state, bool* open,
+                                  ImGuiWindowFlags flags) {
     TimelineActions actions;
-    if (!ImGui::Begin(kTimelineTitle, open)) {
+    if (!ImGui::Begin(kTimelineTitle, open, flags)) {
         ImGui::End();
         return actions;
     }

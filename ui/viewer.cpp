@@ -4,11 +4,13 @@
 #include "base/log.h"
 #include "exporting/ply.h"
 #include "frame/image_io.h"
+#include "processing/camera_image.h"
 #include "processing/depth_statistics.h"
 #include "processing/point_cloud.h"
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <unistd.h>
@@ -115,6 +117,11 @@ void Viewer::adopt(processing::ShownFramePtr shown) {
     if (!pivotSet_ && shown_->depth.data) {
         pivotDepthMeters_ = processing::medianDepth(shown_->depth.data->depthMeters);
         pivotSet_ = true;
+        const frame::Intrinsics& k = shown_->depth.intrinsics;
+        char line[160];
+        std::snprintf(line, sizeof line, "calibration: depth %dx%d, fx %.1f fy %.1f, cx %.1f cy %.1f",
+                      shown_->depth.width(), shown_->depth.height(), k.fx, k.fy, k.cx, k.cy);
+        logInfo(line);
     }
 }
 
@@ -190,10 +197,16 @@ bool Viewer::accumulating() const {
 void Viewer::updateLegend() {
     const DepthRange& r = settings_.depthRange;
     legend_ = {r.minMeters, r.maxMeters, r.colormap, r.automatic};
-    if (r.automatic && shown_ && shown_->automaticRange) {
-        legend_.minMeters = shown_->automaticRange->minMeters;
-        legend_.maxMeters = shown_->automaticRange->maxMeters;
+    if (!r.automatic || !shown_ || !shown_->automaticRange)
+        return;
+    // Once per device frame: a redo of the same frame (a setting changed) must not move the range again.
+    if (!followedRange_ || shown_->frame->sequence != followedSequence_) {
+        followedRange_ =
+            processing::followRange(followedRange_, *shown_->automaticRange, kRangeFollowFraction);
+        followedSequence_ = shown_->frame->sequence;
     }
+    legend_.minMeters = followedRange_->minMeters;
+    legend_.maxMeters = followedRange_->maxMeters;
 }
 
 ProbeSource Viewer::probeSource() const {
@@ -213,7 +226,18 @@ Status Viewer::openSource(const std::string& spec) {
     anchors_.clear();
     shown_.reset();
     pivotSet_ = false;
+    followedRange_.reset();
     return {};
+}
+
+Status Viewer::openPath(const std::string& path) {
+    Expected<std::string> spec = sourceSpecForPath(path);
+    if (!spec) {
+        sourcePanel_.error = spec.error().message;
+        logWarning(spec.error().message);
+        return spec.error();
+    }
+    return openSource(*spec);
 }
 
 Status Viewer::savePanels(const std::string& directory) const {
@@ -227,10 +251,14 @@ Status Viewer::savePanels(const std::string& directory) const {
         if (Status s = target->savePng(directory + "/" + name); !s)
             return s;
     }
-    // A depth-only camera has no image to show: its camera panel is simply not written.
-    if (!shown_ || !shown_->cameraImage)
+    // The camera's own image at its full resolution (the panel shows it scaled to the panel); a depth-only
+    // camera has none, and its camera panel is simply not written.
+    if (!shown_ || shown_->frame->capturedImage.empty())
         return {};
-    const processing::RgbImage& image = *shown_->cameraImage;
+    const frame::CapturedImage& captured = shown_->frame->capturedImage;
+    const processing::RgbImage image = processing::cameraRgbImage(captured, captured.width, captured.height);
+    if (image.empty())
+        return Error{"cannot write camera.png: the camera image is malformed"};
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(image.width) * image.height * 4, 255);
     for (std::size_t i = 0, n = rgba.size() / 4; i < n; ++i)
         std::copy_n(&image.pixels[i * 3], 3, &rgba[i * 4]);

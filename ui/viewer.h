@@ -13,6 +13,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <set>
 #include <string>
 
 namespace dc::ui {
@@ -43,6 +44,8 @@ public:
     // After a settings change the next frame waits this long at most for the result that answers it, so
     // what is drawn matches the settings; work that takes longer shows when it is done.
     static constexpr std::chrono::milliseconds kRedoWait{250};
+    // Each new frame moves the automatic depth range this fraction of the way to its own percentiles.
+    static constexpr float kRangeFollowFraction = 0.2f;
     // Tests on a loaded machine wait longer, so "the next frame shows it" does not depend on the load.
     void setRedoWait(std::chrono::milliseconds wait) { redoWait_ = wait; }
 
@@ -65,7 +68,8 @@ public:
     void resizeCloud(int width, int height) { renderer_.resizeCloud(width, height); }
     void recordUiMilliseconds(double ms) { instrument_.recordStage("ui", ms); }
 
-    // Writes cloud.png, depth.png, confidence.png and camera.png into `directory`.
+    // Writes cloud.png, depth.png, confidence.png (as rendered, at the depth's resolution) and camera.png
+    // (the camera's image at its full resolution) into `directory`.
     Status savePanels(const std::string& directory) const;
     // Writes the panels as PNGs and the points drawn as cloud.ply (camera frame) into a new directory
     // under `parent` named after the frame; returns that directory.
@@ -86,6 +90,9 @@ public:
     // Opens the source a --source spec names; a bad spec leaves the current source running and says why
     // (returned, logged and shown in the source panel).
     Status openSource(const std::string& spec);
+    // Opens a file or folder dropped on the window (a recording, a Stray or TUM folder) as the source; one
+    // that is none says why, as openSource() does.
+    Status openPath(const std::string& path);
     // Live cameras for the source picker, kept current by whoever watches hotplug.
     void setLiveSources(std::vector<SourceEntry> live) { liveSources_ = std::move(live); }
 
@@ -94,11 +101,15 @@ public:
     // The depth panel's range and colormap as last rendered (the automatic range follows each frame).
     const DepthLegend& depthLegend() const { return legend_; }
     Anchors& anchors() { return anchors_; }
+    // The measurement labels the cloud panel drew last (edge lengths, then the area), on screen.
+    const std::vector<LabelBox>& measurementLabels() const { return measurementLabels_; }
     // The matrix the last cloud was drawn with (depth camera frame to clip space).
     const glm::mat4& cloudViewProjection() const { return cloudViewProjection_; }
     // The panel shown large, or empty.
     const std::string& zoomedPanel() const { return zoomed_; }
     void setZoomedPanel(const std::string& title);
+    // The default panels in their default places for the window's size now (View > Reset layout).
+    void resetLayout();
     // What the cloud panel says over the view: why the source is not running, or that it is disconnected
     // or stalled (empty while all is well).
     std::string cloudMessage();
@@ -121,7 +132,8 @@ private:
     void drawCloud(float x, float y, float w, float h);
     void drawSidePanels(float x, float w, float h);
     void drawSourcePicker(float x, float y);
-    void drawTimeline(float x, float y, float w);
+    void drawTimeline(ImVec2 pos, ImVec2 size);
+    float drawMenuBar();
     void applyTimeline(const TimelineActions& actions);
     void handleReplayKeys();
     void onCloudPointer(const CloudPanelResult& r);
@@ -141,14 +153,18 @@ private:
     bool pivotSet_ = false;
     glm::mat4 cloudViewProjection_{1.0f};
     DepthLegend legend_;
+    std::optional<processing::DepthRangeMeters> followedRange_; // the automatic range, smoothed
+    std::uint64_t followedSequence_ = 0;                        // the frame it last followed
     Anchors anchors_;
     double lastAnchorTime_ = -1.0;
+    std::vector<LabelBox> measurementLabels_;
     std::optional<Probe> hoverProbe_;
     ImVec2 workOrigin_; // the area above the status bar, where panels are laid out and zoomed into
     ImVec2 workSize_;
     std::string zoomed_;
     std::string restoring_; // the panel going back to its place after a zoom, for one frame
     std::map<std::string, std::pair<ImVec2, ImVec2>> panelPlaces_; // title -> (pos, size) before zooming
+    std::set<std::string> layoutResets_; // panels still to go back to their default places
     LogStore logs_;
     LogPanelState logPanel_;
     SourcePanelState sourcePanel_;

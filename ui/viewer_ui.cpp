@@ -2,6 +2,8 @@
 
 #include "render/cloud_pick.h"
 
+#include <imgui_internal.h>
+
 #include <algorithm>
 #include <tuple>
 
@@ -18,10 +20,21 @@ struct Layout {
     float rightWidth;
 };
 
-Layout defaultLayout(float statusHeight) {
+// Between the menu bar and the status bar (both measured this frame: the viewport's work area would take
+// the menu bar into account only from the next frame on).
+Layout defaultLayout(float menuHeight, float statusHeight) {
     const ImGuiViewport* vp = ImGui::GetMainViewport();
-    const ImVec2 size{vp->WorkSize.x, std::max(vp->WorkSize.y - statusHeight, 1.0f)};
-    return {vp->WorkPos, size, std::clamp(size.x * 0.23f, 220.0f, 340.0f), size.x * 0.27f};
+    const ImVec2 size{vp->Size.x, std::max(vp->Size.y - menuHeight - statusHeight, 1.0f)};
+    return {{vp->Pos.x, vp->Pos.y + menuHeight},
+            size,
+            std::clamp(size.x * 0.23f, 220.0f, 340.0f),
+            size.x * 0.27f};
+}
+
+// The docked timeline: a title bar and four rows (transport, scrubber, range, export).
+float timelineStripHeight() {
+    return ImGui::GetFrameHeight() + 4.0f * ImGui::GetFrameHeightWithSpacing() +
+           2.0f * ImGui::GetStyle().WindowPadding.y;
 }
 
 PanelImage imageOf(const render::RenderTarget& target) {
@@ -60,8 +73,55 @@ void Viewer::placePanel(const char* title, float x, float y, float w, float h) {
         restoring_.clear();
         return;
     }
-    ImGui::SetNextWindowPos({workOrigin_.x + x, workOrigin_.y + y}, ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowSize({w, h}, ImGuiCond_FirstUseEver);
+    const ImGuiCond when = layoutResets_.erase(title) > 0 ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
+    ImGui::SetNextWindowPos({workOrigin_.x + x, workOrigin_.y + y}, when);
+    ImGui::SetNextWindowSize({w, h}, when);
+    // A panel that reaches below the work area (placed before the timeline strip appeared) ends above it.
+    const float bottom = workOrigin_.y + workSize_.y;
+    const ImGuiWindow* window = ImGui::FindWindowByName(title);
+    if (when != ImGuiCond_Always && window && window->Pos.y < bottom - 1.0f &&
+        window->Pos.y + window->Size.y > bottom + 0.5f)
+        ImGui::SetNextWindowSize({window->Size.x, bottom - window->Pos.y}, ImGuiCond_Always);
+}
+
+void Viewer::resetLayout() {
+    settings_.panels = {};
+    zoomed_.clear();
+    restoring_.clear();
+    panelPlaces_.clear();
+    // Each panel goes back to its default place the next time it is drawn, whenever that is.
+    layoutResets_ = {kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle, kControlsTitle,
+                     kStatsTitle, kLogTitle,   kSourceTitle,     kFogTitle,    kAuraTitle};
+}
+
+// The menu bar lists every panel (with its shortcut) and the layout reset; returns its height.
+float Viewer::drawMenuBar() {
+    if (!ImGui::BeginMainMenuBar())
+        return 0.0f;
+    const float height = ImGui::GetWindowSize().y;
+    if (ImGui::BeginMenu("View")) {
+        PanelVisibility& show = settings_.panels;
+        const std::tuple<const char*, const char*, bool*> panels[] = {
+            {kCloudTitle, nullptr, &show.cloud},
+            {kDepthTitle, nullptr, &show.depth},
+            {kConfidenceTitle, nullptr, &show.confidence},
+            {kCameraTitle, nullptr, &show.camera},
+            {kControlsTitle, "C", &show.controls},
+            {kTimelineTitle, "T", &show.timeline},
+            {kStatsTitle, "S", &show.stats},
+            {kLogTitle, "L", &show.log},
+            {kSourceTitle, "O", &show.source},
+            {kFogTitle, "F", &show.fog},
+            {kAuraTitle, "A", &show.aura}};
+        for (const auto& [title, key, shown] : panels)
+            ImGui::MenuItem(title, key, shown);
+        ImGui::Separator();
+        if (ImGui::MenuItem("Reset layout"))
+            resetLayout();
+        ImGui::EndMenu();
+    }
+    ImGui::EndMainMenuBar();
+    return height;
 }
 
 void Viewer::afterPanel(const char* title, const PanelResult& result) {
@@ -84,11 +144,17 @@ void Viewer::drawUi() {
             (void)saveSnapshot(kSnapshotDirectory);
     }
     hoverProbe_.reset();
+    const float menuHeight = drawMenuBar();
     const float statusHeight = drawStatusBar(statusLine());
-    const Layout l = defaultLayout(statusHeight);
+    Layout l = defaultLayout(menuHeight, statusHeight);
+    PanelVisibility& show = settings_.panels;
+    // The timeline is a strip under the panels, full width: nothing is placed over it, and it stays in
+    // front of a panel the user moved there.
+    const bool timeline = instrument_.replay() && show.timeline;
+    const float stripHeight = timeline ? std::min(timelineStripHeight(), l.size.y * 0.5f) : 0.0f;
+    l.size.y -= stripHeight;
     workOrigin_ = l.origin;
     workSize_ = l.size;
-    PanelVisibility& show = settings_.panels;
 
     if (show.controls)
         drawControls(l.leftWidth, l.size.y);
@@ -114,8 +180,8 @@ void Viewer::drawUi() {
         placePanel(kAuraTitle, l.leftWidth + 80.0f, 80.0f, 520.0f, 440.0f);
         drawAuraPanel(imageOf(renderer_.auraTexture()), settings_.processing.aura, &show.aura);
     }
-    if (instrument_.replay() && show.timeline)
-        drawTimeline(l.leftWidth, l.size.y - 150.0f, l.size.x - l.leftWidth - l.rightWidth);
+    if (timeline)
+        drawTimeline({l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});
     handleReplayKeys();
     drawToasts(log, statusHeight);
     if (hoverProbe_)
@@ -150,6 +216,8 @@ void Viewer::drawControls(float width, float height) {
     const ControlsResult r = drawControlsPanel(settings_, context, &settings_.panels.controls);
     if (r.snapshot)
         (void)saveSnapshot(kSnapshotDirectory);
+    if (r.resetLayout)
+        resetLayout();
     if (r.toggleRecording)
         toggleRecording();
     if (r.clearAccumulation)
@@ -166,6 +234,7 @@ void Viewer::drawCloud(float x, float y, float w, float h) {
         drawCloudPanel(imageOf(renderer_.cloudTarget()), settings_.cloud, cloudOverlay(), cloudMessage(),
                        zoomed_ == kCloudTitle, &settings_.panels.cloud);
     afterPanel(kCloudTitle, r.panel);
+    measurementLabels_ = r.labels;
     const render::RenderTarget& target = renderer_.cloudTarget();
     if (r.wantedWidth > 0 && r.wantedHeight > 0 &&
         (r.wantedWidth != target.width() || r.wantedHeight != target.height()))
@@ -211,13 +280,18 @@ void Viewer::drawSourcePicker(float x, float y) {
         (void)openSource(*chosen);
 }
 
-void Viewer::drawTimeline(float x, float y, float w) {
-    placePanel(kTimelineTitle, x, y, w, 140.0f);
+void Viewer::drawTimeline(ImVec2 pos, ImVec2 size) {
+    ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
+    ImGui::SetNextWindowSize(size, ImGuiCond_Always);
     const engine::ExportJob* job = instrument_.exportJob();
     TimelineView view{instrument_.replay()->status(), job && !job->finished(), 0, 0};
     if (job)
         std::tie(view.exportDone, view.exportTotal) = job->progress();
-    applyTimeline(drawTimelinePanel(view, timelineState_, &settings_.panels.timeline));
+    applyTimeline(drawTimelinePanel(view, timelineState_, &settings_.panels.timeline,
+                                    ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
+                                        ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings));
+    if (ImGuiWindow* strip = ImGui::FindWindowByName(kTimelineTitle))
+        ImGui::BringWindowToDisplayFront(strip);
 }
 
 void Viewer::applyTimeline(const TimelineActions& a) {
@@ -314,6 +388,10 @@ CloudOverlay Viewer::cloudOverlay() const {
     }
     for (std::size_t i = 0; i + 1 < anchors_.size(); ++i)
         overlay.segments.emplace_back(static_cast<int>(i), formatLength(anchors_.segmentMeters(i)));
+    if (anchors_.size() >= 3) {
+        const std::size_t last = anchors_.size() - 1;
+        overlay.segments.emplace_back(static_cast<int>(last), formatLength(anchors_.closingMeters()));
+    }
     if (anchors_.size() >= 3)
         overlay.summary = "area " + formatArea(anchors_.areaSquareMeters());
     return overlay;

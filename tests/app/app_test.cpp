@@ -131,6 +131,17 @@ TEST(AppArguments, HelpAndVersion) {
     EXPECT_NE(version.output.find("depthcloud "), std::string::npos);
 }
 
+// --version names the project's version and the commit the binary was built from: the checkout's HEAD (the
+// build configures again when HEAD moves), or says that it is unknown outside git.
+TEST(AppArguments, VersionNamesTheCommitItWasBuiltFrom) {
+    const RunResult version = run(binary() + " --version");
+    ASSERT_EQ(version.exitCode, 0) << version.output;
+    const RunResult head = run("git -C " + std::string(DC_SOURCE_DIR) + " rev-parse --short=12 HEAD");
+    const std::string source = head.exitCode == 0 ? "git " + head.output.substr(0, 12)
+                                                  : "commit unknown: built from a source tree without git";
+    EXPECT_EQ(version.output, "depthcloud " + std::string(DC_PROJECT_VERSION) + " (" + source + ")\n");
+}
+
 TEST(AppHeadless, NoGlContextIsAClearRuntimeError) {
     TempDir out;
     // Point EGL at a vendor that does not exist: no context can be made.

@@ -54,7 +54,9 @@ protected:
 
     // Moves the mouse over a 2D panel until the readout reports depth pixel (u, v): the panel's scale is
     // measured from two readouts, then corrected pixel by pixel, so no layout figure is assumed.
-    std::optional<ImVec2> mouseOverDepthPixel(const char* title, int u, int v) {
+    // With `tolerance`, a readout that many pixels off counts too: a panel smaller than the depth map shows
+    // some samples at no whole screen pixel.
+    std::optional<ImVec2> mouseOverDepthPixel(const char* title, int u, int v, int tolerance = 0) {
         const ImVec2 c = centreOf(title);
         const auto a = hoverAt({c.x - 50.0f, c.y - 30.0f});
         const auto b = hoverAt({c.x + 50.0f, c.y + 30.0f});
@@ -64,14 +66,19 @@ protected:
         const float sy = 60.0f / static_cast<float>(b->v - a->v);
         ImVec2 at{c.x - 50.0f + sx * static_cast<float>(u - a->u) + 0.5f * sx,
                   c.y - 30.0f + sy * static_cast<float>(v - a->v) + 0.5f * sy};
-        for (int i = 0; i < 12; ++i) {
+        // Quarter-pixel steps: a panel smaller than the depth map shows a sample less than a screen pixel
+        // tall.
+        for (int i = 0; i < 24; ++i) {
             const auto p = hoverAt(at);
             if (!p)
                 return std::nullopt;
+            if (std::abs(p->u - u) <= tolerance && std::abs(p->v - v) <= tolerance &&
+                (i >= 12 || tolerance == 0))
+                return at;
             if (p->u == u && p->v == v)
                 return at;
-            at.x += 0.5f * sx * static_cast<float>((u > p->u) - (u < p->u));
-            at.y += 0.5f * sy * static_cast<float>((v > p->v) - (v < p->v));
+            at.x += 0.25f * sx * static_cast<float>((u > p->u) - (u < p->u));
+            at.y += 0.25f * sy * static_cast<float>((v > p->v) - (v < p->v));
         }
         return std::nullopt;
     }
@@ -111,10 +118,10 @@ TEST_F(InstrumentTest, HoverOnTheDepthPanelReadsTheKnownDepthAtAKnownPixel) {
 
 TEST_F(InstrumentTest, ConfidenceAndCameraPanelsReadOutTheSameSample) {
     for (const char* title : {kConfidenceTitle, kCameraTitle}) {
-        const auto at = mouseOverDepthPixel(title, 100, 170);
+        const auto at = mouseOverDepthPixel(title, 100, 170, 1);
         ASSERT_TRUE(at.has_value()) << title;
         const Probe p = *viewer_->hoverProbe();
-        EXPECT_FLOAT_EQ(p.depthMeters, shown().depth.data->depthMeters.at(100, 170)) << title;
+        EXPECT_FLOAT_EQ(p.depthMeters, shown().depth.data->depthMeters.at(p.u, p.v)) << title;
     }
 }
 
@@ -171,6 +178,49 @@ TEST_F(InstrumentTest, EitherCloudPathAndAnyDecimationKeepAnchorsOnTheAnalyticPo
         }
 }
 
+TEST_F(InstrumentTest, ThreeAnchorsCloseAPolygonWithLabelsThatDoNotOverlap) {
+    // Close together on the desk, so the labels at the edges' midpoints would collide where they are.
+    const int pixels[3][2] = {{122, 180}, {134, 180}, {128, 186}};
+    std::vector<ImVec2> screen;
+    for (const auto& px : pixels) {
+        screen.push_back(screenOfCloudSample(px[0], px[1]));
+        clickAt(screen.back());
+    }
+    ASSERT_EQ(viewer_->anchors().size(), 3u);
+    gui_.io().MousePos = {0.0f, 0.0f};
+    frame(0.0);
+    const std::vector<LabelBox>& labels = viewer_->measurementLabels();
+    ASSERT_EQ(labels.size(), 4u) << "three edges, the closing one included, and the area";
+    for (std::size_t i = 0; i < 3; ++i) {
+        const ImVec2 a = screen[i], b = screen[(i + 1) % 3];
+        EXPECT_NEAR(labels[i].anchor.x, (a.x + b.x) * 0.5f, 1.5f) << "edge " << i << " at its midpoint";
+        EXPECT_NEAR(labels[i].anchor.y, (a.y + b.y) * 0.5f, 1.5f) << "edge " << i;
+    }
+    EXPECT_NEAR(labels[3].anchor.x, (screen[0].x + screen[1].x + screen[2].x) / 3.0f, 1.5f) << "the centroid";
+    EXPECT_NEAR(labels[3].anchor.y, (screen[0].y + screen[1].y + screen[2].y) / 3.0f, 1.5f);
+    for (std::size_t i = 0; i < labels.size(); ++i) {
+        for (std::size_t j = i + 1; j < labels.size(); ++j) {
+            const bool apart = labels[i].max.x <= labels[j].min.x || labels[j].max.x <= labels[i].min.x ||
+                               labels[i].max.y <= labels[j].min.y || labels[j].max.y <= labels[i].min.y;
+            EXPECT_TRUE(apart) << "labels " << i << " and " << j << " overlap";
+        }
+    }
+    EXPECT_GT(viewer_->anchors().closingMeters(), 0.0);
+}
+
+TEST_F(InstrumentTest, AClickWhereTheMouseJumpedWithinTheFrameDropsAnAnchorAndDoesNotOrbit) {
+    gui_.io().MousePos = centreOf(kControlsTitle); // the mouse comes from another panel...
+    frame(0.0);
+    gui_.io().MousePos = screenOfCloudSample(128, 170); // ...and is pressed in the same frame it arrives
+    gui_.io().MouseDown[0] = true;
+    frame(0.0);
+    gui_.io().MouseDown[0] = false;
+    frame(0.0);
+    EXPECT_EQ(viewer_->anchors().size(), 1u);
+    EXPECT_EQ(viewer_->settings().cloud.orbit.yawRadians, 0.0f);
+    EXPECT_EQ(viewer_->settings().cloud.orbit.pitchRadians, 0.0f);
+}
+
 TEST_F(InstrumentTest, AnchorsAreDrawnAsCubesInTheCloud) {
     viewer_->settings().cloud.pointSizePixels = 1.0f;
     frame(0.0);
@@ -208,10 +258,7 @@ TEST_F(InstrumentTest, ClickingAPanelOpensItLargeAndClickingAgainBringsItBack) {
 }
 
 TEST_F(InstrumentTest, ColormapAndAutomaticRangeReachTheDepthPanel) {
-    const auto box = locate(kControlsTitle, "Automatic range");
-    ASSERT_TRUE(box.has_value());
-    clickAt(*box);
-    ASSERT_TRUE(viewer_->settings().depthRange.automatic);
+    ASSERT_TRUE(viewer_->settings().depthRange.automatic) << "the default";
     viewer_->settings().depthRange.colormap = render::Colormap::Viridis;
     frame(0.0);
     const DepthLegend legend = viewer_->depthLegend();
@@ -241,6 +288,7 @@ TEST_F(InstrumentTest, DepthOverlayAndFillChangeTheCameraPanel) {
     gui_.io().MousePos = {0.0f, 0.0f};
     frame(0.0);
     const auto plain = pixelAt(c);
+    ASSERT_NO_FATAL_FAILURE(openControlsGroup("Camera panel"));
     const auto overlay = locate(kControlsTitle, "Depth over camera");
     ASSERT_TRUE(overlay.has_value());
     clickAt(*overlay);
@@ -333,6 +381,15 @@ TEST_F(InstrumentTest, SnapshotWritesEveryPanelAndThePointCloud) {
     ASSERT_TRUE(dir.ok()) << dir.error().message;
     for (const char* name : {"cloud.png", "depth.png", "confidence.png", "camera.png", "cloud.ply"})
         EXPECT_GT(std::filesystem::file_size(std::filesystem::path(*dir) / name), 100u) << name;
+    // The camera's image at the resolution it was captured at, not at the panel's size.
+    std::ifstream png(std::filesystem::path(*dir) / "camera.png", std::ios::binary);
+    unsigned char ihdr[24] = {};
+    ASSERT_TRUE(png.read(reinterpret_cast<char*>(ihdr), sizeof ihdr));
+    const auto bigEndian = [&](int at) {
+        return (ihdr[at] << 24) | (ihdr[at + 1] << 16) | (ihdr[at + 2] << 8) | ihdr[at + 3];
+    };
+    EXPECT_EQ(bigEndian(16), shown().frame->capturedImage.width) << "IHDR width";
+    EXPECT_EQ(bigEndian(20), shown().frame->capturedImage.height) << "IHDR height";
     std::ifstream ply(std::filesystem::path(*dir) / "cloud.ply", std::ios::binary);
     std::string header((std::istreambuf_iterator<char>(ply)), {});
     const auto points = processing::buildPointCloud(*shown().frame, frame::Confidence::Low,

@@ -27,6 +27,8 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     s.panels.stats = true;
     s.panels.log = true;
     s.processing.smoothing = true;
+    s.processing.fog.blurSigmaPixels = 9.5f;
+    s.processing.aura.separationMeters = 0.12f;
     rememberSource(s, "synthetic:640x480@30");
     rememberSource(s, "replay:/data/a.dcrec");
 
@@ -56,6 +58,8 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     EXPECT_TRUE(r.panels.stats);
     EXPECT_TRUE(r.panels.log);
     EXPECT_TRUE(r.processing.smoothing);
+    EXPECT_FLOAT_EQ(r.processing.fog.blurSigmaPixels, 9.5f);
+    EXPECT_FLOAT_EQ(r.processing.aura.separationMeters, 0.12f);
     EXPECT_EQ(r.recentSources, (std::vector<std::string>{"replay:/data/a.dcrec", "synthetic:640x480@30"}));
 }
 
@@ -95,7 +99,11 @@ TEST(Settings, SanitizeRemovesNonFiniteValues) {
     s.cloud.orbit.yawRadians = std::nanf("");
     s.cloud.pointSizePixels = INFINITY;
     s.depthRange.maxMeters = -INFINITY;
+    s.processing.fog.blurSigmaPixels = -3.0f;
+    s.processing.aura.separationMeters = std::nanf("");
     sanitize(s);
+    EXPECT_EQ(s.processing.fog.blurSigmaPixels, 0.0f);
+    EXPECT_EQ(s.processing.aura.separationMeters, processing::AuraSettings{}.separationMeters);
     EXPECT_TRUE(std::isfinite(s.cloud.orbit.yawRadians));
     EXPECT_TRUE(std::isfinite(s.cloud.pointSizePixels));
     EXPECT_GT(s.depthRange.maxMeters, s.depthRange.minMeters);

@@ -112,6 +112,74 @@ TEST_F(TimelineTest, TheTimelineButtonsDriveTheReplay) {
     EXPECT_TRUE(instrument_->replay()->status().loop);
 }
 
+TEST_F(TimelineTest, TheTimelineIsAStripUnderThePanelsAndStaysReachable) {
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    ImGuiWindow* strip = ImGui::FindWindowByName(kTimelineTitle);
+    ImGuiWindow* cloud = ImGui::FindWindowByName(kCloudTitle);
+    ASSERT_NE(strip, nullptr);
+    ASSERT_NE(cloud, nullptr);
+    EXPECT_EQ(strip->Size.x, vp->Size.x) << "full width";
+    EXPECT_GE(strip->Pos.y, cloud->Pos.y + cloud->Size.y) << "under the cloud, not over it";
+    for (const char* side : {kDepthTitle, kCameraTitle, kControlsTitle}) {
+        ImGuiWindow* w = ImGui::FindWindowByName(side);
+        ASSERT_NE(w, nullptr);
+        EXPECT_LE(w->Pos.y + w->Size.y, strip->Pos.y + 0.5f) << side;
+    }
+    // Orbit drags on the cloud bring the cloud to the front; the strip stays in front of it.
+    const ImVec2 c{cloud->Pos.x + cloud->Size.x * 0.5f, cloud->Pos.y + cloud->Size.y * 0.5f};
+    for (int i = 0; i < 2; ++i) {
+        gui_.io().MousePos = c;
+        frame(0.0);
+        gui_.io().MouseDown[0] = true;
+        frame(0.0);
+        for (int step = 1; step <= 4; ++step) {
+            gui_.io().MousePos = {c.x + 30.0f * step, c.y + 10.0f * step};
+            frame(0.0);
+        }
+        gui_.io().MouseDown[0] = false;
+        frame(0.0);
+    }
+    EXPECT_NE(viewer_->settings().cloud.orbit.yawRadians, 0.0f) << "the drags orbited";
+    // A panel moved onto the strip and focused stays behind it: the mouse over the overlap is the strip's.
+    ImGui::SetWindowPos(kCloudTitle, {cloud->Pos.x, strip->Pos.y + 10.0f});
+    ImGui::SetWindowFocus(kCloudTitle);
+    frame(0.0);
+    const ImVec2 overlap{c.x, strip->Pos.y + strip->Size.y * 0.5f};
+    ASSERT_GT(overlap.y, cloud->Pos.y) << "the cloud covers this point";
+    ASSERT_LT(overlap.y, cloud->Pos.y + cloud->Size.y);
+    gui_.io().MousePos = overlap;
+    frame(0.0);
+    EXPECT_EQ(ImGui::GetCurrentContext()->HoveredWindow, strip);
+    EXPECT_TRUE(locate(kTimelineTitle, ">", 1.0f, 6.0f).has_value()) << "the strip's buttons take the mouse";
+    // T (and the Panels toggle it lists) hides and shows it.
+    pressKey('T', 0.0);
+    EXPECT_FALSE(viewer_->settings().panels.timeline);
+    EXPECT_FALSE(strip->Active);
+    const auto toggle = locate(kControlsTitle, "Timeline [T]");
+    ASSERT_TRUE(toggle.has_value());
+    click(*toggle, 0.0);
+    frame(0.0);
+    EXPECT_TRUE(viewer_->settings().panels.timeline);
+    EXPECT_TRUE(strip->Active);
+    EXPECT_TRUE(locate(kTimelineTitle, "Loop", 1.0f).has_value());
+}
+
+TEST_F(TimelineTest, TheAutomaticRangeFollowsTheReplaySmoothly) {
+    ASSERT_TRUE(viewer_->settings().depthRange.automatic) << "the default";
+    const auto followed = [&] { return viewer_->depthLegend().maxMeters; };
+    const auto target = [&] { return shown().automaticRange->maxMeters; };
+    ASSERT_TRUE(shown().automaticRange.has_value());
+    // Each step moves the range a fifth of the way to the new frame's percentiles, never past them.
+    for (std::size_t index = 1; index < 12; ++index) {
+        const float before = followed();
+        instrument_->stepReplay(1);
+        ASSERT_TRUE(waitForIndex(index));
+        const float expected = before + Viewer::kRangeFollowFraction * (target() - before);
+        EXPECT_NEAR(followed(), expected, 1e-4f) << "frame " << index;
+    }
+    EXPECT_NEAR(followed(), target(), 0.05f) << "it settles on the replay's range";
+}
+
 TEST_F(TimelineTest, ExportFromTheUiWritesWhatTheCliWrites) {
     const fs::path ui = dir_ / "ui", cli = dir_ / "cli";
     const auto timedFrame = [&](std::vector<double>& log) {
@@ -131,7 +199,8 @@ TEST_F(TimelineTest, ExportFromTheUiWritesWhatTheCliWrites) {
     std::vector<double> before, during;
     for (int i = 0; i < 10; ++i)
         timedFrame(before);
-    ASSERT_TRUE(instrument_->startExport(exporting::ExportFormat::Ply, ui.string(), 4, 9, viewer_->demand()).ok());
+    ASSERT_TRUE(
+        instrument_->startExport(exporting::ExportFormat::Ply, ui.string(), 4, 9, viewer_->demand()).ok());
     // The UI keeps drawing while the export runs on its worker: count and time the frames drawn meanwhile.
     while (during.size() < 600 && !instrument_->exportJob()->finished())
         timedFrame(during);

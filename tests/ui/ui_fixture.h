@@ -116,6 +116,24 @@ protected:
         frame(t);
     }
 
+    // Opens a group of the Controls panel that starts collapsed by clicking its header, as a user would,
+    // scrolling the panel down to it first where it is below the panel's edge, and then up to its top.
+    void openControlsGroup(const char* header) {
+        ImGuiWindow* w = ImGui::FindWindowByName(kControlsTitle);
+        ASSERT_NE(w, nullptr);
+        auto at = locate(kControlsTitle, header);
+        if (!at) {
+            ImGui::SetScrollY(w, w->ScrollMax.y);
+            frame(0.0);
+            at = locate(kControlsTitle, header);
+        }
+        ASSERT_TRUE(at) << header;
+        click(*at, 0.0);
+        ASSERT_NE(w->StateStorage.GetInt(w->GetID(header), 0), 0) << header << " did not open";
+        ImGui::SetScrollY(w, w->Scroll.y + at->y - w->Pos.y - w->TitleBarHeight() - 4.0f);
+        frame(0.0);
+    }
+
     void pressKey(int key, double t) {
         gui_.io().KeysDown[key] = true;
         frame(t);

@@ -119,6 +119,7 @@ TEST_F(UiTest, ShortcutsChangeLevelRotationAndControls) {
 }
 
 TEST_F(UiTest, ProcessingTogglesReachThePipelineAndTheStatusLine) {
+    ASSERT_NO_FATAL_FAILURE(openControlsGroup("Processing"));
     const auto upsampling = locate(kControlsTitle, "Guided upsampling");
     ASSERT_TRUE(upsampling.has_value());
     click(*upsampling, 0.0);

@@ -1,0 +1,108 @@
+// Headless UI tests of what a new user meets first: the Controls groups fit a 1280x720 window, the menu
+// lists every panel and resets the layout, the automatic depth range is the default and the fixed one a
+// click away, the log panel holds the start-up messages, and a folder dropped on the window opens.
+
+#include "ui_fixture.h"
+
+#include <cmath>
+
+namespace dc::ui::test {
+namespace {
+
+ImGuiWindow* window(const char* title) {
+    return ImGui::FindWindowByName(title);
+}
+
+TEST_F(UiTest, ThePanelTogglesAndTheLayoutResetFitTheControlsAt1280x720) {
+    ImGuiWindow* controls = window(kControlsTitle);
+    ASSERT_NE(controls, nullptr);
+    // locate() only finds a widget the mouse can reach inside the window: one below its bottom edge, to be
+    // scrolled to, is not found.
+    for (const char* label : {"Timeline [T]", "Log [L]", "Aura [A]", "Reset layout", "Automatic range"})
+        EXPECT_TRUE(locate(kControlsTitle, label).has_value())
+            << label << " is not reachable without scrolling";
+    EXPECT_EQ(controls->Scroll.y, 0.0f);
+}
+
+TEST_F(UiTest, ResetLayoutBringsBackTheDefaultPanelsInTheirPlaces) {
+    ImGuiWindow* controls = window(kControlsTitle);
+    ASSERT_NE(controls, nullptr);
+    const ImVec2 home = controls->Pos;
+    ImGui::SetWindowPos(kControlsTitle, {home.x + 20.0f, home.y + 40.0f});
+    viewer_->settings().panels.depth = false;
+    frame(0.0);
+    ASSERT_NE(controls->Pos.x, home.x);
+    const auto reset = locate(kControlsTitle, "Reset layout");
+    ASSERT_TRUE(reset.has_value());
+    click(*reset, 0.0);
+    frame(0.0);
+    EXPECT_EQ(controls->Pos.x, home.x);
+    EXPECT_EQ(controls->Pos.y, home.y);
+    EXPECT_TRUE(viewer_->settings().panels.depth);
+    ASSERT_NE(window(kDepthTitle), nullptr);
+    EXPECT_TRUE(window(kDepthTitle)->Active);
+}
+
+TEST_F(UiTest, TheViewMenuListsThePanelsAndResetsTheLayout) {
+    ImGui::SetWindowPos(kControlsTitle, {500.0f, 300.0f});
+    // The menu bar's items live under its own ID scope: open "View" by clicking along the bar.
+    ImGuiWindow* bar = window("##MainMenuBar");
+    ASSERT_NE(bar, nullptr);
+    ImGuiWindow* menu = nullptr;
+    for (float x = bar->Pos.x + 4.0f; x < bar->Pos.x + 80.0f && !(menu && menu->Active); x += 6.0f) {
+        click({x, bar->Pos.y + bar->Size.y * 0.5f}, 0.0);
+        menu = window("##Menu_00");
+    }
+    ASSERT_NE(menu, nullptr);
+    ASSERT_TRUE(menu->Active);
+    // Every panel is listed, the timeline among them.
+    for (const char* title : {kCloudTitle, kTimelineTitle, kLogTitle, kAuraTitle})
+        EXPECT_TRUE(locate("##Menu_00", title, 1.0f, 8.0f).has_value()) << title;
+    const auto reset = locate("##Menu_00", "Reset layout", 1.0f, 8.0f);
+    ASSERT_TRUE(reset.has_value());
+    click(*reset, 0.0);
+    frame(0.0);
+    EXPECT_EQ(window(kControlsTitle)->Pos.x, 0.0f);
+}
+
+TEST_F(UiTest, TheAutomaticRangeIsTheDefaultAndTheFixedRangeOneClickAway) {
+    ASSERT_TRUE(Settings{}.depthRange.automatic);
+    ASSERT_TRUE(viewer_->demand().automaticRange) << "the engine computes the percentiles";
+    for (int i = 0; i < 3; ++i)
+        ASSERT_TRUE(nextFrame(0.0));
+    const DepthLegend automatic = viewer_->depthLegend();
+    ASSERT_TRUE(automatic.automatic);
+    ASSERT_TRUE(shown().automaticRange.has_value());
+    EXPECT_GT(automatic.minMeters, 0.2f) << "the desk's nearest part, not the fixed 0 m";
+    EXPECT_NEAR(automatic.maxMeters, shown().automaticRange->maxMeters, 0.5f);
+    const auto box = locate(kControlsTitle, "Automatic range");
+    ASSERT_TRUE(box.has_value());
+    click(*box, 0.0);
+    EXPECT_FALSE(viewer_->settings().depthRange.automatic);
+    frame(0.0);
+    EXPECT_EQ(viewer_->depthLegend().minMeters, 0.0f) << "the fixed range";
+    EXPECT_EQ(viewer_->depthLegend().maxMeters, 2.5f);
+}
+
+TEST_F(UiTest, TheLogPanelHoldsWhatWasLoggedBeforeItExisted) {
+    viewer_.reset(); // no log sink now, as before the tool's first viewer
+    logInfo("settings: start-up marker 7781");
+    viewer_ = std::make_unique<Viewer>(*instrument_, renderer_, Settings{});
+    bool found = false;
+    for (const LogEntry& e : viewer_->log().snapshot())
+        found |= e.message == "settings: start-up marker 7781";
+    EXPECT_TRUE(found);
+}
+
+TEST_F(UiTest, ADroppedFolderOpensAsASourceAndAPlainOneIsRefused) {
+    EXPECT_FALSE(viewer_->openPath(::testing::TempDir()).ok()) << "a folder that is no capture";
+    EXPECT_EQ(instrument_->spec(), "synthetic") << "the current source keeps running";
+    ASSERT_TRUE(viewer_->openPath("../shared/data/arkit_dance_stray").ok());
+    EXPECT_EQ(instrument_->spec(), "replay:../shared/data/arkit_dance_stray");
+    ASSERT_NE(instrument_->replay(), nullptr);
+    ASSERT_TRUE(nextFrame(0.0));
+    EXPECT_TRUE(shown().frame->replay.has_value()) << "a frame of the capture";
+}
+
+} // namespace
+} // namespace dc::ui::test
