@@ -108,8 +108,10 @@ void expectEachSettingShowsInTheNextFrame(UiTest& t, Viewer& viewer, const rende
     Settings& s = viewer.settings();
 
     const auto depthBefore = renderer.depthTarget().readRgba();
+    const std::uint64_t panelRenders = renderer.panelRenders();
     s.depthRange.colormap = render::Colormap::Viridis;
     frame();
+    EXPECT_GT(renderer.panelRenders(), panelRenders) << "the panels are drawn again";
     EXPECT_EQ(viewer.depthLegend().colormap, render::Colormap::Viridis);
     EXPECT_NE(renderer.depthTarget().readRgba(), depthBefore) << "the depth panel is redrawn in viridis";
 

@@ -404,10 +404,13 @@ TEST_F(InstrumentTest, RecordButtonNumbersTakesKeepsItsPlaceAndRecordsAsChosen) 
     std::filesystem::create_directories(dir);
     viewer_->settings().record = {dir.string(), true, 55};
     frame(0.0);
+    openControlsGroup("Record");
     const auto record = locate(kControlsTitle, kRecordButtonId);
     ASSERT_TRUE(record);
     const auto takeFrames = [&](double t) {
-        click(*record, t);
+        const auto button = locate(kControlsTitle, kRecordButtonId); // where it is now, the group may have grown
+        ASSERT_TRUE(button);
+        click(*button, t);
         for (int i = 0; i < 200 && instrument_->recording().frames < 3; ++i)
             nextFrame(t);
     };
@@ -426,11 +429,11 @@ TEST_F(InstrumentTest, RecordButtonNumbersTakesKeepsItsPlaceAndRecordsAsChosen) 
     EXPECT_TRUE(std::filesystem::exists(dir / "depthcloud-recording-001.dcrec"));
 
     viewer_->settings().record.jpegColor = false;
-    takeFrames(0.3);
+    takeFrames(1.3); // a second apart: two clicks on the button within ImGui's double-click time are one
     take = instrument_->recording();
     EXPECT_EQ(take.path, (dir / "depthcloud-recording-002.dcrec").string());
     EXPECT_EQ(take.options.color, devices::recording::ColorStorage::AsCaptured);
-    click(*record, 0.4);
+    click(*locate(kControlsTitle, kRecordButtonId), 1.4);
     EXPECT_TRUE(std::filesystem::exists(dir / "depthcloud-recording-002.dcrec"));
     std::filesystem::remove_all(dir);
 }
