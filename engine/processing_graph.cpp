@@ -53,6 +53,7 @@ ProcessingGraph::ProcessingGraph() : pipeline_(processing::makeDefaultPipeline()
 
 void ProcessingGraph::reset() {
     pipeline_.reset();
+    decoded_.clear();
     depth_.clear();
     pointColors_.clear();
     cameraImage_.clear();
@@ -83,13 +84,28 @@ const Value& ProcessingGraph::cached(Memo<Key, Value>& memo, const Key& key, std
     return memo.value;
 }
 
-processing::ShownFramePtr ProcessingGraph::run(const frame::FramePtr& frame, const Demand& demand,
+// A camera that sends JPEG (MJPEG) has its image decoded here, once per frame and only when a stage reads
+// its pixels; every stage after sees the decoded frame.
+frame::FramePtr ProcessingGraph::decodedFrame(const frame::FramePtr& captured, const Demand& demand) {
+    if (captured->capturedImage.raw() || captured->capturedImage.empty() || !demand.needsCameraImage())
+        return captured;
+    return cached(decoded_, captured, kCameraDecodeStage, [&] {
+        auto copy = std::make_shared<frame::Frame>(*captured);
+        auto image = jpegDecoder_.decode(captured->capturedImage);
+        // A frame the camera garbled shows no camera colours rather than wrong ones.
+        copy->capturedImage = image ? std::move(*image) : frame::CapturedImage{};
+        return frame::FramePtr(std::move(copy));
+    });
+}
+
+processing::ShownFramePtr ProcessingGraph::run(const frame::FramePtr& captured, const Demand& demand,
                                                std::uint64_t generation, bool newFrame) {
     auto shown = std::make_shared<processing::ShownFrame>();
-    shown->frame = frame;
     shown->demandGeneration = generation;
     shown->newFrame = newFrame;
     timings_ = &shown->timings;
+    const frame::FramePtr frame = decodedFrame(captured, demand);
+    shown->frame = frame;
     if (demand.needsDepth())
         shown->depth = shownDepth(frame, demand);
     addImages(*shown, *frame, demand);

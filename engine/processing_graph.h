@@ -1,6 +1,7 @@
 #pragma once
 
 #include "engine/demand.h"
+#include "frame/jpeg_codec.h"
 #include "processing/pipeline.h"
 #include "processing/point_colors.h"
 #include "processing/shown_frame.h"
@@ -15,6 +16,7 @@
 namespace dc::engine {
 
 // Stage names beyond the pipeline's, as the stats show them.
+inline constexpr std::string_view kCameraDecodeStage = "camera decode";
 inline constexpr std::string_view kPointColorsStage = "point colours";
 inline constexpr std::string_view kCameraImageStage = "camera image";
 inline constexpr std::string_view kEffectsImageStage = "effects image";
@@ -39,8 +41,8 @@ public:
 
     // `newFrame`: the frame is a new capture, not the current one again (which temporal stages must not
     // count twice; they recognise it by its timestamp either way).
-    processing::ShownFramePtr run(const frame::FramePtr& frame, const Demand& demand, std::uint64_t generation,
-                                  bool newFrame);
+    processing::ShownFramePtr run(const frame::FramePtr& captured, const Demand& demand,
+                                  std::uint64_t generation, bool newFrame);
     // Drops temporal state and every remembered result (a seek, a new source).
     void reset();
     // How many times `stage` has run: tests count work, not time.
@@ -96,6 +98,7 @@ private:
     // Runs `make` for `key` unless the memo already holds its result; timed and counted under `stage`.
     template <class Key, class Value, class Make>
     const Value& cached(Memo<Key, Value>& memo, const Key& key, std::string_view stage, Make&& make);
+    frame::FramePtr decodedFrame(const frame::FramePtr& captured, const Demand& demand);
     processing::ShownDepth shownDepth(const frame::FramePtr& frame, const Demand& demand);
     void addImages(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
@@ -104,6 +107,8 @@ private:
 
     processing::Pipeline pipeline_;
     processing::CameraColourTable colourTable_;
+    frame::JpegDecoder jpegDecoder_;
+    Memo<frame::FramePtr, frame::FramePtr> decoded_;
     Memo<DepthKey, processing::ShownDepth> depth_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> pointColors_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;

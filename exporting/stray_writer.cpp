@@ -118,7 +118,10 @@ Status StrayWriter::add(const frame::Frame& frame) {
 Status StrayWriter::addColor(const frame::Frame& frame) {
     if (frame.capturedImage.empty())
         return {};
-    const auto& image = frame.capturedImage;
+    auto decoded = jpegDecoder_.decode(frame.capturedImage); // a camera's MJPEG; other formats as they are
+    if (!decoded)
+        return Error{"cannot export the camera image: " + decoded.error().message};
+    const frame::CapturedImage& image = *decoded;
     std::vector<std::uint8_t> rgb = frame::toRgb24(image);
     cv::Mat bgr;
     cv::cvtColor(cv::Mat(image.height, image.width, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);

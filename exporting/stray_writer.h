@@ -2,6 +2,7 @@
 
 #include "base/expected.h"
 #include "frame/frame.h"
+#include "frame/jpeg_codec.h"
 
 #include <opencv2/videoio.hpp>
 
@@ -33,6 +34,7 @@ private:
     frame::Intrinsics intrinsics_;
     std::string odometry_ = "timestamp, frame, x, y, z, qx, qy, qz, qw, fx, fy, cx, cy\n";
     cv::VideoWriter video_;
+    frame::JpegDecoder jpegDecoder_;
     cv::Size videoSize_;
 };
 

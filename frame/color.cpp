@@ -24,7 +24,7 @@ std::uint8_t toByte(float normalised) {
 namespace dc::frame {
 
 Rgb pixelRgb(const CapturedImage& image, int x, int y) {
-    if (image.empty() || image.width <= 0 || image.height <= 0 ||
+    if (image.empty() || !image.raw() || image.width <= 0 || image.height <= 0 ||
         image.bytes->size() < CapturedImage::byteSize(image.format, image.width, image.height))
         return {0.5f, 0.5f, 0.5f};
     x = std::clamp(x, 0, image.width - 1);
@@ -46,6 +46,8 @@ Rgb pixelRgb(const CapturedImage& image, int x, int y) {
         const std::uint8_t* p = b + (static_cast<std::size_t>(y) * w + x) * 3;
         return {n(p[0]), n(p[1]), n(p[2])};
     }
+    case PixelFormat::Jpeg:
+        break;
     }
     return {0.5f, 0.5f, 0.5f};
 }

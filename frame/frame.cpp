@@ -23,6 +23,8 @@ const char* toString(PixelFormat format) {
         return "YUYV";
     case PixelFormat::Rgb24:
         return "RGB24";
+    case PixelFormat::Jpeg:
+        return "JPEG";
     }
     return "unknown";
 }
@@ -37,6 +39,8 @@ std::size_t CapturedImage::byteSize(PixelFormat format, int width, int height) {
         return 4 * ((w + 1) / 2) * h; // 4 bytes per horizontal pixel pair
     case PixelFormat::Rgb24:
         return 3 * w * h;
+    case PixelFormat::Jpeg:
+        return 0;
     }
     return 0;
 }

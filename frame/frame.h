@@ -45,6 +45,8 @@ enum class PixelFormat {
     Nv12,  // full-range BT.601 Y plane, then interleaved Cb/Cr at half resolution (ARKit's capturedImage)
     Yuyv,  // packed 4:2:2
     Rgb24, // packed 8-bit R, G, B
+    Jpeg,  // a compressed frame as the camera sent it (MJPEG): decoded (frame/jpeg_codec.h) only where its
+           // pixels are used, never on the capture thread
 };
 
 const char* toString(PixelFormat format);
@@ -58,7 +60,10 @@ struct CapturedImage {
     std::shared_ptr<const std::vector<std::uint8_t>> bytes;
 
     bool empty() const { return !bytes || bytes->empty(); }
-    // Expected byte count for the format and size; a source whose buffer differs is malformed.
+    // Pixels can be read from the bytes as they are (every format but Jpeg).
+    bool raw() const { return format != PixelFormat::Jpeg; }
+    // Expected byte count for the format and size; a source whose buffer differs is malformed. 0 for Jpeg,
+    // whose size varies per frame.
     static std::size_t byteSize(PixelFormat format, int width, int height);
 };
 

@@ -24,7 +24,7 @@ void put(std::uint8_t*& out, std::uint8_t y, std::uint8_t cb, std::uint8_t cr) {
 } // namespace
 
 std::vector<std::uint8_t> toRgb24(const CapturedImage& image) {
-    if (image.empty() || image.width <= 0 || image.height <= 0 ||
+    if (image.empty() || !image.raw() || image.width <= 0 || image.height <= 0 ||
         image.bytes->size() < CapturedImage::byteSize(image.format, image.width, image.height))
         return {};
     const auto w = static_cast<std::size_t>(image.width);

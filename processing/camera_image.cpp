@@ -9,7 +9,7 @@ namespace dc::processing {
 namespace {
 
 bool wellFormed(const frame::CapturedImage& image) {
-    return !image.empty() && image.width > 0 && image.height > 0 &&
+    return !image.empty() && image.raw() && image.width > 0 && image.height > 0 &&
            image.bytes->size() >= frame::CapturedImage::byteSize(image.format, image.width, image.height);
 }
 
@@ -111,6 +111,8 @@ GrayView lumaView(const frame::CapturedImage& image, std::vector<std::uint8_t>& 
         cv::cvtColor(rgb, gray, cv::COLOR_RGB2GRAY); // BT.601 weights, as rgbToYcbcr
         return {scratch.data(), image.width, image.height, image.width};
     }
+    case frame::PixelFormat::Jpeg:
+        break;
     }
     return {};
 }
@@ -137,6 +139,8 @@ std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width
         const std::uint8_t* data = rgb.ptr<std::uint8_t>(0);
         return {data, data + static_cast<std::size_t>(width) * height * 3};
     }
+    case frame::PixelFormat::Jpeg:
+        break;
     }
     return {};
 }
@@ -161,6 +165,8 @@ ColorView cameraRgbView(const frame::CapturedImage& image, int width, int height
     }
     case frame::PixelFormat::Rgb24:
         return viewOf(resizedInto(cv::Mat(image.height, image.width, CV_8UC3, bytes), size, scratch.rgb));
+    case frame::PixelFormat::Jpeg:
+        break;
     }
     return {};
 }

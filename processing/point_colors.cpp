@@ -37,7 +37,7 @@ CameraColourTable::CameraColourTable()
 }
 
 bool CameraColourTable::use(const frame::CapturedImage& image) {
-    if (image.empty() || image.width <= 0 || image.height <= 0 ||
+    if (image.empty() || !image.raw() || image.width <= 0 || image.height <= 0 ||
         image.bytes->size() < frame::CapturedImage::byteSize(image.format, image.width, image.height))
         return false;
     bytes_ = image.bytes->data();
@@ -63,6 +63,8 @@ std::uint32_t CameraColourTable::rgba(int xi, int yi) {
         const std::uint8_t* p = bytes_ + (y * width_ + x) * 3;
         return rgbByte_[p[0]] | rgbByte_[p[1]] << 8 | rgbByte_[p[2]] << 16 | 0xff000000u;
     }
+    case frame::PixelFormat::Jpeg:
+        break;
     }
     return 0xff808080u;
 }

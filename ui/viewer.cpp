@@ -4,6 +4,7 @@
 #include "base/log.h"
 #include "exporting/ply.h"
 #include "frame/image_io.h"
+#include "frame/jpeg_codec.h"
 #include "processing/camera_image.h"
 #include "processing/depth_statistics.h"
 #include "processing/point_cloud.h"
@@ -255,8 +256,12 @@ Status Viewer::savePanels(const std::string& directory) const {
     // camera has none, and its camera panel is simply not written.
     if (!shown_ || shown_->frame->capturedImage.empty())
         return {};
-    const frame::CapturedImage& captured = shown_->frame->capturedImage;
-    const processing::RgbImage image = processing::cameraRgbImage(captured, captured.width, captured.height);
+    // A JPEG camera's image is decoded only for what shows it; the snapshot is one more reader.
+    const auto captured = frame::JpegDecoder().decode(shown_->frame->capturedImage);
+    if (!captured)
+        return Error{"cannot write camera.png: " + captured.error().message};
+    const processing::RgbImage image =
+        processing::cameraRgbImage(*captured, captured->width, captured->height);
     if (image.empty())
         return Error{"cannot write camera.png: the camera image is malformed"};
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(image.width) * image.height * 4, 255);

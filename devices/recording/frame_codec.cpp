@@ -2,7 +2,7 @@
 
 #include "devices/recording/byte_io.h"
 #include "devices/recording/format.h"
-#include "devices/recording/jpeg_codec.h"
+#include "frame/jpeg_codec.h"
 
 #include <bit>
 #include <cmath>
@@ -126,7 +126,7 @@ std::optional<double> exactUint16Scale(const frame::Plane<float>& depthMeters) {
 struct FrameEncoder::Impl {
     EncodeOptions options;
     std::unique_ptr<ZSTD_CCtx, decltype(&ZSTD_freeCCtx)> cctx{ZSTD_createCCtx(), &ZSTD_freeCCtx};
-    JpegEncoder jpegEncoder;
+    frame::JpegEncoder jpegEncoder;
     std::vector<std::uint8_t> scratch;
 
     void section(std::vector<std::uint8_t>& out, SectionHeader h, std::span<const std::uint8_t> raw,
@@ -199,6 +199,13 @@ void FrameEncoder::Impl::plane8(std::vector<std::uint8_t>& out, Section kind,
 }
 
 Status FrameEncoder::Impl::color(std::vector<std::uint8_t>& out, const frame::CapturedImage& image) {
+    if (!image.raw()) {
+        // The camera's own JPEG (MJPEG) is stored as it came, whatever the storage asked: encoding it
+        // again would cost time and quality.
+        section(out, {Section::Color, Codec::Raw, kColorJpeg, image.width, image.height, 0.0, 0},
+                *image.bytes, false);
+        return {};
+    }
     if (image.bytes->size() != frame::CapturedImage::byteSize(image.format, image.width, image.height))
         return Error{"camera image holds " + std::to_string(image.bytes->size()) + " bytes, " +
                      toString(image.format) + " " + std::to_string(image.width) + "x" +
@@ -261,7 +268,7 @@ Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& fra
 
 struct FrameDecoder::Impl {
     std::unique_ptr<ZSTD_DCtx, decltype(&ZSTD_freeDCtx)> dctx{ZSTD_createDCtx(), &ZSTD_freeDCtx};
-    JpegDecoder jpegDecoder;
+    frame::JpegDecoder jpegDecoder;
     std::vector<std::uint8_t> scratch;
     std::string where; // "FILE: frame N"
 

@@ -3,6 +3,7 @@
 
 #include "engine/processing_graph.h"
 #include "engine_test_support.h"
+#include "frame/jpeg_codec.h"
 #include "processing/confidence_estimator.h"
 
 #include <gtest/gtest.h>
@@ -168,6 +169,41 @@ TEST_F(ProcessingGraphTest, AStageWhoseOutputNobodyReadsNeverRuns) {
     // A panel that shows the depth already made asks for nothing new.
     d.depthImage = true;
     EXPECT_EQ(runOn(1, d), Runs{});
+}
+
+// A camera that sends MJPEG: the frame carries the JPEG, and only a stage that reads the camera's pixels
+// has it decoded, once per frame, for every reader.
+TEST_F(ProcessingGraphTest, ACameraJpegIsDecodedOnceAndOnlyWhenSomethingShowsTheCamera) {
+    const frame::CapturedImage& nv12 = frames_[0]->capturedImage;
+    frame::JpegEncoder encoder; // its result lives in the encoder
+    const auto encoded = encoder.encode(nv12, 90);
+    ASSERT_TRUE(encoded) << encoded.error().message;
+    auto mjpeg = std::make_shared<frame::Frame>(*frames_[0]);
+    mjpeg->capturedImage = {
+        frame::PixelFormat::Jpeg, nv12.width, nv12.height,
+        std::make_shared<const std::vector<std::uint8_t>>(encoded->begin(), encoded->end())};
+    frames_[0] = mjpeg;
+    const auto expected = frame::JpegDecoder().decode(mjpeg->capturedImage);
+    ASSERT_TRUE(expected);
+
+    EXPECT_EQ(runOn(0, cloudOnly(), true).count(kCameraDecodeStage), 0u);
+    EXPECT_EQ(last_->frame, frames_[0]) << "nothing reads the camera: the frame is shown as captured";
+
+    Demand camera = cloudOnly();
+    camera.cameraPanelWidth = 320;
+    const Runs ran = runOn(0, camera);
+    EXPECT_EQ(ran.at(std::string(kCameraDecodeStage)), 1u);
+    EXPECT_EQ(ran.at(std::string(kCameraImageStage)), 1u);
+    const frame::CapturedImage& shownImage = last_->frame->capturedImage;
+    EXPECT_EQ(shownImage.format, expected->format);
+    EXPECT_EQ(*shownImage.bytes, *expected->bytes) << "every reader after sees the decoded pixels";
+
+    const Runs more = runOn(0, everything());
+    EXPECT_EQ(more.count(kCameraDecodeStage), 0u) << "decoded once per frame, whatever reads it next";
+    ASSERT_TRUE(last_->pointColors);
+    const processing::RgbImage colors =
+        processing::pointColors(*expected, last_->depth.width(), last_->depth.height());
+    EXPECT_EQ(last_->pointColors->pixels, colors.pixels);
 }
 
 TEST_F(ProcessingGraphTest, ANewFrameRerunsWhatItFeedsAndResetStartsOver) {

@@ -1,10 +1,10 @@
 // The recording format: lossless round trip, crash recovery and every damaged input the issue lists.
 
-#include "devices/recording/jpeg_codec.h"
 #include "devices/recording/recorder.h"
 #include "devices/recording/recording_reader.h"
 #include "devices/replay/importers.h"
 #include "frame/color.h"
+#include "frame/jpeg_codec.h"
 #include "frame/rgb_image.h"
 #include "tests/recording/recording_test_support.h"
 
@@ -193,11 +193,11 @@ TEST(JpegCodec, YcbcrPlanesRoundTripWithoutColourConversion) {
         for (const auto& [w, h] : {std::pair{64, 48}, std::pair{7, 5}}) {
             SCOPED_TRACE(std::string(toString(format)) + " " + std::to_string(w) + "x" + std::to_string(h));
             const frame::CapturedImage image = patternImage(format, w, h);
-            JpegEncoder encoder;
+            frame::JpegEncoder encoder;
             auto jpeg = encoder.encode(image, 100);
             ASSERT_TRUE(jpeg) << jpeg.error().message;
             const std::vector<std::uint8_t> stored(jpeg->begin(), jpeg->end());
-            auto decoded = JpegDecoder().decode(stored, w, h);
+            auto decoded = frame::JpegDecoder().decode(stored, w, h);
             ASSERT_TRUE(decoded) << decoded.error().message;
             EXPECT_EQ(decoded->format, format) << "the format as captured, not RGB";
             ASSERT_EQ(decoded->bytes->size(), image.bytes->size());
@@ -210,7 +210,7 @@ TEST(JpegCodec, YcbcrPlanesRoundTripWithoutColourConversion) {
 
 TEST(JpegCodec, QualityReachesTheEncoderAndRgbIsStoredAsYcbcr) {
     const frame::CapturedImage image = patternImage(frame::PixelFormat::Rgb24, 64, 48);
-    JpegEncoder encoder;
+    frame::JpegEncoder encoder;
     auto low = encoder.encode(image, 20);
     ASSERT_TRUE(low);
     const std::size_t lowSize = low->size();
@@ -218,11 +218,38 @@ TEST(JpegCodec, QualityReachesTheEncoderAndRgbIsStoredAsYcbcr) {
     ASSERT_TRUE(high);
     EXPECT_LT(lowSize, high->size());
     const std::vector<std::uint8_t> stored(high->begin(), high->end());
-    auto decoded = JpegDecoder().decode(stored, 64, 48);
+    auto decoded = frame::JpegDecoder().decode(stored, 64, 48);
     ASSERT_TRUE(decoded);
     EXPECT_EQ(decoded->format, frame::PixelFormat::Nv12);
-    EXPECT_FALSE(JpegDecoder().decode(stored, 64, 47)) << "a JPEG of another size than its section";
-    EXPECT_FALSE(JpegDecoder().decode(std::span(stored).first(stored.size() / 2), 64, 48)) << "truncated";
+    EXPECT_FALSE(frame::JpegDecoder().decode(stored, 64, 47)) << "a JPEG of another size than its section";
+    EXPECT_FALSE(frame::JpegDecoder().decode(std::span(stored).first(stored.size() / 2), 64, 48))
+        << "truncated";
+}
+
+TEST(RecordingFormat, ACamerasOwnJpegIsStoredAsItCameWhateverTheStorage) {
+    const frame::CapturedImage nv12 = patternImage(frame::PixelFormat::Nv12, 64, 48);
+    frame::JpegEncoder encoder; // its result lives in the encoder
+    auto jpeg = encoder.encode(nv12, 80);
+    ASSERT_TRUE(jpeg);
+    const std::vector<std::uint8_t> mjpeg(jpeg->begin(), jpeg->end());
+    frame::Frame frame;
+    frame.capturedImage = {frame::PixelFormat::Jpeg, 64, 48,
+                           std::make_shared<const std::vector<std::uint8_t>>(mjpeg)};
+    const auto expected = frame::JpegDecoder().decode(frame.capturedImage);
+    ASSERT_TRUE(expected);
+    for (const ColorStorage storage : {ColorStorage::AsCaptured, ColorStorage::Jpeg}) {
+        EncodeOptions options;
+        options.color = storage;
+        options.compress = false;
+        auto payload = FrameEncoder(options).encode(frame);
+        ASSERT_TRUE(payload) << payload.error().message;
+        EXPECT_NE(std::search(payload->begin(), payload->end(), mjpeg.begin(), mjpeg.end()), payload->end())
+            << "the camera's bytes, not a second encoding";
+        auto decoded = FrameDecoder().decode(*payload, 0, "mem", 0);
+        ASSERT_TRUE(decoded) << decoded.error().message;
+        EXPECT_EQ(decoded->capturedImage.format, frame::PixelFormat::Nv12);
+        EXPECT_EQ(*decoded->capturedImage.bytes, *expected->bytes);
+    }
 }
 
 TEST(RgbImage, WholeImageConversionMatchesPixelRgbForEveryFormat) {

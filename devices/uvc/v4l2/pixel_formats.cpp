@@ -1,12 +1,13 @@
 #include "devices/uvc/v4l2/pixel_formats.h"
 
+#include "frame/jpeg_codec.h"
+
+#include <opencv2/core.hpp>
+
 #include <algorithm>
 #include <bit>
 #include <cstring>
 #include <linux/videodev2.h>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 namespace dc::devices::v4l2 {
 
@@ -31,23 +32,19 @@ frame::CapturedImage makeImage(frame::PixelFormat format, int width, int height,
     return {format, width, height, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
 }
 
-Expected<frame::CapturedImage> decodeMjpeg(std::span<const std::uint8_t> raw, int width, int height) {
+// MJPEG stays compressed here: the capture thread only checks the header's size, and the frame processor
+// decodes the image when something shows it.
+Expected<frame::CapturedImage> keepMjpeg(std::span<const std::uint8_t> raw, int width, int height) {
     if (raw.empty())
         return Error{"empty MJPEG frame"};
-    const cv::Mat encoded(1, static_cast<int>(raw.size()), CV_8UC1, const_cast<std::uint8_t*>(raw.data()));
-    cv::Mat bgr;
-    try {
-        bgr = cv::imdecode(encoded, cv::IMREAD_COLOR);
-    } catch (const cv::Exception& e) {
-        return Error{std::string("MJPEG frame could not be decoded: ") + e.what()};
-    }
-    if (bgr.empty() || bgr.cols != width || bgr.rows != height)
-        return Error{"MJPEG frame could not be decoded as a " + std::to_string(width) + "x" +
-                     std::to_string(height) + " image"};
-    std::vector<std::uint8_t> rgb(frame::CapturedImage::byteSize(frame::PixelFormat::Rgb24, width, height));
-    cv::Mat out(height, width, CV_8UC3, rgb.data());
-    cv::cvtColor(bgr, out, cv::COLOR_BGR2RGB);
-    return makeImage(frame::PixelFormat::Rgb24, width, height, std::move(rgb));
+    thread_local frame::JpegDecoder decoder;
+    const auto size = decoder.size(raw);
+    if (!size)
+        return Error{"MJPEG frame is not a JPEG image"};
+    if (size->first != width || size->second != height)
+        return Error{"MJPEG frame of " + std::to_string(size->first) + "x" + std::to_string(size->second) +
+                     " in a " + std::to_string(width) + "x" + std::to_string(height) + " stream"};
+    return makeImage(frame::PixelFormat::Jpeg, width, height, {raw.begin(), raw.end()});
 }
 
 frame::CapturedImage greyToNv12(const std::uint8_t* src, std::size_t stride, int width, int height) {
@@ -170,7 +167,7 @@ Expected<frame::CapturedImage> toCapturedImage(std::uint32_t fourcc, std::span<c
     case V4L2_PIX_FMT_GREY:
         return greyToNv12(raw.data(), std::max<std::size_t>(bytesPerLine, w), width, height);
     case V4L2_PIX_FMT_MJPEG:
-        return decodeMjpeg(raw, width, height);
+        return keepMjpeg(raw, width, height);
     default:
         return Error{"unsupported camera image format '" + fourccToString(fourcc) + "'"};
     }

@@ -36,8 +36,9 @@ std::size_t minimumFrameBytes(std::uint32_t fourcc, int width, int height, std::
 void depthToMeters(std::span<const std::uint8_t> raw, int width, int height, std::uint32_t bytesPerLine,
                    float metersPerUnit, frame::Plane<float>& out);
 
-// Copies a color/guide buffer into an owned CapturedImage without row padding. MJPEG is decoded (OpenCV) to
-// RGB24; GREY becomes NV12 with neutral chroma, so the viewer shows it as a grey camera image.
+// Copies a color/guide buffer into an owned CapturedImage without row padding. MJPEG stays compressed
+// (PixelFormat::Jpeg, its size checked); GREY becomes NV12 with neutral chroma, so the viewer shows it as a
+// grey camera image.
 Expected<frame::CapturedImage> toCapturedImage(std::uint32_t fourcc, std::span<const std::uint8_t> raw,
                                                int width, int height, std::uint32_t bytesPerLine);
 

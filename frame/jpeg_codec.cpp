@@ -1,10 +1,10 @@
-#include "devices/recording/jpeg_codec.h"
+#include "frame/jpeg_codec.h"
 
 #include <turbojpeg.h>
 
 #include <string>
 
-namespace dc::devices::recording {
+namespace dc::frame {
 
 namespace {
 
@@ -29,7 +29,7 @@ struct Planes {
 };
 
 // NV12's chroma is interleaved Cb, Cr at half size; its Y plane is used in place.
-void splitNv12Chroma(const frame::CapturedImage& image, Planes& planes) {
+void splitNv12Chroma(const CapturedImage& image, Planes& planes) {
     planes.chromaWidth = (image.width + 1) / 2;
     planes.chromaHeight = (image.height + 1) / 2;
     const std::size_t n = static_cast<std::size_t>(planes.chromaWidth) * planes.chromaHeight;
@@ -43,7 +43,7 @@ void splitNv12Chroma(const frame::CapturedImage& image, Planes& planes) {
 }
 
 // YUYV is Y0 Cb Y1 Cr per pixel pair, a row of 4 * ceil(w / 2) bytes.
-void splitYuyv(const frame::CapturedImage& image, Planes& planes) {
+void splitYuyv(const CapturedImage& image, Planes& planes) {
     const int w = image.width, h = image.height;
     planes.chromaWidth = (w + 1) / 2;
     planes.chromaHeight = h;
@@ -94,12 +94,12 @@ struct JpegEncoder::Impl {
     unsigned long bufferSize = 0;
     Planes planes;
 
-    Status compressPlanes(const std::uint8_t* y, int yStride, const frame::CapturedImage& image, int subsamp,
+    Status compressPlanes(const std::uint8_t* y, int yStride, const CapturedImage& image, int subsamp,
                           int quality);
 };
 
-Status JpegEncoder::Impl::compressPlanes(const std::uint8_t* y, int yStride,
-                                         const frame::CapturedImage& image, int subsamp, int quality) {
+Status JpegEncoder::Impl::compressPlanes(const std::uint8_t* y, int yStride, const CapturedImage& image,
+                                         int subsamp, int quality) {
     const unsigned char* src[3] = {y, planes.cb.data(), planes.cr.data()};
     const int strides[3] = {yStride, planes.chromaWidth, planes.chromaWidth};
     unsigned char* out = buffer.release();
@@ -116,20 +116,20 @@ JpegEncoder::~JpegEncoder() = default;
 JpegEncoder::JpegEncoder(JpegEncoder&&) noexcept = default;
 JpegEncoder& JpegEncoder::operator=(JpegEncoder&&) noexcept = default;
 
-Expected<std::span<const std::uint8_t>> JpegEncoder::encode(const frame::CapturedImage& image, int quality) {
+Expected<std::span<const std::uint8_t>> JpegEncoder::encode(const CapturedImage& image, int quality) {
     if (!impl_->handle)
         return Error{"cannot start the JPEG encoder"};
     Status s;
     switch (image.format) {
-    case frame::PixelFormat::Nv12:
+    case PixelFormat::Nv12:
         splitNv12Chroma(image, impl_->planes);
         s = impl_->compressPlanes(image.bytes->data(), image.width, image, TJSAMP_420, quality);
         break;
-    case frame::PixelFormat::Yuyv:
+    case PixelFormat::Yuyv:
         splitYuyv(image, impl_->planes);
         s = impl_->compressPlanes(impl_->planes.y.data(), image.width, image, TJSAMP_422, quality);
         break;
-    case frame::PixelFormat::Rgb24: {
+    case PixelFormat::Rgb24: {
         unsigned char* out = impl_->buffer.release();
         const int r = tjCompress2(impl_->handle.get(), image.bytes->data(), image.width, 3 * image.width,
                                   image.height, TJPF_RGB, &out, &impl_->bufferSize, TJSAMP_420, quality, 0);
@@ -138,6 +138,9 @@ Expected<std::span<const std::uint8_t>> JpegEncoder::encode(const frame::Capture
             s = Error{"cannot encode the camera image as JPEG: " + errorOf(impl_->handle.get())};
         break;
     }
+    case PixelFormat::Jpeg:
+        s = Error{"the camera image is a JPEG already"};
+        break;
     }
     if (!s)
         return s.error();
@@ -177,8 +180,23 @@ JpegDecoder::~JpegDecoder() = default;
 JpegDecoder::JpegDecoder(JpegDecoder&&) noexcept = default;
 JpegDecoder& JpegDecoder::operator=(JpegDecoder&&) noexcept = default;
 
-Expected<frame::CapturedImage> JpegDecoder::decode(std::span<const std::uint8_t> jpeg, int width,
-                                                   int height) {
+Expected<CapturedImage> JpegDecoder::decode(const CapturedImage& image) {
+    if (image.raw())
+        return image;
+    if (image.empty())
+        return Error{"empty JPEG camera image"};
+    return decode(*image.bytes, image.width, image.height);
+}
+
+Expected<std::pair<int, int>> JpegDecoder::size(std::span<const std::uint8_t> jpeg) {
+    int w = 0, h = 0, subsamp = -1, colorspace = -1;
+    if (!impl_->handle || tjDecompressHeader3(impl_->handle.get(), jpeg.data(), jpeg.size(), &w, &h, &subsamp,
+                                              &colorspace) != 0)
+        return Error{"not a JPEG image"};
+    return std::pair{w, h};
+}
+
+Expected<CapturedImage> JpegDecoder::decode(std::span<const std::uint8_t> jpeg, int width, int height) {
     tjhandle h = impl_->handle.get();
     int w = 0, ht = 0, subsamp = -1, colorspace = -1;
     if (!h || tjDecompressHeader3(h, jpeg.data(), jpeg.size(), &w, &ht, &subsamp, &colorspace) != 0)
@@ -187,17 +205,17 @@ Expected<frame::CapturedImage> JpegDecoder::decode(std::span<const std::uint8_t>
         return Error{"JPEG of " + std::to_string(w) + "x" + std::to_string(ht) + " in a " +
                      std::to_string(width) + "x" + std::to_string(height) + " section"};
     const bool ycbcr = colorspace == TJCS_YCbCr;
-    const auto format = ycbcr && subsamp == TJSAMP_420   ? frame::PixelFormat::Nv12
-                        : ycbcr && subsamp == TJSAMP_422 ? frame::PixelFormat::Yuyv
-                                                         : frame::PixelFormat::Rgb24;
-    auto bytes = std::make_shared<std::vector<std::uint8_t>>(frame::CapturedImage::byteSize(format, w, ht));
+    const auto format = ycbcr && subsamp == TJSAMP_420   ? PixelFormat::Nv12
+                        : ycbcr && subsamp == TJSAMP_422 ? PixelFormat::Yuyv
+                                                         : PixelFormat::Rgb24;
+    auto bytes = std::make_shared<std::vector<std::uint8_t>>(CapturedImage::byteSize(format, w, ht));
     Planes& p = impl_->planes;
     bool ok = false;
-    if (format == frame::PixelFormat::Nv12) {
+    if (format == PixelFormat::Nv12) {
         ok = impl_->decodePlanes(jpeg, bytes->data(), w, w, ht, subsamp);
         if (ok)
             joinNv12Chroma(p, w, ht, *bytes);
-    } else if (format == frame::PixelFormat::Yuyv) {
+    } else if (format == PixelFormat::Yuyv) {
         p.y.resize(static_cast<std::size_t>(w) * ht);
         ok = impl_->decodePlanes(jpeg, p.y.data(), w, w, ht, subsamp);
         if (ok)
@@ -208,7 +226,7 @@ Expected<frame::CapturedImage> JpegDecoder::decode(std::span<const std::uint8_t>
     }
     if (!ok)
         return Error{"cannot decode the JPEG camera image: " + errorOf(h)};
-    return frame::CapturedImage{format, w, ht, std::move(bytes)};
+    return CapturedImage{format, w, ht, std::move(bytes)};
 }
 
-} // namespace dc::devices::recording
+} // namespace dc::frame

@@ -6,9 +6,10 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <utility>
 #include <vector>
 
-namespace dc::devices::recording {
+namespace dc::frame {
 
 // Camera images to JPEG and back with TurboJPEG, straight from and to the captured YCbCr planes. NV12 is
 // stored as 4:2:0 JPEG and YUYV as 4:2:2; both are full-range BT.601 like JFIF's YCbCr, so neither
@@ -22,7 +23,7 @@ public:
     JpegEncoder& operator=(JpegEncoder&&) noexcept;
 
     // The JPEG of `image` at `quality` (1..100); it stays valid until the next call.
-    Expected<std::span<const std::uint8_t>> encode(const frame::CapturedImage& image, int quality);
+    Expected<std::span<const std::uint8_t>> encode(const CapturedImage& image, int quality);
 
 private:
     struct Impl;
@@ -38,11 +39,15 @@ public:
 
     // Decodes a JPEG that must be `width` x `height`: to NV12 when it is 4:2:0 YCbCr, to YUYV when 4:2:2,
     // to RGB24 otherwise. Malformed or truncated data is an error, never a partly gray image.
-    Expected<frame::CapturedImage> decode(std::span<const std::uint8_t> jpeg, int width, int height);
+    Expected<CapturedImage> decode(std::span<const std::uint8_t> jpeg, int width, int height);
+    // The pixels of a camera's JPEG (PixelFormat::Jpeg) as above; an image of any other format as it is.
+    Expected<CapturedImage> decode(const CapturedImage& image);
+    // The size a JPEG's header announces, read without decoding it (microseconds, not milliseconds).
+    Expected<std::pair<int, int>> size(std::span<const std::uint8_t> jpeg);
 
 private:
     struct Impl;
     std::unique_ptr<Impl> impl_;
 };
 
-} // namespace dc::devices::recording
+} // namespace dc::frame
