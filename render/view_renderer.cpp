@@ -96,6 +96,10 @@ void ViewRenderer::renderPanels(const PanelParams& params) {
         confidenceTarget_.resize(textures.depthWidth(), textures.depthHeight());
         panels_.renderConfidence(confidenceTarget_, textures);
     }
+    // Debian 12's llvmpipe now and then left a redrawn panel texture as it was until a later pass touched
+    // it (read back unchanged after a colormap change in two test runs of three); a glFlush did not help,
+    // waiting for the passes to complete does. They are small and run only when what they show changes.
+    glFinish();
     panelsDrawnWith_ = params;
     ++panelRenders_;
 }

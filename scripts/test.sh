@@ -18,10 +18,7 @@ for label in unit gl ui app kernel package; do
         exit 1
     fi
 done
-# One known flake is open: now and then llvmpipe leaves the depth panel as it was after a colormap change
-# (EngineUiTest.*ShowsEverySettingChangeInTheNextFrame; the panel is drawn, its pixels do not change). A
-# failing test runs once more, and the log shows both runs.
-ctest --test-dir build --output-on-failure -j"$jobs" --timeout 600 --repeat until-pass:2
+ctest --test-dir build --output-on-failure -j"$jobs" --timeout 600
 
 echo "test.sh: unit and gl tiers under ASan + UBSan"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DDC_BUILD_TESTS=ON -DDC_WERROR=ON -DDC_SANITIZE=ON >/dev/null
