@@ -1,6 +1,7 @@
 // depthcloud record / export / replay as a user runs them, including a recorder killed with SIGKILL.
 
 #include "devices/recording/recording_reader.h"
+#include "tests/test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -162,8 +163,8 @@ TEST_F(RecordingApp, BadInputsGetAClearErrorAndNoCrash) {
     const RunResult missing = run("--headless --source replay:" + path("nothing"));
     EXPECT_EQ(missing.exitCode, 2) << missing.output;
     EXPECT_NE(missing.output.find("nothing does not exist"), std::string::npos) << missing.output;
-    const RunResult range = run("export --source replay:../shared/data/arkit_dance_stray --out " + path("y") +
-                                " --format png16 --frames 620:700");
+    const RunResult range = run("export --source replay:" + dc::test::dataPath("arkit_dance_stray") +
+                                " --out " + path("y") + " --format png16 --frames 620:700");
     EXPECT_EQ(range.exitCode, 2) << range.output;
     EXPECT_NE(range.output.find("ends after the last frame (the source has 626 frames)"), std::string::npos)
         << range.output;

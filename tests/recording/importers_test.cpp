@@ -8,6 +8,7 @@
 #include "exporting/export.h"
 #include "tests/pose_checks.h"
 #include "tests/recording/recording_test_support.h"
+#include "tests/test_data.h"
 
 #include <gtest/gtest.h>
 
@@ -24,8 +25,8 @@ namespace {
 namespace fs = std::filesystem;
 using test::TempDir;
 
-const std::string kStray = "../shared/data/arkit_dance_stray";
-const std::string kTum = "../shared/data/tum_frame";
+const std::string kStray = test::dataPath("arkit_dance_stray");
+const std::string kTum = test::dataPath("tum_frame");
 
 void writeText(const std::string& path, const std::string& text) {
     std::ofstream(path) << text;
@@ -113,8 +114,8 @@ protected:
         test::writeRecording(dir_.path("r.dcrec"), test::syntheticFrames(kFrames));
         auto recording = openRecordingSource(dir_.path("r.dcrec"));
         ASSERT_TRUE(recording);
-        auto written =
-            exporting::exportFrames(**recording, {exporting::ExportFormat::Stray, dir_.path("s"), {}, false, {}});
+        auto written = exporting::exportFrames(
+            **recording, {exporting::ExportFormat::Stray, dir_.path("s"), {}, false, {}});
         ASSERT_TRUE(written) << written.error().message;
     }
     std::string path(const std::string& name) const { return dir_.path("s/" + name); }

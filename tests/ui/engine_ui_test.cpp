@@ -7,6 +7,7 @@
 #include "devices/source_spec.h"
 #include "processing/camera_image.h"
 #include "processing/confidence_filter.h"
+#include "tests/test_data.h"
 #include "ui_fixture.h"
 
 #include <epoxy/gl.h>
@@ -120,7 +121,8 @@ void expectEachSettingShowsInTheNextFrame(UiTest& t, Viewer& viewer, const rende
     frame();
     EXPECT_TRUE(viewer.shown()->depth.upsampled);
     EXPECT_EQ(viewer.shown()->depth.width(), 320) << "half the 640x480 camera image";
-    EXPECT_GT(viewer.statusLine().pointsDrawn, rawPoints * 3 / 2) << "320x240 points where there were 256x192";
+    EXPECT_GT(viewer.statusLine().pointsDrawn, rawPoints * 3 / 2)
+        << "320x240 points where there were 256x192";
     EXPECT_EQ(viewer.statusLine().pointsDrawn, viewer.shown()->pointCount);
 
     s.processing.upsampling = false;
@@ -174,7 +176,8 @@ TEST_F(EngineUiTest, AStalledCameraShowsEverySettingChangeInTheNextFrame) {
     start(std::make_unique<StallingDevice>(), "stalling");
     viewer_->settings().cloud.motion.enabled = false;
     // Until the camera has stalled and both its frames are on screen.
-    for (int i = 0; i < 100 && (viewer_->statusLine().state != "stalled" || viewer_->statusLine().frames.shown < 2); ++i)
+    for (int i = 0;
+         i < 100 && (viewer_->statusLine().state != "stalled" || viewer_->statusLine().frames.shown < 2); ++i)
         frame(0.0);
     ASSERT_EQ(viewer_->statusLine().state, "stalled");
     viewer_->setRedoWait(std::chrono::seconds(10));
@@ -219,8 +222,8 @@ TEST_F(EngineUiTest, WithSmoothingOrUpsamplingTheSnapshotHoldsExactlyThePointsDr
         const auto dir = viewer_->saveSnapshot((dir_ / (upsampling ? "up" : "smooth")).string());
         ASSERT_TRUE(dir.ok()) << dir.error().message;
         const std::vector<PlyPoint> ply = readPly(fs::path(*dir) / "cloud.ply");
-        const std::vector<PlyPoint> drawn =
-            drawnPoints(renderer_.textures(), frame::Confidence::Medium, viewer_->settings().cloud.nearMeters);
+        const std::vector<PlyPoint> drawn = drawnPoints(renderer_.textures(), frame::Confidence::Medium,
+                                                        viewer_->settings().cloud.nearMeters);
         ASSERT_EQ(ply.size(), drawn.size()) << (upsampling ? "upsampling" : "smoothing");
         ASSERT_EQ(ply.size(), shown().pointCount);
         for (std::size_t i = 0; i < ply.size(); ++i) {
@@ -258,7 +261,8 @@ TEST_F(EngineUiTest, AccumulationAddsTheSamePointsTheSnapshotHolds) {
     // Frames keep coming and the worker may be adding one (which adds nothing new): read between two.
     std::vector<processing::WorldPoint> world;
     const auto read = [&](processing::PointAccumulator& points) {
-        world.assign(points.slots().begin(), points.slots().begin() + static_cast<std::ptrdiff_t>(points.size()));
+        world.assign(points.slots().begin(),
+                     points.slots().begin() + static_cast<std::ptrdiff_t>(points.size()));
     };
     for (int i = 0; i < 1000 && !instrument_->accumulation().tryRead(read); ++i)
         std::this_thread::sleep_for(std::chrono::milliseconds(1));
@@ -282,7 +286,7 @@ TEST_F(EngineUiTest, AReplayDecodesItsVideoOnlyWhileSomethingShowsIt) {
     settings.panels.camera = false;
     settings.cloud.coloring = render::PointColoring::Depth;
     settings.cloud.motion.enabled = false;
-    auto device = devices::openSourceSpec("replay:../shared/data/arkit_dance_stray:paused");
+    auto device = devices::openSourceSpec("replay:" + dc::test::dataPath("arkit_dance_stray") + ":paused");
     ASSERT_TRUE(device.ok()) << device.error().message;
     start(std::move(*device), "replay", settings);
     viewer_->setRedoWait(std::chrono::seconds(10));
@@ -296,19 +300,18 @@ TEST_F(EngineUiTest, AReplayDecodesItsVideoOnlyWhileSomethingShowsIt) {
     EXPECT_EQ(shown().cameraImage, nullptr);
 
     viewer_->settings().panels.camera = true;
-    frame(0.0);
-    for (int i = 0; i < 100 && !viewer_->shown()->cameraImage; ++i)
-        frame(0.0);
-    ASSERT_NE(shown().cameraImage, nullptr);
+    ASSERT_TRUE(frameUntil([&] { return viewer_->shown()->cameraImage != nullptr; }))
+        << "the camera panel gets its image";
     EXPECT_EQ(shown().frame->replay->index, 50u) << "the same frame, now with its image";
     EXPECT_EQ(instrument_->replay()->status().colorDecodes, 1u);
     // The image is exactly frame 50's, decoded on its own by a second reader.
-    auto source = devices::replay::openReplaySource("../shared/data/arkit_dance_stray");
+    auto source = devices::replay::openReplaySource(dc::test::dataPath("arkit_dance_stray"));
     ASSERT_TRUE(source.ok());
     auto reference = devices::replay::loadFrame(**source, 50);
     ASSERT_TRUE(reference.ok());
     const processing::RgbImage& image = *shown().cameraImage;
-    EXPECT_EQ(processing::cameraRgbImage(reference->capturedImage, image.width, image.height).pixels, image.pixels);
+    EXPECT_EQ(processing::cameraRgbImage(reference->capturedImage, image.width, image.height).pixels,
+              image.pixels);
 }
 
 } // namespace

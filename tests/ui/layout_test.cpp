@@ -2,6 +2,7 @@
 // lists every panel and resets the layout, the automatic depth range is the default and the fixed one a
 // click away, the log panel holds the start-up messages, and a folder dropped on the window opens.
 
+#include "tests/test_data.h"
 #include "ui_fixture.h"
 
 #include <cmath>
@@ -97,8 +98,8 @@ TEST_F(UiTest, TheLogPanelHoldsWhatWasLoggedBeforeItExisted) {
 TEST_F(UiTest, ADroppedFolderOpensAsASourceAndAPlainOneIsRefused) {
     EXPECT_FALSE(viewer_->openPath(::testing::TempDir()).ok()) << "a folder that is no capture";
     EXPECT_EQ(instrument_->spec(), "synthetic") << "the current source keeps running";
-    ASSERT_TRUE(viewer_->openPath("../shared/data/arkit_dance_stray").ok());
-    EXPECT_EQ(instrument_->spec(), "replay:../shared/data/arkit_dance_stray");
+    ASSERT_TRUE(viewer_->openPath(dc::test::dataPath("arkit_dance_stray")).ok());
+    EXPECT_EQ(instrument_->spec(), "replay:" + dc::test::dataPath("arkit_dance_stray"));
     ASSERT_NE(instrument_->replay(), nullptr);
     ASSERT_TRUE(nextFrame(0.0));
     EXPECT_TRUE(shown().frame->replay.has_value()) << "a frame of the capture";

@@ -15,8 +15,11 @@
 #include <gtest/gtest.h>
 #include <imgui_internal.h>
 
+#include <chrono>
+#include <functional>
 #include <memory>
 #include <optional>
+#include <thread>
 #include <vector>
 
 namespace dc::ui::test {
@@ -74,6 +77,18 @@ protected:
         viewer_->drawUi();
         gui_.render();
         viewer_->presented();
+    }
+
+    // Frames until `done` holds or `limit` passes (a bound in time, not in frames: frames with nothing new
+    // are fast, and what they wait for may take a busy machine seconds); returns done().
+    bool frameUntil(const std::function<bool()>& done,
+                    std::chrono::seconds limit = std::chrono::seconds(20)) {
+        const auto deadline = std::chrono::steady_clock::now() + limit;
+        while (!done() && std::chrono::steady_clock::now() < deadline) {
+            frame(0.0);
+            std::this_thread::sleep_for(std::chrono::milliseconds(2));
+        }
+        return done();
     }
 
     // Frames until a new device frame's result is shown (or 5 s pass).

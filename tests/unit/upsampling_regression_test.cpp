@@ -6,6 +6,7 @@
 #include "processing/global_smoother.h"
 #include "processing/quality.h"
 #include "processing/upsampling_stage.h"
+#include "tests/test_data.h"
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -17,7 +18,7 @@
 namespace dc::processing {
 namespace {
 
-const std::filesystem::path kData = "../shared/data/middlebury_upsampling";
+const std::filesystem::path kData = test::dataPath("middlebury_upsampling");
 
 struct Pinned {
     const char* scene;
