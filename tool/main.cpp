@@ -4,6 +4,7 @@
 #include "devices/source_spec.h"
 #include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
+#include "tool/bench_soak.h"
 #include "tool/bench_upsample_options.h"
 #include "tool/live_commands.h"
 #include "tool/options.h"
@@ -100,13 +101,15 @@ int main(int argc, char** argv) {
     CLI::App* benchCmd = app.add_subcommand("bench", "measure performance");
     benchCmd->require_subcommand(1);
     CLI::App* benchRender = benchCmd->add_subcommand("render", "viewer frame time on this machine's GL");
-    benchRender->add_option("--frames", bench.frames, "measured frames per case (at least 100)")
+    benchRender->add_option("--frames", bench.frames, "measured frames per case (at least 10)")
         ->check(CLI::Range(10, 100000))
         ->capture_default_str();
     benchRender->add_option("--json", bench.jsonPath, "also write the results as JSON to this file");
     BenchInstrumentOptions benchInstrument;
     BenchEngineOptions benchEngine;
     CLI::App* benchEngineCmd = addBenchEngineCommand(*benchCmd, benchEngine);
+    BenchSoakOptions benchSoak;
+    CLI::App* benchSoakCmd = addBenchSoakCommand(*benchCmd, benchSoak);
     CLI::App* benchInstrumentCmd = addBenchInstrumentCommand(*benchCmd, benchInstrument);
     BenchCaptureOptions benchCapture;
     CLI::App* benchCaptureCmd = addBenchCaptureCommand(*benchCmd, benchCapture);
@@ -131,6 +134,8 @@ int main(int argc, char** argv) {
         return runBenchRender(bench);
     if (benchEngineCmd->parsed())
         return runBenchEngine(benchEngine);
+    if (benchSoakCmd->parsed())
+        return runBenchSoak(benchSoak);
     if (benchInstrumentCmd->parsed())
         return runBenchInstrument(benchInstrument);
     if (benchCaptureCmd->parsed())
