@@ -88,6 +88,11 @@ void ViewRenderer::renderPanels(const PanelParams& params) {
     if (panelsDrawnWith_ == params || !depth_.data || (!params.depth && !params.confidence))
         return;
     const FrameTextures& textures = texturesFor(panelDepth_, depth_, pointColors_, false);
+    // The last frame's drawing samples these panel textures. Debian 12's llvmpipe now and then lost a pass
+    // that redrew them before that drawing had finished (the panel read back unchanged after a colormap
+    // change in two test runs of three; a glFlush did not help): the passes start once it has. By now
+    // that is the previous frame's composite alone, and a redraw happens only when what it shows changes.
+    glFinish();
     if (params.depth) {
         depthTarget_.resize(textures.depthWidth(), textures.depthHeight());
         panels_.renderDepth(depthTarget_, textures, params.minMeters, params.maxMeters, params.colormap);
@@ -96,10 +101,6 @@ void ViewRenderer::renderPanels(const PanelParams& params) {
         confidenceTarget_.resize(textures.depthWidth(), textures.depthHeight());
         panels_.renderConfidence(confidenceTarget_, textures);
     }
-    // Debian 12's llvmpipe now and then left a redrawn panel texture as it was until a later pass touched
-    // it (read back unchanged after a colormap change in two test runs of three); a glFlush did not help,
-    // waiting for the passes to complete does. They are small and run only when what they show changes.
-    glFinish();
     panelsDrawnWith_ = params;
     ++panelRenders_;
 }
