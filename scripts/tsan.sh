@@ -20,6 +20,8 @@ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_REL
 cmake --build build-tsan -j"$(nproc)" --target "${targets[@]}"
 built=$(date +%s)
 export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 ${TSAN_OPTIONS:-}"
+# The engine's stress tests run their sources, demand changes, seeks and source switches this long.
+export DC_ENGINE_STRESS_SECONDS=${DC_ENGINE_STRESS_SECONDS:-10}
 for target in "${targets[@]}"; do
     binary=$(find build-tsan/tests -name "$target" -type f -executable | head -1)
     [ -n "$binary" ] || { echo "tsan.sh: $target was not built" >&2; exit 1; }

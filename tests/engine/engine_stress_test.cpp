@@ -2,7 +2,9 @@
 // taken, all at once for DC_ENGINE_STRESS_SECONDS (default 1; the TSan tier runs it longer). Each result
 // must answer the demand it names and never come from before a seek it was asked after.
 
+#include "devices/source_spec.h"
 #include "engine/frame_processor.h"
+#include "engine/instrument.h"
 #include "engine_test_support.h"
 
 #include <gtest/gtest.h>
@@ -10,7 +12,9 @@
 #include <atomic>
 #include <cstdlib>
 #include <deque>
+#include <filesystem>
 #include <map>
+#include <unistd.h>
 
 namespace dc::engine::test {
 namespace {
@@ -147,6 +151,55 @@ TEST(EngineStressTest, DemandsSeeksAndFramesAtOnceKeepEveryResultConsistent) {
     EXPECT_TRUE(waitUntil(settled)) << "every delivered frame is processed, skipped or dropped";
     EXPECT_GT(processor.counts().framesSkipped, 0u) << "seeks made frames stale";
     EXPECT_GT(results, 10u);
+}
+
+// The instrument as the UI drives it, with real sources: the synthetic camera's render-ahead threads and
+// capture thread, a replay of a recording it made (decode thread, seeks), the processor, accumulation and
+// the recorder, while this thread (the UI's) changes the demand, seeks and switches between the two.
+TEST(EngineStressTest, RealSourcesSwitchedSoughtAndRedemandedFromTheUiThread) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("dc-engine-stress-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    const std::string recording = (dir / "take.dcrec").string();
+    const std::string synthetic = "synthetic:128x96@120:motion";
+    auto device = devices::openSourceSpec(synthetic);
+    ASSERT_TRUE(device.ok()) << device.error().message;
+    Instrument instrument(std::move(*device), synthetic);
+    std::vector<Demand> ds = demands();
+    ds[0].accumulate = true;
+    instrument.setDemand(ds[0]);
+    instrument.start();
+    ASSERT_TRUE(instrument.startRecording(recording).ok());
+    ASSERT_TRUE(waitUntil([&] {
+        instrument.update();
+        return instrument.recording().frames >= 20;
+    }));
+    ASSERT_TRUE(instrument.stopRecording().ok());
+
+    std::map<std::string, std::uint64_t> shown;
+    const auto start = std::chrono::steady_clock::now();
+    const auto end = start + std::chrono::duration<double>(stressSeconds());
+    auto nextSwitch = start;
+    for (int i = 0; std::chrono::steady_clock::now() < end; ++i) {
+        const Demand& d = ds[static_cast<std::size_t>(i) % ds.size()];
+        const std::uint64_t generation = instrument.setDemand(d);
+        if (std::chrono::steady_clock::now() >= nextSwitch) {
+            nextSwitch += 250ms;
+            const std::string next = instrument.replay() ? synthetic : "replay:" + recording + ":loop";
+            ASSERT_TRUE(instrument.openSource(next).ok()) << next;
+        }
+        if (instrument.replay() && i % 13 == 0)
+            instrument.seekReplay(static_cast<std::size_t>(i) % 20);
+        if (auto r = instrument.waitForResult(std::chrono::milliseconds(20), false)) {
+            EXPECT_LE((*r)->demandGeneration, generation);
+            ASSERT_TRUE((*r)->frame);
+            instrument.presented(**r);
+            ++shown[instrument.replay() ? "replay" : "synthetic"];
+        }
+    }
+    EXPECT_GT(shown["synthetic"], 0u);
+    EXPECT_GT(shown["replay"], 0u) << "the run lasted long enough to switch to the replay";
+    std::filesystem::remove_all(dir);
 }
 
 } // namespace
