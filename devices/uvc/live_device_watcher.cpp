@@ -79,12 +79,12 @@ void LiveDeviceWatcher::relist() {
 void LiveDeviceWatcher::run() {
     relist();
     // With events: list once a burst has settled. Without: list every poll interval.
-    std::optional<Clock::time_point> due;
-    if (!events_)
-        due = Clock::now() + pollInterval_;
+    // `kNever`: no listing is due (an event will say when).
+    constexpr Clock::time_point kNever = Clock::time_point::max();
+    Clock::time_point due = events_ ? kNever : Clock::now() + pollInterval_;
     while (!stopping_) {
         pollfd fds[2] = {{stopFd_.get(), POLLIN, 0}, {events_ ? events_->fd() : -1, POLLIN, 0}};
-        int timeoutMs = due ? millisecondsUntil(*due) : -1;
+        int timeoutMs = due == kNever ? -1 : millisecondsUntil(due);
         if (!stopFd_.valid()) // nothing can wake the poll: look at stopping_ now and then
             timeoutMs = timeoutMs < 0 ? kStopCheckMs : std::min(timeoutMs, kStopCheckMs);
         if (::poll(fds, 2, timeoutMs) < 0 && errno != EINTR) {
@@ -102,11 +102,9 @@ void LiveDeviceWatcher::run() {
         } else if (fds[1].revents != 0 && events_->drain()) {
             due = Clock::now() + kSettle;
         }
-        if (due && Clock::now() >= *due) {
+        if (due != kNever && Clock::now() >= due) {
             relist();
-            due.reset();
-            if (!events_)
-                due = Clock::now() + pollInterval_;
+            due = events_ ? kNever : Clock::now() + pollInterval_;
         }
     }
 }
