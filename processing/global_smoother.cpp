@@ -79,8 +79,14 @@ void rowsInParallel(int height, const std::function<void(int y)>& row) {
 }
 
 // The per-pixel kernels are also built for x86-64-v3 (AVX2, FMA) and chosen at run time: twice the lanes
-// per instruction where the CPU has them. flatten inlines what they call into each version.
+// per instruction where the CPU has them. flatten inlines what they call into each version. Sanitizer
+// builds keep one version: the choice is an ifunc resolver, which runs while the program is relocated,
+// before the sanitizer's runtime exists, and ThreadSanitizer's hook at its entry crashes there.
+#if defined(__SANITIZE_THREAD__) || defined(__SANITIZE_ADDRESS__)
+#define DC_VECTOR_KERNEL [[gnu::flatten]]
+#else
 #define DC_VECTOR_KERNEL [[gnu::target_clones("arch=x86-64-v3", "default"), gnu::flatten]]
+#endif
 
 // Squared Euclidean distances of n pixels' colours to their right neighbours' (h) and to the pixels below
 // (v); h[n - 1] is never read.
