@@ -1,0 +1,108 @@
+#!/usr/bin/python3
+"""Publishes a depth camera on ROS 1 topics with rospy, for ros_live_test.cpp and the latency bench.
+
+Depth (16UC1 in mm or 32FC1 in m), an rgb8 colour image and the depth camera_info, at a fixed rate, with
+pixel values from formulas the C++ test recomputes from each image's stamp: frame i is stamped
+START + i * PERIOD, so a received frame names its own index. Runs until killed (SIGTERM or SIGINT).
+"""
+import argparse
+import sys
+
+import numpy as np
+import rospy
+from sensor_msgs.msg import CameraInfo, Image
+from std_msgs.msg import String
+
+FX, FY, CX, CY = 50.5, 51.25, 31.5, 23.75  # at the test's 64x48; scaled with the size
+
+
+def depth_units(w, h, i):
+    y, x = np.mgrid[0:h, 0:w]
+    return (x % 100 + 100 * (y % 50) + 1000 * (i % 50) + 1).astype("<u2")
+
+
+def color_rgb(w, h, i):
+    y, x = np.mgrid[0:h, 0:w]
+    rgb = np.stack([(3 * x + i) % 256, (4 * y) % 256, (7 * i + x + y) % 256], axis=-1)
+    return rgb.astype(np.uint8)
+
+
+def image(stamp, encoding, w, h, step, data):
+    m = Image()
+    m.header.stamp = stamp
+    m.header.frame_id = "camera_depth_optical_frame"
+    m.encoding, m.width, m.height, m.step, m.is_bigendian, m.data = encoding, w, h, step, 0, data
+    return m
+
+
+def depth_image(args, stamp, i):
+    units = depth_units(args.width, args.height, i)
+    if args.encoding == "32FC1":
+        return image(stamp, "32FC1", args.width, args.height, 4 * args.width,
+                     (units.astype("<f4") * np.float32(0.001)).tobytes())
+    return image(stamp, args.encoding, args.width, args.height, 2 * args.width, units.tobytes())
+
+
+def camera_info(args, stamp):
+    m = CameraInfo()
+    m.header.stamp = stamp
+    m.width, m.height = args.width, args.height
+    sx, sy = args.width / 64.0, args.height / 48.0
+    m.K = [FX * sx, 0, CX * sx, 0, FY * sy, CY * sy, 0, 0, 1]
+    m.distortion_model = "plumb_bob"
+    m.D = [0.0] * 5
+    return m
+
+
+def main():
+    p = argparse.ArgumentParser()
+    p.add_argument("--ns", default="/camera")
+    p.add_argument("--encoding", default="16UC1")
+    p.add_argument("--width", type=int, default=64)
+    p.add_argument("--height", type=int, default=48)
+    p.add_argument("--color-width", type=int, default=80)
+    p.add_argument("--color-height", type=int, default=60)
+    p.add_argument("--rate", type=float, default=30.0)
+    p.add_argument("--start", type=float, default=1000.0, help="stamp of frame 0 (s); 0: the wall clock")
+    p.add_argument("--color-skew-ms", type=float, default=0.0)
+    p.add_argument("--jump-back-at", type=int, default=-1, help="from this frame on, stamps go 10 s back")
+    p.add_argument("--depth-type", default="image", choices=["image", "string"])
+    args = p.parse_args()
+
+    rospy.init_node("depthcloud_test_camera", anonymous=True)
+    if args.depth_type == "string":
+        depth_pub = rospy.Publisher(args.ns + "/depth/image_rect_raw", String, queue_size=2)
+    else:
+        depth_pub = rospy.Publisher(args.ns + "/depth/image_rect_raw", Image, queue_size=2)
+    color_pub = rospy.Publisher(args.ns + "/color/image_raw", Image, queue_size=2)
+    info_pub = rospy.Publisher(args.ns + "/depth/camera_info", CameraInfo, queue_size=2)
+    period_ns = int(round(1e9 / args.rate))
+    colors = [color_rgb(args.color_width, args.color_height, i).tobytes() for i in range(256)]
+    rate = rospy.Rate(args.rate)
+    i = 0
+    while not rospy.is_shutdown():
+        if args.start > 0:
+            stamp_ns = int(args.start * 1e9) + i * period_ns
+            if 0 <= args.jump_back_at <= i:
+                stamp_ns -= 10_000_000_000
+        else:
+            stamp_ns = rospy.Time.now().to_nsec()
+        stamp = rospy.Time(nsecs=stamp_ns)
+        info_pub.publish(camera_info(args, stamp))
+        color_stamp = rospy.Time(nsecs=stamp_ns + int(args.color_skew_ms * 1e6))
+        color_pub.publish(image(color_stamp, "rgb8", args.color_width, args.color_height,
+                                3 * args.color_width, colors[i % 256]))
+        if args.depth_type == "string":
+            depth_pub.publish(String(data="not an image"))
+        else:
+            depth_pub.publish(depth_image(args, stamp, i))
+        i += 1
+        try:
+            rate.sleep()
+        except rospy.ROSInterruptException:
+            break
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

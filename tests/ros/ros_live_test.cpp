@@ -1,0 +1,344 @@
+// The live ros: source against the real thing: Debian's roscore on a free port of 127.0.0.1 and a rospy
+// camera (publish_camera.py) whose pixels follow formulas recomputed here from each image's stamp, so
+// every frame is checked pixel for pixel. Also the spec grammar, and what bad input does.
+
+#include "devices/recording/frame_codec.h"
+#include "devices/ros/ros_device.h"
+#include "devices/ros/ros_master.h"
+#include "devices/ros/ros_source_spec.h"
+#include "devices/session.h"
+#include "devices/source_spec.h"
+#include "tests/recording/recording_test_support.h"
+#include "tests/ros/ros_processes.h"
+
+#include <gtest/gtest.h>
+
+#include <array>
+#include <chrono>
+#include <cmath>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
+#include <thread>
+
+namespace dc::devices::ros {
+namespace {
+
+using namespace std::chrono_literals;
+using Clock = std::chrono::steady_clock;
+
+// publish_camera.py's defaults and formulas.
+constexpr int kDepthW = 64, kDepthH = 48, kColorW = 80, kColorH = 60;
+constexpr std::int64_t kStartNs = 1000'000'000'000, kPeriodNs = 33'333'333;
+constexpr double kFx = 50.5, kFy = 51.25, kCx = 31.5, kCy = 23.75;
+constexpr const char* kDepthTopic = "/camera/depth/image_rect_raw";
+
+std::uint16_t depthUnits(int x, int y, std::int64_t i) {
+    return static_cast<std::uint16_t>(x % 100 + 100 * (y % 50) + 1000 * (i % 50) + 1);
+}
+std::array<std::uint8_t, 3> colorRgb(int x, int y, std::int64_t i) {
+    const int n = static_cast<int>(i % 256);
+    return {static_cast<std::uint8_t>((3 * x + n) % 256), static_cast<std::uint8_t>((4 * y) % 256),
+            static_cast<std::uint8_t>((7 * n + x + y) % 256)};
+}
+// The frame index a stamp names; -1 if the stamp is not on publish_camera.py's grid.
+std::int64_t frameIndex(std::int64_t stampNs) {
+    const std::int64_t offset = stampNs - kStartNs;
+    const std::int64_t i = (offset + kPeriodNs / 2) / kPeriodNs;
+    return std::llabs(offset - i * kPeriodNs) < 2 ? i : -1;
+}
+
+std::string readFile(const std::string& path) {
+    std::ifstream in(path);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+// One roscore for the suite: roscpp talks to one master per process, so every test uses this one (the
+// reconnect test stops and restarts it on the same port).
+class RosLive : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dir_ = new test::TempDir;
+        core_ = new test::RosCore(test::freeLocalPort(), dir_->path());
+        test::useLocalRosMaster(core_->uri(), dir_->path());
+        ASSERT_TRUE(core_->start()) << "roscore did not come up: " << readFile(dir_->path("roscore.log"));
+    }
+    static void TearDownTestSuite() {
+        delete core_;
+        delete dir_;
+    }
+    void TearDown() override { publisher_.stop(); }
+
+    void publish(const std::vector<std::string>& options) {
+        std::vector<std::string> argv{"/usr/bin/python3", "tests/ros/publish_camera.py"};
+        argv.insert(argv.end(), options.begin(), options.end());
+        publisher_ = test::ChildProcess(argv, dir_->path("publisher.log"));
+        ASSERT_TRUE(publisher_.running());
+    }
+
+    static std::unique_ptr<RosDevice> openDevice(const std::string& spec) {
+        auto config = parseRosSourceSpec(spec);
+        EXPECT_TRUE(config) << config.error().message;
+        if (!config)
+            return nullptr;
+        auto device = std::make_unique<RosDevice>(*config);
+        const Status opened = device->open();
+        EXPECT_TRUE(opened) << opened.error().message;
+        const Status started = opened ? device->start() : opened;
+        EXPECT_TRUE(started) << started.error().message;
+        return started ? std::move(device) : nullptr;
+    }
+
+    // Captures until `count` frames came or the time is up; everything else that came back is kept too.
+    struct Captured {
+        std::vector<frame::FramePtr> frames;
+        std::vector<CaptureResult> others;
+    };
+    static Captured capture(Device& device, std::size_t count, std::chrono::seconds limit = 15s) {
+        Captured out;
+        const auto deadline = Clock::now() + limit;
+        while (out.frames.size() < count && Clock::now() < deadline) {
+            CaptureResult r = device.capture(100ms);
+            if (r.kind == CaptureResult::Kind::Frame)
+                out.frames.push_back(std::move(r.frame));
+            else if (r.kind != CaptureResult::Kind::Timeout)
+                out.others.push_back(std::move(r));
+        }
+        return out;
+    }
+    std::string publisherLog() const { return readFile(dir_->path("publisher.log")); }
+
+    static void expectDepth(const frame::Frame& f, std::int64_t i, bool meters) {
+        ASSERT_TRUE(f.sceneDepth);
+        const auto& d = f.sceneDepth->depthMeters;
+        ASSERT_EQ(d.width, kDepthW);
+        ASSERT_EQ(d.height, kDepthH);
+        for (int y = 0; y < kDepthH; ++y)
+            for (int x = 0; x < kDepthW; ++x) {
+                const std::uint16_t units = depthUnits(x, y, i);
+                const float expected =
+                    meters ? static_cast<float>(units) * 0.001f : recording::depthFromUnits(units, 0.001);
+                ASSERT_EQ(d.at(x, y), expected) << "frame " << i << " at " << x << "," << y;
+            }
+    }
+    static void expectColor(const frame::Frame& f, std::int64_t i) {
+        ASSERT_EQ(f.capturedImage.format, frame::PixelFormat::Rgb24);
+        ASSERT_EQ(f.capturedImage.width, kColorW);
+        ASSERT_EQ(f.capturedImage.height, kColorH);
+        const auto& bytes = *f.capturedImage.bytes;
+        for (int y = 0; y < kColorH; ++y)
+            for (int x = 0; x < kColorW; ++x) {
+                const auto rgb = colorRgb(x, y, i);
+                const std::size_t at = 3 * (static_cast<std::size_t>(y) * kColorW + x);
+                ASSERT_EQ(bytes[at], rgb[0]) << "frame " << i << " at " << x << "," << y;
+                ASSERT_EQ(bytes[at + 1], rgb[1]) << "frame " << i << " at " << x << "," << y;
+                ASSERT_EQ(bytes[at + 2], rgb[2]) << "frame " << i << " at " << x << "," << y;
+            }
+    }
+    static void expectIntrinsics(const frame::Frame& f) {
+        const frame::Intrinsics k = f.depthIntrinsics();
+        EXPECT_EQ(k.width, kDepthW);
+        EXPECT_EQ(k.height, kDepthH);
+        EXPECT_NEAR(k.fx, kFx, 1e-9);
+        EXPECT_NEAR(k.fy, kFy, 1e-9);
+        EXPECT_NEAR(k.cx, kCx, 1e-9);
+        EXPECT_NEAR(k.cy, kCy, 1e-9);
+    }
+    void expectStream(const std::string& encoding, bool meters) {
+        publish({"--encoding", encoding, "--color-skew-ms", "4"});
+        auto device = openDevice(kDepthTopic);
+        ASSERT_TRUE(device);
+        const Captured got = capture(*device, 5);
+        ASSERT_EQ(got.frames.size(), 5u) << publisherLog();
+        std::int64_t previous = -1;
+        for (const frame::FramePtr& f : got.frames) {
+            const std::int64_t i = frameIndex(f->timestampNs);
+            ASSERT_GE(i, 0) << "stamp " << f->timestampNs << " is not one the publisher sent";
+            EXPECT_GT(i, previous) << "frames out of order";
+            previous = i;
+            expectDepth(*f, i, meters);
+            expectColor(*f, i); // the colour stamped 4 ms after this depth image, not a neighbour's
+            expectIntrinsics(*f);
+        }
+    }
+
+    static test::TempDir* dir_;
+    static test::RosCore* core_;
+    test::ChildProcess publisher_;
+};
+
+test::TempDir* RosLive::dir_ = nullptr;
+test::RosCore* RosLive::core_ = nullptr;
+
+TEST(RosSourceSpec, FindsColorAndCameraInfoBesideTheDepthTopic) {
+    const DerivedTopics rs = deriveTopics("/camera/depth/image_rect_raw");
+    EXPECT_EQ(rs.color, "/camera/color/image_raw");
+    EXPECT_EQ(rs.info, "/camera/depth/camera_info");
+    const DerivedTopics aligned = deriveTopics("/cam1/aligned_depth_to_color/image_raw");
+    EXPECT_EQ(aligned.color, "/cam1/color/image_raw");
+    EXPECT_EQ(aligned.info, "/cam1/aligned_depth_to_color/camera_info");
+    const DerivedTopics plain = deriveTopics("/kinect/image_depth");
+    EXPECT_EQ(plain.color, "");
+    EXPECT_EQ(plain.info, "/kinect/camera_info");
+}
+
+TEST(RosSourceSpec, ParsesTopicsMasterAndTimes) {
+    auto c =
+        parseRosSourceSpec("/cam/depth/image_raw:color=/rgb/image:info=/cam/info:master=http://127.0.0.1:"
+                           "11411:tolerance=5:watchdog=700");
+    ASSERT_TRUE(c) << c.error().message;
+    EXPECT_EQ(c->depthTopic, "/cam/depth/image_raw");
+    EXPECT_EQ(c->colorTopic, "/rgb/image");
+    EXPECT_EQ(c->infoTopic, "/cam/info");
+    EXPECT_EQ(c->masterUri, "http://127.0.0.1:11411");
+    EXPECT_EQ(c->pairTolerance, 5ms);
+    EXPECT_EQ(c->watchdog, 700ms);
+    auto depthOnly = parseRosSourceSpec("/camera/depth/image_rect_raw:color=none");
+    ASSERT_TRUE(depthOnly);
+    EXPECT_EQ(depthOnly->colorTopic, "");
+    EXPECT_EQ(depthOnly->infoTopic, "/camera/depth/camera_info");
+}
+
+TEST(RosSourceSpec, RefusesMalformedSpecsNamingThePart) {
+    const std::pair<const char*, const char*> bad[] = {
+        {"ros:", "depth topic"},
+        {"ros:/cam/depth image", "/cam/depth image"},
+        {"ros:/cam/depth:tolerance=-3", "tolerance=-3"},
+        {"ros:/cam/depth:master=ftp://x:1", "master=ftp://x:1"},
+        {"ros:/cam/depth:master=http://host", "master=http://host"},
+        {"ros:/cam/depth:speed=2", "speed=2"},
+    };
+    for (const auto& [spec, named] : bad) {
+        auto device = openSourceSpec(spec);
+        ASSERT_FALSE(device) << spec;
+        EXPECT_NE(device.error().message.find(named), std::string::npos) << device.error().message;
+        EXPECT_EQ(device.error().message.find('\n'), std::string::npos) << device.error().message;
+    }
+}
+
+TEST_F(RosLive, DepthIn16UC1MillimetresArrivesPixelForPixelWithColorAndIntrinsics) {
+    expectStream("16UC1", false);
+}
+
+TEST_F(RosLive, DepthIn32FC1MetersArrivesPixelForPixel) {
+    expectStream("32FC1", true);
+}
+
+TEST_F(RosLive, ColorBeyondTheToleranceIsNotPaired) {
+    publish({"--color-skew-ms", "8"});
+    auto device = openDevice(std::string(kDepthTopic) + ":tolerance=3");
+    ASSERT_TRUE(device);
+    const Captured got = capture(*device, 4);
+    ASSERT_EQ(got.frames.size(), 4u) << publisherLog();
+    for (const frame::FramePtr& f : got.frames) {
+        EXPECT_EQ(f->capturedImage.width, 0) << "paired across an 8 ms gap with a 3 ms tolerance";
+        expectDepth(*f, frameIndex(f->timestampNs), false);
+    }
+    EXPECT_GT(device->pairer().unpaired(), 0u);
+    EXPECT_EQ(device->pairer().paired(), 0u);
+}
+
+TEST_F(RosLive, UnreachableMasterFailsAtOpenInOneLine) {
+    const int closedPort = test::freeLocalPort();
+    auto device = openSourceSpec(std::string("ros:/camera/depth/image_rect_raw:master=http://127.0.0.1:") +
+                                 std::to_string(closedPort));
+    ASSERT_TRUE(device) << device.error().message; // the spec is fine: the failure comes at open
+    const auto started = Clock::now();
+    const Status opened = (*device)->open();
+    ASSERT_FALSE(opened);
+    EXPECT_LT(Clock::now() - started, 5s);
+    EXPECT_NE(opened.error().message.find("not reachable"), std::string::npos) << opened.error().message;
+    EXPECT_EQ(opened.error().message.find('\n'), std::string::npos);
+}
+
+TEST_F(RosLive, TopicThatIsNoImageIsRefusedAtOpen) {
+    publish({"--depth-type", "string"});
+    auto config = parseRosSourceSpec(kDepthTopic);
+    ASSERT_TRUE(config);
+    RosDevice device(*config);
+    // The publisher needs a moment to advertise; until then the topic is unknown, which is allowed.
+    Status opened;
+    const auto deadline = Clock::now() + 15s;
+    while ((opened = device.open()) && Clock::now() < deadline) {
+        device.close();
+        std::this_thread::sleep_for(100ms);
+    }
+    ASSERT_FALSE(opened) << "a std_msgs/String depth topic was accepted";
+    EXPECT_NE(opened.error().message.find("std_msgs/String"), std::string::npos) << opened.error().message;
+}
+
+TEST_F(RosLive, UnknownEncodingIsReportedOnceAndTheStreamShowsStalled) {
+    publish({"--encoding", "bogus16"});
+    auto device = openDevice(std::string(kDepthTopic) + ":watchdog=500");
+    ASSERT_TRUE(device);
+    Captured got;
+    const auto deadline = Clock::now() + 15s;
+    while (device->state() != DeviceState::Stalled && Clock::now() < deadline) {
+        Captured more = capture(*device, 1, 1s);
+        got.frames.insert(got.frames.end(), more.frames.begin(), more.frames.end());
+        got.others.insert(got.others.end(), more.others.begin(), more.others.end());
+    }
+    EXPECT_TRUE(got.frames.empty());
+    EXPECT_EQ(device->state(), DeviceState::Stalled);
+    std::size_t errors = 0;
+    for (const CaptureResult& r : got.others) {
+        if (r.kind != CaptureResult::Kind::Error)
+            continue;
+        ++errors;
+        EXPECT_NE(r.message.find("bogus16"), std::string::npos) << r.message;
+    }
+    EXPECT_EQ(errors, 1u) << publisherLog();
+}
+
+TEST_F(RosLive, ClockJumpingBackIsReportedAndFramesGoOn) {
+    publish({"--jump-back-at", "5", "--start", "1010"});
+    auto device = openDevice(kDepthTopic);
+    ASSERT_TRUE(device);
+    // Frames from before the jump (if the subscription was quick enough) and after it, with one report.
+    Captured got;
+    const auto deadline = Clock::now() + 15s;
+    std::int64_t afterJump = 0;
+    while (afterJump < 3 && Clock::now() < deadline) {
+        Captured more = capture(*device, 1, 1s);
+        for (auto& f : more.frames)
+            afterJump += f->timestampNs < 1010'000'000'000 ? 1 : 0;
+        got.others.insert(got.others.end(), more.others.begin(), more.others.end());
+    }
+    EXPECT_EQ(afterJump, 3) << publisherLog();
+    // The subscription may start after the jump, so the report is there at most once.
+    ASSERT_LE(got.others.size(), 1u);
+    for (const CaptureResult& r : got.others)
+        EXPECT_NE(r.message.find("jumped back"), std::string::npos) << r.message;
+}
+
+TEST_F(RosLive, MasterThatGoesAwayShowsDisconnectedAndStreamingResumesWhenItIsBack) {
+    publish({});
+    auto device = openSourceSpec(std::string("ros:") + kDepthTopic + ":color=none");
+    ASSERT_TRUE(device);
+    Session session(std::move(*device));
+    ASSERT_TRUE(session.start());
+    ASSERT_TRUE(session.waitForFrame(15s)) << publisherLog();
+
+    publisher_.stop();
+    core_->stop();
+    auto deadline = Clock::now() + 10s;
+    while (session.state() != DeviceState::Disconnected && Clock::now() < deadline)
+        std::this_thread::sleep_for(50ms);
+    ASSERT_EQ(session.state(), DeviceState::Disconnected);
+
+    ASSERT_TRUE(core_->start());
+    publish({});
+    while (session.takeLatest()) // frames from before the master went away
+        ;
+    ASSERT_TRUE(session.waitForFrame(20s)) << publisherLog();
+    EXPECT_EQ(session.state(), DeviceState::Streaming);
+    bool sawDisconnected = false;
+    for (const SessionEvent& e : session.drainEvents())
+        sawDisconnected |=
+            e.state == DeviceState::Disconnected && e.message.find("not reachable") != std::string::npos;
+    EXPECT_TRUE(sawDisconnected);
+    session.stop();
+}
+
+} // namespace
+} // namespace dc::devices::ros
