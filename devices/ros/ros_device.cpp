@@ -56,7 +56,7 @@ void RosDevice::interruptCapture() {
     inboxReady_.notify_all();
 }
 
-// Probes the master with a bounded wait before roscpp touches it, since roscpp would wait for it.
+// Probes the master with a bounded wait before roscpp touches it: roscpp's own calls wait without bound.
 Status RosDevice::connect() {
     auto master = resolveMasterUri(config_.masterUri);
     if (!master)
@@ -64,11 +64,7 @@ Status RosDevice::connect() {
     master_ = *master;
     if (Status s = probeMaster(master_, kProbeTimeout); !s)
         return s;
-    if (Status s = startRosNode(master_); !s)
-        return s;
-    if (!masterAnswers())
-        return Error{"ROS master " + master_.uri + " accepts connections but does not answer"};
-    return {};
+    return startRosNode(master_);
 }
 
 // A topic advertised with another type would subscribe without ever delivering (roscpp refuses the
@@ -156,9 +152,7 @@ std::optional<CaptureResult> RosDevice::checkMaster() {
     if (Clock::now() - lastMasterCheck_ < kMasterCheckInterval)
         return std::nullopt;
     lastMasterCheck_ = Clock::now();
-    Status alive = probeMaster(master_, kProbeTimeout);
-    if (alive && !masterAnswers())
-        alive = Error{"ROS master " + master_.uri + " does not answer"};
+    const Status alive = probeMaster(master_, kProbeTimeout);
     if (alive)
         return std::nullopt;
     // Publishers may keep sending over their own connections, but nothing new can be found without the

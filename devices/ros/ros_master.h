@@ -21,8 +21,8 @@ struct MasterUri {
 Expected<MasterUri> resolveMasterUri(const std::string& explicitUri);
 Expected<MasterUri> parseMasterUri(const std::string& uri);
 
-// Connects to the master's TCP port and closes again, waiting at most `timeout`: success means something
-// listens there. The error says why not (refused, timed out, unknown host) in one line.
+// Asks the master for its pid over XML-RPC, waiting at most `timeout` in all: success means a master
+// answers there. The error says why not (refused, timed out, no answer, unknown host) in one line.
 Status probeMaster(const MasterUri& master, std::chrono::milliseconds timeout);
 
 } // namespace dc::devices::ros

@@ -78,14 +78,6 @@ Status startRosNode(const MasterUri& master) {
     return {};
 }
 
-bool masterAnswers() {
-    try {
-        return ::ros::master::check();
-    } catch (const std::exception&) {
-        return false;
-    }
-}
-
 Expected<std::vector<TopicInfo>> advertisedTopics() {
     ::ros::master::V_TopicInfo found;
     try {

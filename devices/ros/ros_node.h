@@ -23,8 +23,6 @@ struct TopicInfo {
 // Starts this process's ROS node against `master` (probe it first: roscpp waits for an absent master).
 // Fails if the node already talks to another master: roscpp cannot switch.
 Status startRosNode(const MasterUri& master);
-// Whether the master answers a call now (after startRosNode).
-bool masterAnswers();
 // The topics that publishers have advertised to the master (after startRosNode).
 Expected<std::vector<TopicInfo>> advertisedTopics();
 
