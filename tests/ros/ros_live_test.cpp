@@ -13,6 +13,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <chrono>
 #include <cmath>
@@ -53,6 +54,26 @@ std::string readFile(const std::string& path) {
     return {std::istreambuf_iterator<char>(in), {}};
 }
 
+struct RunResult {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+// The depthcloud binary, run in `dir` with `environment` (VAR=value ...) before it.
+RunResult runDepthcloud(const std::string& dir, const std::string& environment,
+                        const std::string& arguments) {
+    const std::string command = "cd '" + dir + "' && " + environment + " " + DEPTHCLOUD_BINARY + " " +
+                                arguments + " > out.txt 2> err.txt";
+    const int status = std::system(command.c_str());
+    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(dir + "/out.txt"),
+            readFile(dir + "/err.txt")};
+}
+
+std::size_t lines(const std::string& text) {
+    return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
 // One roscore for the suite: roscpp talks to one master per process, so every test uses this one (the
 // reconnect test stops and restarts it on the same port).
 class RosLive : public ::testing::Test {
@@ -61,7 +82,7 @@ protected:
         dir_ = new test::TempDir;
         core_ = new test::RosCore(test::freeLocalPort(), dir_->path());
         test::useLocalRosMaster(core_->uri(), dir_->path());
-        ASSERT_TRUE(core_->start()) << "roscore did not come up: " << readFile(dir_->path("roscore.log"));
+        ASSERT_TRUE(core_->start()) << "roscore did not come up: " << readFile(core_->logFile());
     }
     static void TearDownTestSuite() {
         delete core_;
@@ -216,6 +237,43 @@ TEST(RosSourceSpec, RefusesMalformedSpecsNamingThePart) {
     }
 }
 
+TEST(RosCli, UnreachableMasterExitsOneAndMalformedSpecExitsTwoInOneLine) {
+    test::TempDir dir;
+    const std::string closed = "http://127.0.0.1:" + std::to_string(test::freeLocalPort());
+    const RunResult unreachable = runDepthcloud(
+        dir.path(), "",
+        "record --seconds 1 --source ros:/camera/depth/image_rect_raw:master=" + closed + " a.dcrec");
+    EXPECT_EQ(unreachable.exitCode, 1) << unreachable.err;
+    EXPECT_EQ(lines(unreachable.err), 1u) << unreachable.err;
+    EXPECT_NE(unreachable.err.find(closed + " is not reachable"), std::string::npos) << unreachable.err;
+
+    const RunResult malformed =
+        runDepthcloud(dir.path(), "", "record --seconds 1 --source ros:/camera/depth:tolerance=soon b.dcrec");
+    EXPECT_EQ(malformed.exitCode, 2) << malformed.err;
+    EXPECT_EQ(lines(malformed.err), 1u) << malformed.err;
+    EXPECT_NE(malformed.err.find("tolerance=soon"), std::string::npos) << malformed.err;
+
+    const RunResult listing = runDepthcloud(dir.path(), "ROS_MASTER_URI=" + closed, "devices");
+    EXPECT_EQ(listing.exitCode, 0) << listing.err;
+    EXPECT_NE(listing.out.find("note: ROS master " + closed + " is not reachable"), std::string::npos)
+        << listing.out;
+}
+
+TEST_F(RosLive, DevicesCommandListsTheImageTopicsOfTheMaster) {
+    publish({});
+    const std::string openLine =
+        "  /camera/depth/image_rect_raw  open with: depthcloud --source ros:/camera/depth/image_rect_raw\n";
+    RunResult listed;
+    const auto deadline = Clock::now() + 15s;
+    do {
+        listed = runDepthcloud(dir_->path(), "", "devices");
+        ASSERT_EQ(listed.exitCode, 0) << listed.err;
+    } while (listed.out.find(openLine) == std::string::npos && Clock::now() < deadline);
+    EXPECT_NE(listed.out.find(openLine), std::string::npos) << listed.out;
+    EXPECT_NE(listed.out.find("  /camera/color/image_raw  open with:"), std::string::npos) << listed.out;
+    EXPECT_EQ(listed.out.find("/camera/depth/camera_info"), std::string::npos) << "camera_info is no image";
+}
+
 TEST_F(RosLive, DepthIn16UC1MillimetresArrivesPixelForPixelWithColorAndIntrinsics) {
     expectStream("16UC1", false);
 }
@@ -238,7 +296,7 @@ TEST_F(RosLive, ColorBeyondTheToleranceIsNotPaired) {
     EXPECT_EQ(device->pairer().paired(), 0u);
 }
 
-TEST_F(RosLive, UnreachableMasterFailsAtOpenInOneLine) {
+TEST(RosSourceSpec, UnreachableMasterFailsAtOpenInOneLine) {
     const int closedPort = test::freeLocalPort();
     auto device = openSourceSpec(std::string("ros:/camera/depth/image_rect_raw:master=http://127.0.0.1:") +
                                  std::to_string(closedPort));

@@ -7,7 +7,9 @@
 #include <cstdlib>
 #include <dirent.h>
 #include <fcntl.h>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <netinet/in.h>
 #include <spawn.h>
 #include <sys/socket.h>
@@ -132,15 +134,21 @@ void useLocalRosMaster(const std::string& uri, const std::string& rosHome) {
 }
 
 bool RosCore::start() {
-    process_ = ChildProcess({"roscore", "-p", std::to_string(port_)}, rosHome_ + "/roscore.log");
+    std::filesystem::remove(logFile());
+    process_ = ChildProcess({"roscore", "-p", std::to_string(port_)}, logFile());
     if (!process_.running())
         return false;
+    // roscore is up once its master answers and rosout has started (it says so in its log); a roscore
+    // interrupted before that takes long to stop.
     const auto master = devices::ros::parseMasterUri(uri());
     const auto deadline = std::chrono::steady_clock::now() + 30s;
     while (std::chrono::steady_clock::now() < deadline) {
-        if (devices::ros::probeMaster(*master, 200ms))
+        std::ifstream log(logFile());
+        const std::string text{std::istreambuf_iterator<char>(log), {}};
+        if (text.find("started core service [/rosout]") != std::string::npos &&
+            devices::ros::probeMaster(*master, 200ms))
             return true;
-        std::this_thread::sleep_for(100ms);
+        std::this_thread::sleep_for(50ms);
     }
     return false;
 }

@@ -37,6 +37,7 @@ public:
     void stop() { process_.stop(); }
     std::string uri() const { return "http://127.0.0.1:" + std::to_string(port_); }
     int port() const { return port_; }
+    std::string logFile() const { return rosHome_ + "/roscore.log"; }
 
 private:
     int port_;
