@@ -27,6 +27,19 @@ def color_rgb(w, h, i):
     return rgb.astype(np.uint8)
 
 
+class Cached:
+    """The pixels repeat (depth every 50 frames, colour every 256): each distinct image is made once."""
+
+    def __init__(self, make, period):
+        self.make, self.period, self.images = make, period, {}
+
+    def __call__(self, i):
+        key = i % self.period
+        if key not in self.images:
+            self.images[key] = self.make(key)
+        return self.images[key]
+
+
 def image(stamp, encoding, w, h, step, data):
     m = Image()
     m.header.stamp = stamp
@@ -35,12 +48,16 @@ def image(stamp, encoding, w, h, step, data):
     return m
 
 
-def depth_image(args, stamp, i):
+def depth_bytes(args, i):
     units = depth_units(args.width, args.height, i)
     if args.encoding == "32FC1":
-        return image(stamp, "32FC1", args.width, args.height, 4 * args.width,
-                     (units.astype("<f4") * np.float32(0.001)).tobytes())
-    return image(stamp, args.encoding, args.width, args.height, 2 * args.width, units.tobytes())
+        return (units.astype("<f4") * np.float32(0.001)).tobytes()
+    return units.tobytes()
+
+
+def depth_image(args, stamp, data):
+    bytes_per_pixel = 4 if args.encoding == "32FC1" else 2
+    return image(stamp, args.encoding, args.width, args.height, bytes_per_pixel * args.width, data)
 
 
 def camera_info(args, stamp):
@@ -77,10 +94,12 @@ def main():
     color_pub = rospy.Publisher(args.ns + "/color/image_raw", Image, queue_size=2)
     info_pub = rospy.Publisher(args.ns + "/depth/camera_info", CameraInfo, queue_size=2)
     period_ns = int(round(1e9 / args.rate))
-    colors = [color_rgb(args.color_width, args.color_height, i).tobytes() for i in range(256)]
+    colors = Cached(lambda i: color_rgb(args.color_width, args.color_height, i).tobytes(), 256)
+    depths = Cached(lambda i: depth_bytes(args, i), 50)
     rate = rospy.Rate(args.rate)
     i = 0
     while not rospy.is_shutdown():
+        color_data, depth_data = colors(i), depths(i)  # before the stamp: "publish" is the stamp
         if args.start > 0:
             stamp_ns = int(args.start * 1e9) + i * period_ns
             if 0 <= args.jump_back_at <= i:
@@ -91,11 +110,11 @@ def main():
         info_pub.publish(camera_info(args, stamp))
         color_stamp = rospy.Time(nsecs=stamp_ns + int(args.color_skew_ms * 1e6))
         color_pub.publish(image(color_stamp, "rgb8", args.color_width, args.color_height,
-                                3 * args.color_width, colors[i % 256]))
+                                3 * args.color_width, color_data))
         if args.depth_type == "string":
             depth_pub.publish(String(data="not an image"))
         else:
-            depth_pub.publish(depth_image(args, stamp, i))
+            depth_pub.publish(depth_image(args, stamp, depth_data))
         i += 1
         try:
             rate.sleep()
