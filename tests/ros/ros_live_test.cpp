@@ -3,6 +3,7 @@
 // every frame is checked pixel for pixel. Also the spec grammar, and what bad input does.
 
 #include "devices/recording/frame_codec.h"
+#include "devices/replay/replay_spec.h"
 #include "devices/ros/ros_device.h"
 #include "devices/ros/ros_master.h"
 #include "devices/ros/ros_source_spec.h"
@@ -17,16 +18,19 @@
 #include <array>
 #include <chrono>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <sys/wait.h>
 #include <thread>
+#include <tuple>
 
 namespace dc::devices::ros {
 namespace {
 
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
+namespace fs = std::filesystem;
 
 // publish_camera.py's defaults and formulas.
 constexpr int kDepthW = 64, kDepthH = 48, kColorW = 80, kColorH = 60;
@@ -367,6 +371,49 @@ TEST_F(RosLive, ClockJumpingBackIsReportedAndFramesGoOn) {
     ASSERT_LE(got.others.size(), 1u);
     for (const CaptureResult& r : got.others)
         EXPECT_NE(r.message.find("jumped back"), std::string::npos) << r.message;
+}
+
+TEST_F(RosLive, BagRecordedWithRosbagFromTheLiveTopicsReplaysAsSeenLive) {
+    publish({"--color-skew-ms", "4"});
+    const std::string bagPath = dir_->path("live.bag");
+    test::ChildProcess recorder({"rosbag", "record", "-O", bagPath, "/camera/depth/image_rect_raw",
+                                 "/camera/color/image_raw", "/camera/depth/camera_info"},
+                                dir_->path("rosbag.log"));
+    // rosbag writes to live.bag.active while it records; wait until messages go in before watching live.
+    const auto recording = Clock::now() + 15s;
+    const auto recorded = [&] {
+        std::error_code error;
+        const auto size = fs::file_size(bagPath + ".active", error);
+        return !error && size > 100'000;
+    };
+    while (!recorded() && Clock::now() < recording)
+        std::this_thread::sleep_for(50ms);
+    auto device = openDevice(kDepthTopic);
+    ASSERT_TRUE(device);
+    const Captured live = capture(*device, 8);
+    ASSERT_EQ(live.frames.size(), 8u) << publisherLog();
+    device.reset();
+    recorder.stop();
+    ASSERT_TRUE(fs::exists(bagPath)) << readFile(dir_->path("rosbag.log"));
+
+    auto bag = replay::openReplaySpecSource(bagPath);
+    ASSERT_TRUE(bag) << bag.error().message;
+    std::size_t compared = 0;
+    for (const frame::FramePtr& seen : live.frames) {
+        const std::size_t i = (*bag)->indexAtTime(seen->timestampNs);
+        ASSERT_EQ((*bag)->timestampNs(i), seen->timestampNs) << "a frame seen live is missing from the bag";
+        auto replayed = (*bag)->frame(i);
+        ASSERT_TRUE(replayed) << replayed.error().message;
+        ASSERT_TRUE(replayed->capturedImage.bytes && seen->capturedImage.bytes) << "no colour";
+        EXPECT_EQ(replayed->sceneDepth->depthMeters.pixels, seen->sceneDepth->depthMeters.pixels);
+        EXPECT_EQ(*replayed->capturedImage.bytes, *seen->capturedImage.bytes);
+        EXPECT_EQ(replayed->capturedImage.format, seen->capturedImage.format);
+        const frame::Intrinsics a = replayed->cameraIntrinsics, b = seen->cameraIntrinsics;
+        EXPECT_EQ(std::tie(a.fx, a.fy, a.cx, a.cy, a.width, a.height),
+                  std::tie(b.fx, b.fy, b.cx, b.cy, b.width, b.height));
+        ++compared;
+    }
+    EXPECT_EQ(compared, live.frames.size());
 }
 
 TEST_F(RosLive, MasterThatGoesAwayShowsDisconnectedAndStreamingResumesWhenItIsBack) {
