@@ -1,6 +1,7 @@
 #include "devices/ros/ros_device.h"
 
 #include "base/log.h"
+#include "devices/replay/replay_source.h"
 #include "devices/ros/ros_image.h"
 #include "devices/ros/ros_node.h"
 #include "frame/calibration.h"
@@ -45,6 +46,7 @@ Capabilities RosDevice::capabilities() const {
     c.sceneDepth = true;
     c.color = !config_.colorTopic.empty();
     c.reconnects = true;
+    c.pose = !config_.fixedFrame.empty();
     return c;
 }
 
@@ -113,8 +115,9 @@ Status RosDevice::subscribe() {
         [this](RosImage image) { post(ColorMessage{std::move(image)}); },
         [this](RosCameraInfo info) { post(std::move(info)); },
     };
-    auto subscription = Subscription::create({config_.depthTopic, config_.colorTopic, config_.infoTopic},
-                                             std::move(callbacks));
+    auto subscription =
+        Subscription::create({config_.depthTopic, config_.colorTopic, config_.infoTopic, config_.fixedFrame},
+                             std::move(callbacks));
     if (!subscription)
         return subscription.error();
     subscription_ = std::move(*subscription);
@@ -199,6 +202,7 @@ std::optional<CaptureResult> RosDevice::takeDepth(RosImage& image) {
         return report(config_.depthTopic + ": the publisher's clock jumped back " +
                       std::to_string((previous - image.stampNs) / 1'000'000) + " ms; pairing starts again");
     }
+    depthFrameId_ = image.frameId;
     StampedDepth stamped{++depthSequence_, image.stampNs, std::move(*depth)};
     if (config_.colorTopic.empty())
         depthOnly_ = std::move(stamped); // nothing to wait for
@@ -246,6 +250,22 @@ std::optional<frame::Intrinsics> RosDevice::intrinsicsFor(int width, int height)
     return frame::intrinsicsFromFieldOfView(width, height, kFallbackFovDegrees);
 }
 
+// The camera's pose from /tf when a fixed frame was asked for; a missing transform is said once and the
+// frame goes on without a pose.
+std::optional<frame::Pose> RosDevice::poseAt(std::int64_t stampNs) {
+    if (config_.fixedFrame.empty() || !subscription_)
+        return std::nullopt;
+    auto t = subscription_->transform(depthFrameId_, stampNs);
+    if (!t) {
+        if (t.error().message != lastPoseProblem_)
+            logWarning(description() + ": " + t.error().message);
+        lastPoseProblem_ = t.error().message;
+        return std::nullopt;
+    }
+    lastPoseProblem_.clear();
+    return replay::poseFromQuaternion(t->translationMeters.data(), t->rotationXyzw.data());
+}
+
 frame::FramePtr RosDevice::makeFrame(PairedCapture capture) {
     const int w = capture.depth.depthMeters.width;
     const int h = capture.depth.depthMeters.height;
@@ -262,6 +282,7 @@ frame::FramePtr RosDevice::makeFrame(PairedCapture capture) {
         frame->cameraIntrinsics = k->scaledTo(frame->capturedImage.width, frame->capturedImage.height);
     }
     frame->sceneDepth = frame::DepthData{std::move(capture.depth.depthMeters), {}};
+    frame->pose = poseAt(capture.depth.timestampNs);
     return frame;
 }
 

@@ -26,7 +26,8 @@ class Subscription;
 // spinner thread (one per device) only copies each message into a small inbox; the capture thread
 // converts, pairs depth with colour by header stamp within the tolerance, and builds frames. The master is
 // probed once a second: when it goes away the device is Disconnected, and reconnect() subscribes again
-// once it is back. Timestamps are the images' header stamps (ROS time, the publisher's wall clock).
+// once it is back. Timestamps are the images' header stamps (ROS time, the publisher's wall clock). With a
+// fixed frame, each frame's pose is the depth image's frame in it, from /tf at the image's stamp.
 class RosDevice final : public Device {
 public:
     explicit RosDevice(RosSourceConfig config);
@@ -69,6 +70,7 @@ private:
     std::optional<CaptureResult> checkWatchdog();
     std::optional<CaptureResult> report(std::string message);
     std::optional<frame::Intrinsics> intrinsicsFor(int width, int height);
+    std::optional<frame::Pose> poseAt(std::int64_t stampNs);
     frame::FramePtr makeFrame(PairedCapture capture);
     std::optional<CaptureResult> nextFrame();
 
@@ -84,6 +86,8 @@ private:
     std::optional<frame::Intrinsics> depthK_; // from camera_info, at camera_info's size
     bool warnedApproximate_ = false;
     std::string lastProblem_; // reported once until something else happens
+    std::string lastPoseProblem_;
+    std::string depthFrameId_; // header.frame_id of the newest depth image: the camera's frame in /tf
     std::int64_t lastDepthStampNs_ = 0;
     std::uint64_t depthSequence_ = 0;
     std::uint64_t colorSequence_ = 0;

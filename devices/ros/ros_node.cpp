@@ -6,6 +6,9 @@
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/Image.h>
+#include <tf2/buffer_core.h>
+#include <tf2/exceptions.h>
+#include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
 #include <mutex>
@@ -18,6 +21,8 @@ namespace {
 // it retries forever when the master vanished between our probe and the call.
 constexpr double kMasterRetrySeconds = 2.0;
 constexpr std::uint32_t kImageQueueSize = 2; // latest wins: a slow consumer sees new images, not old ones
+constexpr std::uint32_t kTfQueueSize = 100;  // /tf carries many small messages from many publishers
+constexpr double kTfCacheSeconds = 10.0;
 
 std::mutex& nodeMutex() {
     static std::mutex mutex;
@@ -51,6 +56,29 @@ RosCameraInfo toCameraInfo(const sensor_msgs::CameraInfo& m) {
     info.distortionModel = m.distortion_model;
     info.d = m.D;
     return info;
+}
+
+::ros::Time rosTime(std::int64_t ns) {
+    ::ros::Time t;
+    t.fromNSec(static_cast<std::uint64_t>(ns));
+    return t;
+}
+
+RosTransform toTransform(const geometry_msgs::Transform& t) {
+    RosTransform out;
+    out.translationMeters = {t.translation.x, t.translation.y, t.translation.z};
+    out.rotationXyzw = {t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w};
+    return out;
+}
+
+// tf2's messages span lines; ours are one.
+std::string oneLine(std::string text) {
+    for (char& c : text)
+        if (c == '\n')
+            c = ' ';
+    while (!text.empty() && text.back() == ' ')
+        text.pop_back();
+    return text;
 }
 
 } // namespace
@@ -100,6 +128,8 @@ struct Subscription::Impl {
     std::unique_ptr<::ros::NodeHandle> node;
     std::unique_ptr<::ros::AsyncSpinner> spinner;
     std::vector<::ros::Subscriber> subscribers;
+    std::string fixedFrame;
+    tf2::BufferCore tf{::ros::Duration(kTfCacheSeconds)};
 
     // An exception thrown into roscpp's spinner would end its thread: a message we cannot copy is dropped.
     template <class Deliver> static void guarded(Deliver&& deliver) {
@@ -118,6 +148,12 @@ struct Subscription::Impl {
     void onInfo(const sensor_msgs::CameraInfoConstPtr& m) {
         guarded([&] { callbacks.info(toCameraInfo(*m)); });
     }
+    void onTf(const tf2_msgs::TFMessageConstPtr& m, bool isStatic) {
+        for (const geometry_msgs::TransformStamped& t : m->transforms)
+            guarded([&] { tf.setTransform(t, "depthcloud", isStatic); });
+    }
+    void onTfDynamic(const tf2_msgs::TFMessageConstPtr& m) { onTf(m, false); }
+    void onTfStatic(const tf2_msgs::TFMessageConstPtr& m) { onTf(m, true); }
 
     void subscribe(const SubscriptionTopics& topics) {
         node = std::make_unique<::ros::NodeHandle>();
@@ -128,6 +164,12 @@ struct Subscription::Impl {
             subscribers.push_back(
                 node->subscribe(topics.color, kImageQueueSize, &Impl::onColor, this, hints));
         subscribers.push_back(node->subscribe(topics.info, 1, &Impl::onInfo, this, hints));
+        fixedFrame = topics.fixedFrame;
+        if (!fixedFrame.empty()) {
+            subscribers.push_back(node->subscribe("/tf", kTfQueueSize, &Impl::onTfDynamic, this, hints));
+            subscribers.push_back(
+                node->subscribe("/tf_static", kTfQueueSize, &Impl::onTfStatic, this, hints));
+        }
         spinner = std::make_unique<::ros::AsyncSpinner>(1, &queue);
         spinner->start();
     }
@@ -146,6 +188,21 @@ struct Subscription::Impl {
 
 Subscription::Subscription(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 Subscription::~Subscription() = default;
+
+Expected<RosTransform> Subscription::transform(const std::string& frameId, std::int64_t stampNs) const {
+    const std::string& fixed = impl_->fixedFrame;
+    if (fixed.empty())
+        return Error{"no fixed frame to look poses up in"};
+    try {
+        try {
+            return toTransform(impl_->tf.lookupTransform(fixed, frameId, rosTime(stampNs)).transform);
+        } catch (const tf2::ExtrapolationException&) {
+            return toTransform(impl_->tf.lookupTransform(fixed, frameId, ::ros::Time(0)).transform);
+        }
+    } catch (const std::exception& e) {
+        return Error{"no pose of " + frameId + " in " + fixed + " from /tf: " + oneLine(e.what())};
+    }
+}
 
 Expected<std::unique_ptr<Subscription>> Subscription::create(const SubscriptionTopics& topics,
                                                              SubscriptionCallbacks callbacks) {

@@ -28,8 +28,9 @@ Expected<std::vector<TopicInfo>> advertisedTopics();
 
 struct SubscriptionTopics {
     std::string depth;
-    std::string color; // empty: none
-    std::string info;  // the depth camera's camera_info
+    std::string color;      // empty: none
+    std::string info;       // the depth camera's camera_info
+    std::string fixedFrame; // non-empty: listen to /tf and /tf_static for poses in this frame
 };
 
 // Called on the subscription's own spinner thread; they must return quickly and not throw.
@@ -47,6 +48,10 @@ public:
                                                           SubscriptionCallbacks callbacks);
     ~Subscription();
     Subscription(const Subscription&) = delete;
+    // Where `frameId` is in the fixed frame at `stampNs`, from /tf and /tf_static (p_fixed = R p + t); the
+    // newest transform when /tf has none that recent yet. Thread-safe. Fails, in one line, when the two
+    // frames are not connected or no fixed frame was asked for.
+    Expected<RosTransform> transform(const std::string& frameId, std::int64_t stampNs) const;
     Subscription& operator=(const Subscription&) = delete;
 
 private:

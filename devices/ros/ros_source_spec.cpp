@@ -35,7 +35,7 @@ Expected<std::string> topicName(const std::string& name, const std::string& what
         name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_/") ==
             std::string::npos;
     if (!valid)
-        return Error{"'" + name + "' in --source ros: is not a ROS topic name (" + what + ")"};
+        return Error{"'" + name + "' in --source ros: is not a ROS name (" + what + ")"};
     return name.front() == '/' ? name : "/" + name;
 }
 
@@ -74,6 +74,11 @@ Status parseOption(const std::string& part, RosSourceConfig& config, bool& color
         if (auto uri = parseMasterUri(value); !uri)
             return Error{"master=" + value + " in --source ros: " + uri.error().message};
         config.masterUri = value;
+    } else if (key == "frame") {
+        auto frame = topicName(value, "frame=");
+        if (!frame)
+            return frame.error();
+        config.fixedFrame = frame->substr(1); // tf2 frame ids carry no leading slash
     } else if (key == "tolerance") {
         return milliseconds(key, value, config.pairTolerance);
     } else if (key == "watchdog") {

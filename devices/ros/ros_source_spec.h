@@ -15,8 +15,11 @@ namespace dc::devices::ros {
 //   master=URI         http://HOST:PORT (default: ROS_MASTER_URI)
 //   tolerance=MS       largest depth/colour stamp difference that still pairs (default 20)
 //   watchdog=MS        no depth image for this long shows "Stalled" (default 2000)
+//   frame=FIXED_FRAME  each frame's pose: where the depth image's frame_id (an optical frame, so OpenCV's
+//                      camera axes) is in FIXED_FRAME, from /tf and /tf_static
 inline constexpr const char* kRosSourceSpecHelp =
-    "ros:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:master=http://HOST:PORT][:tolerance=MS][:watchdog=MS]";
+    "ros:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:master=http://HOST:PORT][:tolerance=MS][:watchdog=MS]"
+    "[:frame=FIXED_FRAME]";
 
 struct RosSourceConfig {
     std::string depthTopic;
@@ -25,6 +28,7 @@ struct RosSourceConfig {
     std::string masterUri; // empty: ROS_MASTER_URI
     std::chrono::milliseconds pairTolerance{20};
     std::chrono::milliseconds watchdog{2000};
+    std::string fixedFrame; // empty: no pose
 };
 
 // The topics beside a depth topic, named the way ROS camera drivers (realsense2_camera, openni2,

@@ -6,12 +6,15 @@ pixel values from formulas the C++ test recomputes from each image's stamp: fram
 START + i * PERIOD, so a received frame names its own index. Runs until killed (SIGTERM or SIGINT).
 """
 import argparse
+import math
 import sys
 
 import numpy as np
 import rospy
+from geometry_msgs.msg import TransformStamped
 from sensor_msgs.msg import CameraInfo, Image
 from std_msgs.msg import String
+from tf2_msgs.msg import TFMessage
 
 FX, FY, CX, CY = 50.5, 51.25, 31.5, 23.75  # at the test's 64x48; scaled with the size
 
@@ -71,6 +74,29 @@ def camera_info(args, stamp):
     return m
 
 
+def transform(stamp, parent, child, xyz, xyzw):
+    t = TransformStamped()
+    t.header.stamp, t.header.frame_id, t.child_frame_id = stamp, parent, child
+    t.transform.translation.x, t.transform.translation.y, t.transform.translation.z = xyz
+    r = t.transform.rotation
+    r.x, r.y, r.z, r.w = xyzw
+    return t
+
+
+def publish_tf_static(root):
+    """root -> camera_link, 1 m up, latched on /tf_static as robot_state_publisher does."""
+    pub = rospy.Publisher("/tf_static", TFMessage, queue_size=1, latch=True)
+    pub.publish(TFMessage([transform(rospy.Time(0), root, "camera_link", (0, 0, 1), (0, 0, 0, 1))]))
+    return pub
+
+
+def camera_tf(stamp, i):
+    """camera_link -> the depth image's optical frame: turned 90 degrees about z, sliding 1 cm a frame."""
+    quarter = math.sqrt(0.5)
+    return TFMessage([transform(stamp, "camera_link", "camera_depth_optical_frame",
+                                (0.01 * (i % 50), 0.5, -0.25), (0, 0, quarter, quarter))])
+
+
 def main():
     p = argparse.ArgumentParser()
     p.add_argument("--ns", default="/camera")
@@ -84,6 +110,7 @@ def main():
     p.add_argument("--color-skew-ms", type=float, default=0.0)
     p.add_argument("--jump-back-at", type=int, default=-1, help="from this frame on, stamps go 10 s back")
     p.add_argument("--depth-type", default="image", choices=["image", "string"])
+    p.add_argument("--tf-root", default="", help="publish /tf_static and /tf from this frame to the camera")
     args = p.parse_args()
 
     rospy.init_node("depthcloud_test_camera", anonymous=True)
@@ -93,6 +120,9 @@ def main():
         depth_pub = rospy.Publisher(args.ns + "/depth/image_rect_raw", Image, queue_size=2)
     color_pub = rospy.Publisher(args.ns + "/color/image_raw", Image, queue_size=2)
     info_pub = rospy.Publisher(args.ns + "/depth/camera_info", CameraInfo, queue_size=2)
+    if args.tf_root:
+        static_pub = publish_tf_static(args.tf_root)  # kept: a latched topic lives as long as its publisher
+        tf_pub = rospy.Publisher("/tf", TFMessage, queue_size=10)
     period_ns = int(round(1e9 / args.rate))
     colors = Cached(lambda i: color_rgb(args.color_width, args.color_height, i).tobytes(), 256)
     depths = Cached(lambda i: depth_bytes(args, i), 50)
@@ -107,6 +137,8 @@ def main():
         else:
             stamp_ns = rospy.Time.now().to_nsec()
         stamp = rospy.Time(nsecs=stamp_ns)
+        if args.tf_root:  # before the images: a receiver finds the pose when the image comes
+            tf_pub.publish(camera_tf(stamp, i))
         info_pub.publish(camera_info(args, stamp))
         color_stamp = rospy.Time(nsecs=stamp_ns + int(args.color_skew_ms * 1e6))
         color_pub.publish(image(color_stamp, "rgb8", args.color_width, args.color_height,

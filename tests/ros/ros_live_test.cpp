@@ -218,6 +218,10 @@ TEST(RosSourceSpec, ParsesTopicsMasterAndTimes) {
     EXPECT_EQ(c->masterUri, "http://127.0.0.1:11411");
     EXPECT_EQ(c->pairTolerance, 5ms);
     EXPECT_EQ(c->watchdog, 700ms);
+    EXPECT_EQ(c->fixedFrame, "");
+    auto posed = parseRosSourceSpec("/camera/depth/image_rect_raw:frame=/odom");
+    ASSERT_TRUE(posed) << posed.error().message;
+    EXPECT_EQ(posed->fixedFrame, "odom");
     auto depthOnly = parseRosSourceSpec("/camera/depth/image_rect_raw:color=none");
     ASSERT_TRUE(depthOnly);
     EXPECT_EQ(depthOnly->colorTopic, "");
@@ -371,6 +375,32 @@ TEST_F(RosLive, ClockJumpingBackIsReportedAndFramesGoOn) {
     ASSERT_LE(got.others.size(), 1u);
     for (const CaptureResult& r : got.others)
         EXPECT_NE(r.message.find("jumped back"), std::string::npos) << r.message;
+}
+
+TEST_F(RosLive, PoseComesFromTfAndTfStaticAtTheImageStamp) {
+    publish({"--tf-root", "map"});
+    auto device = openDevice(std::string(kDepthTopic) + ":frame=map");
+    ASSERT_TRUE(device);
+    EXPECT_TRUE(device->capabilities().pose);
+    // The /tf subscription may connect a little after the images': frames before the first pose are
+    // skipped, every one after it must have its pose.
+    std::vector<frame::FramePtr> posed;
+    const auto deadline = Clock::now() + 15s;
+    while (posed.size() < 5 && Clock::now() < deadline)
+        for (frame::FramePtr& f : capture(*device, 1, 1s).frames)
+            if (f->pose || !posed.empty())
+                posed.push_back(std::move(f));
+    ASSERT_EQ(posed.size(), 5u) << publisherLog();
+    for (const frame::FramePtr& f : posed) {
+        const std::int64_t i = frameIndex(f->timestampNs);
+        ASSERT_TRUE(f->pose) << "frame " << i << " has no pose";
+        // map -> camera_link (1 m up, /tf_static) then camera_link -> optical frame (90 degrees about z,
+        // sliding 1 cm a frame, /tf): publish_camera.py's transforms.
+        const std::array<double, 16> expected{
+            0, 1, 0, 0, -1, 0, 0, 0, 0, 0, 1, 0, 0.01 * static_cast<double>(i % 50), 0.5, 0.75, 1};
+        for (std::size_t k = 0; k < 16; ++k)
+            EXPECT_NEAR(f->pose->cameraToWorld[k], expected[k], 1e-9) << "frame " << i << " element " << k;
+    }
 }
 
 TEST_F(RosLive, BagRecordedWithRosbagFromTheLiveTopicsReplaysAsSeenLive) {
