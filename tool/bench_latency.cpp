@@ -1,5 +1,5 @@
-#include "base/clock.h"
 #include "base/files.h"
+#include "devices/frame_age.h"
 #include "devices/session.h"
 #include "devices/source_spec.h"
 #include "tool/live_commands.h"
@@ -20,12 +20,6 @@ using namespace std::chrono_literals;
 
 constexpr int kWarmupFrames = 10;     // the first frames include connecting and subscribing
 constexpr auto kFirstFrameWait = 10s; // a source that delivers nothing in this long is a failure
-
-std::int64_t realtimeNowNs() {
-    return std::chrono::duration_cast<std::chrono::nanoseconds>(
-               std::chrono::system_clock::now().time_since_epoch())
-        .count();
-}
 
 double percentile(std::vector<double> values, double p) {
     std::sort(values.begin(), values.end());
@@ -54,13 +48,13 @@ CLI::App* addBenchLatencyCommand(CLI::App& bench, BenchLatencyOptions& o) {
 }
 
 // Frame stamps of ros: sources are the publisher's wall clock (ROS time), those of live cameras
-// CLOCK_MONOTONIC; publisher and consumer share the machine's clocks on the loopback.
+// CLOCK_MONOTONIC: on the loopback, publisher and consumer share the machine's clocks.
 int runBenchLatency(const BenchLatencyOptions& o) {
     auto device = devices::openSourceSpec(o.source);
     if (!device)
         return fail("--source: " + device.error().message, kExitBadArguments);
-    const bool ros = o.source.starts_with("ros:");
-    if (!ros && !(*device)->capabilities().monotonicTimestamps)
+    const devices::Capabilities capabilities = (*device)->capabilities();
+    if (!devices::nowOnFrameClockNs(capabilities))
         return fail("--source: " + o.source + " is not live: its frames carry no capture time",
                     kExitBadArguments);
     devices::Session session(std::move(*device));
@@ -71,12 +65,12 @@ int runBenchLatency(const BenchLatencyOptions& o) {
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.seconds);
     while (std::chrono::steady_clock::now() < end) {
         auto frame = session.waitForFrame(seen == 0 ? std::chrono::milliseconds(kFirstFrameWait) : 1000ms);
-        const std::int64_t now = ros ? realtimeNowNs() : base::monotonicNowNs();
+        const std::int64_t now = *devices::nowOnFrameClockNs(capabilities);
         if (!frame && seen == 0)
             return fail(session.description() + " delivered no frame in " +
                         std::to_string(kFirstFrameWait.count()) + " s");
         if (frame && ++seen > kWarmupFrames)
-            agesMs.push_back(static_cast<double>(now - (*frame)->timestampNs) / 1e6);
+            agesMs.push_back(devices::frameAgeMs(**frame, now));
     }
     const devices::SessionStats stats = session.stats();
     session.stop();
@@ -85,7 +79,8 @@ int runBenchLatency(const BenchLatencyOptions& o) {
     const double median = percentile(agesMs, 0.5), p99 = percentile(agesMs, 0.99),
                  worst = percentile(agesMs, 1.0);
     std::printf("%s: %zu frames, %s -> delivered: median %.2f ms, p99 %.2f ms, max %.2f ms; %llu dropped\n",
-                session.description().c_str(), agesMs.size(), ros ? "publish" : "capture", median, p99, worst,
+                session.description().c_str(), agesMs.size(),
+                capabilities.realtimeTimestamps ? "publish" : "capture", median, p99, worst,
                 static_cast<unsigned long long>(stats.framesDropped));
     if (!o.jsonPath.empty()) {
         const nlohmann::json j{{"source", o.source}, {"frames", agesMs.size()},

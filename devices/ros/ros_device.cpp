@@ -47,6 +47,7 @@ Capabilities RosDevice::capabilities() const {
     c.color = !config_.colorTopic.empty();
     c.reconnects = true;
     c.pose = !config_.fixedFrame.empty();
+    c.realtimeTimestamps = true;
     return c;
 }
 

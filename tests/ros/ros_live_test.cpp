@@ -2,6 +2,7 @@
 // camera (publish_camera.py) whose pixels follow formulas recomputed here from each image's stamp, so
 // every frame is checked pixel for pixel. Also the spec grammar, and what bad input does.
 
+#include "devices/frame_age.h"
 #include "devices/recording/frame_codec.h"
 #include "devices/replay/replay_spec.h"
 #include "devices/ros/ros_device.h"
@@ -375,6 +376,20 @@ TEST_F(RosLive, ClockJumpingBackIsReportedAndFramesGoOn) {
     ASSERT_LE(got.others.size(), 1u);
     for (const CaptureResult& r : got.others)
         EXPECT_NE(r.message.find("jumped back"), std::string::npos) << r.message;
+}
+
+TEST_F(RosLive, StampsArePublishTimesOnTheRealtimeClockSoTheLatencyIsKnown) {
+    publish({"--start", "0"}); // stamped with rospy.Time.now()
+    auto device = openDevice(kDepthTopic);
+    ASSERT_TRUE(device);
+    const Captured got = capture(*device, 3);
+    ASSERT_EQ(got.frames.size(), 3u) << publisherLog();
+    const std::optional<std::int64_t> now = nowOnFrameClockNs(device->capabilities());
+    ASSERT_TRUE(now);
+    // On another clock (CLOCK_MONOTONIC counts from boot) the age would be off by decades.
+    const double ageMs = frameAgeMs(*got.frames.back(), *now);
+    EXPECT_GT(ageMs, 0.0);
+    EXPECT_LT(ageMs, 60'000.0);
 }
 
 TEST_F(RosLive, PoseComesFromTfAndTfStaticAtTheImageStamp) {
