@@ -6,7 +6,7 @@
 #include "devices/ros/ros_node.h"
 #include "frame/calibration.h"
 
-#include <cmath>
+#include <cstdio>
 
 namespace dc::devices::ros {
 
@@ -15,7 +15,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-constexpr auto kProbeTimeout = 1000ms;       // a master that does not accept a connection in this is away
+constexpr auto kProbeTimeout = 1000ms;       // a master that does not answer in this long is away
 constexpr auto kMasterCheckInterval = 1s;    // how soon a vanished master shows as Disconnected
 constexpr auto kInfoGrace = 1s;              // depth waits this long for camera_info before a guessed lens
 constexpr std::size_t kMaxInbox = 8;         // messages the capture thread has not taken yet; oldest dropped

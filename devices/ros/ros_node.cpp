@@ -1,6 +1,8 @@
 // Compiled as C++17: includes Debian's ROS 1 headers (ros_messages.h says why).
 #include "devices/ros/ros_node.h"
 
+#include "devices/ros/ros_conversions.h"
+
 #include <ros/callback_queue.h>
 #include <ros/master.h>
 #include <ros/ros.h>
@@ -35,40 +37,10 @@ std::string withoutTrailingSlash(std::string uri) {
     return uri;
 }
 
-RosImage toImage(const sensor_msgs::Image& m) {
-    RosImage image;
-    image.stampNs = static_cast<std::int64_t>(m.header.stamp.sec) * 1'000'000'000 + m.header.stamp.nsec;
-    image.frameId = m.header.frame_id;
-    image.encoding = m.encoding;
-    image.width = m.width;
-    image.height = m.height;
-    image.step = m.step;
-    image.bigEndian = m.is_bigendian != 0;
-    image.data = m.data;
-    return image;
-}
-
-RosCameraInfo toCameraInfo(const sensor_msgs::CameraInfo& m) {
-    RosCameraInfo info;
-    info.width = m.width;
-    info.height = m.height;
-    std::copy(m.K.begin(), m.K.end(), info.k.begin());
-    info.distortionModel = m.distortion_model;
-    info.d = m.D;
-    return info;
-}
-
 ::ros::Time rosTime(std::int64_t ns) {
     ::ros::Time t;
     t.fromNSec(static_cast<std::uint64_t>(ns));
     return t;
-}
-
-RosTransform toTransform(const geometry_msgs::Transform& t) {
-    RosTransform out;
-    out.translationMeters = {t.translation.x, t.translation.y, t.translation.z};
-    out.rotationXyzw = {t.rotation.x, t.rotation.y, t.rotation.z, t.rotation.w};
-    return out;
 }
 
 // tf2's messages span lines; ours are one.
