@@ -22,9 +22,12 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <netinet/in.h>
+#include <sys/socket.h>
 #include <sys/wait.h>
 #include <thread>
 #include <tuple>
+#include <unistd.h>
 
 namespace dc::devices::ros {
 namespace {
@@ -244,6 +247,66 @@ TEST(RosSourceSpec, RefusesMalformedSpecsNamingThePart) {
         EXPECT_NE(device.error().message.find(named), std::string::npos) << device.error().message;
         EXPECT_EQ(device.error().message.find('\n'), std::string::npos) << device.error().message;
     }
+}
+
+TEST(RosMaster, ParsesHttpHostPortAndRefusesTheRest) {
+    auto m = parseMasterUri("http://robot.local:11311/");
+    ASSERT_TRUE(m) << m.error().message;
+    EXPECT_EQ(m->host, "robot.local");
+    EXPECT_EQ(m->port, 11311);
+    for (const char* bad : {"robot:11311", "http://robot", "http://:11311", "http://robot:0",
+                            "http://robot:70000", "http://robot:11311x", "https://robot:11311"})
+        EXPECT_FALSE(parseMasterUri(bad)) << bad;
+}
+
+// A listening socket that never answers (the kernel completes the connection from the backlog).
+class SilentListener {
+public:
+    SilentListener() {
+        fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+        sockaddr_in address{};
+        address.sin_family = AF_INET;
+        address.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+        socklen_t length = sizeof address;
+        if (::bind(fd_, reinterpret_cast<sockaddr*>(&address), sizeof address) == 0 &&
+            ::listen(fd_, 4) == 0 && ::getsockname(fd_, reinterpret_cast<sockaddr*>(&address), &length) == 0)
+            port_ = ntohs(address.sin_port);
+    }
+    ~SilentListener() { ::close(fd_); }
+    int fd() const { return fd_; }
+    int port() const { return port_; }
+
+private:
+    int fd_ = -1;
+    int port_ = 0;
+};
+
+TEST(RosMaster, SomethingThatListensButIsNoMasterIsRefusedNotWaitedFor) {
+    SilentListener silent;
+    ASSERT_GT(silent.port(), 0);
+    auto uri = parseMasterUri("http://127.0.0.1:" + std::to_string(silent.port()));
+    ASSERT_TRUE(uri);
+    const Status mute = probeMaster(*uri, 300ms);
+    ASSERT_FALSE(mute);
+    EXPECT_NE(mute.error().message.find("does not answer"), std::string::npos) << mute.error().message;
+
+    // A web server: it answers, but not as a master.
+    SilentListener web;
+    auto webUri = parseMasterUri("http://127.0.0.1:" + std::to_string(web.port()));
+    ASSERT_TRUE(webUri);
+    std::thread server([&] {
+        const int client = ::accept(web.fd(), nullptr, nullptr);
+        char request[1024];
+        (void)::recv(client, request, sizeof request, 0);
+        const std::string reply = "HTTP/1.1 404 Not Found\r\nContent-Length: 0\r\n\r\n";
+        (void)::send(client, reply.data(), reply.size(), MSG_NOSIGNAL);
+        ::close(client);
+    });
+    const Status answered = probeMaster(*webUri, 10'000ms);
+    server.join();
+    ASSERT_FALSE(answered);
+    EXPECT_NE(answered.error().message.find("no ROS master (HTTP/1.1 404 Not Found)"), std::string::npos)
+        << answered.error().message;
 }
 
 TEST(RosCli, UnreachableMasterExitsOneAndMalformedSpecExitsTwoInOneLine) {
