@@ -7,6 +7,7 @@ START + i * PERIOD, so a received frame names its own index. Runs until killed (
 """
 import argparse
 import math
+import os
 import sys
 
 import numpy as np
@@ -108,7 +109,7 @@ def main():
     p.add_argument("--rate", type=float, default=30.0)
     p.add_argument("--start", type=float, default=1000.0, help="stamp of frame 0 (s); 0: the wall clock")
     p.add_argument("--color-skew-ms", type=float, default=0.0)
-    p.add_argument("--jump-back-at", type=int, default=-1, help="from this frame on, stamps go 10 s back")
+    p.add_argument("--jump-back-file", default="", help="once this file exists, stamps go 10 s back")
     p.add_argument("--depth-type", default="image", choices=["image", "string"])
     p.add_argument("--tf-root", default="", help="publish /tf_static and /tf from this frame to the camera")
     args = p.parse_args()
@@ -132,7 +133,7 @@ def main():
         color_data, depth_data = colors(i), depths(i)  # before the stamp: "publish" is the stamp
         if args.start > 0:
             stamp_ns = int(args.start * 1e9) + i * period_ns
-            if 0 <= args.jump_back_at <= i:
+            if args.jump_back_file and os.path.exists(args.jump_back_file):
                 stamp_ns -= 10_000_000_000
         else:
             stamp_ns = rospy.Time.now().to_nsec()
