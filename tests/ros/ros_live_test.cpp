@@ -532,6 +532,25 @@ TEST_F(RosLive, BagRecordedWithRosbagFromTheLiveTopicsReplaysAsSeenLive) {
     EXPECT_EQ(compared, live.frames.size());
 }
 
+TEST_F(RosLive, PublisherThatStopsShowsStalledAndItsReturnStreamsAgain) {
+    publish({});
+    auto device = openDevice(std::string(kDepthTopic) + ":watchdog=500");
+    ASSERT_TRUE(device);
+    ASSERT_EQ(capture(*device, 1).frames.size(), 1u) << publisherLog();
+
+    publisher_.stop();
+    const auto deadline = Clock::now() + 10s;
+    while (device->state() != DeviceState::Stalled && Clock::now() < deadline)
+        (void)capture(*device, 1, 1s);
+    ASSERT_EQ(device->state(), DeviceState::Stalled);
+
+    publish({}); // the master tells the subscriber about the new publisher
+    const Captured again = capture(*device, 2);
+    ASSERT_EQ(again.frames.size(), 2u) << publisherLog();
+    EXPECT_EQ(device->state(), DeviceState::Streaming);
+    expectDepth(*again.frames.back(), frameIndex(again.frames.back()->timestampNs), false);
+}
+
 TEST_F(RosLive, MasterThatGoesAwayShowsDisconnectedAndStreamingResumesWhenItIsBack) {
     publish({});
     auto device = openSourceSpec(std::string("ros:") + kDepthTopic + ":color=none");
