@@ -13,4 +13,11 @@ inline std::int64_t monotonicNowNs() {
         .count();
 }
 
+// CLOCK_REALTIME now, in nanoseconds: the clock of ROS header stamps (ROS time without simulation).
+inline std::int64_t realtimeNowNs() {
+    return std::chrono::duration_cast<std::chrono::nanoseconds>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+}
+
 } // namespace dc::base

@@ -21,6 +21,9 @@ struct Capabilities {
     bool approximateIntrinsics = false;
     // Frame timestamps are CLOCK_MONOTONIC capture times, so now - timestampNs is the frame's age.
     bool monotonicTimestamps = false;
+    // Frame timestamps are CLOCK_REALTIME publish times (a ROS publisher's header stamps, on this machine or
+    // one whose clock is in sync), so now - timestampNs is the frame's age too.
+    bool realtimeTimestamps = false;
     // The frame rate the source promises (0: unknown). A session delivering clearly less cannot keep it.
     double nominalFps = 0.0;
 };

@@ -110,9 +110,10 @@ void Session::onStalled(const std::string& message) {
 }
 
 std::optional<frame::FramePtr> Session::noteAge(std::optional<frame::FramePtr> frame) {
-    if (capabilities_.monotonicTimestamps && frame && *frame) {
+    const std::optional<std::int64_t> now = nowOnFrameClockNs(capabilities_);
+    if (now && frame && *frame) {
         std::lock_guard lock(agesMutex_);
-        ages_.add(frameAgeMs(**frame));
+        ages_.add(frameAgeMs(**frame, *now));
     }
     return frame;
 }

@@ -30,7 +30,8 @@ struct SessionStats {
     std::uint64_t framesDropped = 0; // replaced in the mailbox before any consumer took them
     double deviceFps = 0.0;          // delivery rate measured on the capture thread
     // Median age of the frames consumers took (now - timestampNs at take), for devices whose timestamps are
-    // CLOCK_MONOTONIC capture times (Capabilities::monotonicTimestamps); 0 for the others.
+    // capture times on a clock of this machine (Capabilities::monotonicTimestamps or realtimeTimestamps); 0
+    // for the others.
     double latencyMs = 0.0;
 };
 

@@ -3,6 +3,9 @@
 #include "devices/replay/replay_spec.h"
 #include "devices/synthetic/synthetic_device.h"
 #include "devices/uvc/live_source_spec.h"
+#ifdef DC_HAVE_ROS
+#include "devices/ros/ros_source_spec.h"
+#endif
 
 #include <charconv>
 #include <sstream>
@@ -71,6 +74,10 @@ Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec) {
         return openLiveSourceSpec(spec);
     if (spec.starts_with("replay:"))
         return replay::openReplaySpec(spec.substr(7));
+#ifdef DC_HAVE_ROS
+    if (spec.starts_with("ros:"))
+        return ros::openRosSourceSpec(spec.substr(4));
+#endif
     return Error{"unknown source '" + spec + "' (expected " + kSourceSpecHelp + ")"};
 }
 

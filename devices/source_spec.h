@@ -11,7 +11,9 @@ namespace dc::devices {
 // The grammar of --source, shown in errors and --help.
 inline constexpr const char* kSourceSpecHelp =
     "synthetic[:WxH[@FPS]][:motion][:exact] | replay:PATH[:loop][:paused][:speed=X][:calib=FILE] | "
-    "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS]";
+    "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS] | "
+    "ros:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:master=http://HOST:PORT][:tolerance=MS][:watchdog=MS]"
+    "[:frame=FIXED_FRAME]";
 
 // Parses a --source value and builds the device it names. Errors name the offending part.
 Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec);

@@ -2,6 +2,7 @@
 
 #include "base/clock.h"
 #include "base/log.h"
+#include "devices/frame_age.h"
 #include "devices/recording/take_names.h"
 #include "devices/source_spec.h"
 
@@ -116,11 +117,9 @@ void Instrument::presented(const processing::ShownFrame& shown) {
         return;
     ++shown_;
     lastShownTimestampNs_ = static_cast<std::uint64_t>(shown.frame->timestampNs);
-    // Only sources stamping frames with the monotonic clock have a latency; a recording's clock has none.
-    if (session_->capabilities().monotonicTimestamps) {
-        const double ms = static_cast<double>(base::monotonicNowNs() - shown.frame->timestampNs) * 1e-6;
-        latencyMs_.add(ms);
-    }
+    // Only sources stamping frames with a clock of this machine have a latency; a recording's clock has none.
+    if (const auto now = devices::nowOnFrameClockNs(session_->capabilities()))
+        latencyMs_.add(devices::frameAgeMs(*shown.frame, *now));
 }
 
 void Instrument::drainEvents() {

@@ -1,3 +1,6 @@
+#ifdef DC_HAVE_ROS
+#include "devices/ros/ros_listing.h"
+#endif
 #include "devices/uvc/live_devices.h"
 #include "devices/uvc/usb/hotplug_monitor.h"
 #include "tool/live_commands.h"
@@ -94,10 +97,27 @@ int watchHotplug(double seconds) {
     return kExitOk;
 }
 
+#ifdef DC_HAVE_ROS
+void printRos(const devices::ros::RosListing& ros) {
+    if (!ros.problem.empty()) {
+        std::printf("note: %s\n", ros.problem.c_str());
+        return;
+    }
+    std::printf("ROS master %s: %zu image topic(s)\n", ros.masterUri.c_str(), ros.imageTopics.size());
+    for (const std::string& topic : ros.imageTopics)
+        std::printf("  %s  open with: depthcloud --source ros:%s\n", topic.c_str(), topic.c_str());
+}
+
+nlohmann::json toJson(const devices::ros::RosListing& ros) {
+    return {{"master", ros.masterUri}, {"imageTopics", ros.imageTopics}, {"problem", ros.problem}};
+}
+#endif
+
 } // namespace
 
 CLI::App* addDevicesCommand(CLI::App& app, DevicesOptions& o) {
-    CLI::App* cmd = app.add_subcommand("devices", "list depth cameras: USB identity, V4L2 nodes, modes");
+    CLI::App* cmd = app.add_subcommand("devices", "list depth cameras: USB identity, V4L2 nodes, modes; with "
+                                                  "ROS_MASTER_URI set, the master's image topics");
     cmd->add_flag("--all", o.all, "also list USB devices without a depth node");
     cmd->add_flag("--json", o.json, "print the listing as JSON");
     cmd->add_option("--watch", o.watchSeconds, "then print USB plug/unplug events for this many seconds")
@@ -109,12 +129,20 @@ int runDevices(const DevicesOptions& o) {
     devices::ListOptions options;
     options.includeNonDepth = o.all;
     const devices::LiveDeviceListing listing = devices::listLiveDevices(options);
+#ifdef DC_HAVE_ROS
+    // Only a master the environment names is asked: a desktop without ROS sees nothing of it.
+    const devices::ros::RosListing ros = devices::ros::listRosImageTopics();
+#endif
     if (o.json) {
         nlohmann::json devicesJson = nlohmann::json::array();
         for (const auto& d : listing.devices)
             devicesJson.push_back(toJson(d));
-        std::printf("%s\n",
-                    nlohmann::json{{"devices", devicesJson}, {"problems", listing.problems}}.dump(2).c_str());
+        nlohmann::json out{{"devices", devicesJson}, {"problems", listing.problems}};
+#ifdef DC_HAVE_ROS
+        if (ros.configured)
+            out["ros"] = toJson(ros);
+#endif
+        std::printf("%s\n", out.dump(2).c_str());
     } else {
         if (listing.devices.empty())
             std::printf("no depth cameras found\n");
@@ -122,6 +150,10 @@ int runDevices(const DevicesOptions& o) {
             printDevice(d);
         for (const std::string& p : listing.problems)
             std::printf("note: %s\n", p.c_str());
+#ifdef DC_HAVE_ROS
+        if (ros.configured)
+            printRos(ros);
+#endif
     }
     std::fflush(stdout);
     return o.watchSeconds > 0 ? watchHotplug(o.watchSeconds) : kExitOk;

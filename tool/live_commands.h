@@ -19,6 +19,12 @@ struct BenchCaptureOptions {
     std::string jsonPath;
 };
 
+struct BenchLatencyOptions {
+    std::string source;
+    double seconds = 10.0;
+    std::string jsonPath;
+};
+
 // `depthcloud devices`: depth-capable cameras (USB identity, V4L2 nodes with their modes, which node is
 // depth/color/infrared, the --source that opens each) and, with --watch, USB hotplug events.
 CLI::App* addDevicesCommand(CLI::App& app, DevicesOptions& options);
@@ -27,5 +33,9 @@ int runDevices(const DevicesOptions& options);
 // `depthcloud bench capture`: CPU time per frame of the capture thread's conversions.
 CLI::App* addBenchCaptureCommand(CLI::App& bench, BenchCaptureOptions& options);
 int runBenchCapture(const BenchCaptureOptions& options);
+
+// `depthcloud bench latency`: how old a live source's frames are when a consumer takes them (median, p99).
+CLI::App* addBenchLatencyCommand(CLI::App& bench, BenchLatencyOptions& options);
+int runBenchLatency(const BenchLatencyOptions& options);
 
 } // namespace dc::tool

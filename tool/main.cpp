@@ -113,6 +113,8 @@ int main(int argc, char** argv) {
     CLI::App* benchInstrumentCmd = addBenchInstrumentCommand(*benchCmd, benchInstrument);
     BenchCaptureOptions benchCapture;
     CLI::App* benchCaptureCmd = addBenchCaptureCommand(*benchCmd, benchCapture);
+    BenchLatencyOptions benchLatency;
+    CLI::App* benchLatencyCmd = addBenchLatencyCommand(*benchCmd, benchLatency);
     BenchUpsampleOptions benchUpsample;
     CLI::App* benchUpsampleCmd = addBenchUpsampleCommand(*benchCmd, benchUpsample);
     DevicesOptions devicesOptions;
@@ -140,6 +142,8 @@ int main(int argc, char** argv) {
         return runBenchInstrument(benchInstrument);
     if (benchCaptureCmd->parsed())
         return runBenchCapture(benchCapture);
+    if (benchLatencyCmd->parsed())
+        return runBenchLatency(benchLatency);
     if (benchUpsampleCmd->parsed())
         return runBenchUpsample(benchUpsample);
     if (devicesCmd->parsed())

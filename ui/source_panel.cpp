@@ -59,8 +59,8 @@ std::optional<std::string> drawSourcePanel(const SourceList& list, SourcePanelSt
     ImGui::Separator();
     ImGui::SetNextItemWidth(-ImGui::GetFontSize() * 4.0f);
     const bool entered =
-        ImGui::InputTextWithHint("##spec", "replay:PATH, v4l2:/dev/videoN, usb:VID:PID", state.spec.data(),
-                                 state.spec.size(), ImGuiInputTextFlags_EnterReturnsTrue);
+        ImGui::InputTextWithHint("##spec", "replay:PATH, v4l2:/dev/videoN, usb:VID:PID, ros:TOPIC",
+                                 state.spec.data(), state.spec.size(), ImGuiInputTextFlags_EnterReturnsTrue);
     ImGui::SameLine();
     if ((ImGui::Button("Open") || entered) && state.spec[0] != '\0')
         chosen = std::string(state.spec.data());

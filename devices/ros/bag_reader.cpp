@@ -1,6 +1,8 @@
 // Compiled as C++17: includes Debian's ROS 1 headers (ros_messages.h says why).
 #include "devices/ros/bag_reader.h"
 
+#include "devices/ros/ros_conversions.h"
+
 #include <geometry_msgs/Transform.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
@@ -13,23 +15,6 @@
 namespace dc::devices::ros {
 
 namespace {
-
-std::int64_t toNs(const ::ros::Time& t) {
-    return static_cast<std::int64_t>(t.sec) * 1'000'000'000 + t.nsec;
-}
-
-RosImage toImage(const sensor_msgs::Image& m) {
-    RosImage image;
-    image.stampNs = toNs(m.header.stamp);
-    image.frameId = m.header.frame_id;
-    image.encoding = m.encoding;
-    image.width = m.width;
-    image.height = m.height;
-    image.step = m.step;
-    image.bigEndian = m.is_bigendian != 0;
-    image.data = m.data;
-    return image;
-}
 
 template <class T> boost::shared_ptr<T> first(const rosbag::Bag& bag, const std::string& topic) {
     try {
@@ -118,13 +103,7 @@ std::optional<RosCameraInfo> BagReader::firstCameraInfo(const std::string& topic
     auto m = first<sensor_msgs::CameraInfo>(impl_->bag, topic);
     if (!m)
         return std::nullopt;
-    RosCameraInfo info;
-    info.width = m->width;
-    info.height = m->height;
-    std::copy(m->K.begin(), m->K.end(), info.k.begin());
-    info.distortionModel = m->distortion_model;
-    info.d = m->D;
-    return info;
+    return toCameraInfo(*m);
 }
 
 std::optional<float> BagReader::firstFloat32(const std::string& topic) const {
@@ -137,8 +116,7 @@ std::optional<RosTransform> BagReader::firstTransform(const std::string& topic) 
     auto m = first<geometry_msgs::Transform>(impl_->bag, topic);
     if (!m)
         return std::nullopt;
-    return RosTransform{{m->translation.x, m->translation.y, m->translation.z},
-                        {m->rotation.x, m->rotation.y, m->rotation.z, m->rotation.w}};
+    return toTransform(*m);
 }
 
 struct BagWriter::Impl {

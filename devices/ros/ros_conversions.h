@@ -1,0 +1,49 @@
+#pragma once
+
+// ROS 1 messages -> the plain values of ros_messages.h. Includes Debian's generated message headers, so
+// only the C++17 glue files (bag_reader.cpp, ros_node.cpp) may include this header.
+
+#include "devices/ros/ros_messages.h"
+
+#include <geometry_msgs/Transform.h>
+#include <ros/time.h>
+#include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/Image.h>
+
+#include <algorithm>
+
+namespace dc::devices::ros {
+
+inline std::int64_t toNs(const ::ros::Time& t) {
+    return static_cast<std::int64_t>(t.sec) * 1'000'000'000 + t.nsec;
+}
+
+inline RosImage toImage(const sensor_msgs::Image& m) {
+    RosImage image;
+    image.stampNs = toNs(m.header.stamp);
+    image.frameId = m.header.frame_id;
+    image.encoding = m.encoding;
+    image.width = m.width;
+    image.height = m.height;
+    image.step = m.step;
+    image.bigEndian = m.is_bigendian != 0;
+    image.data = m.data;
+    return image;
+}
+
+inline RosCameraInfo toCameraInfo(const sensor_msgs::CameraInfo& m) {
+    RosCameraInfo info;
+    info.width = m.width;
+    info.height = m.height;
+    std::copy(m.K.begin(), m.K.end(), info.k.begin());
+    info.distortionModel = m.distortion_model;
+    info.d = m.D;
+    return info;
+}
+
+inline RosTransform toTransform(const geometry_msgs::Transform& m) {
+    return RosTransform{{m.translation.x, m.translation.y, m.translation.z},
+                        {m.rotation.x, m.rotation.y, m.rotation.z, m.rotation.w}};
+}
+
+} // namespace dc::devices::ros

@@ -1,0 +1,325 @@
+#include "devices/ros/ros_device.h"
+
+#include "base/log.h"
+#include "devices/replay/replay_source.h"
+#include "devices/ros/ros_image.h"
+#include "devices/ros/ros_node.h"
+#include "frame/calibration.h"
+
+#include <cstdio>
+
+namespace dc::devices::ros {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+using namespace std::chrono_literals;
+
+constexpr auto kProbeTimeout = 1000ms;       // a master that does not answer in this long is away
+constexpr auto kMasterCheckInterval = 1s;    // how soon a vanished master shows as Disconnected
+constexpr auto kInfoGrace = 1s;              // depth waits this long for camera_info before a guessed lens
+constexpr std::size_t kMaxInbox = 8;         // messages the capture thread has not taken yet; oldest dropped
+constexpr double kFallbackFovDegrees = 87.0; // RealSense depth's, as for bags without camera_info
+constexpr const char* kImageType = "sensor_msgs/Image";
+constexpr const char* kCameraInfoType = "sensor_msgs/CameraInfo";
+
+std::string seconds(std::chrono::milliseconds ms) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.1f s", static_cast<double>(ms.count()) / 1000.0);
+    return text;
+}
+
+} // namespace
+
+RosDevice::RosDevice(RosSourceConfig config) : config_(std::move(config)) {}
+
+RosDevice::~RosDevice() {
+    subscription_.reset();
+}
+
+std::string RosDevice::description() const {
+    return "ROS " + config_.depthTopic + (config_.colorTopic.empty() ? "" : " + " + config_.colorTopic);
+}
+
+Capabilities RosDevice::capabilities() const {
+    Capabilities c;
+    c.sceneDepth = true;
+    c.color = !config_.colorTopic.empty();
+    c.reconnects = true;
+    c.pose = !config_.fixedFrame.empty();
+    c.realtimeTimestamps = true;
+    return c;
+}
+
+void RosDevice::interruptCapture() {
+    {
+        const std::lock_guard lock(inboxMutex_);
+        interrupted_ = true;
+    }
+    inboxReady_.notify_all();
+}
+
+// Probes the master with a bounded wait before roscpp touches it: roscpp's own calls wait without bound.
+Status RosDevice::connect() {
+    auto master = resolveMasterUri(config_.masterUri);
+    if (!master)
+        return master.error();
+    master_ = *master;
+    if (Status s = probeMaster(master_, kProbeTimeout); !s)
+        return s;
+    return startRosNode(master_);
+}
+
+// A topic advertised with another type would subscribe without ever delivering (roscpp refuses the
+// connection): say so now. A topic nobody advertises yet is fine; the watchdog shows it as Stalled.
+Status RosDevice::checkTopicTypes() {
+    auto topics = advertisedTopics();
+    if (!topics)
+        return topics.error();
+    const std::pair<const std::string*, const char*> expected[] = {{&config_.depthTopic, kImageType},
+                                                                   {&config_.colorTopic, kImageType},
+                                                                   {&config_.infoTopic, kCameraInfoType}};
+    for (const auto& [name, type] : expected)
+        for (const TopicInfo& t : *topics)
+            if (t.name == *name && t.type != type)
+                return Error{"ROS topic " + t.name + " carries " + t.type + ", not " + type};
+    return {};
+}
+
+Status RosDevice::doOpen() {
+    if (Status s = connect(); !s)
+        return s;
+    if (Status s = checkTopicTypes(); !s)
+        return s;
+    logInfo(description() + ": ROS master " + master_.uri + ", camera_info " + config_.infoTopic);
+    return {};
+}
+
+void RosDevice::post(Message message) {
+    {
+        const std::lock_guard lock(inboxMutex_);
+        inbox_.push_back(std::move(message));
+        while (inbox_.size() > kMaxInbox)
+            inbox_.pop_front();
+    }
+    inboxReady_.notify_all();
+}
+
+Status RosDevice::subscribe() {
+    subscription_.reset();
+    {
+        const std::lock_guard lock(inboxMutex_);
+        inbox_.clear();
+    }
+    SubscriptionCallbacks callbacks{
+        [this](RosImage image) { post(DepthMessage{std::move(image)}); },
+        [this](RosImage image) { post(ColorMessage{std::move(image)}); },
+        [this](RosCameraInfo info) { post(std::move(info)); },
+    };
+    auto subscription =
+        Subscription::create({config_.depthTopic, config_.colorTopic, config_.infoTopic, config_.fixedFrame},
+                             std::move(callbacks));
+    if (!subscription)
+        return subscription.error();
+    subscription_ = std::move(*subscription);
+    pairer_ = FramePairer(std::chrono::nanoseconds(config_.pairTolerance).count());
+    lastDepthStampNs_ = 0;
+    startedAt_ = lastFrame_ = lastMasterCheck_ = Clock::now();
+    stalled_ = false;
+    return {};
+}
+
+Status RosDevice::doStart() {
+    return subscribe();
+}
+
+void RosDevice::doStop() {
+    subscription_.reset();
+    pairer_.reset();
+    depthOnly_.reset();
+}
+
+void RosDevice::doClose() {
+    subscription_.reset();
+}
+
+Status RosDevice::doReconnect() {
+    if (Status s = connect(); !s)
+        return s;
+    if (Status s = subscribe(); !s)
+        return s;
+    logInfo(description() + ": ROS master " + master_.uri + " is back; subscribed again");
+    return {};
+}
+
+std::optional<CaptureResult> RosDevice::checkMaster() {
+    if (Clock::now() - lastMasterCheck_ < kMasterCheckInterval)
+        return std::nullopt;
+    lastMasterCheck_ = Clock::now();
+    const Status alive = probeMaster(master_, kProbeTimeout);
+    if (alive)
+        return std::nullopt;
+    // Publishers may keep sending over their own connections, but nothing new can be found without the
+    // master: stop listening until it is back.
+    subscription_.reset();
+    pairer_.reset();
+    depthOnly_.reset();
+    return CaptureResult{CaptureResult::Kind::Disconnected, nullptr, alive.error().message};
+}
+
+std::optional<CaptureResult> RosDevice::checkWatchdog() {
+    const auto silent = std::chrono::duration_cast<std::chrono::milliseconds>(Clock::now() - lastFrame_);
+    if (stalled_ || silent < config_.watchdog)
+        return std::nullopt;
+    stalled_ = true;
+    return CaptureResult{CaptureResult::Kind::Stalled, nullptr,
+                         "no frame from " + config_.depthTopic + " for " + seconds(silent)};
+}
+
+// A problem that repeats with every message is reported once, not thirty times a second, until another
+// problem replaces it.
+std::optional<CaptureResult> RosDevice::report(std::string message) {
+    if (message == lastProblem_)
+        return std::nullopt;
+    lastProblem_ = message;
+    return CaptureResult{CaptureResult::Kind::Error, nullptr, std::move(message)};
+}
+
+std::deque<RosDevice::Message> RosDevice::waitForMessages(std::chrono::milliseconds timeout) {
+    std::unique_lock lock(inboxMutex_);
+    inboxReady_.wait_for(lock, timeout, [this] { return !inbox_.empty() || interrupted_; });
+    interrupted_ = false;
+    return std::exchange(inbox_, {});
+}
+
+std::optional<CaptureResult> RosDevice::takeDepth(RosImage& image) {
+    auto depth = depthFromImage(image, kRosDepthMetersPerUnit);
+    if (!depth)
+        return report(config_.depthTopic + ": " + depth.error().message);
+    const std::int64_t previous = std::exchange(lastDepthStampNs_, image.stampNs);
+    if (image.stampNs != 0 && image.stampNs < previous) {
+        // Images stamped before the jump can never pair with those after it.
+        pairer_.reset();
+        return report(config_.depthTopic + ": the publisher's clock jumped back " +
+                      std::to_string((previous - image.stampNs) / 1'000'000) + " ms; pairing starts again");
+    }
+    depthFrameId_ = image.frameId;
+    StampedDepth stamped{++depthSequence_, image.stampNs, std::move(*depth)};
+    if (config_.colorTopic.empty())
+        depthOnly_ = std::move(stamped); // nothing to wait for
+    else
+        pairer_.pushDepth(std::move(stamped));
+    return std::nullopt;
+}
+
+std::optional<CaptureResult> RosDevice::takeColor(RosImage& image) {
+    auto color = colorFromImage(image);
+    if (!color)
+        return report(config_.colorTopic + ": " + color.error().message);
+    pairer_.pushColor({++colorSequence_, image.stampNs, std::move(*color)});
+    return std::nullopt;
+}
+
+void RosDevice::takeInfo(const RosCameraInfo& info) {
+    auto record = cameraInfoRecord(info);
+    if (record)
+        depthK_ = record->intrinsics;
+    else
+        (void)report(config_.infoTopic + ": " + record.error().message);
+}
+
+std::optional<CaptureResult> RosDevice::take(Message& message) {
+    if (auto* depth = std::get_if<DepthMessage>(&message))
+        return takeDepth(depth->image);
+    if (auto* color = std::get_if<ColorMessage>(&message))
+        return takeColor(color->image);
+    takeInfo(std::get<RosCameraInfo>(message));
+    return std::nullopt;
+}
+
+// The depth lens from camera_info; without one after kInfoGrace, a field-of-view guess, said once.
+std::optional<frame::Intrinsics> RosDevice::intrinsicsFor(int width, int height) {
+    if (depthK_)
+        return depthK_->scaledTo(width, height);
+    if (Clock::now() - startedAt_ < kInfoGrace)
+        return std::nullopt;
+    if (!warnedApproximate_) {
+        warnedApproximate_ = true;
+        logWarning(description() + ": no camera_info on " + config_.infoTopic +
+                   "; approximate geometry from a default field of view");
+    }
+    return frame::intrinsicsFromFieldOfView(width, height, kFallbackFovDegrees);
+}
+
+// The camera's pose from /tf when a fixed frame was asked for; a missing transform is said once and the
+// frame goes on without a pose.
+std::optional<frame::Pose> RosDevice::poseAt(std::int64_t stampNs) {
+    if (config_.fixedFrame.empty() || !subscription_)
+        return std::nullopt;
+    auto t = subscription_->transform(depthFrameId_, stampNs);
+    if (!t) {
+        if (t.error().message != lastPoseProblem_)
+            logWarning(description() + ": " + t.error().message);
+        lastPoseProblem_ = t.error().message;
+        return std::nullopt;
+    }
+    lastPoseProblem_.clear();
+    return replay::poseFromQuaternion(t->translationMeters.data(), t->rotationXyzw.data());
+}
+
+frame::FramePtr RosDevice::makeFrame(PairedCapture capture) {
+    const int w = capture.depth.depthMeters.width;
+    const int h = capture.depth.depthMeters.height;
+    const auto k = intrinsicsFor(w, h);
+    if (!k)
+        return nullptr;
+    auto frame = std::make_shared<frame::Frame>();
+    frame->sequence = sequence_++;
+    frame->timestampNs = capture.depth.timestampNs;
+    frame->cameraIntrinsics = *k;
+    if (capture.color) {
+        // One set of intrinsics per frame, as for a registered sensor: the depth camera's places the points.
+        frame->capturedImage = std::move(capture.color->image);
+        frame->cameraIntrinsics = k->scaledTo(frame->capturedImage.width, frame->capturedImage.height);
+    }
+    frame->sceneDepth = frame::DepthData{std::move(capture.depth.depthMeters), {}};
+    frame->pose = poseAt(capture.depth.timestampNs);
+    return frame;
+}
+
+std::optional<CaptureResult> RosDevice::nextFrame() {
+    for (;;) {
+        std::optional<PairedCapture> capture = pairer_.pop();
+        if (!capture && depthOnly_)
+            capture = PairedCapture{std::move(*std::exchange(depthOnly_, std::nullopt)), std::nullopt};
+        if (!capture)
+            return std::nullopt;
+        if (frame::FramePtr frame = makeFrame(std::move(*capture))) {
+            lastFrame_ = Clock::now();
+            stalled_ = false;
+            return CaptureResult{CaptureResult::Kind::Frame, std::move(frame), {}};
+        }
+    }
+}
+
+CaptureResult RosDevice::doCapture(std::chrono::milliseconds timeout) {
+    if (auto gone = checkMaster())
+        return *gone;
+    if (auto frame = nextFrame())
+        return *frame;
+    if (auto stalled = checkWatchdog())
+        return *stalled;
+    // Bounded so that the master is checked on time even when the caller waits long.
+    std::deque<Message> messages = waitForMessages(std::min<std::chrono::milliseconds>(timeout, 100ms));
+    std::optional<CaptureResult> problem;
+    for (Message& message : messages)
+        if (auto p = take(message); p && !problem)
+            problem = std::move(p);
+    if (problem)
+        return *problem;
+    if (auto frame = nextFrame())
+        return *frame;
+    return {CaptureResult::Kind::Timeout, nullptr, {}};
+}
+
+} // namespace dc::devices::ros

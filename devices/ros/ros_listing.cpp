@@ -1,0 +1,36 @@
+#include "devices/ros/ros_listing.h"
+
+#include "devices/ros/ros_master.h"
+#include "devices/ros/ros_node.h"
+
+#include <cstdlib>
+
+namespace dc::devices::ros {
+
+namespace {
+constexpr std::chrono::milliseconds kProbeTimeout{1000};
+} // namespace
+
+RosListing listRosImageTopics() {
+    RosListing listing;
+    const char* env = std::getenv("ROS_MASTER_URI");
+    if (env == nullptr || *env == '\0')
+        return listing;
+    listing.configured = true;
+    listing.masterUri = env;
+    auto master = parseMasterUri(env);
+    Status reached = master ? probeMaster(*master, kProbeTimeout) : Status(master.error());
+    if (reached)
+        reached = startRosNode(*master);
+    auto topics = reached ? advertisedTopics() : Expected<std::vector<TopicInfo>>(reached.error());
+    if (!topics) {
+        listing.problem = topics.error().message;
+        return listing;
+    }
+    for (const TopicInfo& t : *topics)
+        if (t.type == "sensor_msgs/Image")
+            listing.imageTopics.push_back(t.name);
+    return listing;
+}
+
+} // namespace dc::devices::ros

@@ -1,0 +1,135 @@
+#include "devices/ros/ros_source_spec.h"
+
+#include "devices/ros/ros_device.h"
+#include "devices/ros/ros_master.h"
+
+#include <cctype>
+#include <charconv>
+#include <sstream>
+#include <vector>
+
+namespace dc::devices::ros {
+
+namespace {
+
+// Splits at ':' but keeps master=http://HOST:PORT whole: its own colons are not separators.
+std::vector<std::string> splitOptions(const std::string& spec) {
+    std::vector<std::string> parts;
+    std::stringstream in(spec);
+    for (std::string part; std::getline(in, part, ':');) {
+        const bool continuesUri =
+            !parts.empty() && parts.back().starts_with("master=") &&
+            (part.starts_with("//") || (!part.empty() && std::isdigit(static_cast<unsigned char>(part[0]))));
+        if (continuesUri)
+            parts.back() += ":" + part;
+        else
+            parts.push_back(part);
+    }
+    return parts;
+}
+
+// ROS graph names: letters, digits, '_' and '/'; a relative name is taken from the root namespace.
+Expected<std::string> topicName(const std::string& name, const std::string& what) {
+    const bool valid =
+        !name.empty() && name != "/" && name.back() != '/' && name.find("//") == std::string::npos &&
+        name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_/") ==
+            std::string::npos;
+    if (!valid)
+        return Error{"'" + name + "' in --source ros: is not a ROS name (" + what + ")"};
+    return name.front() == '/' ? name : "/" + name;
+}
+
+Status milliseconds(const std::string& key, const std::string& value, std::chrono::milliseconds& out) {
+    long ms = 0;
+    const auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), ms);
+    if (value.empty() || ec != std::errc() || end != value.data() + value.size() || ms <= 0 || ms > 600'000)
+        return Error{key + "=" + value + " in --source ros: expected milliseconds, e.g. " + key + "=20"};
+    out = std::chrono::milliseconds(ms);
+    return {};
+}
+
+Status parseOption(const std::string& part, RosSourceConfig& config, bool& colorGiven, bool& infoGiven) {
+    const auto eq = part.find('=');
+    const std::string key = part.substr(0, eq);
+    const std::string value = eq == std::string::npos ? std::string() : part.substr(eq + 1);
+    if (eq == std::string::npos)
+        return Error{"unknown option '" + part + "' in --source ros: (expected " + kRosSourceSpecHelp + ")"};
+    if (key == "color") {
+        colorGiven = true;
+        if (value == "none") {
+            config.colorTopic.clear();
+            return {};
+        }
+        auto topic = topicName(value, "color=");
+        if (!topic)
+            return topic.error();
+        config.colorTopic = *topic;
+    } else if (key == "info") {
+        auto topic = topicName(value, "info=");
+        if (!topic)
+            return topic.error();
+        config.infoTopic = *topic;
+        infoGiven = true;
+    } else if (key == "master") {
+        if (auto uri = parseMasterUri(value); !uri)
+            return Error{"master=" + value + " in --source ros: " + uri.error().message};
+        config.masterUri = value;
+    } else if (key == "frame") {
+        auto frame = topicName(value, "frame=");
+        if (!frame)
+            return frame.error();
+        config.fixedFrame = frame->substr(1); // tf2 frame ids carry no leading slash
+    } else if (key == "tolerance") {
+        return milliseconds(key, value, config.pairTolerance);
+    } else if (key == "watchdog") {
+        return milliseconds(key, value, config.watchdog);
+    } else {
+        return Error{"unknown option '" + part + "' in --source ros: (expected " + kRosSourceSpecHelp + ")"};
+    }
+    return {};
+}
+
+} // namespace
+
+DerivedTopics deriveTopics(const std::string& depthTopic) {
+    const auto slash = depthTopic.rfind('/');
+    const std::string ns = slash == std::string::npos ? std::string() : depthTopic.substr(0, slash);
+    DerivedTopics topics{{}, ns + "/camera_info"};
+    const auto parentSlash = ns.rfind('/');
+    if (parentSlash == std::string::npos)
+        return topics;
+    if (ns.substr(parentSlash + 1).find("depth") != std::string::npos)
+        topics.color = ns.substr(0, parentSlash) + "/color/image_raw";
+    return topics;
+}
+
+Expected<RosSourceConfig> parseRosSourceSpec(const std::string& spec) {
+    const std::vector<std::string> parts = splitOptions(spec);
+    if (parts.empty() || parts[0].empty())
+        return Error{"--source ros: needs a depth topic (expected " + std::string(kRosSourceSpecHelp) + ")"};
+    RosSourceConfig config;
+    auto depth = topicName(parts[0], "the depth topic");
+    if (!depth)
+        return depth.error();
+    config.depthTopic = *depth;
+    bool colorGiven = false;
+    bool infoGiven = false;
+    for (std::size_t i = 1; i < parts.size(); ++i)
+        if (Status s = parseOption(parts[i], config, colorGiven, infoGiven); !s)
+            return s.error();
+    const DerivedTopics derived = deriveTopics(config.depthTopic);
+    if (!colorGiven)
+        config.colorTopic = derived.color;
+    if (!infoGiven)
+        config.infoTopic = derived.info;
+    return config;
+}
+
+Expected<std::unique_ptr<Device>> openRosSourceSpec(const std::string& spec) {
+    auto config = parseRosSourceSpec(spec);
+    if (!config)
+        return config.error();
+    return std::unique_ptr<Device>(std::make_unique<RosDevice>(std::move(*config)));
+}
+
+} // namespace dc::devices::ros
