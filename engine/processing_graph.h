@@ -3,6 +3,7 @@
 #include "engine/demand.h"
 #include "processing/pipeline.h"
 #include "processing/point_colors.h"
+#include "processing/registration.h"
 #include "processing/shown_frame.h"
 
 #include <cstdint>
@@ -39,8 +40,8 @@ public:
 
     // `newFrame`: the frame is a new capture, not the current one again (which temporal stages must not
     // count twice; they recognise it by its timestamp either way).
-    processing::ShownFramePtr run(const frame::FramePtr& frame, const Demand& demand, std::uint64_t generation,
-                                  bool newFrame);
+    processing::ShownFramePtr run(const frame::FramePtr& frame, const Demand& demand,
+                                  std::uint64_t generation, bool newFrame);
     // Drops temporal state and every remembered result (a seek, a new source).
     void reset();
     // How many times `stage` has run: tests count work, not time.
@@ -69,6 +70,13 @@ private:
         int width = 0;
         int height = 0;
         bool operator==(const ImageKey&) const = default;
+    };
+    // A two-sensor frame's colours depend on the depth too (where each point lands in the colour image);
+    // a single camera's on the image and the size alone, so smoothing does not redo them.
+    struct ColoursKey {
+        ImageKey image;
+        std::shared_ptr<const frame::DepthData> registeredDepth;
+        bool operator==(const ColoursKey&) const = default;
     };
     struct EffectKey {
         std::shared_ptr<const processing::RgbImage> image;
@@ -105,7 +113,7 @@ private:
     processing::Pipeline pipeline_;
     processing::CameraColourTable colourTable_;
     Memo<DepthKey, processing::ShownDepth> depth_;
-    Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> pointColors_;
+    Memo<ColoursKey, processing::PointColours> pointColors_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> effectsImage_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> fog_;

@@ -1,0 +1,141 @@
+#include "processing/registration.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dc::processing {
+
+namespace {
+
+// Two samples of one surface that cover the same colour pixel differ in depth by the surface's slope
+// over a depth pixel, plus sensor noise (about 2 cm at 4 m for the noisiest sensors we read): within this
+// much they are the same surface, and the farther one is not hidden.
+float sameSurfaceMeters(float colourZ) {
+    return 0.01f + 0.02f * colourZ;
+}
+
+// The colour-sensor position of every depth sample; z <= 0 where it has none in the colour image.
+struct Projected {
+    float x = 0, y = 0, z = 0;
+};
+
+std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame::CameraModel& depthCamera,
+                                  const frame::CameraModel& colourCamera,
+                                  const frame::RigidTransform& toColour) {
+    std::vector<Projected> out(depth.pixels.size());
+    const frame::Intrinsics& kc = colourCamera.intrinsics;
+    for (int v = 0; v < depth.height; ++v)
+        for (int u = 0; u < depth.width; ++u) {
+            const float z = depth.at(u, v);
+            if (!(z > 0.0f) || !std::isfinite(z))
+                continue;
+            const auto ray = frame::pixelRay(depthCamera, u, v);
+            const auto q = toColour.apply({ray[0] * z, ray[1] * z, z});
+            const auto pixel = frame::projectPoint(colourCamera, q);
+            if (!pixel || (*pixel)[0] < -0.5 || (*pixel)[1] < -0.5 || (*pixel)[0] >= kc.width - 0.5 ||
+                (*pixel)[1] >= kc.height - 0.5)
+                continue;
+            out[static_cast<std::size_t>(v) * depth.width + u] = {
+                static_cast<float>((*pixel)[0]), static_cast<float>((*pixel)[1]), static_cast<float>(q[2])};
+        }
+    return out;
+}
+
+// The nearest depth over each colour pixel, every sample covering its footprint: a depth pixel at depth z
+// spans z / fDepth meters, which the colour camera at distance zc sees as fColour z / (fDepth zc) pixels.
+// A fifth more covers the stretch of lens distortion and slanted surfaces, so neighbouring samples of one
+// surface leave no gap for a farther one to show through.
+std::vector<float> nearestDepth(const std::vector<Projected>& points, const frame::Plane<float>& depth,
+                                double pixelsPerDepthPixel, int width, int height) {
+    std::vector<float> zbuffer(static_cast<std::size_t>(width) * height,
+                               std::numeric_limits<float>::infinity());
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Projected& p = points[i];
+        if (!(p.z > 0.0f))
+            continue;
+        const double half = std::max(0.5, 0.6 * pixelsPerDepthPixel * depth.pixels[i] / p.z);
+        const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - half)));
+        const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + half)));
+        const int y0 = std::max(0, static_cast<int>(std::ceil(p.y - half)));
+        const int y1 = std::min(height - 1, static_cast<int>(std::floor(p.y + half)));
+        for (int y = y0; y <= y1; ++y)
+            for (int x = x0; x <= x1; ++x) {
+                float& nearest = zbuffer[static_cast<std::size_t>(y) * width + x];
+                nearest = std::min(nearest, p.z);
+            }
+    }
+    return zbuffer;
+}
+
+bool proportional(const frame::Intrinsics& a, const frame::Intrinsics& b) {
+    const auto same = [](double p, int pw, double q, int qw) {
+        return std::abs(p / pw - q / qw) <= 1e-12 * std::max(1.0, std::abs(p / pw));
+    };
+    return same(a.fx, a.width, b.fx, b.width) && same(a.fy, a.height, b.fy, b.height) &&
+           same(a.cx, a.width, b.cx, b.width) && same(a.cy, a.height, b.cy, b.height);
+}
+
+} // namespace
+
+Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
+                           int colourWidth, int colourHeight) {
+    Registration out{colourWidth, colourHeight,
+                     std::vector<std::int32_t>(depth.pixels.size(), Registration::kUnseen),
+                     frame::Plane<std::uint8_t>(depth.width, depth.height)};
+    if (depth.empty() || colourWidth <= 0 || colourHeight <= 0 || !rig.depth.intrinsics.valid() ||
+        !rig.colour.intrinsics.valid())
+        return out;
+    const frame::CameraModel depthCamera{rig.depth.intrinsics.scaledTo(depth.width, depth.height),
+                                         rig.depth.lens};
+    const frame::CameraModel colourCamera{rig.colour.intrinsics.scaledTo(colourWidth, colourHeight),
+                                          rig.colour.lens};
+    const std::vector<Projected> points = projectAll(depth, depthCamera, colourCamera, rig.depthToColour);
+    const double pixelsPerDepthPixel = std::max(colourCamera.intrinsics.fx / depthCamera.intrinsics.fx,
+                                                colourCamera.intrinsics.fy / depthCamera.intrinsics.fy);
+    const std::vector<float> zbuffer =
+        nearestDepth(points, depth, pixelsPerDepthPixel, colourWidth, colourHeight);
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        const Projected& p = points[i];
+        if (!(p.z > 0.0f))
+            continue;
+        const auto x = static_cast<std::int32_t>(std::lround(p.x));
+        const auto y = static_cast<std::int32_t>(std::lround(p.y));
+        const std::int32_t pixel =
+            std::clamp(y, 0, colourHeight - 1) * colourWidth + std::clamp(x, 0, colourWidth - 1);
+        if (p.z > zbuffer[static_cast<std::size_t>(pixel)] + sameSurfaceMeters(p.z))
+            continue;
+        out.colourPixel[i] = pixel;
+        out.seen.pixels[i] = 1;
+    }
+    return out;
+}
+
+bool isSingleCamera(const frame::RigCalibration& rig) {
+    return rig.depthToColour.isIdentity() && rig.depth.lens == rig.colour.lens &&
+           proportional(rig.depth.intrinsics, rig.colour.intrinsics);
+}
+
+PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
+                               CameraColourTable& table) {
+    const frame::CapturedImage& image = frame.capturedImage;
+    if (!frame.rig || isSingleCamera(*frame.rig))
+        return {std::make_shared<const RgbImage>(pointColors(image, depth.width, depth.height, table)),
+                nullptr};
+    auto colours = std::make_shared<RgbImage>(
+        RgbImage{depth.width, depth.height, std::vector<std::uint8_t>(depth.pixels.size() * 3, kUnseenGray)});
+    const bool usable = table.use(image);
+    Registration r = registerDepth(depth, *frame.rig, usable ? image.width : 0, usable ? image.height : 0);
+    for (std::size_t i = 0; i < r.colourPixel.size(); ++i) {
+        const std::int32_t pixel = r.colourPixel[i];
+        if (pixel == Registration::kUnseen)
+            continue;
+        const std::uint32_t rgba = table.rgba(pixel % image.width, pixel / image.width);
+        colours->pixels[i * 3] = static_cast<std::uint8_t>(rgba);
+        colours->pixels[i * 3 + 1] = static_cast<std::uint8_t>(rgba >> 8);
+        colours->pixels[i * 3 + 2] = static_cast<std::uint8_t>(rgba >> 16);
+    }
+    return {std::move(colours), std::make_shared<const frame::Plane<std::uint8_t>>(std::move(r.seen))};
+}
+
+} // namespace dc::processing
