@@ -9,9 +9,9 @@
 namespace dc::devices {
 
 // The grammar of --source, shown in errors and --help.
-inline constexpr const char* kSourceSpecHelp =
-    "synthetic[:WxH[@FPS]][:motion][:exact] | replay:PATH[:loop][:paused][:speed=X][:calib=FILE] | "
-    "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS]";
+inline constexpr const char* kSourceSpecHelp = "synthetic[:WxH[@FPS]][:motion][:exact][:rig=rgbd] | "
+                                               "replay:PATH[:loop][:paused][:speed=X][:calib=FILE] | "
+                                               "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS]";
 
 // Parses a --source value and builds the device it names. Errors name the offending part.
 Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec);
