@@ -25,6 +25,7 @@ struct Intrinsics {
     Intrinsics scaledTo(int newWidth, int newHeight) const;
     // Finite, positive focal lengths and a positive size: anything else cannot place points in 3D.
     bool valid() const;
+    bool operator==(const Intrinsics&) const = default;
 };
 
 // A dense single-channel image owned by value, row-major with no padding.
