@@ -110,4 +110,8 @@ std::array<double, 3> pixelRay(const CameraModel& camera, double u, double v) {
     return {x, y, 1.0};
 }
 
+std::string describe(const RigCalibration& rig) {
+    return "two sensors, calibration " + rig.name + (rig.approximate ? " (approximate)" : "");
+}
+
 } // namespace dc::frame

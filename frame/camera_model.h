@@ -66,4 +66,7 @@ struct RigCalibration {
     bool approximate = false; // not measured on this very camera (a default or a nominal value)
 };
 
+// What the status line says about it: "two sensors, calibration NAME", "(approximate)" when it is.
+std::string describe(const RigCalibration& rig);
+
 } // namespace dc::frame
