@@ -6,19 +6,9 @@
 
 namespace dc::frame {
 
-namespace {
-
-// The Brown–Conrady polynomial: radial terms k1 k2 k3 and tangential terms p1 p2.
-std::array<double, 2> brownConrady(const std::array<double, 5>& c, double x, double y) {
-    const double r2 = x * x + y * y;
-    const double radial = 1.0 + r2 * (c[0] + r2 * (c[1] + r2 * c[4]));
-    return {x * radial + 2.0 * c[2] * x * y + c[3] * (r2 + 2.0 * x * x),
-            y * radial + c[2] * (r2 + 2.0 * y * y) + 2.0 * c[3] * x * y};
-}
-
-// The point that the polynomial takes to (x, y). Fixed-point iteration, as OpenCV's undistortPoints does:
-// it converges for the monotonic distortions of real lenses, and 20 steps bring it well below 1e-6 of a
-// normalised unit (a thousandth of a pixel) for the strongest lenses we read.
+// Fixed-point iteration, as OpenCV's undistortPoints does: it converges for the monotonic distortions of
+// real lenses, and 20 steps bring it well below 1e-6 of a normalised unit (a thousandth of a pixel) for the
+// strongest lenses we read.
 std::array<double, 2> invertBrownConrady(const std::array<double, 5>& c, double xd, double yd) {
     double x = xd, y = yd;
     for (int i = 0; i < 20; ++i) {
@@ -32,8 +22,6 @@ std::array<double, 2> invertBrownConrady(const std::array<double, 5>& c, double 
     return {x, y};
 }
 
-} // namespace
-
 const char* toString(LensModel model) {
     switch (model) {
     case LensModel::None:
@@ -44,13 +32,6 @@ const char* toString(LensModel model) {
         return "inverse_brown_conrady";
     }
     return "unknown";
-}
-
-std::array<double, 3> RigidTransform::apply(const std::array<double, 3>& p) const {
-    const auto& r = rotation;
-    const auto& t = translationMeters;
-    return {r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + t[0], r[3] * p[0] + r[4] * p[1] + r[5] * p[2] + t[1],
-            r[6] * p[0] + r[7] * p[1] + r[8] * p[2] + t[2]};
 }
 
 bool RigidTransform::isIdentity() const {
@@ -72,18 +53,6 @@ double rotationError(const std::array<double, 9>& r) {
     return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
 }
 
-std::array<double, 2> distortPoint(const Lens& lens, double x, double y) {
-    switch (lens.model) {
-    case LensModel::None:
-        return {x, y};
-    case LensModel::BrownConrady:
-        return brownConrady(lens.coefficients, x, y);
-    case LensModel::InverseBrownConrady:
-        return invertBrownConrady(lens.coefficients, x, y);
-    }
-    return {x, y};
-}
-
 std::array<double, 2> undistortPoint(const Lens& lens, double x, double y) {
     switch (lens.model) {
     case LensModel::None:
@@ -94,14 +63,6 @@ std::array<double, 2> undistortPoint(const Lens& lens, double x, double y) {
         return brownConrady(lens.coefficients, x, y);
     }
     return {x, y};
-}
-
-std::optional<std::array<double, 2>> projectPoint(const CameraModel& camera, const std::array<double, 3>& p) {
-    if (!(p[2] > 0.0))
-        return std::nullopt;
-    const auto [x, y] = distortPoint(camera.lens, p[0] / p[2], p[1] / p[2]);
-    const Intrinsics& k = camera.intrinsics;
-    return std::array<double, 2>{k.fx * x + k.cx, k.fy * y + k.cy};
 }
 
 std::array<double, 3> pixelRay(const CameraModel& camera, double u, double v) {

@@ -37,7 +37,13 @@ struct RigidTransform {
     std::array<double, 9> rotation{1, 0, 0, 0, 1, 0, 0, 0, 1}; // row-major
     std::array<double, 3> translationMeters{};
 
-    std::array<double, 3> apply(const std::array<double, 3>& p) const;
+    std::array<double, 3> apply(const std::array<double, 3>& p) const {
+        const auto& r = rotation;
+        const auto& t = translationMeters;
+        return {r[0] * p[0] + r[1] * p[1] + r[2] * p[2] + t[0],
+                r[3] * p[0] + r[4] * p[1] + r[5] * p[2] + t[1],
+                r[6] * p[0] + r[7] * p[1] + r[8] * p[2] + t[2]};
+    }
     bool isIdentity() const;
     bool operator==(const RigidTransform&) const = default;
 };
@@ -45,13 +51,41 @@ struct RigidTransform {
 // How far R is from a proper rotation: the largest entry of R Rᵀ - I, or infinity when det R <= 0.
 double rotationError(const std::array<double, 9>& rotation);
 
+// The Brown–Conrady polynomial: radial terms k1 k2 k3 and tangential terms p1 p2 (inline: registration
+// evaluates it for every depth sample).
+inline std::array<double, 2> brownConrady(const std::array<double, 5>& c, double x, double y) {
+    const double r2 = x * x + y * y;
+    const double radial = 1.0 + r2 * (c[0] + r2 * (c[1] + r2 * c[4]));
+    return {x * radial + 2.0 * c[2] * x * y + c[3] * (r2 + 2.0 * x * x),
+            y * radial + c[2] * (r2 + 2.0 * y * y) + 2.0 * c[3] * x * y};
+}
+// The point that the polynomial takes to (x, y).
+std::array<double, 2> invertBrownConrady(const std::array<double, 5>& c, double x, double y);
+
 // The ideal normalised point where the lens images it, and back.
-std::array<double, 2> distortPoint(const Lens& lens, double x, double y);
+inline std::array<double, 2> distortPoint(const Lens& lens, double x, double y) {
+    switch (lens.model) {
+    case LensModel::None:
+        return {x, y};
+    case LensModel::BrownConrady:
+        return brownConrady(lens.coefficients, x, y);
+    case LensModel::InverseBrownConrady:
+        return invertBrownConrady(lens.coefficients, x, y);
+    }
+    return {x, y};
+}
 std::array<double, 2> undistortPoint(const Lens& lens, double x, double y);
 
 // Pixel of a point in the camera's frame (distortion applied); none behind or on the camera's plane.
 // Pixel centres are at integer coordinates, as Intrinsics places them.
-std::optional<std::array<double, 2>> projectPoint(const CameraModel& camera, const std::array<double, 3>& p);
+inline std::optional<std::array<double, 2>> projectPoint(const CameraModel& camera,
+                                                         const std::array<double, 3>& p) {
+    if (!(p[2] > 0.0))
+        return std::nullopt;
+    const auto [x, y] = distortPoint(camera.lens, p[0] / p[2], p[1] / p[2]);
+    const Intrinsics& k = camera.intrinsics;
+    return std::array<double, 2>{k.fx * x + k.cx, k.fy * y + k.cy};
+}
 // The ray through pixel (u, v), scaled to z = 1 (distortion removed).
 std::array<double, 3> pixelRay(const CameraModel& camera, double u, double v);
 

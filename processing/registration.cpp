@@ -1,5 +1,7 @@
 #include "processing/registration.h"
 
+#include "processing/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -25,46 +27,58 @@ std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame:
                                   const frame::RigidTransform& toColour) {
     std::vector<Projected> out(depth.pixels.size());
     const frame::Intrinsics& kc = colourCamera.intrinsics;
-    for (int v = 0; v < depth.height; ++v)
-        for (int u = 0; u < depth.width; ++u) {
-            const float z = depth.at(u, v);
-            if (!(z > 0.0f) || !std::isfinite(z))
-                continue;
-            const auto ray = frame::pixelRay(depthCamera, u, v);
-            const auto q = toColour.apply({ray[0] * z, ray[1] * z, z});
-            const auto pixel = frame::projectPoint(colourCamera, q);
-            if (!pixel || (*pixel)[0] < -0.5 || (*pixel)[1] < -0.5 || (*pixel)[0] >= kc.width - 0.5 ||
-                (*pixel)[1] >= kc.height - 0.5)
-                continue;
-            out[static_cast<std::size_t>(v) * depth.width + u] = {
-                static_cast<float>((*pixel)[0]), static_cast<float>((*pixel)[1]), static_cast<float>(q[2])};
-        }
+    const frame::Intrinsics& kd = depthCamera.intrinsics;
+    const bool pinhole = depthCamera.lens.model == frame::LensModel::None;
+    parallelRanges(depth.height, 16, [&](int rowBegin, int rowEnd) {
+        for (int v = rowBegin; v < rowEnd; ++v)
+            for (int u = 0; u < depth.width; ++u) {
+                const float z = depth.at(u, v);
+                if (!(z > 0.0f) || !std::isfinite(z))
+                    continue;
+                const auto ray = pinhole
+                                     ? std::array<double, 3>{(u - kd.cx) / kd.fx, (v - kd.cy) / kd.fy, 1.0}
+                                     : frame::pixelRay(depthCamera, u, v);
+                const auto q = toColour.apply({ray[0] * z, ray[1] * z, z});
+                const auto pixel = frame::projectPoint(colourCamera, q);
+                if (!pixel || (*pixel)[0] < -0.5 || (*pixel)[1] < -0.5 || (*pixel)[0] >= kc.width - 0.5 ||
+                    (*pixel)[1] >= kc.height - 0.5)
+                    continue;
+                out[static_cast<std::size_t>(v) * depth.width + u] = {static_cast<float>((*pixel)[0]),
+                                                                      static_cast<float>((*pixel)[1]),
+                                                                      static_cast<float>(q[2])};
+            }
+    });
     return out;
 }
 
 // The nearest depth over each colour pixel, every sample covering its footprint: a depth pixel at depth z
 // spans z / fDepth meters, which the colour camera at distance zc sees as fColour z / (fDepth zc) pixels.
 // A fifth more covers the stretch of lens distortion and slanted surfaces, so neighbouring samples of one
-// surface leave no gap for a farther one to show through.
+// surface leave no gap for a farther one to show through. Each piece owns a band of colour rows, so no two
+// threads write one pixel.
 std::vector<float> nearestDepth(const std::vector<Projected>& points, const frame::Plane<float>& depth,
                                 double pixelsPerDepthPixel, int width, int height) {
     std::vector<float> zbuffer(static_cast<std::size_t>(width) * height,
                                std::numeric_limits<float>::infinity());
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        const Projected& p = points[i];
-        if (!(p.z > 0.0f))
-            continue;
-        const double half = std::max(0.5, 0.6 * pixelsPerDepthPixel * depth.pixels[i] / p.z);
-        const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - half)));
-        const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + half)));
-        const int y0 = std::max(0, static_cast<int>(std::ceil(p.y - half)));
-        const int y1 = std::min(height - 1, static_cast<int>(std::floor(p.y + half)));
-        for (int y = y0; y <= y1; ++y)
-            for (int x = x0; x <= x1; ++x) {
-                float& nearest = zbuffer[static_cast<std::size_t>(y) * width + x];
-                nearest = std::min(nearest, p.z);
-            }
-    }
+    parallelRanges(height, 32, [&](int bandBegin, int bandEnd) {
+        for (std::size_t i = 0; i < points.size(); ++i) {
+            const Projected& p = points[i];
+            if (!(p.z > 0.0f))
+                continue;
+            const double half = std::max(0.5, 0.6 * pixelsPerDepthPixel * depth.pixels[i] / p.z);
+            const int y0 = std::max(bandBegin, static_cast<int>(std::ceil(p.y - half)));
+            const int y1 = std::min(bandEnd - 1, static_cast<int>(std::floor(p.y + half)));
+            if (y0 > y1)
+                continue;
+            const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - half)));
+            const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + half)));
+            for (int y = y0; y <= y1; ++y)
+                for (int x = x0; x <= x1; ++x) {
+                    float& nearest = zbuffer[static_cast<std::size_t>(y) * width + x];
+                    nearest = std::min(nearest, p.z);
+                }
+        }
+    });
     return zbuffer;
 }
 
@@ -95,19 +109,21 @@ Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCal
                                                 colourCamera.intrinsics.fy / depthCamera.intrinsics.fy);
     const std::vector<float> zbuffer =
         nearestDepth(points, depth, pixelsPerDepthPixel, colourWidth, colourHeight);
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        const Projected& p = points[i];
-        if (!(p.z > 0.0f))
-            continue;
-        const auto x = static_cast<std::int32_t>(std::lround(p.x));
-        const auto y = static_cast<std::int32_t>(std::lround(p.y));
-        const std::int32_t pixel =
-            std::clamp(y, 0, colourHeight - 1) * colourWidth + std::clamp(x, 0, colourWidth - 1);
-        if (p.z > zbuffer[static_cast<std::size_t>(pixel)] + sameSurfaceMeters(p.z))
-            continue;
-        out.colourPixel[i] = pixel;
-        out.seen.pixels[i] = 1;
-    }
+    parallelRanges(static_cast<int>(points.size()), 4096, [&](int begin, int end) {
+        for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
+            const Projected& p = points[i];
+            if (!(p.z > 0.0f))
+                continue;
+            // Projections start at -0.5, so truncating x + 0.5 rounds to the nearest pixel.
+            const auto x = std::min(static_cast<std::int32_t>(p.x + 0.5f), colourWidth - 1);
+            const auto y = std::min(static_cast<std::int32_t>(p.y + 0.5f), colourHeight - 1);
+            const std::int32_t pixel = y * colourWidth + x;
+            if (p.z > zbuffer[static_cast<std::size_t>(pixel)] + sameSurfaceMeters(p.z))
+                continue;
+            out.colourPixel[i] = pixel;
+            out.seen.pixels[i] = 1;
+        }
+    });
     return out;
 }
 

@@ -4,6 +4,7 @@
 #include "devices/source_spec.h"
 #include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
+#include "tool/bench_registration.h"
 #include "tool/bench_upsample_options.h"
 #include "tool/live_commands.h"
 #include "tool/options.h"
@@ -110,6 +111,8 @@ int main(int argc, char** argv) {
     CLI::App* benchInstrumentCmd = addBenchInstrumentCommand(*benchCmd, benchInstrument);
     BenchCaptureOptions benchCapture;
     CLI::App* benchCaptureCmd = addBenchCaptureCommand(*benchCmd, benchCapture);
+    BenchRegistrationOptions benchRegistration;
+    CLI::App* benchRegistrationCmd = addBenchRegistrationCommand(*benchCmd, benchRegistration);
     BenchUpsampleOptions benchUpsample;
     CLI::App* benchUpsampleCmd = addBenchUpsampleCommand(*benchCmd, benchUpsample);
     DevicesOptions devicesOptions;
@@ -135,6 +138,8 @@ int main(int argc, char** argv) {
         return runBenchInstrument(benchInstrument);
     if (benchCaptureCmd->parsed())
         return runBenchCapture(benchCapture);
+    if (benchRegistrationCmd->parsed())
+        return runBenchRegistration(benchRegistration);
     if (benchUpsampleCmd->parsed())
         return runBenchUpsample(benchUpsample);
     if (devicesCmd->parsed())
