@@ -20,11 +20,12 @@ float sameSurfaceMeters(float colourZ) {
 // The colour-sensor position of every depth sample; z <= 0 where it has none in the colour image.
 struct Projected {
     float x = 0, y = 0, z = 0;
+    bool inside = false; // within the colour image (else only near it, covering its border pixels)
 };
 
 std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame::CameraModel& depthCamera,
                                   const frame::CameraModel& colourCamera,
-                                  const frame::RigidTransform& toColour) {
+                                  const frame::RigidTransform& toColour, double marginPixels) {
     std::vector<Projected> out(depth.pixels.size());
     const frame::Intrinsics& kc = colourCamera.intrinsics;
     const frame::Intrinsics& kd = depthCamera.intrinsics;
@@ -40,12 +41,15 @@ std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame:
                                      : frame::pixelRay(depthCamera, u, v);
                 const auto q = toColour.apply({ray[0] * z, ray[1] * z, z});
                 const auto pixel = frame::projectPoint(colourCamera, q);
-                if (!pixel || (*pixel)[0] < -0.5 || (*pixel)[1] < -0.5 || (*pixel)[0] >= kc.width - 0.5 ||
-                    (*pixel)[1] >= kc.height - 0.5)
+                if (!pixel)
                     continue;
-                out[static_cast<std::size_t>(v) * depth.width + u] = {static_cast<float>((*pixel)[0]),
-                                                                      static_cast<float>((*pixel)[1]),
-                                                                      static_cast<float>(q[2])};
+                const auto [x, y] = *pixel;
+                if (x < -0.5 - marginPixels || y < -0.5 - marginPixels ||
+                    x >= kc.width - 0.5 + marginPixels || y >= kc.height - 0.5 + marginPixels)
+                    continue;
+                const bool inside = x >= -0.5 && y >= -0.5 && x < kc.width - 0.5 && y < kc.height - 0.5;
+                out[static_cast<std::size_t>(v) * depth.width + u] = {
+                    static_cast<float>(x), static_cast<float>(y), static_cast<float>(q[2]), inside};
             }
     });
     return out;
@@ -92,39 +96,76 @@ bool proportional(const frame::Intrinsics& a, const frame::Intrinsics& b) {
 
 } // namespace
 
+namespace {
+
+// The depth samples in the colour sensor's image, and the z-buffer they make there.
+struct ColourView {
+    std::vector<Projected> points;
+    std::vector<float> zbuffer;
+};
+
+ColourView viewFromColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig, int colourWidth,
+                          int colourHeight) {
+    const frame::CameraModel depthCamera{rig.depth.intrinsics.scaledTo(depth.width, depth.height),
+                                         rig.depth.lens};
+    const frame::CameraModel colourCamera{rig.colour.intrinsics.scaledTo(colourWidth, colourHeight),
+                                          rig.colour.lens};
+    ColourView view;
+    const double pixelsPerDepthPixel = std::max(colourCamera.intrinsics.fx / depthCamera.intrinsics.fx,
+                                                colourCamera.intrinsics.fy / depthCamera.intrinsics.fy);
+    // Samples just outside the image still cover its border pixels: twice a footprint is ample.
+    view.points =
+        projectAll(depth, depthCamera, colourCamera, rig.depthToColour, 2.0 * pixelsPerDepthPixel + 1.0);
+    view.zbuffer = nearestDepth(view.points, depth, pixelsPerDepthPixel, colourWidth, colourHeight);
+    return view;
+}
+
+bool registrable(const frame::Plane<float>& depth, const frame::RigCalibration& rig, int colourWidth,
+                 int colourHeight) {
+    return !depth.empty() && colourWidth > 0 && colourHeight > 0 && rig.depth.intrinsics.valid() &&
+           rig.colour.intrinsics.valid();
+}
+
+} // namespace
+
 Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
                            int colourWidth, int colourHeight) {
     Registration out{colourWidth, colourHeight,
                      std::vector<std::int32_t>(depth.pixels.size(), Registration::kUnseen),
                      frame::Plane<std::uint8_t>(depth.width, depth.height)};
-    if (depth.empty() || colourWidth <= 0 || colourHeight <= 0 || !rig.depth.intrinsics.valid() ||
-        !rig.colour.intrinsics.valid())
+    if (!registrable(depth, rig, colourWidth, colourHeight))
         return out;
-    const frame::CameraModel depthCamera{rig.depth.intrinsics.scaledTo(depth.width, depth.height),
-                                         rig.depth.lens};
-    const frame::CameraModel colourCamera{rig.colour.intrinsics.scaledTo(colourWidth, colourHeight),
-                                          rig.colour.lens};
-    const std::vector<Projected> points = projectAll(depth, depthCamera, colourCamera, rig.depthToColour);
-    const double pixelsPerDepthPixel = std::max(colourCamera.intrinsics.fx / depthCamera.intrinsics.fx,
-                                                colourCamera.intrinsics.fy / depthCamera.intrinsics.fy);
-    const std::vector<float> zbuffer =
-        nearestDepth(points, depth, pixelsPerDepthPixel, colourWidth, colourHeight);
-    parallelRanges(static_cast<int>(points.size()), 4096, [&](int begin, int end) {
+    const ColourView view = viewFromColour(depth, rig, colourWidth, colourHeight);
+    parallelRanges(static_cast<int>(view.points.size()), 4096, [&](int begin, int end) {
         for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
-            const Projected& p = points[i];
-            if (!(p.z > 0.0f))
+            const Projected& p = view.points[i];
+            if (!p.inside)
                 continue;
             // Projections start at -0.5, so truncating x + 0.5 rounds to the nearest pixel.
             const auto x = std::min(static_cast<std::int32_t>(p.x + 0.5f), colourWidth - 1);
             const auto y = std::min(static_cast<std::int32_t>(p.y + 0.5f), colourHeight - 1);
             const std::int32_t pixel = y * colourWidth + x;
-            if (p.z > zbuffer[static_cast<std::size_t>(pixel)] + sameSurfaceMeters(p.z))
+            if (p.z > view.zbuffer[static_cast<std::size_t>(pixel)] + sameSurfaceMeters(p.z))
                 continue;
             out.colourPixel[i] = pixel;
             out.seen.pixels[i] = 1;
         }
     });
     return out;
+}
+
+frame::Plane<float> alignDepthToColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
+                                       int colourWidth, int colourHeight) {
+    if (!registrable(depth, rig, colourWidth, colourHeight))
+        return frame::Plane<float>(std::max(colourWidth, 0), std::max(colourHeight, 0));
+    ColourView view = viewFromColour(depth, rig, colourWidth, colourHeight);
+    frame::Plane<float> aligned;
+    aligned.width = colourWidth;
+    aligned.height = colourHeight;
+    for (float& z : view.zbuffer)
+        z = std::isfinite(z) ? z : 0.0f;
+    aligned.pixels = std::move(view.zbuffer);
+    return aligned;
 }
 
 bool isSingleCamera(const frame::RigCalibration& rig) {

@@ -31,6 +31,13 @@ struct Registration {
 Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
                            int colourWidth, int colourHeight);
 
+// The depth map as the colour sensor would measure it, at colourWidth x colourHeight: for each colour pixel
+// the depth along the colour sensor's own axis (meters) of the nearest sample covering it (each sample
+// covers its footprint, as in registerDepth's z-buffer), 0 where none does. The input of overlays and of
+// effects that work in the colour image.
+frame::Plane<float> alignDepthToColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
+                                       int colourWidth, int colourHeight);
+
 // A rig that is really one camera: no rotation or translation between the sensors, the same lens, and
 // depth intrinsics that are the colour intrinsics scaled. Colouring then takes the single-camera path.
 bool isSingleCamera(const frame::RigCalibration& rig);

@@ -224,8 +224,9 @@ struct SceneCaster {
     PixelBox apple, book;
 };
 
-std::vector<Hit> castAll(const frame::Intrinsics& k, const frame::Pose& pose) {
-    const CameraRays rays = raysFor(k, pose);
+std::vector<Hit> castAll(const frame::CameraModel& camera, const frame::Pose& pose) {
+    const frame::Intrinsics& k = camera.intrinsics;
+    const CameraRays rays = raysFor(camera, pose);
     const SceneCaster caster(rays);
     std::vector<Hit> hits(static_cast<std::size_t>(k.width) * k.height);
     for (int v = 0; v < k.height; ++v)
@@ -337,7 +338,13 @@ frame::Pose SyntheticScene::cameraPose(double timeSeconds, bool motion) {
 }
 
 frame::Plane<float> SyntheticScene::trueDepth(const frame::Intrinsics& k, const frame::Pose& pose) const {
-    const std::vector<Hit> hits = castAll(k, pose);
+    return trueDepth(frame::CameraModel{k, {}}, pose);
+}
+
+frame::Plane<float> SyntheticScene::trueDepth(const frame::CameraModel& camera,
+                                              const frame::Pose& pose) const {
+    const frame::Intrinsics& k = camera.intrinsics;
+    const std::vector<Hit> hits = castAll(camera, pose);
     frame::Plane<float> depth(k.width, k.height);
     for (std::size_t i = 0; i < hits.size(); ++i)
         depth.pixels[i] = depthOf(hits[i]);
@@ -387,7 +394,7 @@ frame::Confidence confidenceFor(double sigmaMeters) {
 frame::DepthData SyntheticScene::sensorDepth(const frame::Intrinsics& k, const frame::Pose& pose,
                                              std::uint64_t sequence) const {
     const CameraRays rays = raysFor(k, pose);
-    const std::vector<Hit> hits = castAll(k, pose);
+    const std::vector<Hit> hits = castAll(frame::CameraModel{k, {}}, pose);
     frame::Plane<float> truth(k.width, k.height);
     for (std::size_t i = 0; i < hits.size(); ++i)
         truth.pixels[i] = depthOf(hits[i]);

@@ -65,6 +65,8 @@ public:
 
     // Exact depth along the camera's z axis (meters), 0 where nothing is within kMaxRangeMeters.
     frame::Plane<float> trueDepth(const frame::Intrinsics& intrinsics, const frame::Pose& pose) const;
+    // The same through a lens: each pixel's undistorted ray.
+    frame::Plane<float> trueDepth(const frame::CameraModel& camera, const frame::Pose& pose) const;
     // Depth as a sensor would measure it: noise growing with distance and grazing angle, mixed pixels at
     // depth edges, and confidence (0/1/2) derived from that noise. Deterministic in (seed, sequence).
     frame::DepthData sensorDepth(const frame::Intrinsics& intrinsics, const frame::Pose& pose,
