@@ -17,7 +17,7 @@ float sameSurfaceMeters(float colourZ) {
     return 0.01f + 0.02f * colourZ;
 }
 
-// The colour-sensor position of every depth sample; z <= 0 where it has none in the colour image.
+// The colour-sensor position of every depth sample; z <= 0 where it lands nowhere near the colour image.
 struct Projected {
     float x = 0, y = 0, z = 0;
     bool inside = false; // within the colour image (else only near it, covering its border pixels)
