@@ -2,6 +2,7 @@
 #include "devices/synthetic/synthetic_device.h"
 #include "devices/synthetic/synthetic_scene.h"
 #include "frame/camera_model.h"
+#include "processing/point_cloud.h"
 #include "processing/registration.h"
 
 #include <gtest/gtest.h>
@@ -247,6 +248,29 @@ TEST(AlignedDepth, IsTheDepthTheColourSensorWouldSeeThroughItsLens) {
     EXPECT_LT(holes, withTruth / 10000);
     EXPECT_LT(percentile(relative, 0.5), 0.002);
     EXPECT_LT(percentile(relative, 0.99), 0.01);
+}
+
+// The raw frame's cloud (export's PLY, accumulation of raw frames) is coloured the same registered way.
+TEST(Registration, TheRawFramesCloudOfATwoSensorFrameTakesTheRegisteredColours) {
+    devices::SyntheticConfig config = devices::syntheticRigConfig();
+    config.depthWidth = 212;
+    config.depthHeight = 120;
+    config.cameraWidth = 320;
+    config.cameraHeight = 180;
+    devices::SyntheticDevice device(config);
+    ASSERT_TRUE(device.open());
+    const frame::FramePtr frame = device.makeFrame(0, 0.0);
+    CameraColourTable table;
+    const PointColours colours = framePointColours(*frame, frame->sceneDepth->depthMeters, table);
+    const auto fromFrame = buildPointCloud(*frame, frame::Confidence::Low, 0.0f);
+    const auto registered = buildPointCloud(
+        {&*frame->sceneDepth, frame->depthIntrinsics(), colours.colors.get()}, frame::Confidence::Low, 0.0f);
+    ASSERT_EQ(fromFrame.size(), registered.size());
+    ASSERT_FALSE(fromFrame.empty());
+    for (std::size_t i = 0; i < fromFrame.size(); ++i)
+        ASSERT_TRUE(fromFrame[i].r == registered[i].r && fromFrame[i].g == registered[i].g &&
+                    fromFrame[i].b == registered[i].b)
+            << i;
 }
 
 TEST(SyntheticRig, FramesCarryTheRigAndEachSensorsOwnImage) {
