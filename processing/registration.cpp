@@ -23,11 +23,36 @@ struct Projected {
     bool inside = false; // within the colour image (else only near it, covering its border pixels)
 };
 
+// Where depth samples may land: the colour camera, how far outside its image a sample still counts (it
+// covers border pixels), and the ideal normalised radius (squared) beyond which the lens polynomial no
+// longer describes the image: evaluated far outside the field of view it folds back and would put a point
+// from behind the camera's shoulder into the picture.
+struct ColourTarget {
+    frame::CameraModel camera;
+    double marginPixels = 0.0;
+    double maxRadius2 = std::numeric_limits<double>::infinity();
+};
+
+// The largest ideal radius the image's corners and edge midpoints come from, a fifth more.
+double lensRadius2(const frame::CameraModel& camera) {
+    if (camera.lens.model == frame::LensModel::None)
+        return std::numeric_limits<double>::infinity();
+    const frame::Intrinsics& k = camera.intrinsics;
+    double worst = 0.0;
+    for (const double u : {-0.5, 0.5 * (k.width - 1), k.width - 0.5})
+        for (const double v : {-0.5, 0.5 * (k.height - 1), k.height - 0.5}) {
+            const auto ray = frame::pixelRay(camera, u, v);
+            worst = std::max(worst, ray[0] * ray[0] + ray[1] * ray[1]);
+        }
+    return 1.44 * worst;
+}
+
 std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame::CameraModel& depthCamera,
-                                  const frame::CameraModel& colourCamera,
-                                  const frame::RigidTransform& toColour, double marginPixels) {
+                                  const ColourTarget& target, const frame::RigidTransform& toColour) {
     std::vector<Projected> out(depth.pixels.size());
+    const frame::CameraModel& colourCamera = target.camera;
     const frame::Intrinsics& kc = colourCamera.intrinsics;
+    const double margin = target.marginPixels;
     const frame::Intrinsics& kd = depthCamera.intrinsics;
     const bool pinhole = depthCamera.lens.model == frame::LensModel::None;
     parallelRanges(depth.height, 16, [&](int rowBegin, int rowEnd) {
@@ -40,12 +65,15 @@ std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame:
                                      ? std::array<double, 3>{(u - kd.cx) / kd.fx, (v - kd.cy) / kd.fy, 1.0}
                                      : frame::pixelRay(depthCamera, u, v);
                 const auto q = toColour.apply({ray[0] * z, ray[1] * z, z});
+                if (!(q[2] > 0.0) || (q[0] * q[0] + q[1] * q[1]) / (q[2] * q[2]) > target.maxRadius2)
+                    continue;
                 const auto pixel = frame::projectPoint(colourCamera, q);
                 if (!pixel)
                     continue;
                 const auto [x, y] = *pixel;
-                if (x < -0.5 - marginPixels || y < -0.5 - marginPixels ||
-                    x >= kc.width - 0.5 + marginPixels || y >= kc.height - 0.5 + marginPixels)
+                // Written so that a NaN (from a lens that cannot be inverted) fails it too.
+                if (!(x >= -0.5 - margin && y >= -0.5 - margin && x < kc.width - 0.5 + margin &&
+                      y < kc.height - 0.5 + margin))
                     continue;
                 const bool inside = x >= -0.5 && y >= -0.5 && x < kc.width - 0.5 && y < kc.height - 0.5;
                 out[static_cast<std::size_t>(v) * depth.width + u] = {
@@ -114,8 +142,8 @@ ColourView viewFromColour(const frame::Plane<float>& depth, const frame::RigCali
     const double pixelsPerDepthPixel = std::max(colourCamera.intrinsics.fx / depthCamera.intrinsics.fx,
                                                 colourCamera.intrinsics.fy / depthCamera.intrinsics.fy);
     // Samples just outside the image still cover its border pixels: twice a footprint is ample.
-    view.points =
-        projectAll(depth, depthCamera, colourCamera, rig.depthToColour, 2.0 * pixelsPerDepthPixel + 1.0);
+    const ColourTarget target{colourCamera, 2.0 * pixelsPerDepthPixel + 1.0, lensRadius2(colourCamera)};
+    view.points = projectAll(depth, depthCamera, target, rig.depthToColour);
     view.zbuffer = nearestDepth(view.points, depth, pixelsPerDepthPixel, colourWidth, colourHeight);
     return view;
 }
