@@ -44,11 +44,25 @@ Status parseMode(const std::string& mode, SyntheticConfig& config) {
     return {};
 }
 
+// The camera's kind comes first: the other options adjust it.
+SyntheticConfig syntheticBase(const std::vector<std::string>& parts) {
+    for (std::size_t i = 1; i < parts.size(); ++i)
+        if (parts[i] == "rig=rgbd")
+            return syntheticRigConfig();
+    return {};
+}
+
 Expected<std::unique_ptr<Device>> openSynthetic(const std::vector<std::string>& parts) {
-    SyntheticConfig config;
+    SyntheticConfig config = syntheticBase(parts);
     for (std::size_t i = 1; i < parts.size(); ++i) {
         const std::string& p = parts[i];
-        if (p == "motion") {
+        if (p == "rig=rgbd")
+            continue;
+        if (p.starts_with("rig="))
+            return Error{"unknown rig '" + p.substr(4) + "' in --source (expected rig=rgbd)"};
+        if (p == "motion" && config.rig) {
+            config.motion = true;
+        } else if (p == "motion") {
             config.motion = true;
             // A moving camera re-renders its image every frame; VGA keeps that off the critical path.
             config.cameraWidth = 640;

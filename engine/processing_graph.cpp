@@ -128,7 +128,7 @@ processing::ShownDepth ProcessingGraph::shownDepth(const frame::FramePtr& frame,
     processing::ShownDepth shown;
     if (const frame::DepthData* depth = processing::shownDepth(*out, demand.processing.depthSource)) {
         shown.data = std::shared_ptr<const frame::DepthData>(out, depth); // keeps the processed frame alive
-        shown.intrinsics = out->cameraIntrinsics.scaledTo(shown.width(), shown.height());
+        shown.intrinsics = out->depthIntrinsicsAt(shown.width(), shown.height());
         shown.smoothed = processing::showsSmoothed(*out, demand.processing.depthSource);
         shown.upsampled = frame->sceneDepth && frame->sceneDepth->depthMeters.width != shown.width();
     }
@@ -143,10 +143,12 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
     const frame::CapturedImage& image = frame.capturedImage;
     if (demand.needsPointColors() && shown.depth.data) {
         const int w = shown.depth.width(), h = shown.depth.height();
-        shown.pointColors = cached(pointColors_, ImageKey{image.bytes, w, h}, kPointColorsStage, [&] {
-            return std::make_shared<const processing::RgbImage>(
-                processing::pointColors(image, w, h, colourTable_));
+        const ColoursKey key{ImageKey{image.bytes, w, h}, frame.rig ? shown.depth.data : nullptr};
+        const processing::PointColours& colours = cached(pointColors_, key, kPointColorsStage, [&] {
+            return processing::framePointColours(frame, shown.depth.data->depthMeters, colourTable_);
         });
+        shown.pointColors = colours.colors;
+        shown.pointSeen = colours.seen;
     }
     if (demand.cameraPanelWidth > 0 && !image.empty()) {
         const int w = cameraPanelImageWidth(image.width, demand.cameraPanelWidth);

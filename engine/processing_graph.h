@@ -4,6 +4,7 @@
 #include "frame/jpeg_codec.h"
 #include "processing/pipeline.h"
 #include "processing/point_colors.h"
+#include "processing/registration.h"
 #include "processing/shown_frame.h"
 
 #include <cstdint>
@@ -72,6 +73,13 @@ private:
         int height = 0;
         bool operator==(const ImageKey&) const = default;
     };
+    // A two-sensor frame's colours depend on the depth too (where each point lands in the colour image);
+    // a single camera's on the image and the size alone, so smoothing does not redo them.
+    struct ColoursKey {
+        ImageKey image;
+        std::shared_ptr<const frame::DepthData> registeredDepth;
+        bool operator==(const ColoursKey&) const = default;
+    };
     struct EffectKey {
         std::shared_ptr<const processing::RgbImage> image;
         std::shared_ptr<const frame::DepthData> depth;
@@ -110,7 +118,7 @@ private:
     frame::JpegDecoder jpegDecoder_;
     Memo<frame::FramePtr, frame::FramePtr> decoded_;
     Memo<DepthKey, processing::ShownDepth> depth_;
-    Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> pointColors_;
+    Memo<ColoursKey, processing::PointColours> pointColors_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> effectsImage_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> fog_;

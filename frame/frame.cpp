@@ -1,5 +1,7 @@
 #include "frame/frame.h"
 
+#include "frame/camera_model.h"
+
 #include <cmath>
 
 namespace dc::frame {
@@ -48,7 +50,11 @@ std::size_t CapturedImage::byteSize(PixelFormat format, int width, int height) {
 Intrinsics Frame::depthIntrinsics() const {
     if (!sceneDepth || sceneDepth->depthMeters.empty())
         return {};
-    return cameraIntrinsics.scaledTo(sceneDepth->depthMeters.width, sceneDepth->depthMeters.height);
+    return depthIntrinsicsAt(sceneDepth->depthMeters.width, sceneDepth->depthMeters.height);
+}
+
+Intrinsics Frame::depthIntrinsicsAt(int width, int height) const {
+    return (rig ? rig->depth.intrinsics : cameraIntrinsics).scaledTo(width, height);
 }
 
 } // namespace dc::frame

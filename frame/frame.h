@@ -25,6 +25,7 @@ struct Intrinsics {
     Intrinsics scaledTo(int newWidth, int newHeight) const;
     // Finite, positive focal lengths and a positive size: anything else cannot place points in 3D.
     bool valid() const;
+    bool operator==(const Intrinsics&) const = default;
 };
 
 // A dense single-channel image owned by value, row-major with no padding.
@@ -94,6 +95,8 @@ struct ReplayPosition {
     std::uint64_t seekGeneration = 0;
 };
 
+struct RigCalibration; // frame/camera_model.h
+
 // One capture: an immutable value handed between threads as FramePtr (ARFrame, made explicit).
 struct Frame {
     std::uint64_t sequence = 0;
@@ -104,9 +107,17 @@ struct Frame {
     std::optional<DepthData> smoothedSceneDepth;
     std::optional<Pose> pose;
     std::optional<ReplayPosition> replay; // set by replay sources only
+    // Depth and colour from two sensors (RealSense, Orbbec, Kinect): each sensor's own intrinsics and lens
+    // and the transform between them. Null for one camera whose image covers the depth map's field of
+    // view (ARKit, TUM, the default synthetic scene): then cameraIntrinsics serves both.
+    std::shared_ptr<const RigCalibration> rig;
 
-    // Depth intrinsics are never stored: they follow from the image intrinsics and the depth map size.
+    // Depth intrinsics are never stored: they follow from the image intrinsics (or the rig's depth sensor)
+    // and the depth map size.
     Intrinsics depthIntrinsics() const;
+    // The depth sensor's intrinsics for a depth map of width x height (a smoothed, decimated or upsampled
+    // version of sceneDepth).
+    Intrinsics depthIntrinsicsAt(int width, int height) const;
 };
 
 using FramePtr = std::shared_ptr<const Frame>;

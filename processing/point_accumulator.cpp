@@ -5,6 +5,7 @@
 #include "processing/parallel.h"
 #include "processing/point_cloud.h"
 #include "processing/point_colors.h"
+#include "processing/registration.h"
 
 #include <algorithm>
 #include <bit>
@@ -246,8 +247,10 @@ std::size_t PointAccumulator::add(const frame::Frame& frame, frame::Confidence m
     if (!frame.pose || !frame.sceneDepth)
         return 0;
     const auto& d = frame.sceneDepth->depthMeters;
-    const RgbImage colors = pointColors(frame.capturedImage, d.width, d.height);
-    return add({&*frame.sceneDepth, frame.depthIntrinsics(), &colors}, *frame.pose, minLevel, nearMeters);
+    CameraColourTable table;
+    const PointColours colors = framePointColours(frame, d, table);
+    return add({&*frame.sceneDepth, frame.depthIntrinsics(), colors.colors.get()}, *frame.pose, minLevel,
+               nearMeters);
 }
 
 std::vector<std::pair<std::size_t, std::size_t>> PointAccumulator::takeDirty() {

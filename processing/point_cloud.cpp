@@ -3,6 +3,7 @@
 #include "frame/color.h"
 #include "processing/confidence_filter.h"
 #include "processing/point_colors.h"
+#include "processing/registration.h"
 
 namespace dc::processing {
 
@@ -43,8 +44,10 @@ std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confid
     if (!frame.sceneDepth)
         return {};
     const auto& d = frame.sceneDepth->depthMeters;
-    const RgbImage colors = pointColors(frame.capturedImage, d.width, d.height);
-    return buildPointCloud({&*frame.sceneDepth, frame.depthIntrinsics(), &colors}, minLevel, nearMeters);
+    CameraColourTable table;
+    const PointColours colors = framePointColours(frame, d, table);
+    return buildPointCloud({&*frame.sceneDepth, frame.depthIntrinsics(), colors.colors.get()}, minLevel,
+                           nearMeters);
 }
 
 } // namespace dc::processing

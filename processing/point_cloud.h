@@ -47,7 +47,7 @@ struct CloudSamples {
 // colour. Empty when there is no depth or the intrinsics are invalid.
 std::vector<CloudPoint> buildPointCloud(const CloudSamples& samples, frame::Confidence minLevel,
                                         float nearMeters);
-// The raw frame's cloud: sceneDepth coloured by pointColors() of its camera image.
+// The raw frame's cloud: sceneDepth coloured by framePointColours() (registered for a two-sensor camera).
 std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confidence minLevel,
                                         float nearMeters);
 

@@ -46,9 +46,12 @@ struct DepthRangeMeters {
 // did not ask for (an image no panel shows is null). Immutable once published; each product is shared, so
 // a product that did not change between two results is the same object and need not be uploaded again.
 struct ShownFrame {
-    frame::FramePtr frame; // the capture: sequence, timestamp, pose, replay position
-    ShownDepth depth;      // data null when the frame has no depth
+    frame::FramePtr frame;                       // the capture: sequence, timestamp, pose, replay position
+    ShownDepth depth;                            // data null when the frame has no depth
     std::shared_ptr<const RgbImage> pointColors; // one per shown depth sample, when points take the camera's
+    // With a two-sensor camera, which of those points the colour camera sees (1) and which it cannot
+    // (outside its view or hidden: they are gray); null when it sees them all.
+    std::shared_ptr<const frame::Plane<std::uint8_t>> pointSeen;
     std::shared_ptr<const RgbImage> cameraImage; // the camera panel, at the size it is shown
     std::shared_ptr<const RgbaImage> fog;
     std::shared_ptr<const RgbaImage> aura;

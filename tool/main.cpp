@@ -5,6 +5,7 @@
 #include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
 #include "tool/bench_soak.h"
+#include "tool/bench_registration.h"
 #include "tool/bench_upsample_options.h"
 #include "tool/live_commands.h"
 #include "tool/options.h"
@@ -115,6 +116,8 @@ int main(int argc, char** argv) {
     CLI::App* benchCaptureCmd = addBenchCaptureCommand(*benchCmd, benchCapture);
     BenchLatencyOptions benchLatency;
     CLI::App* benchLatencyCmd = addBenchLatencyCommand(*benchCmd, benchLatency);
+    BenchRegistrationOptions benchRegistration;
+    CLI::App* benchRegistrationCmd = addBenchRegistrationCommand(*benchCmd, benchRegistration);
     BenchUpsampleOptions benchUpsample;
     CLI::App* benchUpsampleCmd = addBenchUpsampleCommand(*benchCmd, benchUpsample);
     DevicesOptions devicesOptions;
@@ -144,6 +147,8 @@ int main(int argc, char** argv) {
         return runBenchCapture(benchCapture);
     if (benchLatencyCmd->parsed())
         return runBenchLatency(benchLatency);
+    if (benchRegistrationCmd->parsed())
+        return runBenchRegistration(benchRegistration);
     if (benchUpsampleCmd->parsed())
         return runBenchUpsample(benchUpsample);
     if (devicesCmd->parsed())

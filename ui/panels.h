@@ -128,8 +128,8 @@ struct ControlsContext {
     std::size_t anchorCount = 0;
     bool hasPose = false; // accumulate needs world coordinates
     std::size_t accumulatedPoints = 0;
-    std::string cloudPath;        // the path drawing the cloud, and why
-    int cloudDecimation = 1;      // the factor in use
+    std::string cloudPath;         // the path drawing the cloud, and why
+    int cloudDecimation = 1;       // the factor in use
     std::uint64_t cloudPoints = 0; // points the cloud draws
     engine::RecordingStatus record;
     RecordPanelState* recordState = nullptr;
@@ -159,6 +159,7 @@ struct StatusLine {
     std::string cloudPath; // e.g. "CPU splat (software GL)"
     std::vector<processing::StageTiming> stageMedians;
     std::optional<double> latencyMs; // median device timestamp to screen; none when clocks differ
+    std::string calibration;         // a two-sensor camera's calibration in use; empty for one camera
 };
 
 struct StageHistory {

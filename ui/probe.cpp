@@ -19,6 +19,9 @@ std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
         probe.depthMeters = 0.0f;
     if (!depth.confidence.empty())
         probe.confidence = static_cast<frame::Confidence>(std::min<int>(depth.confidence.at(u, v), 2));
+    const frame::Plane<std::uint8_t>* seen = source.colourSeen;
+    if (seen && seen->width == depth.depthMeters.width && seen->height == depth.depthMeters.height)
+        probe.seenByColour = probe.depthMeters <= 0.0f || seen->at(u, v) != 0;
     if (probe.depthMeters > 0.0f && source.intrinsics.valid())
         probe.point = processing::unproject(u, v, probe.depthMeters, source.intrinsics);
     return probe;
@@ -63,6 +66,8 @@ void showProbeTooltip(const Probe& p) {
     ImGui::Text("confidence %s", p.confidence ? confidenceName(*p.confidence) : "none (source has none)");
     if (p.depthMeters > 0.0f)
         ImGui::Text("point %.3f, %.3f, %.3f m", p.point[0], p.point[1], p.point[2]);
+    if (!p.seenByColour)
+        ImGui::TextUnformatted(kNotSeenByColour);
     ImGui::EndTooltip();
 }
 

@@ -16,12 +16,16 @@ struct Probe {
     float depthMeters = 0.0f;                    // 0 when the sample holds no measurement
     std::optional<frame::Confidence> confidence; // none when the source provides no confidence
     std::array<float, 3> point{};                // camera frame (OpenCV axes), meters; zero without depth
+    // False where a two-sensor camera's colour sensor cannot see the point (outside its view or hidden
+    // behind a nearer surface), so its gray is no colour the camera measured.
+    bool seenByColour = true;
 };
 
 // The depth the panels show, with the intrinsics that place it.
 struct ProbeSource {
     const frame::DepthData* depth = nullptr;
     frame::Intrinsics intrinsics;
+    const frame::Plane<std::uint8_t>* colourSeen = nullptr; // the depth's size; null: every point seen
 
     bool empty() const { return depth == nullptr || depth->depthMeters.empty(); }
 };
@@ -36,6 +40,8 @@ std::optional<Probe> probeAtFraction(const ProbeSource& source, ImVec2 fraction)
 // Millimetres below a metre, where they are the natural unit; meters above; "no depth" for none.
 std::string formatDepth(float meters);
 const char* confidenceName(frame::Confidence level);
+
+inline constexpr const char* kNotSeenByColour = "not seen by the colour camera";
 
 // The readout as a tooltip next to the mouse.
 void showProbeTooltip(const Probe& probe);

@@ -17,11 +17,13 @@ std::string format(const char* pattern, auto... values) {
 // costliest stages while there is room for them.
 std::vector<std::string> statusParts(const StatusLine& s) {
     const engine::FrameCounts& f = s.frames;
-    std::vector<std::string> parts{s.source + " | " + s.state,
-                                   format("device %.1f fps | shown %.1f fps | dropped %llu", f.deliveredPerSecond,
-                                          f.shownPerSecond, static_cast<unsigned long long>(f.dropped)),
-                                   format("points %llu, %s", static_cast<unsigned long long>(s.pointsDrawn),
-                                          s.cloudPath.c_str())};
+    std::vector<std::string> parts{
+        s.source + " | " + s.state,
+        format("device %.1f fps | shown %.1f fps | dropped %llu", f.deliveredPerSecond, f.shownPerSecond,
+               static_cast<unsigned long long>(f.dropped)),
+        format("points %llu, %s", static_cast<unsigned long long>(s.pointsDrawn), s.cloudPath.c_str())};
+    if (!s.calibration.empty())
+        parts.insert(parts.begin() + 1, s.calibration);
     if (s.latencyMs)
         parts.push_back(format("latency %.1f ms", *s.latencyMs));
     return parts;

@@ -3,6 +3,7 @@
 #include "base/files.h"
 #include "base/log.h"
 #include "exporting/ply.h"
+#include "frame/camera_model.h"
 #include "frame/image_io.h"
 #include "frame/jpeg_codec.h"
 #include "processing/camera_image.h"
@@ -213,7 +214,7 @@ void Viewer::updateLegend() {
 ProbeSource Viewer::probeSource() const {
     if (!shown_ || !shown_->depth.data)
         return {};
-    return {shown_->depth.data.get(), shown_->depth.intrinsics};
+    return {shown_->depth.data.get(), shown_->depth.intrinsics, shown_->pointSeen.get()};
 }
 
 Status Viewer::openSource(const std::string& spec) {
@@ -292,10 +293,12 @@ Expected<std::string> Viewer::saveSnapshot(const std::string& parent) const {
 
 StatusLine Viewer::statusLine() {
     const engine::InstrumentStatus s = instrument_.status();
-    StatusLine line{s.source,      s.state,         s.message, s.frames,   uiFrames_.perSecond(),
-                    pointsShown(), cloudPathText(), {},        s.latencyMs};
+    StatusLine line{s.source,      s.state,         s.message, s.frames,    uiFrames_.perSecond(),
+                    pointsShown(), cloudPathText(), {},        s.latencyMs, {}};
     for (const engine::StageSummary& stage : s.stages)
         line.stageMedians.push_back({stage.name, stage.medianMs});
+    if (shown_ && shown_->frame && shown_->frame->rig)
+        line.calibration = frame::describe(*shown_->frame->rig);
     return line;
 }
 

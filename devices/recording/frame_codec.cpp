@@ -2,8 +2,10 @@
 
 #include "devices/recording/byte_io.h"
 #include "devices/recording/format.h"
+#include "frame/camera_model.h"
 #include "frame/jpeg_codec.h"
 
+#include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
@@ -20,6 +22,7 @@ enum class Section : std::uint8_t {
     SmoothedDepth = 4,
     SmoothedConfidence = 5,
     Color = 6,
+    Rig = 7, // format 1.1: a two-sensor camera's calibration
 };
 enum class Codec : std::uint8_t { Raw = 0, Zstd = 1 };
 // Layouts of a section's raw bytes.
@@ -232,6 +235,35 @@ FrameEncoder::~FrameEncoder() = default;
 FrameEncoder::FrameEncoder(FrameEncoder&&) noexcept = default;
 FrameEncoder& FrameEncoder::operator=(FrameEncoder&&) noexcept = default;
 
+namespace {
+
+void putCamera(ByteWriter& w, const frame::CameraModel& camera) {
+    const frame::Intrinsics& k = camera.intrinsics;
+    for (const double v : {k.fx, k.fy, k.cx, k.cy})
+        w.put(v);
+    w.put(static_cast<std::int32_t>(k.width));
+    w.put(static_cast<std::int32_t>(k.height));
+    w.put(static_cast<std::uint8_t>(camera.lens.model));
+    for (const double c : camera.lens.coefficients)
+        w.put(c);
+}
+
+std::vector<std::uint8_t> rigBytes(const frame::RigCalibration& rig) {
+    std::vector<std::uint8_t> bytes;
+    ByteWriter w(bytes);
+    putCamera(w, rig.depth);
+    putCamera(w, rig.colour);
+    for (const double v : rig.depthToColour.rotation)
+        w.put(v);
+    for (const double v : rig.depthToColour.translationMeters)
+        w.put(v);
+    w.put(static_cast<std::uint8_t>(rig.approximate));
+    w.putString(rig.name.substr(0, kMaxDescriptionLength));
+    return bytes;
+}
+
+} // namespace
+
 Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& frame) {
     std::vector<std::uint8_t> out;
     std::vector<std::uint8_t> meta;
@@ -247,6 +279,8 @@ Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& fra
         for (const double v : frame.pose->cameraToWorld)
             m.put(v);
     impl_->section(out, {Section::Meta, Codec::Raw, 0, 0, 0, 0.0, 0}, meta, false);
+    if (frame.rig)
+        impl_->section(out, {Section::Rig, Codec::Raw, 0, 0, 0, 0.0, 0}, rigBytes(*frame.rig), false);
     if (frame.sceneDepth) {
         impl_->depth(out, Section::SceneDepth, frame.sceneDepth->depthMeters);
         if (!frame.sceneDepth->confidence.empty())
@@ -277,6 +311,7 @@ struct FrameDecoder::Impl {
     }
     Status unpack(const SectionHeader& h, std::span<const std::uint8_t> stored, std::uint64_t offset);
     Status decodeMeta(ByteReader r, frame::Frame& frame);
+    Status decodeRig(ByteReader r, frame::Frame& frame);
     Expected<frame::Plane<float>> decodeDepth(const SectionHeader& h, std::uint64_t offset);
     Expected<frame::Plane<std::uint8_t>> decodePlane8(const SectionHeader& h, std::uint64_t offset);
     Expected<frame::CapturedImage> decodeColor(const SectionHeader& h, std::uint64_t offset);
@@ -332,6 +367,58 @@ Status FrameDecoder::Impl::decodeMeta(ByteReader r, frame::Frame& frame) {
     return {};
 }
 
+namespace {
+
+frame::CameraModel getCamera(ByteReader& r) {
+    frame::CameraModel camera;
+    frame::Intrinsics& k = camera.intrinsics;
+    k.fx = r.get<double>();
+    k.fy = r.get<double>();
+    k.cx = r.get<double>();
+    k.cy = r.get<double>();
+    k.width = r.get<std::int32_t>();
+    k.height = r.get<std::int32_t>();
+    const auto model = r.get<std::uint8_t>();
+    camera.lens.model = model <= static_cast<std::uint8_t>(frame::LensModel::InverseBrownConrady)
+                            ? static_cast<frame::LensModel>(model)
+                            : frame::LensModel::None;
+    for (double& c : camera.lens.coefficients)
+        c = r.get<double>();
+    // An unknown lens model cannot be applied: the camera is refused rather than drawn undistorted.
+    if (model > static_cast<std::uint8_t>(frame::LensModel::InverseBrownConrady))
+        k.fx = 0.0;
+    return camera;
+}
+
+bool usable(const frame::CameraModel& camera) {
+    return camera.intrinsics.valid() &&
+           std::all_of(camera.lens.coefficients.begin(), camera.lens.coefficients.end(),
+                       [](double c) { return std::isfinite(c); });
+}
+
+} // namespace
+
+// The same checks as a calibration file gets: a recording is input too.
+Status FrameDecoder::Impl::decodeRig(ByteReader r, frame::Frame& frame) {
+    frame::RigCalibration rig;
+    rig.depth = getCamera(r);
+    rig.colour = getCamera(r);
+    for (double& v : rig.depthToColour.rotation)
+        v = r.get<double>();
+    for (double& v : rig.depthToColour.translationMeters)
+        v = r.get<double>();
+    rig.approximate = r.get<std::uint8_t>() != 0;
+    rig.name = r.getString(kMaxDescriptionLength);
+    if (!r.ok())
+        return error("rig calibration ends early", r.offset());
+    const auto& t = rig.depthToColour.translationMeters;
+    if (!usable(rig.depth) || !usable(rig.colour) ||
+        !(frame::rotationError(rig.depthToColour.rotation) < 1e-4) || !std::isfinite(t[0] + t[1] + t[2]))
+        return error("rig calibration out of range", r.offset());
+    frame.rig = std::make_shared<const frame::RigCalibration>(std::move(rig));
+    return {};
+}
+
 Expected<frame::Plane<float>> FrameDecoder::Impl::decodeDepth(const SectionHeader& h, std::uint64_t offset) {
     frame::Plane<float> plane(h.width, h.height);
     const std::size_t n = plane.pixels.size();
@@ -380,6 +467,8 @@ Status FrameDecoder::Impl::apply(const SectionHeader& h, std::span<const std::ui
                                  std::uint64_t offset, frame::Frame& frame) {
     if (h.kind == Section::Meta)
         return decodeMeta(ByteReader(stored, offset), frame);
+    if (h.kind == Section::Rig)
+        return decodeRig(ByteReader(stored, offset), frame);
     if (h.kind < Section::SceneDepth || h.kind > Section::Color)
         return {}; // a section a newer minor version added: skipped
     if (h.width <= 0 || h.height <= 0 || h.width > kMaxImageSide || h.height > kMaxImageSide ||

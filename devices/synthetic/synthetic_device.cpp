@@ -101,15 +101,33 @@ Status checkSyntheticConfig(const SyntheticConfig& c) {
     return {};
 }
 
+SyntheticConfig syntheticRigConfig() {
+    SyntheticConfig config;
+    const frame::RigCalibration rig = syntheticRigCalibration();
+    config.depthWidth = rig.depth.intrinsics.width;
+    config.depthHeight = rig.depth.intrinsics.height;
+    config.cameraWidth = rig.colour.intrinsics.width;
+    config.cameraHeight = rig.colour.intrinsics.height;
+    config.fps = 30.0;
+    config.rig = true;
+    return config;
+}
+
 SyntheticDevice::SyntheticDevice(SyntheticConfig config)
     : config_(config), scene_(config.seed),
-      cameraIntrinsics_(SyntheticScene::cameraIntrinsics(config.cameraWidth, config.cameraHeight)) {}
+      cameraIntrinsics_(SyntheticScene::cameraIntrinsics(config.cameraWidth, config.cameraHeight)) {
+    if (config_.rig) {
+        rig_ = std::make_shared<const frame::RigCalibration>(syntheticRigCalibration());
+        cameraIntrinsics_ = rig_->colour.intrinsics.scaledTo(config.cameraWidth, config.cameraHeight);
+    }
+}
 
 SyntheticDevice::~SyntheticDevice() = default;
 
 std::string SyntheticDevice::description() const {
     return "synthetic " + std::to_string(config_.depthWidth) + "x" + std::to_string(config_.depthHeight) +
-           "@" + std::to_string(static_cast<int>(config_.fps + 0.5)) + (config_.motion ? " (moving)" : "");
+           "@" + std::to_string(static_cast<int>(config_.fps + 0.5)) + (config_.motion ? " (moving)" : "") +
+           (config_.rig ? ", two-sensor rig" : "");
 }
 
 Capabilities SyntheticDevice::capabilities() const {
@@ -131,7 +149,7 @@ Status SyntheticDevice::doOpen() {
     if (Status s = checkSyntheticConfig(config_); !s)
         return s;
     if (!config_.motion)
-        staticImage_ = scene_.renderImage(cameraIntrinsics_, SyntheticScene::cameraPose(0.0, false));
+        staticImage_ = renderImage(SyntheticScene::cameraPose(0.0, false));
     return {};
 }
 
@@ -171,8 +189,9 @@ std::shared_ptr<frame::Frame> SyntheticDevice::renderFrame(std::uint64_t sequenc
     const frame::Pose pose = SyntheticScene::cameraPose(timeSeconds, config_.motion);
     frame->pose = pose;
     frame->cameraIntrinsics = cameraIntrinsics_;
-    frame->capturedImage = config_.motion ? scene_.renderImage(cameraIntrinsics_, pose) : staticImage_;
-    const frame::Intrinsics depthK = cameraIntrinsics_.scaledTo(config_.depthWidth, config_.depthHeight);
+    frame->rig = rig_;
+    frame->capturedImage = config_.motion ? renderImage(pose) : staticImage_;
+    const frame::Intrinsics depthK = depthIntrinsics();
     if (config_.noise) {
         frame->sceneDepth = scene_.sensorDepth(depthK, pose, sequence);
     } else {
@@ -184,6 +203,19 @@ std::shared_ptr<frame::Frame> SyntheticDevice::renderFrame(std::uint64_t sequenc
         frame->sceneDepth = std::move(exact);
     }
     return frame;
+}
+
+// The colour sensor's image: the one camera's own, or the rig's colour sensor beside the depth sensor.
+frame::CapturedImage SyntheticDevice::renderImage(const frame::Pose& depthPose) const {
+    if (!rig_)
+        return scene_.renderImage(cameraIntrinsics_, depthPose);
+    return scene_.renderImage(frame::CameraModel{cameraIntrinsics_, rig_->colour.lens},
+                              colourSensorPose(depthPose, rig_->depthToColour));
+}
+
+frame::Intrinsics SyntheticDevice::depthIntrinsics() const {
+    return (rig_ ? rig_->depth.intrinsics : cameraIntrinsics_)
+        .scaledTo(config_.depthWidth, config_.depthHeight);
 }
 
 } // namespace dc::devices

@@ -20,7 +20,13 @@ struct SyntheticConfig {
     bool motion = false; // slow camera sway with the true pose in every frame
     bool noise = true;   // false: depth is the exact ground truth, confidence all High
     bool paced = true;   // false: deliver frames as fast as they are generated (tests, benchmarks)
+    // A two-sensor camera (syntheticRigCalibration()): depth from one sensor, colour from another 15 mm
+    // away with its own field of view and lens; every frame carries the rig's calibration.
+    bool rig = false;
 };
+
+// The rig's native modes: 848x480 depth at 30 Hz, 1280x720 colour.
+SyntheticConfig syntheticRigConfig();
 
 // Limits that keep a typo from allocating gigabytes: the camera image up to 8K per side, the depth map no
 // larger than the default camera image (a depth map is upsampled to the image, never beyond it), and at
@@ -60,10 +66,13 @@ private:
     class RenderAhead;
 
     std::shared_ptr<frame::Frame> renderFrame(std::uint64_t sequence, double timeSeconds) const;
+    frame::CapturedImage renderImage(const frame::Pose& depthPose) const;
+    frame::Intrinsics depthIntrinsics() const;
 
     SyntheticConfig config_;
     SyntheticScene scene_;
     frame::Intrinsics cameraIntrinsics_;
+    std::shared_ptr<const frame::RigCalibration> rig_; // config_.rig only
     frame::CapturedImage staticImage_;
     FramePacer pacer_;
     std::uint64_t sequence_ = 0;

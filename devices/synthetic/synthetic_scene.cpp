@@ -1,5 +1,6 @@
 #include "devices/synthetic/synthetic_scene.h"
 
+#include "frame/camera_model.h"
 #include "frame/color.h"
 
 #include <algorithm>
@@ -157,18 +158,27 @@ Hit castRay(const Ray& ray, Candidates candidates = {}) {
 
 struct CameraRays {
     Vec3 origin, right, down, forward;
-    const frame::Intrinsics& k;
+    frame::Intrinsics k;
+    frame::Lens lens;
 
     Ray at(int u, int v) const {
         const double xn = (u - k.cx) / k.fx;
         const double yn = (v - k.cy) / k.fy;
-        return {origin, right * xn + down * yn + forward};
+        if (lens.model == frame::LensModel::None)
+            return {origin, right * xn + down * yn + forward};
+        const auto [x, y] = frame::undistortPoint(lens, xn, yn);
+        return {origin, right * x + down * y + forward};
     }
 };
 
-CameraRays raysFor(const frame::Intrinsics& k, const frame::Pose& pose) {
+CameraRays raysFor(const frame::CameraModel& camera, const frame::Pose& pose) {
     const auto& m = pose.cameraToWorld;
-    return {{m[12], m[13], m[14]}, {m[0], m[1], m[2]}, {m[4], m[5], m[6]}, {m[8], m[9], m[10]}, k};
+    return {{m[12], m[13], m[14]}, {m[0], m[1], m[2]}, {m[4], m[5], m[6]},
+            {m[8], m[9], m[10]},   camera.intrinsics,  camera.lens};
+}
+
+CameraRays raysFor(const frame::Intrinsics& k, const frame::Pose& pose) {
+    return raysFor(frame::CameraModel{k, {}}, pose);
 }
 
 // The pixels whose rays can meet the box [lo, hi]: the rectangle around its corners' projections, a pixel
@@ -180,6 +190,9 @@ struct PixelBox {
 };
 
 PixelBox pixelsCovering(const CameraRays& rays, Vec3 lo, Vec3 hi) {
+    // Through a lens the hull of the projected corners is no longer a bound: every pixel may meet it.
+    if (rays.lens.model != frame::LensModel::None)
+        return {};
     PixelBox box{1e300, 1e300, -1e300, -1e300};
     for (int corner = 0; corner < 8; ++corner) {
         const Vec3 p{corner & 1 ? hi.x : lo.x, corner & 2 ? hi.y : lo.y, corner & 4 ? hi.z : lo.z};
@@ -211,8 +224,9 @@ struct SceneCaster {
     PixelBox apple, book;
 };
 
-std::vector<Hit> castAll(const frame::Intrinsics& k, const frame::Pose& pose) {
-    const CameraRays rays = raysFor(k, pose);
+std::vector<Hit> castAll(const frame::CameraModel& camera, const frame::Pose& pose) {
+    const frame::Intrinsics& k = camera.intrinsics;
+    const CameraRays rays = raysFor(camera, pose);
     const SceneCaster caster(rays);
     std::vector<Hit> hits(static_cast<std::size_t>(k.width) * k.height);
     for (int v = 0; v < k.height; ++v)
@@ -324,7 +338,13 @@ frame::Pose SyntheticScene::cameraPose(double timeSeconds, bool motion) {
 }
 
 frame::Plane<float> SyntheticScene::trueDepth(const frame::Intrinsics& k, const frame::Pose& pose) const {
-    const std::vector<Hit> hits = castAll(k, pose);
+    return trueDepth(frame::CameraModel{k, {}}, pose);
+}
+
+frame::Plane<float> SyntheticScene::trueDepth(const frame::CameraModel& camera,
+                                              const frame::Pose& pose) const {
+    const frame::Intrinsics& k = camera.intrinsics;
+    const std::vector<Hit> hits = castAll(camera, pose);
     frame::Plane<float> depth(k.width, k.height);
     for (std::size_t i = 0; i < hits.size(); ++i)
         depth.pixels[i] = depthOf(hits[i]);
@@ -374,7 +394,7 @@ frame::Confidence confidenceFor(double sigmaMeters) {
 frame::DepthData SyntheticScene::sensorDepth(const frame::Intrinsics& k, const frame::Pose& pose,
                                              std::uint64_t sequence) const {
     const CameraRays rays = raysFor(k, pose);
-    const std::vector<Hit> hits = castAll(k, pose);
+    const std::vector<Hit> hits = castAll(frame::CameraModel{k, {}}, pose);
     frame::Plane<float> truth(k.width, k.height);
     for (std::size_t i = 0; i < hits.size(); ++i)
         truth.pixels[i] = depthOf(hits[i]);
@@ -411,7 +431,13 @@ frame::DepthData SyntheticScene::sensorDepth(const frame::Intrinsics& k, const f
 }
 
 frame::CapturedImage SyntheticScene::renderImage(const frame::Intrinsics& k, const frame::Pose& pose) const {
-    const CameraRays rays = raysFor(k, pose);
+    return renderImage(frame::CameraModel{k, {}}, pose);
+}
+
+frame::CapturedImage SyntheticScene::renderImage(const frame::CameraModel& camera,
+                                                 const frame::Pose& pose) const {
+    const frame::Intrinsics& k = camera.intrinsics;
+    const CameraRays rays = raysFor(camera, pose);
     const SceneCaster caster(rays);
     const int w = k.width, h = k.height;
     const int cw = (w + 1) / 2;
@@ -443,6 +469,87 @@ frame::CapturedImage SyntheticScene::renderImage(const frame::Intrinsics& k, con
         }
     }
     return {frame::PixelFormat::Nv12, w, h, std::move(bytes)};
+}
+
+namespace {
+
+// A rotation by `yDegrees` about the camera's y axis after `xDegrees` about its x axis, row-major.
+std::array<double, 9> smallRotation(double xDegrees, double yDegrees) {
+    const double a = xDegrees * kPi / 180.0, b = yDegrees * kPi / 180.0;
+    const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b);
+    // Ry(b) * Rx(a)
+    return {cb, sb * sa, sb * ca, 0.0, ca, -sa, -sb, cb * sa, cb * ca};
+}
+
+Vec3 inCameraAxes(const CameraRays& rays, Vec3 p) {
+    const Vec3 c = p - rays.origin;
+    return {dot(c, rays.right), dot(c, rays.down), dot(c, rays.forward)};
+}
+
+} // namespace
+
+frame::RigCalibration syntheticRigCalibration() {
+    frame::RigCalibration rig;
+    rig.depth.intrinsics = {446.0, 446.0, 423.5, 239.5, 848, 480};
+    rig.colour.intrinsics = {931.5, 931.5, 639.5, 359.5, 1280, 720};
+    rig.colour.lens = {frame::LensModel::BrownConrady, {0.1, -0.2, 0.0008, -0.0005, 0.08}};
+    rig.depthToColour.rotation = smallRotation(-0.2, 0.4);
+    // The colour sensor's centre sits at c = (15 mm, 0, 0) in the depth sensor's frame: t = -R c.
+    const auto& r = rig.depthToColour.rotation;
+    constexpr double kBaselineMeters = 0.015;
+    rig.depthToColour.translationMeters = {-r[0] * kBaselineMeters, -r[3] * kBaselineMeters,
+                                           -r[6] * kBaselineMeters};
+    rig.name = "synthetic rig (exact)";
+    return rig;
+}
+
+frame::Pose colourSensorPose(const frame::Pose& depthPose, const frame::RigidTransform& depthToColour) {
+    const auto& m = depthPose.cameraToWorld;
+    const Vec3 right{m[0], m[1], m[2]}, down{m[4], m[5], m[6]}, forward{m[8], m[9], m[10]};
+    const auto inWorld = [&](Vec3 a) { return right * a.x + down * a.y + forward * a.z; };
+    const auto& r = depthToColour.rotation;
+    const auto& t = depthToColour.translationMeters;
+    // The colour sensor's axes are the rows of R in depth coordinates; its centre is -Rᵀ t.
+    const Vec3 x = inWorld({r[0], r[1], r[2]}), y = inWorld({r[3], r[4], r[5]}),
+               z = inWorld({r[6], r[7], r[8]});
+    const Vec3 centre{-(r[0] * t[0] + r[3] * t[1] + r[6] * t[2]), -(r[1] * t[0] + r[4] * t[1] + r[7] * t[2]),
+                      -(r[2] * t[0] + r[5] * t[1] + r[8] * t[2])};
+    const Vec3 o = Vec3{m[12], m[13], m[14]} + inWorld(centre);
+    return {{x.x, x.y, x.z, 0, y.x, y.y, y.z, 0, z.x, z.y, z.z, 0, o.x, o.y, o.z, 1}};
+}
+
+RegistrationTruth SyntheticScene::registrationTruth(const frame::CameraModel& depthCamera,
+                                                    const frame::CameraModel& colourCamera,
+                                                    const frame::RigidTransform& depthToColour,
+                                                    const frame::Pose& depthPose) const {
+    const frame::Intrinsics& k = depthCamera.intrinsics;
+    const CameraRays depthRays = raysFor(depthCamera, depthPose);
+    const CameraRays colourRays = raysFor(colourCamera, colourSensorPose(depthPose, depthToColour));
+    const frame::Intrinsics& kc = colourCamera.intrinsics;
+    RegistrationTruth truth{std::vector<std::array<double, 2>>(static_cast<std::size_t>(k.width) * k.height,
+                                                               {std::nan(""), std::nan("")}),
+                            std::vector<std::uint8_t>(static_cast<std::size_t>(k.width) * k.height)};
+    for (int v = 0; v < k.height; ++v)
+        for (int u = 0; u < k.width; ++u) {
+            const Ray ray = depthRays.at(u, v);
+            const Hit hit = castRay(ray);
+            if (hit.t > kMaxRangeMeters)
+                continue;
+            const Vec3 p = inCameraAxes(colourRays, ray.origin + ray.dir * hit.t);
+            const auto pixel = frame::projectPoint(colourCamera, {p.x, p.y, p.z});
+            if (!pixel)
+                continue;
+            const std::size_t i = static_cast<std::size_t>(v) * k.width + u;
+            truth.colourPixel[i] = *pixel;
+            const bool inside = (*pixel)[0] >= -0.5 && (*pixel)[1] >= -0.5 && (*pixel)[0] < kc.width - 0.5 &&
+                                (*pixel)[1] < kc.height - 0.5;
+            // The colour camera's own ray to the point, scaled like every ray here to unit camera z: the
+            // point is seen when nothing is met before it.
+            const Vec3 toPoint = ray.origin + ray.dir * hit.t - colourRays.origin;
+            const Hit first = castRay({colourRays.origin, toPoint * (1.0 / p.z)});
+            truth.visible[i] = inside && first.t >= p.z * (1.0 - 1e-9) - 1e-9;
+        }
+    return truth;
 }
 
 } // namespace dc::devices

@@ -1,8 +1,11 @@
 #pragma once
 
+#include "frame/camera_model.h"
 #include "frame/frame.h"
 
+#include <array>
 #include <cstdint>
+#include <vector>
 
 namespace dc::devices {
 
@@ -22,6 +25,23 @@ constexpr double kWindowMinX = -0.35, kWindowMaxX = 0.45, kWindowBottom = 0.3, k
 constexpr double kBlindsZ = 1.86, kBlindsBottom = 0.7, kSlatPitch = 0.05, kSlatHeight = 0.03;
 constexpr double kBookMin[3] = {0.16, 0.0, 0.55}, kBookMax[3] = {0.38, 0.04, 0.85};
 } // namespace scene
+
+// A two-sensor RGB-D camera modelled on the RealSense D435's: a wide depth sensor (848x480, about 87 x 57
+// degrees, no distortion) and, 15 mm to its right and turned by a few tenths of a degree, a narrower colour
+// sensor (1280x720, about 69 x 42 degrees) with a lens distortion like a webcam's. Exact by construction, so
+// it is the test bed for registration.
+frame::RigCalibration syntheticRigCalibration();
+
+// The colour sensor's camera-to-world pose when the depth sensor's is `depthPose`.
+frame::Pose colourSensorPose(const frame::Pose& depthPose, const frame::RigidTransform& depthToColour);
+
+// The exact registration of one depth map, straight from the scene's geometry: for each depth pixel
+// (row-major) the colour-image position of the surface point it sees, and whether the colour camera sees that
+// very point (inside its image and not hidden by anything nearer to it).
+struct RegistrationTruth {
+    std::vector<std::array<double, 2>> colourPixel; // NaN where the depth pixel sees nothing in range
+    std::vector<std::uint8_t> visible;
+};
 
 // A deterministic procedural scene modelled on the Depth Cloud sample's figure: a desk with an
 // apple-sized sphere and a book on it, a back wall with a window whose opening looks out beyond the
@@ -45,12 +65,22 @@ public:
 
     // Exact depth along the camera's z axis (meters), 0 where nothing is within kMaxRangeMeters.
     frame::Plane<float> trueDepth(const frame::Intrinsics& intrinsics, const frame::Pose& pose) const;
+    // The same through a lens: each pixel's undistorted ray.
+    frame::Plane<float> trueDepth(const frame::CameraModel& camera, const frame::Pose& pose) const;
     // Depth as a sensor would measure it: noise growing with distance and grazing angle, mixed pixels at
     // depth edges, and confidence (0/1/2) derived from that noise. Deterministic in (seed, sequence).
     frame::DepthData sensorDepth(const frame::Intrinsics& intrinsics, const frame::Pose& pose,
                                  std::uint64_t sequence) const;
     // The shaded, textured camera image as NV12 (full-range BT.601), consistent with the geometry.
     frame::CapturedImage renderImage(const frame::Intrinsics& intrinsics, const frame::Pose& pose) const;
+    // The image through a lens: each pixel shows what its undistorted ray meets.
+    frame::CapturedImage renderImage(const frame::CameraModel& camera, const frame::Pose& pose) const;
+    // The registration truth for a depth map of depthCamera (at its intrinsics' size) into colourCamera's
+    // image, for the depth sensor at depthPose.
+    RegistrationTruth registrationTruth(const frame::CameraModel& depthCamera,
+                                        const frame::CameraModel& colourCamera,
+                                        const frame::RigidTransform& depthToColour,
+                                        const frame::Pose& depthPose) const;
 
 private:
     std::uint64_t seed_;

@@ -70,6 +70,7 @@ TEST_F(Cli, BadArgumentsExitWithTwoAndOneLineNamingTheArgument) {
         {"--headless --source synthetic:99999x99999", "--source"},
         {"--headless --source synthetic:7680x7680", "limit of 2764800 pixels"},
         {"--headless --source v4l2:/dev/null", "v4l2:/dev/null: not a video capture node"},
+        {"--headless --source synthetic:rig=stereo", "unknown rig 'stereo'"},
         {"--headless --confidence extreme", "--confidence: extreme not in {low,medium,high}"},
         {"--headless --frames 0", "--frames"},
         {"record --frames 0 a.dcrec", "--frames"},

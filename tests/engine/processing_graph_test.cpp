@@ -217,3 +217,38 @@ TEST_F(ProcessingGraphTest, ANewFrameRerunsWhatItFeedsAndResetStartsOver) {
 
 } // namespace
 } // namespace dc::engine::test
+
+namespace dc::engine::test {
+namespace {
+
+// A two-sensor frame: the cloud is placed with the depth sensor's intrinsics, its points coloured where the
+// colour sensor sees them, and the mask of those it cannot see travels with the colours.
+TEST(ProcessingGraphRig, PointsOfATwoSensorFrameAreRegisteredAndCarryTheSeenMask) {
+    devices::SyntheticConfig config = devices::syntheticRigConfig();
+    config.depthWidth = 212; // a quarter of the rig's depth, to keep the test quick
+    config.depthHeight = 120;
+    config.cameraWidth = 320;
+    config.cameraHeight = 180;
+    devices::SyntheticDevice device(config);
+    ASSERT_TRUE(device.open());
+    const frame::FramePtr frame = device.makeFrame(0, 0.0);
+    ASSERT_TRUE(frame->rig);
+
+    ProcessingGraph graph;
+    Demand demand;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
+    ASSERT_TRUE(shown->pointColors && shown->pointSeen);
+    EXPECT_EQ(shown->depth.intrinsics, frame->rig->depth.intrinsics.scaledTo(212, 120));
+    processing::CameraColourTable table;
+    const processing::PointColours expected =
+        processing::framePointColours(*frame, frame->sceneDepth->depthMeters, table);
+    EXPECT_EQ(shown->pointColors->pixels, expected.colors->pixels);
+    EXPECT_EQ(shown->pointSeen->pixels, expected.seen->pixels);
+    // The depth sensor sees more than the colour sensor: its margins are unseen, its centre seen.
+    EXPECT_EQ(shown->pointSeen->at(0, 60), 0);
+    EXPECT_EQ(shown->pointSeen->at(106, 60), 1);
+    EXPECT_NE(shown->pointColors->pixels, processing::pointColors(frame->capturedImage, 212, 120).pixels);
+}
+
+} // namespace
+} // namespace dc::engine::test

@@ -6,6 +6,7 @@
 #include "devices/replay/stray_format.h"
 #include "devices/replay/tum_format.h"
 #include "exporting/export.h"
+#include "frame/camera_model.h"
 #include "tests/pose_checks.h"
 #include "tests/recording/recording_test_support.h"
 #include "tests/test_data.h"
@@ -297,6 +298,40 @@ TEST_F(TumSequence, GroundTruthGivesPosesAndACalibrationOverridesTheIntrinsics) 
     auto bad = openReplaySource(dir_.path(), {dir_.path("missing.yaml")});
     ASSERT_FALSE(bad);
     EXPECT_NE(bad.error().message.find("missing.yaml"), std::string::npos);
+}
+
+// A Kalibr camchain for a two-sensor camera: cam0 the depth sensor, cam1 the colour sensor at `colourSize`.
+std::string kalibrRig(const std::string& colourSize) {
+    return "cam0:\n  camera_model: pinhole\n  intrinsics: [525.0, 525.0, 319.5, 239.5]\n"
+           "  distortion_model: none\n  resolution: [640, 480]\n"
+           "cam1:\n  T_cn_cnm1:\n  - [1, 0, 0, -0.025]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n  - [0, 0, 0, "
+           "1]\n"
+           "  camera_model: pinhole\n  intrinsics: [520.0, 521.0, 320.5, 240.5]\n"
+           "  distortion_model: radtan\n  distortion_coeffs: [0.1, -0.2, 0.001, 0.002]\n"
+           "  resolution: " +
+           colourSize + "\n";
+}
+
+TEST_F(TumSequence, ATwoSensorCalibrationRidesWithEveryFrameAndMustFitTheStreams) {
+    writeText(dir_.path("camchain.yaml"), kalibrRig("[1280, 960]"));
+    auto source = openReplaySource(dir_.path(), {dir_.path("camchain.yaml")});
+    ASSERT_TRUE(source) << source.error().message;
+    EXPECT_NE((*source)->description().find("camchain.yaml (Kalibr camchain)"), std::string::npos);
+    auto f = loadFrame(**source, 0);
+    ASSERT_TRUE(f) << f.error().message;
+    ASSERT_TRUE(f->rig);
+    EXPECT_EQ(f->rig->depthToColour.translationMeters[0], -0.025);
+    EXPECT_DOUBLE_EQ(f->cameraIntrinsics.fx, 260.0)
+        << "the colour sensor's, made at 1280x960, applied at 640x480";
+    EXPECT_DOUBLE_EQ(f->depthIntrinsics().fx, 525.0) << "the depth sensor's own";
+
+    writeText(dir_.path("wide.yaml"), kalibrRig("[1280, 720]"));
+    auto wide = openReplaySource(dir_.path(), {dir_.path("wide.yaml")});
+    ASSERT_TRUE(wide);
+    auto refused = loadFrame(**wide, 0);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("cam1.resolution 1280x720"), std::string::npos)
+        << refused.error().message;
 }
 
 TEST(ReplaySource, UnknownPathsAreClearErrors) {

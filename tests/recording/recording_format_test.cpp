@@ -3,6 +3,7 @@
 #include "devices/recording/recorder.h"
 #include "devices/recording/recording_reader.h"
 #include "devices/replay/importers.h"
+#include "frame/camera_model.h"
 #include "frame/color.h"
 #include "frame/jpeg_codec.h"
 #include "frame/rgb_image.h"
@@ -13,6 +14,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 #include <utility>
@@ -372,7 +374,9 @@ TEST_F(DamagedRecording, TruncatedHeaderWrongMagicAndFutureVersionAreClearErrors
     future[8] = 2; // version major, little-endian u16 at offset 8
     auto newer = RecordingReader::fromBytes(future, "f.dcrec");
     ASSERT_FALSE(newer);
-    EXPECT_NE(newer.error().message.find("newer depthcloud (format version 2.0)"), std::string::npos)
+    EXPECT_NE(newer.error().message.find("newer depthcloud (format version 2." +
+                                         std::to_string(kVersionMinor) + ")"),
+              std::string::npos)
         << newer.error().message;
 }
 
@@ -461,6 +465,46 @@ TEST(Recorder, WritesWhatItAcceptsAndCountsWhatItDrops) {
     auto reader = RecordingReader::open(dir.path("q.dcrec"));
     ASSERT_TRUE(reader);
     EXPECT_EQ(reader->frameCount(), static_cast<std::size_t>(accepted));
+}
+
+// A two-sensor frame keeps its calibration through a recording; a damaged one is refused, never applied.
+TEST(RecordingFormat, ARigCalibrationRoundTripsAndABrokenOneIsRefused) {
+    frame::RigCalibration rig;
+    rig.depth.intrinsics = {446.25, 446.5, 423.5, 239.5, 848, 480};
+    rig.colour.intrinsics = {931.5, 931.25, 639.5, 359.5, 1280, 720};
+    rig.colour.lens = {frame::LensModel::InverseBrownConrady, {0.1, -0.2, 0.0008, -0.0005, 0.08}};
+    rig.depthToColour = {{0.0, -1.0, 0.0, 1.0, 0.0, 0.0, 0.0, 0.0, 1.0}, {-0.015, 0.001, 0.002}};
+    rig.name = "camchain.yaml (Kalibr camchain)";
+    rig.approximate = true;
+    frame::Frame frame;
+    frame.sceneDepth = frame::DepthData{frame::Plane<float>(4, 3, 1.0f), {}};
+    frame.rig = std::make_shared<const frame::RigCalibration>(rig);
+    auto payload = FrameEncoder().encode(frame);
+    ASSERT_TRUE(payload);
+    auto decoded = FrameDecoder().decode(*payload, 0, "mem", 0);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    ASSERT_TRUE(decoded->rig);
+    EXPECT_EQ(decoded->rig->depth, rig.depth);
+    EXPECT_EQ(decoded->rig->colour, rig.colour);
+    EXPECT_EQ(decoded->rig->depthToColour, rig.depthToColour);
+    EXPECT_EQ(decoded->rig->name, rig.name);
+    EXPECT_TRUE(decoded->rig->approximate);
+
+    frame.rig = nullptr;
+    auto single = FrameEncoder().encode(frame);
+    ASSERT_TRUE(single);
+    EXPECT_FALSE(FrameDecoder().decode(*single, 0, "mem", 0)->rig) << "one camera stays one camera";
+
+    // The rotation's first entry, 0.0, made 2.0: no longer a rotation.
+    std::vector<std::uint8_t> broken = *payload;
+    const std::vector<std::uint8_t> needle = {0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0xf0, 0xbf}; // -1.0
+    const auto at = std::search(broken.begin(), broken.end(), needle.begin(), needle.end());
+    ASSERT_NE(at, broken.end());
+    const double two = 2.0;
+    std::memcpy(&*(at - 8), &two, 8);
+    auto refused = FrameDecoder().decode(broken, 0, "mem", 0);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("rig calibration"), std::string::npos) << refused.error().message;
 }
 
 } // namespace

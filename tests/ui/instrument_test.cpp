@@ -116,6 +116,25 @@ TEST_F(InstrumentTest, HoverOnTheDepthPanelReadsTheKnownDepthAtAKnownPixel) {
     EXPECT_EQ(formatDepth(1.2344f), "1.234 m") << "meters above one meter";
 }
 
+// A two-sensor camera: the status line names its calibration, and the readout tells a point the colour
+// sensor sees from one outside its narrower view (the depth map's left margin).
+TEST_F(InstrumentTest, ATwoSensorSourceNamesItsCalibrationAndHoverSaysWhatTheColourCameraCannotSee) {
+    devices::SyntheticConfig rig = devices::syntheticRigConfig();
+    rig.depthWidth = 212; // a quarter of the rig's sizes keeps the test quick
+    rig.depthHeight = 120;
+    rig.cameraWidth = 320;
+    rig.cameraHeight = 180;
+    rig.noise = false;
+    ASSERT_NO_FATAL_FAILURE(startViewer(rig));
+    frame(0.0);
+    EXPECT_NE(viewer_->statusLine().calibration.find("synthetic rig"), std::string::npos);
+    ASSERT_TRUE(mouseOverDepthPixel(kDepthTitle, 2, 60, 1).has_value());
+    ASSERT_GT(viewer_->hoverProbe()->depthMeters, 0.0f);
+    EXPECT_FALSE(viewer_->hoverProbe()->seenByColour);
+    ASSERT_TRUE(mouseOverDepthPixel(kDepthTitle, 106, 60, 1).has_value());
+    EXPECT_TRUE(viewer_->hoverProbe()->seenByColour);
+}
+
 TEST_F(InstrumentTest, ConfidenceAndCameraPanelsReadOutTheSameSample) {
     for (const char* title : {kConfidenceTitle, kCameraTitle}) {
         const auto at = mouseOverDepthPixel(title, 100, 170, 1);
@@ -408,7 +427,8 @@ TEST_F(InstrumentTest, RecordButtonNumbersTakesKeepsItsPlaceAndRecordsAsChosen) 
     const auto record = locate(kControlsTitle, kRecordButtonId);
     ASSERT_TRUE(record);
     const auto takeFrames = [&](double t) {
-        const auto button = locate(kControlsTitle, kRecordButtonId); // where it is now, the group may have grown
+        const auto button =
+            locate(kControlsTitle, kRecordButtonId); // where it is now, the group may have grown
         ASSERT_TRUE(button);
         click(*button, t);
         for (int i = 0; i < 200 && instrument_->recording().frames < 3; ++i)

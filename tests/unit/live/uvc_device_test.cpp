@@ -96,7 +96,7 @@ TEST_F(UvcDeviceTest, ConvertsZ16ToMetersOnceWithTheDepthScale) {
 
 TEST_F(UvcDeviceTest, CalibrationIntrinsicsAreScaledToTheStream) {
     UvcConfig c = config();
-    c.calibration = frame::Calibration{{100.0, 100.0, 8.0, 6.0, 16, 12}, "OpenCV YAML"};
+    c.calibration = frame::Calibration{{100.0, 100.0, 8.0, 6.0, 16, 12}, "OpenCV YAML", std::nullopt, "", ""};
     UvcDevice d(c, fake_);
     ASSERT_TRUE(d.open());
     EXPECT_FALSE(d.capabilities().approximateIntrinsics);

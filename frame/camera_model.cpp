@@ -1,0 +1,78 @@
+#include "frame/camera_model.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace dc::frame {
+
+// Fixed-point iteration, as OpenCV's undistortPoints does: it converges for the monotonic distortions of
+// real lenses, and 20 steps bring it well below 1e-6 of a normalised unit (a thousandth of a pixel) for the
+// strongest lenses we read.
+std::array<double, 2> invertBrownConrady(const std::array<double, 5>& c, double xd, double yd) {
+    double x = xd, y = yd;
+    for (int i = 0; i < 20; ++i) {
+        const double r2 = x * x + y * y;
+        const double radial = 1.0 + r2 * (c[0] + r2 * (c[1] + r2 * c[4]));
+        const double dx = 2.0 * c[2] * x * y + c[3] * (r2 + 2.0 * x * x);
+        const double dy = c[2] * (r2 + 2.0 * y * y) + 2.0 * c[3] * x * y;
+        x = (xd - dx) / radial;
+        y = (yd - dy) / radial;
+    }
+    return {x, y};
+}
+
+const char* toString(LensModel model) {
+    switch (model) {
+    case LensModel::None:
+        return "none";
+    case LensModel::BrownConrady:
+        return "brown_conrady";
+    case LensModel::InverseBrownConrady:
+        return "inverse_brown_conrady";
+    }
+    return "unknown";
+}
+
+bool RigidTransform::isIdentity() const {
+    return *this == RigidTransform{};
+}
+
+double rotationError(const std::array<double, 9>& r) {
+    const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
+                       r[2] * (r[3] * r[7] - r[4] * r[6]);
+    if (!(det > 0.0))
+        return std::numeric_limits<double>::infinity();
+    double worst = 0.0;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            const double dotIJ =
+                r[3 * i] * r[3 * j] + r[3 * i + 1] * r[3 * j + 1] + r[3 * i + 2] * r[3 * j + 2];
+            worst = std::max(worst, std::abs(dotIJ - (i == j ? 1.0 : 0.0)));
+        }
+    return std::isfinite(worst) ? worst : std::numeric_limits<double>::infinity();
+}
+
+std::array<double, 2> undistortPoint(const Lens& lens, double x, double y) {
+    switch (lens.model) {
+    case LensModel::None:
+        return {x, y};
+    case LensModel::BrownConrady:
+        return invertBrownConrady(lens.coefficients, x, y);
+    case LensModel::InverseBrownConrady:
+        return brownConrady(lens.coefficients, x, y);
+    }
+    return {x, y};
+}
+
+std::array<double, 3> pixelRay(const CameraModel& camera, double u, double v) {
+    const Intrinsics& k = camera.intrinsics;
+    const auto [x, y] = undistortPoint(camera.lens, (u - k.cx) / k.fx, (v - k.cy) / k.fy);
+    return {x, y, 1.0};
+}
+
+std::string describe(const RigCalibration& rig) {
+    return "two sensors, calibration " + rig.name + (rig.approximate ? " (approximate)" : "");
+}
+
+} // namespace dc::frame

@@ -1,0 +1,128 @@
+#include "frame/calibration_fields.h"
+#include "frame/calibration_formats.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+namespace dc::frame::formats {
+
+namespace {
+
+using fields::fieldError;
+
+std::string stringOf(const cv::FileNode& node) {
+    return node.isString() ? node.string() : "";
+}
+
+// One camera block: camera_model pinhole, intrinsics [fu, fv, pu, pv], distortion radtan (k1 k2 p1 p2) or
+// none, resolution [width, height].
+Expected<CameraModel> readCamera(const cv::FileNode& cam, const std::string& name,
+                                 const std::string& origin) {
+    if (cam.empty() || !cam.isMap())
+        return fieldError(origin, name, "missing");
+    const std::string model = stringOf(cam["camera_model"]);
+    if (!cam["camera_model"].empty() && model != "pinhole")
+        return fieldError(origin, name + ".camera_model", "'" + model + "' is not supported (pinhole)");
+    auto k = fields::numbers(cam["intrinsics"], name + ".intrinsics", origin, 4);
+    if (!k)
+        return k.error();
+    auto size = fields::imageSize(cam["resolution"], name + ".resolution", origin);
+    if (!size)
+        return size.error();
+    CameraModel camera{{(*k)[0], (*k)[1], (*k)[2], (*k)[3], (*size)[0], (*size)[1]}, {}};
+    if (Status s = fields::checkIntrinsics(camera.intrinsics, name + ".intrinsics", origin); !s)
+        return s.error();
+    const std::string distortion = stringOf(cam["distortion_model"]);
+    if (distortion == "radtan") {
+        auto d = fields::numbers(cam["distortion_coeffs"], name + ".distortion_coeffs", origin, 4);
+        if (!d)
+            return d.error();
+        camera.lens = {LensModel::BrownConrady, {(*d)[0], (*d)[1], (*d)[2], (*d)[3], 0.0}};
+    } else if (!cam["distortion_model"].empty() && distortion != "none") {
+        return fieldError(origin, name + ".distortion_model",
+                          "'" + distortion + "' is not supported (radtan or none)");
+    }
+    return camera;
+}
+
+Expected<RigidTransform> readTransform(const cv::FileNode& cam1, const std::string& origin) {
+    const std::string field = "cam1.T_cn_cnm1";
+    auto m = fields::numbers(cam1["T_cn_cnm1"], field, origin, 16);
+    if (!m)
+        return m.error();
+    const std::vector<double>& v = *m;
+    if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
+        return fieldError(origin, field, "the last row must be [0, 0, 0, 1]");
+    RigidTransform t;
+    t.rotation = {v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10]};
+    t.translationMeters = {v[3], v[7], v[11]};
+    if (Status s = fields::checkTransform(t, field, field, origin); !s)
+        return s.error();
+    return t;
+}
+
+std::string listOf(std::initializer_list<double> values) {
+    std::string out = "[";
+    char number[32];
+    for (double v : values) {
+        std::snprintf(number, sizeof number, "%.17g", v);
+        out += (out.size() > 1 ? ", " : "") + std::string(number);
+    }
+    return out + "]";
+}
+
+std::string cameraBlock(const CameraModel& camera) {
+    const Intrinsics& k = camera.intrinsics;
+    const auto& c = camera.lens.coefficients;
+    std::ostringstream out;
+    out << "  camera_model: pinhole\n  intrinsics: " << listOf({k.fx, k.fy, k.cx, k.cy}) << "\n";
+    if (camera.lens.model == LensModel::None)
+        out << "  distortion_model: none\n  distortion_coeffs: []\n";
+    else
+        out << "  distortion_model: radtan\n  distortion_coeffs: " << listOf({c[0], c[1], c[2], c[3]})
+            << "\n";
+    out << "  resolution: [" << k.width << ", " << k.height << "]\n";
+    return out.str();
+}
+
+} // namespace
+
+bool isKalibr(const cv::FileStorage& fs) {
+    return !fs["cam0"].empty() && fs["cam0"].isMap();
+}
+
+Expected<Calibration> readKalibr(const cv::FileStorage& fs, const std::string& origin) {
+    auto depth = readCamera(fs["cam0"], "cam0", origin);
+    if (!depth)
+        return depth.error();
+    auto colour = readCamera(fs["cam1"], "cam1", origin);
+    if (!colour)
+        return colour.error();
+    auto transform = readTransform(fs["cam1"], origin);
+    if (!transform)
+        return transform.error();
+    Calibration result{colour->intrinsics, "Kalibr camchain", RigCalibration{}, "cam0.resolution",
+                       "cam1.resolution"};
+    result.rig = RigCalibration{*depth, *colour, *transform, origin + " (Kalibr camchain)", false};
+    return result;
+}
+
+Expected<std::string> writeKalibr(const RigCalibration& rig) {
+    for (const CameraModel* camera : {&rig.depth, &rig.colour}) {
+        if (camera->lens.model == LensModel::InverseBrownConrady)
+            return Error{"Kalibr has no inverse Brown-Conrady lens model"};
+        if (camera->lens.coefficients[4] != 0.0)
+            return Error{"Kalibr's radtan model has no k3"};
+    }
+    const auto& r = rig.depthToColour.rotation;
+    const auto& t = rig.depthToColour.translationMeters;
+    std::ostringstream out;
+    out << "cam0:\n" << cameraBlock(rig.depth) << "cam1:\n  T_cn_cnm1:\n";
+    for (int row = 0; row < 3; ++row)
+        out << "  - " << listOf({r[3 * row], r[3 * row + 1], r[3 * row + 2], t[row]}) << "\n";
+    out << "  - [0, 0, 0, 1]\n" << cameraBlock(rig.colour);
+    return out.str();
+}
+
+} // namespace dc::frame::formats

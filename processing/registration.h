@@ -1,0 +1,60 @@
+#pragma once
+
+#include "frame/camera_model.h"
+#include "frame/frame.h"
+#include "processing/camera_image.h"
+#include "processing/point_colors.h"
+
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+namespace dc::processing {
+
+// Where each sample of a depth map lands in the colour image of a two-sensor camera: unprojected with the
+// depth lens, moved into the colour sensor's frame, projected with the colour lens. A sample the colour
+// camera cannot see (outside its image, behind it, or hidden behind a nearer surface) has no pixel there.
+struct Registration {
+    static constexpr std::int32_t kUnseen = -1;
+    int colourWidth = 0;
+    int colourHeight = 0;
+    // Per depth sample, row-major: y * colourWidth + x of the colour pixel nearest its projection, or
+    // kUnseen (also for samples without depth).
+    std::vector<std::int32_t> colourPixel;
+    frame::Plane<std::uint8_t> seen; // the depth map's size: 1 where colourPixel is a pixel
+};
+
+// Registers `depth` (any resolution: the rig's depth intrinsics are scaled to it) into a colour image of
+// colourWidth x colourHeight. Visibility is decided with a z-buffer in colour-image space in which each
+// sample covers its footprint, so a nearer surface hides what lies behind it even where the colour image
+// is finer than the depth map.
+Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
+                           int colourWidth, int colourHeight);
+
+// The depth map as the colour sensor would measure it, at colourWidth x colourHeight: for each colour pixel
+// the depth along the colour sensor's own axis (meters) of the nearest sample covering it (each sample
+// covers its footprint, as in registerDepth's z-buffer), 0 where none does. The input of overlays and of
+// effects that work in the colour image.
+frame::Plane<float> alignDepthToColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
+                                       int colourWidth, int colourHeight);
+
+// A rig that is really one camera: no rotation or translation between the sensors, the same lens, and
+// depth intrinsics that are the colour intrinsics scaled. Colouring then takes the single-camera path.
+bool isSingleCamera(const frame::RigCalibration& rig);
+
+// The colour given to a point the colour camera does not see: a neutral mid-gray, never a guess.
+inline constexpr std::uint8_t kUnseenGray = 128;
+
+// Point colours with the mask of the points the colour camera sees.
+struct PointColours {
+    std::shared_ptr<const RgbImage> colors;
+    // Null when every point is seen (one camera); else the depth map's size, 1 = seen.
+    std::shared_ptr<const frame::Plane<std::uint8_t>> seen;
+};
+
+// The colours of a depth map's points for `frame`: the single-camera pointColors() when the frame has no
+// rig (bit for bit today's colours), else each point coloured where registerDepth() puts it.
+PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
+                               CameraColourTable& table);
+
+} // namespace dc::processing
