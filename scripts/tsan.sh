@@ -19,7 +19,8 @@ cmake -S . -B build-tsan -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_REL
     -DDC_BUILD_TESTS=ON -DDC_WERROR=ON -DDC_TSAN=ON >/dev/null
 cmake --build build-tsan -j"$(nproc)" --target "${targets[@]}"
 built=$(date +%s)
-export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 ${TSAN_OPTIONS:-}"
+# scripts/tsan.supp: only libraries we do not build (GDAL, FFmpeg), each with its reason.
+export TSAN_OPTIONS="halt_on_error=1 second_deadlock_stack=1 suppressions=$PWD/scripts/tsan.supp ${TSAN_OPTIONS:-}"
 # The engine's stress tests run their sources, demand changes, seeks and source switches this long.
 export DC_ENGINE_STRESS_SECONDS=${DC_ENGINE_STRESS_SECONDS:-10}
 for target in "${targets[@]}"; do
