@@ -8,6 +8,7 @@
 #include "engine/processing_graph.h"
 #include "render/gl_context.h"
 #include "render/view_renderer.h"
+#include "tool/bench_settings.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"
@@ -76,16 +77,6 @@ std::vector<frame::FramePtr> benchFrames() {
     return frames;
 }
 
-// Every stage on: the cloud in camera colours, all panels, fog and aura, smoothing and upsampling.
-ui::Settings everyStage() {
-    ui::Settings s;
-    s.panels.fog = true;
-    s.panels.aura = true;
-    s.processing.smoothing = true;
-    s.processing.upsampling = true;
-    return s;
-}
-
 struct EngineResult {
     std::vector<double> glCpuMs, updateCpuMs, uiCpuMs, glFrameCpuMs, glWallMs, latencyMs;
     engine::FrameCounts frames;
@@ -105,7 +96,7 @@ Expected<EngineResult> runEngine(const BenchEngineOptions& o, std::vector<frame:
         return s.error();
     engine::Instrument instrument(std::make_unique<devices::FrameListDevice>(std::move(frames), o.sourceFps),
                                   "bench frames");
-    ui::Viewer viewer(instrument, renderer, everyStage());
+    ui::Viewer viewer(instrument, renderer, everyStageSettings());
     instrument.start();
     EngineResult r;
     const auto period =

@@ -6,6 +6,7 @@
 #include "engine/instrument.h"
 #include "render/gl_context.h"
 #include "render/view_renderer.h"
+#include "tool/bench_settings.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"
@@ -45,16 +46,6 @@ int openFds() {
     return n;
 }
 
-ui::Settings everyStage() {
-    ui::Settings s;
-    s.panels.fog = true;
-    s.panels.aura = true;
-    s.processing.smoothing = true;
-    s.processing.upsampling = true;
-    s.accumulate.enabled = true;
-    return s;
-}
-
 // Shows `o.frames` new frames with every stage on, sampling as it goes.
 Expected<std::vector<Sample>> soak(const BenchSoakOptions& o, std::unique_ptr<devices::Device> device) {
     ui::HeadlessUi gui;
@@ -64,7 +55,9 @@ Expected<std::vector<Sample>> soak(const BenchSoakOptions& o, std::unique_ptr<de
     if (Status s = renderer.init(); !s)
         return s.error();
     engine::Instrument instrument(std::move(device), o.source);
-    ui::Viewer viewer(instrument, renderer, everyStage());
+    ui::Settings settings = everyStageSettings();
+    settings.accumulate.enabled = true;
+    ui::Viewer viewer(instrument, renderer, settings);
     instrument.start();
     std::vector<Sample> samples;
     int shown = 0, idle = 0;
