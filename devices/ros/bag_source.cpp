@@ -3,8 +3,10 @@
 #include "devices/replay/tum_format.h"
 #include "devices/ros/bag_reader.h"
 #include "frame/calibration.h"
+#include "frame/camera_model.h"
 
 #include <algorithm>
+#include <cctype>
 #include <filesystem>
 
 namespace dc::devices::ros {
@@ -60,6 +62,42 @@ BagExtrinsics depthToColor(const RosTransform& depth, const RosTransform& color)
     return out;
 }
 
+// A camera_info's lens as registration models it: plumb_bob and RealSense's Brown Conrady are OpenCV's
+// polynomial; RealSense's Inverse Brown Conrady runs it the other way. All-zero coefficients are no lens.
+// Another model (equidistant, rational) is left out, and the calibration is marked approximate.
+frame::Lens lensOf(const CameraInfoRecord& info, bool& approximate) {
+    frame::Lens lens;
+    const bool bent =
+        std::any_of(info.distortion.begin(), info.distortion.end(), [](double d) { return d != 0.0; });
+    if (!bent)
+        return lens;
+    std::string model = info.distortionModel;
+    std::transform(model.begin(), model.end(), model.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (info.distortion.size() < 5 || model.find("equidistant") != std::string::npos ||
+        model.find("rational") != std::string::npos) {
+        approximate = true;
+        return lens;
+    }
+    lens.model = model.find("inverse") != std::string::npos ? frame::LensModel::InverseBrownConrady
+                                                            : frame::LensModel::BrownConrady;
+    std::copy_n(info.distortion.begin(), 5, lens.coefficients.begin());
+    return lens;
+}
+
+// The two-sensor calibration a RealSense bag records: both streams' camera_info and the transform between
+// them. Without all three the colour is taken as one camera's, as for any other replay.
+std::shared_ptr<const frame::RigCalibration> rigCalibration(const BagRig& rig, const std::string& path) {
+    if (!rig.depth || !rig.color || !rig.depthToColor)
+        return nullptr;
+    frame::RigCalibration out;
+    out.depth = {rig.depth->intrinsics, lensOf(*rig.depth, out.approximate)};
+    out.colour = {rig.color->intrinsics, lensOf(*rig.color, out.approximate)};
+    out.depthToColour = {rig.depthToColor->rotation, rig.depthToColor->translationMeters};
+    out.name = std::filesystem::path(path).filename().string() + " (recorded)";
+    return std::make_shared<const frame::RigCalibration>(std::move(out));
+}
+
 // One image topic's messages with the timestamps replay uses.
 struct ImageStream {
     std::size_t handle = 0;
@@ -102,6 +140,7 @@ private:
     std::vector<std::optional<std::size_t>> colorOf_; // per depth image
     double metersPerUnit_ = kRosDepthMetersPerUnit;
     BagRig rig_;
+    std::shared_ptr<const frame::RigCalibration> rigCalibration_; // when the bag records both sensors
     std::vector<std::string> warnings_;
     bool decodeColor_ = true;
 };
@@ -212,6 +251,7 @@ void BagSource::readCalibration() {
     if (!rig_.depth)
         warnings_.push_back(path_ + ": no camera_info for " + depthTopic_ + " (looked for " +
                             cameraInfoTopic(depthTopic_) + "); the cloud's geometry is approximate");
+    rigCalibration_ = rigCalibration(rig_, path_);
 }
 
 void BagSource::pairColor() {
@@ -260,9 +300,11 @@ Expected<frame::Frame> BagSource::frame(std::size_t i) {
     auto depth = depthFromImage(*depthImage, metersPerUnit_);
     if (!depth)
         return fail(depth.error());
-    // Until two-sensor registration lands, the cloud unprojects with the image intrinsics scaled to the
-    // depth map, so they are the depth camera's, at the colour image's size: geometry exact, colour as
-    // before.
+    // With the recorded calibration of both sensors the frame carries it: the depth map unprojects with the
+    // depth sensor's intrinsics, and each point takes its colour where the colour sensor sees it. Without,
+    // the image intrinsics are the depth camera's at the colour image's size: geometry exact, colour as one
+    // camera's.
+    frame.rig = rigCalibration_;
     const frame::Intrinsics depthK =
         rig_.depth ? rig_.depth->intrinsics
                    : frame::intrinsicsFromFieldOfView(depth->width, depth->height, kFallbackFovDegrees);
@@ -275,7 +317,8 @@ Expected<frame::Frame> BagSource::frame(std::size_t i) {
         auto color = colorFromImage(*colorImage);
         if (!color)
             return fail(color.error());
-        frame.cameraIntrinsics = depthK.scaledTo(color->width, color->height);
+        frame.cameraIntrinsics =
+            (rigCalibration_ ? rig_.color->intrinsics : depthK).scaledTo(color->width, color->height);
         frame.capturedImage = std::move(*color);
     }
     return frame;

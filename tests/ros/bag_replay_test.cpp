@@ -7,6 +7,7 @@
 #include "devices/replay/replay_spec.h"
 #include "devices/ros/bag_source.h"
 #include "exporting/export.h"
+#include "frame/camera_model.h"
 #include "tests/recording/recording_test_support.h"
 
 #include <gtest/gtest.h>
@@ -136,6 +137,36 @@ TEST_F(BagReplay, RealSenseBagKeepsEachStreamsLensAndTheDepthToColorExtrinsics) 
     EXPECT_NEAR(rig->depthToColor->translationMeters[0], -(c * 0.015 + s * 0.001), 1e-12);
     EXPECT_NEAR(rig->depthToColor->translationMeters[1], -(-s * 0.015 + c * 0.001), 1e-12);
     EXPECT_NEAR(rig->depthToColor->translationMeters[2], 0.002, 1e-12);
+}
+
+// What the bag records about its two sensors rides with every frame, so that each point takes its colour
+// where the colour sensor sees it; a bag that does not record where the sensors sit keeps one camera's.
+TEST_F(BagReplay, RealSenseFramesCarryTheRecordedTwoSensorCalibration) {
+    auto source = open(bag("realsense_rgb8.bag"));
+    ASSERT_TRUE(source);
+    const BagRig* recorded = bagRig(*source);
+    ASSERT_TRUE(recorded && recorded->depthToColor);
+    auto f = replay::loadFrame(*source, 2);
+    ASSERT_TRUE(f) << f.error().message;
+    ASSERT_TRUE(f->rig);
+    const frame::RigCalibration& rig = *f->rig;
+    EXPECT_EQ(rig.depth.intrinsics.fx, 60.0);
+    EXPECT_EQ(rig.depth.lens.model, frame::LensModel::None) << "all-zero Brown Conrady bends nothing";
+    EXPECT_EQ(rig.colour.intrinsics.fx, 70.0);
+    EXPECT_EQ(rig.colour.intrinsics.cy, 29.75);
+    EXPECT_EQ(rig.colour.lens.model, frame::LensModel::InverseBrownConrady);
+    EXPECT_EQ(rig.colour.lens.coefficients, (std::array<double, 5>{0.1, -0.2, 0.001, 0.002, 0.03}));
+    EXPECT_EQ(rig.depthToColour.rotation, recorded->depthToColor->rotation);
+    EXPECT_EQ(rig.depthToColour.translationMeters, recorded->depthToColor->translationMeters);
+    EXPECT_FALSE(rig.approximate);
+    EXPECT_EQ(f->depthIntrinsics().fx, 60.0) << "the depth sensor's own intrinsics place the points";
+    EXPECT_EQ(f->cameraIntrinsics.fx, 70.0) << "the image's are the colour sensor's";
+
+    auto generic = open(bag("generic.bag"));
+    ASSERT_TRUE(generic);
+    auto g = replay::loadFrame(*generic, 0);
+    ASSERT_TRUE(g) << g.error().message;
+    EXPECT_FALSE(g->rig) << "no transform between the sensors is recorded: one camera's colour";
 }
 
 TEST_F(BagReplay, EveryRealSenseColourEncodingDecodesToTheRecordedImage) {
