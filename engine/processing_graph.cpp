@@ -58,6 +58,7 @@ void ProcessingGraph::reset() {
     pointColors_.clear();
     cameraImage_.clear();
     effectsImage_.clear();
+    alignedDepth_.clear();
     fog_.clear();
     aura_.clear();
     range_.clear();
@@ -159,7 +160,7 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
     }
 }
 
-// Fog and aura share one conversion of the camera image to their size.
+// Fog and aura share one conversion of the camera image to their size, and the depth they are made from.
 void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Frame& frame,
                                  const Demand& demand) {
     if ((!demand.fog && !demand.aura) || frame.capturedImage.empty())
@@ -169,24 +170,45 @@ void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Fra
     const auto camera = cached(effectsImage_, ImageKey{image.bytes, w, h}, kEffectsImageStage, [&] {
         return std::make_shared<const processing::RgbImage>(processing::cameraRgbImage(image, w, h));
     });
+    const std::shared_ptr<const frame::DepthData> depth = effectsDepth(shown, frame, w, h);
+    // The aura's matte measures pixels physically, with the camera of the depth it is made from.
+    const bool aligned = depth != shown.depth.data;
+    const frame::Intrinsics intrinsics =
+        aligned ? frame.rig->colour.intrinsics.scaledTo(w, h) : frame.depthIntrinsics();
     const processing::ProcessingSettings& p = demand.processing;
     if (demand.fog) {
-        const EffectKey key{camera, shown.depth.data, p.fog, {}, 0};
+        const EffectKey key{camera, depth, p.fog, {}, 0};
         shown.fog = cached(fog_, key, kFogStage, [&] {
             return std::make_shared<const processing::RgbaImage>(
-                processing::renderFog(*camera, shown.depth.data.get(), p.fog));
+                processing::renderFog(*camera, depth.get(), p.fog));
         });
     }
     if (demand.aura) {
         // The pulse follows the frame's own clock: a paused frame keeps its look, a replay looks the same
         // every time.
-        const EffectKey key{camera, shown.depth.data, {}, p.aura, frame.timestampNs};
+        const EffectKey key{camera, depth, {}, p.aura, frame.timestampNs};
         shown.aura = cached(aura_, key, kAuraStage, [&] {
-            return std::make_shared<const processing::RgbaImage>(
-                processing::renderAura(*camera, shown.depth.data.get(), frame.depthIntrinsics(), p.aura,
-                                       static_cast<double>(frame.timestampNs) * 1e-9));
+            return std::make_shared<const processing::RgbaImage>(processing::renderAura(
+                *camera, depth.get(), intrinsics, p.aura, static_cast<double>(frame.timestampNs) * 1e-9));
         });
     }
+}
+
+// Fog and aura mix depth into the camera image pixel by pixel, so with two sensors they need the depth as
+// the colour sensor would see it; a single camera's depth already shares the image's view and is used as
+// it is. The aligned depth has no confidence: which colour pixel a sample covers is not a property the
+// sensor measured, so fog's confidence overlay shows nothing there rather than a guess.
+std::shared_ptr<const frame::DepthData> ProcessingGraph::effectsDepth(const processing::ShownFrame& shown,
+                                                                      const frame::Frame& frame, int width,
+                                                                      int height) {
+    const std::shared_ptr<const frame::DepthData>& depth = shown.depth.data;
+    if (!depth || !frame.rig || processing::isSingleCamera(*frame.rig))
+        return depth;
+    return cached(alignedDepth_, AlignedKey{depth, frame.rig, width, height}, kAlignedDepthStage, [&] {
+        auto aligned = std::make_shared<frame::DepthData>();
+        aligned->depthMeters = processing::alignDepthToColour(depth->depthMeters, *frame.rig, width, height);
+        return std::shared_ptr<const frame::DepthData>(std::move(aligned));
+    });
 }
 
 void ProcessingGraph::addDepthProducts(processing::ShownFrame& shown, const Demand& demand) {

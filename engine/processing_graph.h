@@ -23,6 +23,7 @@ inline constexpr std::string_view kCameraImageStage = "camera image";
 inline constexpr std::string_view kEffectsImageStage = "effects image";
 inline constexpr std::string_view kFogStage = "fog";
 inline constexpr std::string_view kAuraStage = "aura";
+inline constexpr std::string_view kAlignedDepthStage = "aligned depth";
 inline constexpr std::string_view kDepthRangeStage = "depth range";
 inline constexpr std::string_view kPointCountStage = "point count";
 inline constexpr std::string_view kDecimationStage = "decimation";
@@ -80,6 +81,14 @@ private:
         std::shared_ptr<const frame::DepthData> registeredDepth;
         bool operator==(const ColoursKey&) const = default;
     };
+    // The shown depth of a two-sensor frame in the colour image's geometry, at one size.
+    struct AlignedKey {
+        std::shared_ptr<const frame::DepthData> depth;
+        std::shared_ptr<const frame::RigCalibration> rig;
+        int width = 0;
+        int height = 0;
+        bool operator==(const AlignedKey&) const = default;
+    };
     struct EffectKey {
         std::shared_ptr<const processing::RgbImage> image;
         std::shared_ptr<const frame::DepthData> depth;
@@ -110,6 +119,8 @@ private:
     processing::ShownDepth shownDepth(const frame::FramePtr& frame, const Demand& demand);
     void addImages(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
+    std::shared_ptr<const frame::DepthData> effectsDepth(const processing::ShownFrame& shown,
+                                                         const frame::Frame& frame, int width, int height);
     void addDepthProducts(processing::ShownFrame& shown, const Demand& demand);
     processing::ShownCloud shownCloud(const processing::ShownFrame& shown, const Demand& demand);
 
@@ -121,6 +132,7 @@ private:
     Memo<ColoursKey, processing::PointColours> pointColors_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> effectsImage_;
+    Memo<AlignedKey, std::shared_ptr<const frame::DepthData>> alignedDepth_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> fog_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> aura_;
     Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;

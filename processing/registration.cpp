@@ -223,4 +223,13 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
     return {std::move(colours), std::make_shared<const frame::Plane<std::uint8_t>>(std::move(r.seen))};
 }
 
+RgbImage colourAlignedToDepth(const frame::Frame& frame, const frame::Plane<float>& depth, int width,
+                              int height, CameraColourTable& table) {
+    frame::Plane<float> nearest(width, height);
+    for (int y = 0; y < height; ++y)
+        for (int x = 0; x < width; ++x)
+            nearest.at(x, y) = depth.at(x * depth.width / width, y * depth.height / height);
+    return *framePointColours(frame, nearest, table).colors;
+}
+
 } // namespace dc::processing

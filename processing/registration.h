@@ -57,4 +57,11 @@ struct PointColours {
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
                                CameraColourTable& table);
 
+// The colour image seen from the depth sensor, at width x height of the depth map's view: each pixel takes
+// the colour where the colour camera sees the depth sample nearest it (registerDepth on the depth map
+// resampled nearest), kUnseenGray where it sees none. The guide of upsampling on a two-sensor frame; a
+// frame without a rig gets its camera image resampled (pointColors).
+RgbImage colourAlignedToDepth(const frame::Frame& frame, const frame::Plane<float>& depth, int width,
+                              int height, CameraColourTable& table);
+
 } // namespace dc::processing

@@ -65,12 +65,46 @@ std::optional<frame::DepthData> UpsamplingStage::upsample(const frame::DepthData
     return upsampler_.upsample(depth);
 }
 
+// The camera image of a two-sensor frame shows the scene from elsewhere: as a guide it would put colour
+// edges beside the depth edges they belong to. The guide is therefore the colour image aligned to the depth
+// sensor, and the output keeps the depth sensor's view and shape (width from the camera image as for one
+// camera), so the depth intrinsics scaled to it still place every point.
+std::optional<frame::DepthData> UpsamplingStage::upsampleRegistered(const frame::DepthData& depth,
+                                                                    const frame::Frame& frame,
+                                                                    const UpsamplingParams& params) {
+    const frame::CapturedImage& image = frame.capturedImage;
+    const int sensorWidth = depth.depthMeters.width, sensorHeight = depth.depthMeters.height;
+    if (image.empty() || sensorWidth <= 0 || sensorHeight <= 0)
+        return std::nullopt;
+    const int width = upsamplingOutputSize(image.width, image.height, params)[0];
+    const int height =
+        std::max(1, static_cast<int>(std::lround(static_cast<double>(width) * sensorHeight / sensorWidth)));
+    const RgbImage guide = colourAlignedToDepth(frame, depth.depthMeters, width, height, colourTable_);
+    if (guide.empty())
+        return std::nullopt;
+    if (params.method == UpsamplingMethod::Global || params.method == UpsamplingMethod::Quality) {
+        const ColorView view{guide.pixels.data(), width, height, static_cast<std::ptrdiff_t>(width) * 3};
+        const double factor = static_cast<double>(width) / sensorWidth;
+        return smoother_.upsample(depth, view, globalSmootherParams(params, factor, params.depthNoiseMeters));
+    }
+    // Full-range BT.601 luma, as the camera's own Y plane that guides one camera.
+    lumaScratch_.resize(guide.pixels.size() / 3);
+    for (std::size_t i = 0; i < lumaScratch_.size(); ++i)
+        lumaScratch_[i] = static_cast<std::uint8_t>(std::lround(
+            0.299 * guide.pixels[i * 3] + 0.587 * guide.pixels[i * 3 + 1] + 0.114 * guide.pixels[i * 3 + 2]));
+    upsampler_.setGuide(GrayView{lumaScratch_.data(), width, height, width}, width, height,
+                        guidedFilterParams(params));
+    return upsampler_.upsample(depth);
+}
+
 frame::FramePtr UpsamplingStage::process(frame::FramePtr frame, const ProcessingSettings& settings) {
     if (!frame || !frame->sceneDepth)
         return frame;
     const bool smoothed = showsSmoothed(*frame, settings.depthSource);
-    auto upsampled = upsample(smoothed ? *frame->smoothedSceneDepth : *frame->sceneDepth,
-                              frame->capturedImage, settings.upsamplingParams);
+    const frame::DepthData& depth = smoothed ? *frame->smoothedSceneDepth : *frame->sceneDepth;
+    const bool registered = frame->rig && !isSingleCamera(*frame->rig);
+    auto upsampled = registered ? upsampleRegistered(depth, *frame, settings.upsamplingParams)
+                                : upsample(depth, frame->capturedImage, settings.upsamplingParams);
     if (!upsampled)
         return frame;
     auto out = std::make_shared<frame::Frame>(*frame);

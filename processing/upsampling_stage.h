@@ -3,6 +3,7 @@
 #include "processing/global_smoother.h"
 #include "processing/guided_filter.h"
 #include "processing/pipeline.h"
+#include "processing/registration.h"
 
 #include <array>
 #include <cstdint>
@@ -27,11 +28,16 @@ private:
     // Empty when the image cannot guide (empty or malformed): the frame then passes through.
     std::optional<frame::DepthData> upsample(const frame::DepthData& depth, const frame::CapturedImage& image,
                                              const UpsamplingParams& params);
+    // A two-sensor frame's: guided by the colour image aligned to the depth sensor's view.
+    std::optional<frame::DepthData> upsampleRegistered(const frame::DepthData& depth,
+                                                       const frame::Frame& frame,
+                                                       const UpsamplingParams& params);
 
     GuidedUpsampler upsampler_;
     std::vector<std::uint8_t> lumaScratch_;
     GlobalSmoother smoother_;
     RgbScratch rgbScratch_;
+    CameraColourTable colourTable_;
 };
 
 // The output size `params` selects for a camera image of width x height.

@@ -4,7 +4,10 @@
 #include "engine/processing_graph.h"
 #include "engine_test_support.h"
 #include "frame/jpeg_codec.h"
+#include "processing/aura.h"
+#include "processing/camera_image.h"
 #include "processing/confidence_estimator.h"
+#include "processing/fog.h"
 
 #include <gtest/gtest.h>
 
@@ -248,6 +251,65 @@ TEST(ProcessingGraphRig, PointsOfATwoSensorFrameAreRegisteredAndCarryTheSeenMask
     EXPECT_EQ(shown->pointSeen->at(0, 60), 0);
     EXPECT_EQ(shown->pointSeen->at(106, 60), 1);
     EXPECT_NE(shown->pointColors->pixels, processing::pointColors(frame->capturedImage, 212, 120).pixels);
+}
+
+// Fog and aura of a two-sensor frame are made from the depth as the colour sensor sees it, aligned once at
+// the effects' size and shared by both.
+TEST(ProcessingGraphRig, FogAndAuraOfATwoSensorFrameUseTheDepthAlignedToTheColourImage) {
+    devices::SyntheticConfig config = devices::syntheticRigConfig();
+    config.depthWidth = 212;
+    config.depthHeight = 120;
+    config.cameraWidth = 320;
+    config.cameraHeight = 180;
+    devices::SyntheticDevice device(config);
+    ASSERT_TRUE(device.open());
+    const frame::FramePtr frame = device.makeFrame(0, 0.0);
+    ASSERT_TRUE(frame->rig);
+
+    ProcessingGraph graph;
+    Demand demand;
+    demand.fog = true;
+    demand.aura = true;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 1u);
+    ASSERT_TRUE(shown->fog && shown->aura && shown->depth.data);
+
+    const auto [w, h] = processing::halfCameraSize(frame->capturedImage);
+    const processing::RgbImage camera = processing::cameraRgbImage(frame->capturedImage, w, h);
+    frame::DepthData aligned;
+    aligned.depthMeters = processing::alignDepthToColour(shown->depth.data->depthMeters, *frame->rig, w, h);
+    const processing::RgbaImage fog = processing::renderFog(camera, &aligned, demand.processing.fog);
+    EXPECT_EQ(shown->fog->pixels, fog.pixels);
+    // The sensor-view depth would fog other pixels: the two sensors see the scene from different places.
+    const processing::RgbaImage unaligned =
+        processing::renderFog(camera, shown->depth.data.get(), demand.processing.fog);
+    EXPECT_NE(shown->fog->pixels, unaligned.pixels);
+    const processing::RgbaImage aura =
+        processing::renderAura(camera, &aligned, frame->rig->colour.intrinsics.scaledTo(w, h),
+                               demand.processing.aura, static_cast<double>(frame->timestampNs) * 1e-9);
+    EXPECT_EQ(shown->aura->pixels, aura.pixels);
+
+    // The same frame again aligns nothing again.
+    graph.run(frame, demand, 2, false);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 1u);
+}
+
+// A single camera's fog is made from the shown depth itself, as before two sensors existed: nothing is
+// aligned.
+TEST(ProcessingGraphRig, FogOfASingleCameraFrameUsesTheShownDepthAndAlignsNothing) {
+    const frame::FramePtr frame = syntheticFrames(1).front();
+    ASSERT_FALSE(frame->rig);
+    ProcessingGraph graph;
+    Demand demand;
+    demand.fog = true;
+    demand.aura = true;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 0u);
+    ASSERT_TRUE(shown->fog && shown->depth.data);
+    const auto [w, h] = processing::halfCameraSize(frame->capturedImage);
+    const processing::RgbImage camera = processing::cameraRgbImage(frame->capturedImage, w, h);
+    EXPECT_EQ(shown->fog->pixels,
+              processing::renderFog(camera, shown->depth.data.get(), demand.processing.fog).pixels);
 }
 
 } // namespace
