@@ -20,6 +20,7 @@ namespace dc::engine {
 inline constexpr std::string_view kCameraDecodeStage = "camera decode";
 inline constexpr std::string_view kPointColorsStage = "point colours";
 inline constexpr std::string_view kCameraImageStage = "camera image";
+inline constexpr std::string_view kInfraredImageStage = "infrared image";
 inline constexpr std::string_view kEffectsImageStage = "effects image";
 inline constexpr std::string_view kFogStage = "fog";
 inline constexpr std::string_view kAuraStage = "aura";
@@ -109,6 +110,7 @@ private:
     frame::FramePtr decodedFrame(const frame::FramePtr& captured, const Demand& demand);
     processing::ShownDepth shownDepth(const frame::FramePtr& frame, const Demand& demand);
     void addImages(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
+    void addInfrared(processing::ShownFrame& shown, const frame::FramePtr& frame, const Demand& demand);
     void addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addDepthProducts(processing::ShownFrame& shown, const Demand& demand);
     processing::ShownCloud shownCloud(const processing::ShownFrame& shown, const Demand& demand);
@@ -121,6 +123,7 @@ private:
     Memo<ColoursKey, processing::PointColours> pointColors_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> effectsImage_;
+    Memo<frame::FramePtr, std::shared_ptr<const processing::RgbImage>> infraredImage_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> fog_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> aura_;
     Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;
