@@ -11,11 +11,12 @@ namespace dc::engine {
 // with which settings. The frame processor runs exactly the stages this needs, again whenever it changes,
 // and a source is told the part that concerns it (SourceDemand). Plain data, compared as a whole.
 struct Demand {
-    bool cloud = true;           // the point-cloud panel is visible
-    bool pointColors = true;     // its points take the camera's colour (rather than a depth or confidence map)
-    bool depthImage = true;      // the depth panel, or the camera panel's depth overlay
+    bool cloud = true;       // the point-cloud panel is visible
+    bool pointColors = true; // its points take the camera's colour (rather than a depth or confidence map)
+    bool depthImage = true;  // the depth panel, or the camera panel's depth overlay
     bool confidencePanel = true; // the confidence panel
     int cameraPanelWidth = 0;    // pixels the camera panel is shown at; 0 = hidden
+    bool infraredPanel = false;  // the infrared panel (its image is made only while it is shown)
     bool fog = false;
     bool aura = false;
     bool automaticRange = false; // the colormap follows the data (shown depth's percentiles)

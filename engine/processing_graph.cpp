@@ -6,6 +6,7 @@
 #include "processing/decimation.h"
 #include "processing/depth_statistics.h"
 #include "processing/fog.h"
+#include "processing/infrared_image.h"
 
 #include <algorithm>
 #include <chrono>
@@ -59,6 +60,7 @@ void ProcessingGraph::reset() {
     cameraImage_.clear();
     effectsImage_.clear();
     alignedDepth_.clear();
+    infraredImage_.clear();
     fog_.clear();
     aura_.clear();
     range_.clear();
@@ -110,6 +112,7 @@ processing::ShownFramePtr ProcessingGraph::run(const frame::FramePtr& captured, 
     if (demand.needsDepth())
         shown->depth = shownDepth(frame, demand);
     addImages(*shown, *frame, demand);
+    addInfrared(*shown, frame, demand);
     addEffects(*shown, *frame, demand);
     addDepthProducts(*shown, demand);
     timings_ = nullptr;
@@ -158,6 +161,18 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
             return std::make_shared<const processing::RgbImage>(processing::cameraRgbImage(image, w, h));
         });
     }
+}
+
+// The infrared panel's picture, made only while the panel is shown.
+void ProcessingGraph::addInfrared(processing::ShownFrame& shown, const frame::FramePtr& frame,
+                                  const Demand& demand) {
+    if (!demand.infraredPanel || !frame->infrared || frame->infrared->empty())
+        return;
+    shown.infraredImage = cached(infraredImage_, frame, kInfraredImageStage, [&] {
+        const frame::Plane<std::uint16_t>& infrared = *frame->infrared;
+        return std::make_shared<const processing::RgbImage>(
+            processing::infraredRgbImage(infrared, processing::infraredContrastRange(infrared)));
+    });
 }
 
 // Fog and aura share one conversion of the camera image to their size, and the depth they are made from.

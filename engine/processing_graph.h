@@ -20,6 +20,7 @@ namespace dc::engine {
 inline constexpr std::string_view kCameraDecodeStage = "camera decode";
 inline constexpr std::string_view kPointColorsStage = "point colours";
 inline constexpr std::string_view kCameraImageStage = "camera image";
+inline constexpr std::string_view kInfraredImageStage = "infrared image";
 inline constexpr std::string_view kEffectsImageStage = "effects image";
 inline constexpr std::string_view kFogStage = "fog";
 inline constexpr std::string_view kAuraStage = "aura";
@@ -118,6 +119,7 @@ private:
     frame::FramePtr decodedFrame(const frame::FramePtr& captured, const Demand& demand);
     processing::ShownDepth shownDepth(const frame::FramePtr& frame, const Demand& demand);
     void addImages(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
+    void addInfrared(processing::ShownFrame& shown, const frame::FramePtr& frame, const Demand& demand);
     void addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     std::shared_ptr<const frame::DepthData> effectsDepth(const processing::ShownFrame& shown,
                                                          const frame::Frame& frame, int width, int height);
@@ -133,6 +135,7 @@ private:
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> effectsImage_;
     Memo<AlignedKey, std::shared_ptr<const frame::DepthData>> alignedDepth_;
+    Memo<frame::FramePtr, std::shared_ptr<const processing::RgbImage>> infraredImage_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> fog_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> aura_;
     Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;

@@ -111,6 +111,10 @@ struct Frame {
     // and the transform between them. Null for one camera whose image covers the depth map's field of
     // view (ARKit, TUM, the default synthetic scene): then cameraIntrinsics serves both.
     std::shared_ptr<const RigCalibration> rig;
+    // The depth sensor's infrared image when the source has one (RealSense's Infrared_N, a GREY/Y16
+    // node): raw sensor intensity as the sensor reports it, 0-255 for 8-bit streams and 0-65535 for 16-bit
+    // ones. One 16-bit plane holds both without loss. Its own size, usually the depth map's.
+    std::optional<Plane<std::uint16_t>> infrared;
 
     // Depth intrinsics are never stored: they follow from the image intrinsics (or the rig's depth sensor)
     // and the depth map size.

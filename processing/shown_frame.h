@@ -53,6 +53,8 @@ struct ShownFrame {
     // (outside its view or hidden: they are gray); null when it sees them all.
     std::shared_ptr<const frame::Plane<std::uint8_t>> pointSeen;
     std::shared_ptr<const RgbImage> cameraImage; // the camera panel, at the size it is shown
+    // The infrared panel: the frame's infrared contrast-stretched to gray, at its own size.
+    std::shared_ptr<const RgbImage> infraredImage;
     std::shared_ptr<const RgbaImage> fog;
     std::shared_ptr<const RgbaImage> aura;
     std::optional<DepthRangeMeters> automaticRange; // when the colormap follows the data

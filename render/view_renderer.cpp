@@ -50,6 +50,9 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     uploadOnce(shown.cameraImage, cameraUploaded_, [this](const processing::RgbImage& image) {
         camera_.uploadRgb(image.width, image.height, image.pixels.data());
     });
+    uploadOnce(shown.infraredImage, infraredUploaded_, [this](const processing::RgbImage& image) {
+        infrared_.uploadRgb(image.width, image.height, image.pixels.data());
+    });
     uploadOnce(shown.fog, fogUploaded_, [this](const processing::RgbaImage& image) {
         fog_.upload(image.width, image.height, image.pixels.data());
     });

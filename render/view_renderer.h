@@ -67,6 +67,7 @@ public:
     const RenderTarget& depthTarget() const { return depthTarget_; }
     const RenderTarget& confidenceTarget() const { return confidenceTarget_; }
     const RgbaTexture& cameraTexture() const { return camera_; }
+    const RgbaTexture& infraredTexture() const { return infrared_; }
     const RgbaTexture& fogTexture() const { return fog_; }
     const RgbaTexture& auraTexture() const { return aura_; }
     // The shown depth as textures, uploaded if it was not yet (the depth panel and GL_POINTS read them).
@@ -124,9 +125,11 @@ private:
     RenderTarget depthTarget_{Sampling::Nearest};
     RenderTarget confidenceTarget_{Sampling::Nearest};
     RgbaTexture camera_;
+    RgbaTexture infrared_;
     RgbaTexture fog_;
     RgbaTexture aura_;
     std::shared_ptr<const processing::RgbImage> cameraUploaded_;
+    std::shared_ptr<const processing::RgbImage> infraredUploaded_;
     std::shared_ptr<const processing::RgbaImage> fogUploaded_;
     std::shared_ptr<const processing::RgbaImage> auraUploaded_;
     std::optional<PanelParams> panelsDrawnWith_; // reset by a new depth map

@@ -227,6 +227,7 @@ bool panelsSection(PanelVisibility& panels, ControlsResult& result) {
                                                      {kDepthTitle, &panels.depth},
                                                      {kConfidenceTitle, &panels.confidence},
                                                      {kCameraTitle, &panels.camera},
+                                                     {kInfraredTitle, &panels.infrared},
                                                      {"Timeline [T]", &panels.timeline},
                                                      {"Stats [S]", &panels.stats},
                                                      {"Log [L]", &panels.log},

@@ -23,6 +23,7 @@ inline constexpr const char* kCloudTitle = "Point cloud";
 inline constexpr const char* kDepthTitle = "Depth";
 inline constexpr const char* kConfidenceTitle = "Confidence";
 inline constexpr const char* kCameraTitle = "Camera";
+inline constexpr const char* kInfraredTitle = "Infrared";
 inline constexpr const char* kControlsTitle = "Controls";
 
 inline constexpr const char* kStatsTitle = "Stats";
@@ -97,6 +98,9 @@ PanelResult drawDepthPanel(const PanelImage& image, const DepthLegend& legend, c
 // `estimated` that it was estimated from the depth because the camera reports none.
 PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool estimated,
                                 const ProbeSource& probe, bool* open);
+
+// The depth sensor's infrared image in gray, contrast-stretched (the engine's 1st-99th percentile).
+PanelResult drawInfraredPanel(const PanelImage& image, const ProbeSource& probe, bool* open);
 
 struct CameraPanelResult {
     PanelResult panel;

@@ -183,7 +183,7 @@ std::string settingsToJson(const Settings& s) {
     j["panels"] = {
         {"cloud", s.panels.cloud},   {"depth", s.panels.depth},       {"confidence", s.panels.confidence},
         {"camera", s.panels.camera}, {"controls", s.panels.controls}, {"stats", s.panels.stats},
-        {"log", s.panels.log}};
+        {"log", s.panels.log},       {"infrared", s.panels.infrared}};
     j["cloud"] = {{"minConfidence", static_cast<int>(c.minConfidence)},
                   {"pointSizePixels", c.pointSizePixels},
                   {"nearMeters", c.nearMeters},
@@ -234,6 +234,7 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(p, "timeline", s.panels.timeline);
     read(p, "fog", s.panels.fog);
     read(p, "aura", s.panels.aura);
+    read(p, "infrared", s.panels.infrared);
     const json& c = j.contains("cloud") ? j["cloud"] : none;
     int level = static_cast<int>(s.cloud.minConfidence);
     read(c, "minConfidence", level);

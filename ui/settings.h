@@ -24,6 +24,7 @@ struct PanelVisibility {
     bool timeline = true; // shown while the source is a replay
     bool fog = false;
     bool aura = false;
+    bool infrared = false; // drawn only while the source delivers infrared
 };
 
 // Which cloud path draws (render::CloudPath): automatic picks the CPU splat on software GL.

@@ -62,6 +62,7 @@ engine::Demand Viewer::demandOf() const {
     d.depthImage = show.depth || (show.camera && settings_.camera.depthOverlay);
     d.confidencePanel = show.confidence;
     d.cameraPanelWidth = show.camera ? cameraShownWidth_ : 0;
+    d.infraredPanel = show.infrared;
     d.fog = show.fog;
     d.aura = show.aura;
     d.automaticRange = settings_.depthRange.automatic &&

@@ -90,8 +90,8 @@ void Viewer::resetLayout() {
     restoring_.clear();
     panelPlaces_.clear();
     // Each panel goes back to its default place the next time it is drawn, whenever that is.
-    layoutResets_ = {kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle, kControlsTitle,
-                     kStatsTitle, kLogTitle,   kSourceTitle,     kFogTitle,    kAuraTitle};
+    layoutResets_ = {kCloudTitle, kDepthTitle,  kConfidenceTitle, kCameraTitle, kControlsTitle, kStatsTitle,
+                     kLogTitle,   kSourceTitle, kFogTitle,        kAuraTitle,   kInfraredTitle};
 }
 
 // The menu bar lists every panel (with its shortcut) and the layout reset; returns its height.
@@ -106,6 +106,7 @@ float Viewer::drawMenuBar() {
             {kDepthTitle, nullptr, &show.depth},
             {kConfidenceTitle, nullptr, &show.confidence},
             {kCameraTitle, nullptr, &show.camera},
+            {kInfraredTitle, nullptr, &show.infrared},
             {kControlsTitle, "C", &show.controls},
             {kTimelineTitle, "T", &show.timeline},
             {kStatsTitle, "S", &show.stats},
@@ -179,6 +180,11 @@ void Viewer::drawUi() {
     if (show.aura) {
         placePanel(kAuraTitle, l.leftWidth + 80.0f, 80.0f, 520.0f, 440.0f);
         drawAuraPanel(imageOf(renderer_.auraTexture()), settings_.processing.aura, &show.aura);
+    }
+    if (show.infrared && shown_ && shown_->frame && shown_->frame->infrared) {
+        placePanel(kInfraredTitle, l.leftWidth + 100.0f, 100.0f, 480.0f, 400.0f);
+        afterPanel(kInfraredTitle,
+                   drawInfraredPanel(imageOf(renderer_.infraredTexture()), probeSource(), &show.infrared));
     }
     if (timeline)
         drawTimeline({l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});

@@ -22,7 +22,8 @@ enum class Section : std::uint8_t {
     SmoothedDepth = 4,
     SmoothedConfidence = 5,
     Color = 6,
-    Rig = 7, // format 1.1: a two-sensor camera's calibration
+    Rig = 7,      // format 1.1: a two-sensor camera's calibration
+    Infrared = 8, // format 1.2: the depth sensor's infrared image
 };
 enum class Codec : std::uint8_t { Raw = 0, Zstd = 1 };
 // Layouts of a section's raw bytes.
@@ -30,7 +31,8 @@ constexpr std::uint8_t kDepthFloat32Shuffled = 0; // byte k of every float in pl
                                                   // slowly varying sign/exponent bytes together
 constexpr std::uint8_t kDepthUint16Scaled = 1;
 constexpr std::uint8_t kConfidenceUint8 = 0;
-constexpr std::uint8_t kColorJpeg = 3; // 0..2 are PixelFormat values stored as captured
+constexpr std::uint8_t kInfraredUint16 = 0; // little-endian raw intensity
+constexpr std::uint8_t kColorJpeg = 3;      // 0..2 are PixelFormat values stored as captured
 constexpr std::size_t kSectionHeaderSize = 36;
 constexpr std::size_t kMaxDescriptionLength = 4096;
 
@@ -136,6 +138,7 @@ struct FrameEncoder::Impl {
                  bool compressible);
     void depth(std::vector<std::uint8_t>& out, Section kind, const frame::Plane<float>& plane);
     void plane8(std::vector<std::uint8_t>& out, Section kind, const frame::Plane<std::uint8_t>& plane);
+    void infrared(std::vector<std::uint8_t>& out, const frame::Plane<std::uint16_t>& plane);
     Status color(std::vector<std::uint8_t>& out, const frame::CapturedImage& image);
 };
 
@@ -199,6 +202,14 @@ void FrameEncoder::Impl::depth(std::vector<std::uint8_t>& out, Section kind,
 void FrameEncoder::Impl::plane8(std::vector<std::uint8_t>& out, Section kind,
                                 const frame::Plane<std::uint8_t>& plane) {
     section(out, {kind, Codec::Raw, kConfidenceUint8, plane.width, plane.height, 0.0, 0}, plane.pixels, true);
+}
+
+void FrameEncoder::Impl::infrared(std::vector<std::uint8_t>& out, const frame::Plane<std::uint16_t>& plane) {
+    scratch.resize(2 * plane.pixels.size());
+    std::memcpy(scratch.data(), plane.pixels.data(),
+                scratch.size()); // the format is little-endian, as we are
+    section(out, {Section::Infrared, Codec::Raw, kInfraredUint16, plane.width, plane.height, 0.0, 0}, scratch,
+            true);
 }
 
 Status FrameEncoder::Impl::color(std::vector<std::uint8_t>& out, const frame::CapturedImage& image) {
@@ -295,6 +306,8 @@ Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& fra
         if (Status s = impl_->color(out, frame.capturedImage); !s)
             return s.error();
     }
+    if (frame.infrared && !frame.infrared->empty())
+        impl_->infrared(out, *frame.infrared);
     return out;
 }
 
@@ -315,6 +328,7 @@ struct FrameDecoder::Impl {
     Expected<frame::Plane<float>> decodeDepth(const SectionHeader& h, std::uint64_t offset);
     Expected<frame::Plane<std::uint8_t>> decodePlane8(const SectionHeader& h, std::uint64_t offset);
     Expected<frame::CapturedImage> decodeColor(const SectionHeader& h, std::uint64_t offset);
+    Expected<frame::Plane<std::uint16_t>> decodeInfrared(const SectionHeader& h, std::uint64_t offset);
     Status apply(const SectionHeader& h, std::span<const std::uint8_t> stored, std::uint64_t offset,
                  frame::Frame& frame);
 };
@@ -463,13 +477,22 @@ Expected<frame::CapturedImage> FrameDecoder::Impl::decodeColor(const SectionHead
                                 std::make_shared<const std::vector<std::uint8_t>>(scratch)};
 }
 
+Expected<frame::Plane<std::uint16_t>> FrameDecoder::Impl::decodeInfrared(const SectionHeader& h,
+                                                                         std::uint64_t offset) {
+    frame::Plane<std::uint16_t> plane(h.width, h.height);
+    if (h.layout != kInfraredUint16 || scratch.size() != 2 * plane.pixels.size())
+        return error("infrared section with unknown layout or wrong size", offset);
+    std::memcpy(plane.pixels.data(), scratch.data(), scratch.size());
+    return plane;
+}
+
 Status FrameDecoder::Impl::apply(const SectionHeader& h, std::span<const std::uint8_t> stored,
                                  std::uint64_t offset, frame::Frame& frame) {
     if (h.kind == Section::Meta)
         return decodeMeta(ByteReader(stored, offset), frame);
     if (h.kind == Section::Rig)
         return decodeRig(ByteReader(stored, offset), frame);
-    if (h.kind < Section::SceneDepth || h.kind > Section::Color)
+    if ((h.kind < Section::SceneDepth || h.kind > Section::Color) && h.kind != Section::Infrared)
         return {}; // a section a newer minor version added: skipped
     if (h.width <= 0 || h.height <= 0 || h.width > kMaxImageSide || h.height > kMaxImageSide ||
         static_cast<std::uint64_t>(h.width) * static_cast<std::uint64_t>(h.height) > kMaxImagePixels)
@@ -494,6 +517,11 @@ Status FrameDecoder::Impl::apply(const SectionHeader& h, std::span<const std::ui
         if (!target || target->depthMeters.width != h.width || target->depthMeters.height != h.height)
             return error("confidence without a depth map of its size", offset);
         target->confidence = std::move(*plane);
+    } else if (h.kind == Section::Infrared) {
+        auto plane = decodeInfrared(h, offset);
+        if (!plane)
+            return plane.error();
+        frame.infrared = std::move(*plane);
     } else {
         auto image = decodeColor(h, offset);
         if (!image)

@@ -98,6 +98,20 @@ std::shared_ptr<const frame::RigCalibration> rigCalibration(const BagRig& rig, c
     return std::make_shared<const frame::RigCalibration>(std::move(out));
 }
 
+// How much a topic's name says it is the depth sensor's infrared stream: RealSense's Infrared_N first,
+// then the words drivers use ("infra1", "ir/image_raw"); -1 for neither.
+int infraredRank(const std::string& topic) {
+    if (topic.find("/Infrared_") != std::string::npos)
+        return 0;
+    std::string lower = topic;
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    if (lower.find("infra") != std::string::npos || lower.find("/ir/") != std::string::npos ||
+        lower.find("/ir_") != std::string::npos)
+        return 1;
+    return -1;
+}
+
 // One image topic's messages with the timestamps replay uses.
 struct ImageStream {
     std::size_t handle = 0;
@@ -112,7 +126,8 @@ public:
 
     std::string description() const override {
         return "ROS bag " + std::filesystem::path(path_).filename().string() + " (" + depthTopic_ +
-               (colorTopic_.empty() ? "" : ", " + colorTopic_) + ")";
+               (colorTopic_.empty() ? "" : ", " + colorTopic_) +
+               (infraredTopic_.empty() ? "" : ", infrared " + infraredTopic_) + ")";
     }
     Capabilities capabilities() const override {
         return {.sceneDepth = true, .color = !colorTopic_.empty(), .approximateIntrinsics = !rig_.depth};
@@ -130,14 +145,15 @@ private:
     Status checkTopic(const std::string& topic, ImageKind want, const char* what) const;
     Expected<ImageStream> index(const std::string& topic);
     void readCalibration();
-    void pairColor();
+    void chooseInfrared();
+    std::vector<std::optional<std::size_t>> pairWithDepth(const ImageStream& other) const;
 
     std::string path_;
     BagOptions options_;
     std::unique_ptr<BagReader> bag_;
-    std::string depthTopic_, colorTopic_;
-    ImageStream depth_, color_;
-    std::vector<std::optional<std::size_t>> colorOf_; // per depth image
+    std::string depthTopic_, colorTopic_, infraredTopic_;
+    ImageStream depth_, color_, infrared_;
+    std::vector<std::optional<std::size_t>> colorOf_, infraredOf_; // per depth image
     double metersPerUnit_ = kRosDepthMetersPerUnit;
     BagRig rig_;
     std::shared_ptr<const frame::RigCalibration> rigCalibration_; // when the bag records both sensors
@@ -254,15 +270,31 @@ void BagSource::readCalibration() {
     rigCalibration_ = rigCalibration(rig_, path_);
 }
 
-void BagSource::pairColor() {
-    std::vector<double> depthTimes, colorTimes;
+// The infrared stream is found by name and encoding whatever topics were chosen: it only adds a plane.
+void BagSource::chooseInfrared() {
+    int best = 2;
+    for (const BagReader::Topic& t : bag_->topics()) {
+        const int rank = infraredRank(t.name);
+        if (t.type != kImageType || t.name == depthTopic_ || rank < 0 || rank >= best)
+            continue;
+        if (const auto image = bag_->firstImage(t.name); image && isInfraredEncoding(image->encoding)) {
+            infraredTopic_ = t.name;
+            best = rank;
+        }
+    }
+}
+
+// For each depth image, the other stream's image nearest in time within the pairing tolerance.
+std::vector<std::optional<std::size_t>> BagSource::pairWithDepth(const ImageStream& other) const {
+    std::vector<double> depthTimes, otherTimes;
     for (std::int64_t ns : depth_.timestampsNs)
         depthTimes.push_back(ns * 1e-9);
-    for (std::int64_t ns : color_.timestampsNs)
-        colorTimes.push_back(ns * 1e-9);
-    colorOf_.assign(depthTimes.size(), std::nullopt);
-    for (auto [d, c] : replay::associateByTimestamp(depthTimes, colorTimes, options_.maxPairGapSeconds))
-        colorOf_[d] = c;
+    for (std::int64_t ns : other.timestampsNs)
+        otherTimes.push_back(ns * 1e-9);
+    std::vector<std::optional<std::size_t>> out(depthTimes.size());
+    for (auto [d, o] : replay::associateByTimestamp(depthTimes, otherTimes, options_.maxPairGapSeconds))
+        out[d] = o;
+    return out;
 }
 
 Status BagSource::open() {
@@ -283,7 +315,15 @@ Status BagSource::open() {
             return color.error();
         color_ = std::move(*color);
     }
-    pairColor();
+    colorOf_ = pairWithDepth(color_);
+    chooseInfrared();
+    if (!infraredTopic_.empty()) {
+        auto infrared = index(infraredTopic_);
+        if (!infrared)
+            return infrared.error();
+        infrared_ = std::move(*infrared);
+    }
+    infraredOf_ = pairWithDepth(infrared_);
     return {};
 }
 
@@ -320,6 +360,15 @@ Expected<frame::Frame> BagSource::frame(std::size_t i) {
         frame.cameraIntrinsics =
             (rigCalibration_ ? rig_.color->intrinsics : depthK).scaledTo(color->width, color->height);
         frame.capturedImage = std::move(*color);
+    }
+    if (infraredOf_[i]) {
+        auto infraredImage = bag_->image(infrared_.handle, *infraredOf_[i]);
+        if (!infraredImage)
+            return fail(infraredImage.error());
+        auto infrared = infraredFromImage(*infraredImage);
+        if (!infrared)
+            return fail(infrared.error());
+        frame.infrared = std::move(*infrared);
     }
     return frame;
 }

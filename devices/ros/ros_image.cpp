@@ -119,6 +119,34 @@ Expected<frame::CapturedImage> colorFromImage(const RosImage& image) {
     return out;
 }
 
+bool isInfraredEncoding(const std::string& encoding) {
+    return encoding == "mono8" || encoding == "8UC1" || encoding == "mono16" || encoding == "16UC1";
+}
+
+Expected<frame::Plane<std::uint16_t>> infraredFromImage(const RosImage& image) {
+    if (!isInfraredEncoding(image.encoding))
+        return Error{"image encoding '" + image.encoding + "' is not infrared (mono8, 8UC1, mono16, 16UC1)"};
+    const bool wide = image.encoding == "mono16" || image.encoding == "16UC1";
+    auto rows = rowsOf(image, wide ? 2 : 1, wide ? CV_16UC1 : CV_8UC1);
+    if (!rows)
+        return rows.error();
+    frame::Plane<std::uint16_t> out(static_cast<int>(image.width), static_cast<int>(image.height));
+    for (int y = 0; y < out.height; ++y) {
+        const std::uint8_t* row = rows->ptr<std::uint8_t>(y);
+        std::uint16_t* dst = &out.at(0, y);
+        for (int x = 0; x < out.width; ++x) {
+            if (!wide) {
+                dst[x] = row[x];
+                continue;
+            }
+            std::uint16_t value = 0;
+            std::memcpy(&value, row + 2 * x, 2);
+            dst[x] = image.bigEndian ? __builtin_bswap16(value) : value;
+        }
+    }
+    return out;
+}
+
 Expected<CameraInfoRecord> cameraInfoRecord(const RosCameraInfo& info) {
     CameraInfoRecord record;
     record.intrinsics = {info.k[0],

@@ -24,6 +24,11 @@ Expected<frame::Plane<float>> depthFromImage(const RosImage& image, double meter
 // A colour image as the frame stores it: YUYV stays packed 4:2:2, the rest becomes packed RGB.
 Expected<frame::CapturedImage> colorFromImage(const RosImage& image);
 
+// An infrared image's encoding: 8-bit (mono8, 8UC1) or 16-bit (mono16, 16UC1) single-channel intensity.
+bool isInfraredEncoding(const std::string& encoding);
+// An infrared image as raw sensor intensity (frame::Frame::infrared): 8-bit values are kept as they are.
+Expected<frame::Plane<std::uint16_t>> infraredFromImage(const RosImage& image);
+
 // A stream's lens as camera_info records it, kept whole for two-sensor registration.
 struct CameraInfoRecord {
     frame::Intrinsics intrinsics;   // K at width x height

@@ -507,5 +507,48 @@ TEST(RecordingFormat, ARigCalibrationRoundTripsAndABrokenOneIsRefused) {
     EXPECT_NE(refused.error().message.find("rig calibration"), std::string::npos) << refused.error().message;
 }
 
+// The depth sensor's infrared image survives a recording exactly, 16-bit values included; a reader that
+// does not know the section (as a format 1.1 reader does not) skips it and reads the rest of the frame.
+TEST(RecordingFormat, AnInfraredImageRoundTripsAndAnUnknownSectionIsSkipped) {
+    frame::Frame frame;
+    frame.sceneDepth = frame::DepthData{frame::Plane<float>(4, 3, 1.0f), {}};
+    frame::Plane<std::uint16_t> infrared(5, 2);
+    for (std::size_t i = 0; i < infrared.pixels.size(); ++i)
+        infrared.pixels[i] = static_cast<std::uint16_t>(i * 13001 + 7);
+    frame.infrared = infrared;
+    for (const bool compress : {false, true}) {
+        EncodeOptions options;
+        options.compress = compress;
+        auto payload = FrameEncoder(options).encode(frame);
+        ASSERT_TRUE(payload);
+        auto decoded = FrameDecoder().decode(*payload, 0, "mem", 0);
+        ASSERT_TRUE(decoded) << decoded.error().message;
+        ASSERT_TRUE(decoded->infrared);
+        EXPECT_EQ(decoded->infrared->width, 5);
+        EXPECT_EQ(decoded->infrared->height, 2);
+        EXPECT_EQ(decoded->infrared->pixels, infrared.pixels);
+    }
+
+    frame.infrared.reset();
+    auto without = FrameEncoder().encode(frame);
+    ASSERT_TRUE(without);
+    EXPECT_FALSE(FrameDecoder().decode(*without, 0, "mem", 0)->infrared) << "no infrared stays none";
+
+    // The infrared section is the last one; its kind byte made 9, a kind no reader knows yet.
+    frame.infrared = infrared;
+    EncodeOptions raw;
+    raw.compress = false;
+    auto payload = FrameEncoder(raw).encode(frame);
+    ASSERT_TRUE(payload);
+    const std::size_t sectionAt = payload->size() - 36 - 2 * infrared.pixels.size();
+    ASSERT_EQ((*payload)[sectionAt], 8);
+    (*payload)[sectionAt] = 9;
+    auto skipped = FrameDecoder().decode(*payload, 0, "mem", 0);
+    ASSERT_TRUE(skipped) << skipped.error().message;
+    EXPECT_FALSE(skipped->infrared);
+    ASSERT_TRUE(skipped->sceneDepth);
+    EXPECT_EQ(skipped->sceneDepth->depthMeters.pixels, frame.sceneDepth->depthMeters.pixels);
+}
+
 } // namespace
 } // namespace dc::devices::recording

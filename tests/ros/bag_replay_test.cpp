@@ -38,6 +38,12 @@ std::array<std::uint8_t, 3> colorRgb(int x, int y, std::size_t i) {
             static_cast<std::uint8_t>((7 * n + x + y) % 256)};
 }
 
+// The depth sensor's infrared: 8-bit, or the same values spread over 16 bits (the YUYV bag's mono16).
+std::uint16_t infraredValue(int x, int y, std::size_t i, bool wide) {
+    const int v = (x * 7 + y * 3 + static_cast<int>(i)) & 0xff;
+    return static_cast<std::uint16_t>(wide ? v * 257 : v);
+}
+
 class BagReplay : public ::testing::Test {
 protected:
     // CTest writes the bags once (the RosTestBags fixture); a run of the binary alone writes them itself.
@@ -192,6 +198,37 @@ TEST_F(BagReplay, EveryRealSenseColourEncodingDecodesToTheRecordedImage) {
             ASSERT_EQ((*f->capturedImage.bytes)[at], colorRgb(x, y, 2)[0]);
             ASSERT_EQ((*f->capturedImage.bytes)[at + 1], colorRgb(x, y, 2)[1]);
         }
+}
+
+TEST_F(BagReplay, RealSenseFramesCarryTheInfraredStreamPixelForPixelIn8And16Bits) {
+    for (const char* encoding : {"rgb8", "YUYV"}) {
+        const bool wide = std::string(encoding) == "YUYV";
+        auto source = open(bag(std::string("realsense_") + encoding + ".bag"));
+        ASSERT_TRUE(source);
+        EXPECT_NE(source->description().find("infrared /device_0/sensor_0/Infrared_1/image/data"),
+                  std::string::npos);
+        for (std::size_t i = 0; i < kFrames; ++i) {
+            auto f = replay::loadFrame(*source, i);
+            ASSERT_TRUE(f) << f.error().message;
+            ASSERT_TRUE(f->infrared) << encoding << " frame " << i;
+            ASSERT_EQ(f->infrared->width, kDepthW);
+            ASSERT_EQ(f->infrared->height, kDepthH);
+            for (int y = 0; y < kDepthH; ++y)
+                for (int x = 0; x < kDepthW; ++x)
+                    ASSERT_EQ(f->infrared->at(x, y), infraredValue(x, y, i, wide))
+                        << encoding << " frame " << i << " at " << x << "," << y;
+        }
+    }
+}
+
+TEST_F(BagReplay, BagWithoutAnInfraredStreamGivesFramesWithoutOne) {
+    // generic.bag's /camera/ir/image_raw is Bayer, not an infrared intensity image.
+    auto source = open(bag("generic.bag"));
+    ASSERT_TRUE(source);
+    EXPECT_EQ(source->description().find("infrared"), std::string::npos);
+    auto f = replay::loadFrame(*source, 2);
+    ASSERT_TRUE(f) << f.error().message;
+    EXPECT_FALSE(f->infrared);
 }
 
 TEST_F(BagReplay, GenericBagFindsDepthAndColourByEncodingWithCameraInfoBeside) {

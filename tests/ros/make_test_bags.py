@@ -57,6 +57,23 @@ def depth32(i):
     return image(stamp(i), "32FC1", DEPTH_W, DEPTH_H, 4 * DEPTH_W, data)
 
 
+def infrared_value(x, y, i, wide):
+    v = (x * 7 + y * 3 + i) & 0xFF
+    return v * 257 if wide else v
+
+
+def infrared(i, wide):
+    """The depth sensor's infrared: 8UC1 as most RealSense models record it, or Y16 as mono16 (the YUYV
+    bag), stamped 2 ms after its depth."""
+    data = bytearray()
+    for y in range(DEPTH_H):
+        for x in range(DEPTH_W):
+            v = infrared_value(x, y, i, wide)
+            data += struct.pack("<H", v) if wide else bytes((v,))
+    encoding, step = ("mono16", 2 * DEPTH_W) if wide else ("8UC1", DEPTH_W)
+    return image(stamp(i, 2_000_000), encoding, DEPTH_W, DEPTH_H, step, data)
+
+
 def color(i, encoding):
     """Colour stamped 1 ms after its depth; rows padded by 4 bytes to exercise the step."""
     data = bytearray()
@@ -109,8 +126,7 @@ def realsense(path, color_encoding):
         bag.write(s1 + "/Color_0/tf/0", transform((0.015, 0.001, -0.002), 0.1), t0)
         for i in range(FRAMES):
             bag.write(s0 + "/Depth_0/image/data", depth16(i, "mono16"), stamp(i))
-            bag.write(s0 + "/Infrared_1/image/data",
-                      image(stamp(i), "8UC1", DEPTH_W, DEPTH_H, DEPTH_W, bytes(DEPTH_W * DEPTH_H)), stamp(i))
+            bag.write(s0 + "/Infrared_1/image/data", infrared(i, color_encoding == "YUYV"), stamp(i))
             bag.write(s1 + "/Color_0/image/data", color(i, color_encoding), stamp(i, 1_000_000))
 
 

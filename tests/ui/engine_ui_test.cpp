@@ -5,8 +5,10 @@
 #include "devices/replay/replay_device.h"
 #include "devices/replay/replay_source.h"
 #include "devices/source_spec.h"
+#include "engine/processing_graph.h"
 #include "processing/camera_image.h"
 #include "processing/confidence_filter.h"
+#include "processing/infrared_image.h"
 #include "tests/test_data.h"
 #include "ui_fixture.h"
 
@@ -312,6 +314,55 @@ TEST_F(EngineUiTest, AReplayDecodesItsVideoOnlyWhileSomethingShowsIt) {
     const processing::RgbImage& image = *shown().cameraImage;
     EXPECT_EQ(processing::cameraRgbImage(reference->capturedImage, image.width, image.height).pixels,
               image.pixels);
+}
+
+TEST_F(EngineUiTest, TheInfraredPanelsImageIsMadeOnlyWhileThePanelIsShown) {
+    devices::SyntheticDevice device(smallScene());
+    ASSERT_TRUE(device.open() && device.start());
+    auto f = std::make_shared<frame::Frame>(*device.capture(std::chrono::seconds(1)).frame);
+    frame::Plane<std::uint16_t> infrared(32, 24);
+    for (std::size_t i = 0; i < infrared.pixels.size(); ++i)
+        infrared.pixels[i] = static_cast<std::uint16_t>(i * 37 % 1000);
+    f->infrared = infrared;
+    Settings settings;
+    settings.cloud.motion.enabled = false;
+    start(std::make_unique<devices::FrameListDevice>(std::vector<frame::FramePtr>{f}, 60.0), "infrared",
+          settings);
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    for (int i = 0; i < 4; ++i)
+        nextFrame(0.0);
+    const engine::FrameProcessor& processor = instrument_->processor();
+    EXPECT_EQ(processor.stageRuns(engine::kInfraredImageStage), 0u) << "the panel is off by default";
+    EXPECT_EQ(shown().infraredImage, nullptr);
+    EXPECT_EQ(ImGui::FindWindowByName(kInfraredTitle), nullptr);
+
+    viewer_->settings().panels.infrared = true;
+    ASSERT_TRUE(frameUntil([&] { return viewer_->shown()->infraredImage != nullptr; }));
+    frame(0.0);
+    const processing::RgbImage& image = *shown().infraredImage;
+    EXPECT_EQ(image.pixels,
+              processing::infraredRgbImage(infrared, processing::infraredContrastRange(infrared)).pixels);
+    EXPECT_EQ(renderer_.infraredTexture().width(), 32);
+    EXPECT_EQ(renderer_.infraredTexture().height(), 24);
+    EXPECT_NE(ImGui::FindWindowByName(kInfraredTitle), nullptr) << "the panel is drawn";
+    EXPECT_GT(processor.stageRuns(engine::kInfraredImageStage), 0u);
+
+    viewer_->settings().panels.infrared = false;
+    ASSERT_TRUE(frameUntil([&] { return viewer_->shown()->infraredImage == nullptr; }))
+        << "hidden again, the engine makes no infrared image";
+    const std::uint64_t runs = processor.stageRuns(engine::kInfraredImageStage);
+    for (int i = 0; i < 4; ++i)
+        nextFrame(0.0);
+    EXPECT_EQ(processor.stageRuns(engine::kInfraredImageStage), runs);
+}
+
+TEST_F(EngineUiTest, TheInfraredPanelIsNotDrawnForASourceWithoutInfrared) {
+    viewer_->settings().panels.infrared = true;
+    for (int i = 0; i < 4; ++i)
+        nextFrame(0.0);
+    EXPECT_FALSE(shown().frame->infrared);
+    EXPECT_EQ(shown().infraredImage, nullptr);
+    EXPECT_EQ(ImGui::FindWindowByName(kInfraredTitle), nullptr) << "no panel for what the source lacks";
 }
 
 } // namespace
