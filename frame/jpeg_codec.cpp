@@ -28,13 +28,23 @@ struct Planes {
     int chromaHeight = 0;
 };
 
-// NV12's chroma is interleaved Cb, Cr at half size; its Y plane is used in place.
+// TurboJPEG's SIMD code reads whole vectors, up to this many bytes past a plane's last pixel
+// (AddressSanitizer caught it on a 7x5 image): each plane we hand it has this much more allocated behind it.
+constexpr std::size_t kSimdSlack = 64;
+
+void sizePlane(std::vector<std::uint8_t>& plane, std::size_t bytes) {
+    plane.reserve(bytes + kSimdSlack);
+    plane.resize(bytes);
+}
+
+// NV12's chroma is interleaved Cb, Cr at half size; its Y plane is used in place (the chroma behind it is
+// its slack).
 void splitNv12Chroma(const CapturedImage& image, Planes& planes) {
     planes.chromaWidth = (image.width + 1) / 2;
     planes.chromaHeight = (image.height + 1) / 2;
     const std::size_t n = static_cast<std::size_t>(planes.chromaWidth) * planes.chromaHeight;
-    planes.cb.resize(n);
-    planes.cr.resize(n);
+    sizePlane(planes.cb, n);
+    sizePlane(planes.cr, n);
     const std::uint8_t* chroma = image.bytes->data() + static_cast<std::size_t>(image.width) * image.height;
     for (std::size_t i = 0; i < n; ++i) {
         planes.cb[i] = chroma[2 * i];
@@ -47,9 +57,9 @@ void splitYuyv(const CapturedImage& image, Planes& planes) {
     const int w = image.width, h = image.height;
     planes.chromaWidth = (w + 1) / 2;
     planes.chromaHeight = h;
-    planes.y.resize(static_cast<std::size_t>(w) * h);
-    planes.cb.resize(static_cast<std::size_t>(planes.chromaWidth) * h);
-    planes.cr.resize(planes.cb.size());
+    sizePlane(planes.y, static_cast<std::size_t>(w) * h);
+    sizePlane(planes.cb, static_cast<std::size_t>(planes.chromaWidth) * h);
+    sizePlane(planes.cr, planes.cb.size());
     for (int row = 0; row < h; ++row) {
         const std::uint8_t* in = image.bytes->data() + static_cast<std::size_t>(row) * 4 * planes.chromaWidth;
         std::uint8_t* y = planes.y.data() + static_cast<std::size_t>(row) * w;
