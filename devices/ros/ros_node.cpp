@@ -13,7 +13,10 @@
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <mutex>
+#include <thread>
 
 namespace dc::devices::ros {
 
@@ -25,6 +28,8 @@ constexpr double kMasterRetrySeconds = 2.0;
 constexpr std::uint32_t kImageQueueSize = 2; // latest wins: a slow consumer sees new images, not old ones
 constexpr std::uint32_t kTfQueueSize = 100;  // /tf carries many small messages from many publishers
 constexpr double kTfCacheSeconds = 10.0;
+// How long an image waits for the transform at its stamp: a few messages' transit on a loaded machine.
+constexpr std::chrono::milliseconds kTfWait{100};
 
 std::mutex& nodeMutex() {
     static std::mutex mutex;
@@ -102,6 +107,8 @@ struct Subscription::Impl {
     std::vector<::ros::Subscriber> subscribers;
     std::string fixedFrame;
     tf2::BufferCore tf{::ros::Duration(kTfCacheSeconds)};
+    // /tf kept pace with the images last time (its transform at the image's stamp came): worth waiting for.
+    std::atomic<bool> tfKeepsPace{true};
 
     // An exception thrown into roscpp's spinner would end its thread: a message we cannot copy is dropped.
     template <class Deliver> static void guarded(Deliver&& deliver) {
@@ -165,12 +172,30 @@ Expected<RosTransform> Subscription::transform(const std::string& frameId, std::
     const std::string& fixed = impl_->fixedFrame;
     if (fixed.empty())
         return Error{"no fixed frame to look poses up in"};
+    // /tf comes on its own connection, so the transform at an image's stamp can arrive just after the image:
+    // while /tf keeps pace with the images it is waited for a little. A camera whose /tf is slower (or a pose
+    // published once) takes the newest transform at once, but never one newer than the image: that pose is
+    // another moment's.
+    const ::ros::Time stamp = rosTime(stampNs);
     try {
-        try {
-            return toTransform(impl_->tf.lookupTransform(fixed, frameId, rosTime(stampNs)).transform);
-        } catch (const tf2::ExtrapolationException&) {
-            return toTransform(impl_->tf.lookupTransform(fixed, frameId, ::ros::Time(0)).transform);
+        const auto wait = impl_->tfKeepsPace ? kTfWait : std::chrono::milliseconds{0};
+        const auto giveUp = std::chrono::steady_clock::now() + wait;
+        while (true) {
+            try {
+                auto exact = impl_->tf.lookupTransform(fixed, frameId, stamp);
+                impl_->tfKeepsPace = true;
+                return toTransform(exact.transform);
+            } catch (const tf2::ExtrapolationException&) {
+                if (std::chrono::steady_clock::now() >= giveUp)
+                    break;
+                std::this_thread::sleep_for(std::chrono::milliseconds(2));
+            }
         }
+        impl_->tfKeepsPace = false;
+        const auto latest = impl_->tf.lookupTransform(fixed, frameId, ::ros::Time(0));
+        if (latest.header.stamp > stamp)
+            return Error{"no pose of " + frameId + " in " + fixed + " at the image's stamp yet"};
+        return toTransform(latest.transform);
     } catch (const std::exception& e) {
         return Error{"no pose of " + frameId + " in " + fixed + " from /tf: " + oneLine(e.what())};
     }
