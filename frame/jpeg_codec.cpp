@@ -177,8 +177,8 @@ bool JpegDecoder::Impl::decodePlanes(std::span<const std::uint8_t> jpeg, std::ui
     planes.chromaWidth = tjPlaneWidth(1, width, subsamp);
     planes.chromaHeight = tjPlaneHeight(1, height, subsamp);
     const std::size_t n = static_cast<std::size_t>(planes.chromaWidth) * planes.chromaHeight;
-    planes.cb.resize(n);
-    planes.cr.resize(n);
+    sizePlane(planes.cb, n);
+    sizePlane(planes.cr, n);
     unsigned char* dst[3] = {y, planes.cb.data(), planes.cr.data()};
     int strides[3] = {yStride, planes.chromaWidth, planes.chromaWidth};
     return tjDecompressToYUVPlanes(handle.get(), jpeg.data(), jpeg.size(), dst, width, strides, height,
@@ -226,7 +226,7 @@ Expected<CapturedImage> JpegDecoder::decode(std::span<const std::uint8_t> jpeg, 
         if (ok)
             joinNv12Chroma(p, w, ht, *bytes);
     } else if (format == PixelFormat::Yuyv) {
-        p.y.resize(static_cast<std::size_t>(w) * ht);
+        sizePlane(p.y, static_cast<std::size_t>(w) * ht);
         ok = impl_->decodePlanes(jpeg, p.y.data(), w, w, ht, subsamp);
         if (ok)
             joinYuyv(p, w, ht, *bytes);
