@@ -18,6 +18,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <random>
 #include <vector>
 
 namespace dc::devices::replay {
@@ -233,6 +234,57 @@ TEST(TumFormat, ListsSkipCommentsAndAssociationIsNearestOneToOne) {
     // Both depth images are near the one color image: the closer one gets it, the other none.
     EXPECT_EQ(associateByTimestamp({1.000, 1.012}, {1.010}, 0.02), (Pairs{{1, 0}}));
     EXPECT_TRUE(associateByTimestamp({1.0}, {1.5}, 0.02).empty());
+}
+
+// associate.py's rule, written out: every pair within the window, sorted stably by difference, taken
+// greedily.
+std::vector<std::pair<std::size_t, std::size_t>>
+associateAllPairs(const std::vector<double>& a, const std::vector<double>& b, double window) {
+    struct C {
+        double d;
+        std::size_t i, j;
+    };
+    std::vector<C> all;
+    for (std::size_t i = 0; i < a.size(); ++i)
+        for (std::size_t j = 0; j < b.size(); ++j)
+            if (b[j] >= a[i] - window && b[j] <= a[i] + window)
+                all.push_back({std::abs(a[i] - b[j]), i, j});
+    std::stable_sort(all.begin(), all.end(), [](const C& x, const C& y) { return x.d < y.d; });
+    std::vector<bool> usedA(a.size()), usedB(b.size());
+    std::vector<std::pair<std::size_t, std::size_t>> pairs;
+    for (const C& c : all)
+        if (!usedA[c.i] && !usedB[c.j]) {
+            usedA[c.i] = usedB[c.j] = true;
+            pairs.emplace_back(c.i, c.j);
+        }
+    std::sort(pairs.begin(), pairs.end());
+    return pairs;
+}
+
+TEST(TumFormat, AssociationEqualsTheGreedyRuleOverAllPairsIncludingRepeatedStamps) {
+    std::mt19937 random(7);
+    for (int trial = 0; trial < 300; ++trial) {
+        // Stamps on a coarse grid so that equal stamps and equal differences are common.
+        std::uniform_int_distribution<int> tick(0, 12), count(0, 14);
+        auto stamps = [&] {
+            std::vector<double> v(static_cast<std::size_t>(count(random)));
+            for (double& t : v)
+                t = 1.0 + 0.01 * tick(random);
+            std::sort(v.begin(), v.end());
+            return v;
+        };
+        const std::vector<double> a = stamps(), b = stamps();
+        ASSERT_EQ(associateByTimestamp(a, b, 0.02), associateAllPairs(a, b, 0.02)) << "trial " << trial;
+    }
+}
+
+TEST(TumFormat, AListOfThousandsOfEqualStampsIsAssociatedOneToOne) {
+    // Pairing every candidate would need 400 M of them; a list like this once ran the fuzzer out of memory.
+    const std::vector<double> a(20000, 1.0), b(20000, 1.0);
+    const auto pairs = associateByTimestamp(a, b, 0.02);
+    ASSERT_EQ(pairs.size(), 20000u);
+    for (std::size_t k = 0; k < pairs.size(); ++k)
+        ASSERT_EQ(pairs[k], std::make_pair(k, k));
 }
 
 class TumSequence : public ::testing::Test {
