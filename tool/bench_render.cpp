@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <thread>
 
 namespace dc::tool {
 
@@ -62,7 +63,8 @@ double msSince(Clock::time_point start) {
 }
 
 // Eight distinct noisy frames, made before timing starts so the capture thread costs nothing while the
-// viewer is measured.
+// viewer is measured. They arrive at the camera's rate (--source-fps): each timed frame waits for the next
+// one, and the wait is not counted.
 std::vector<frame::FramePtr> makeFrames(const BenchCase& c) {
     devices::SyntheticConfig config;
     config.depthWidth = c.depthWidth;
@@ -117,7 +119,9 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
     auto frames = makeFrames(c);
     if (frames.empty())
         return Error{"cannot make synthetic frames"};
-    auto device = std::make_unique<devices::FrameListDevice>(std::move(frames), 1000.0, "synthetic frames");
+    const frame::FramePtr last = frames.back();
+    auto device =
+        std::make_unique<devices::FrameListDevice>(std::move(frames), o.sourceFps, "synthetic frames");
     ui::HeadlessUi gui;
     if (Status s = gui.init(o.width, o.height); !s)
         return s.error();
@@ -149,7 +153,12 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
                  shown ? shown->cloud.factor : 1,
                  viewer.summary().stages};
     if (path == render::CloudPath::Points && shown) {
-        // The floor: the same window composited again with nothing new to draw.
+        // The floor: the same window composited again with nothing new to draw and the source idle, as
+        // when a replay is paused (a source that delivers once in 1000 s; its one frame is processed before
+        // timing starts).
+        instrument.switchSource(std::make_unique<devices::FrameListDevice>(std::vector{last}, 0.001, "idle"),
+                                "idle");
+        std::this_thread::sleep_for(std::chrono::milliseconds(300));
         result.floorMs = timeFrames(o.frames, [&](int) {
                              gui.newFrame(1.0f / 60.0f);
                              viewer.drawUi();
@@ -212,7 +221,8 @@ int runBenchRender(const BenchOptions& options) {
         std::fprintf(stderr, "depthcloud: error: %s\n", context.error().message.c_str());
         return kExitFailure;
     }
-    std::printf("bench render on %s\n", context->rendererName().c_str());
+    std::printf("bench render on %s, frames arriving at %.0f fps\n", context->rendererName().c_str(),
+                options.sourceFps);
     nlohmann::json results = nlohmann::json::array();
     for (const BenchCase& c : {BenchCase{"256x192", 256, 192, false}, BenchCase{"640x480", 640, 480, false},
                                BenchCase{"960x720", 960, 720, false}, BenchCase{"1280x720", 1280, 720, false},

@@ -4,8 +4,8 @@
 #include "devices/source_spec.h"
 #include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
-#include "tool/bench_soak.h"
 #include "tool/bench_registration.h"
+#include "tool/bench_soak.h"
 #include "tool/bench_upsample_options.h"
 #include "tool/live_commands.h"
 #include "tool/options.h"
@@ -104,6 +104,9 @@ int main(int argc, char** argv) {
     CLI::App* benchRender = benchCmd->add_subcommand("render", "viewer frame time on this machine's GL");
     benchRender->add_option("--frames", bench.frames, "measured frames per case (at least 10)")
         ->check(CLI::Range(10, 100000))
+        ->capture_default_str();
+    benchRender->add_option("--source-fps", bench.sourceFps, "the rate frames arrive at, as from a camera")
+        ->check(CLI::Range(1.0, 1000.0))
         ->capture_default_str();
     benchRender->add_option("--json", bench.jsonPath, "also write the results as JSON to this file");
     BenchInstrumentOptions benchInstrument;

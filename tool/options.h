@@ -25,7 +25,8 @@ struct BenchOptions {
     int frames = 120;
     int width = 1280;
     int height = 720;
-    std::string jsonPath; // also write the results as JSON here
+    double sourceFps = 30.0; // the rate the bench's frames arrive at: a depth camera's, not a flood
+    std::string jsonPath;    // also write the results as JSON here
 };
 
 int runHeadless(const ViewerOptions& options);

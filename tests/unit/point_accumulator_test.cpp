@@ -295,6 +295,29 @@ TEST(CameraColourTable, GivesExactlyWhatPixelRgbGivesInEveryFormat) {
     }
 }
 
+TEST(CameraColourTable, GivesExactlyWhatPixelRgbGivesForEveryYCbCrTriplet) {
+    // YUYV, 256 pairs a row and a row per Cb: pair (cr, cb) holds lumas l and l + 128, so 128 images cover
+    // all 2^24 triplets, the rounding of every channel at every value included.
+    CameraColourTable table;
+    constexpr int kPairs = 256, kRows = 256;
+    auto bytes = std::make_shared<std::vector<std::uint8_t>>(std::size_t{kPairs} * kRows * 4);
+    for (int luma = 0; luma < 128; ++luma) {
+        for (int cb = 0; cb < kRows; ++cb)
+            for (int cr = 0; cr < kPairs; ++cr) {
+                std::uint8_t* pair = bytes->data() + (std::size_t(cb) * kPairs + cr) * 4;
+                pair[0] = static_cast<std::uint8_t>(luma);
+                pair[1] = static_cast<std::uint8_t>(cb);
+                pair[2] = static_cast<std::uint8_t>(luma + 128);
+                pair[3] = static_cast<std::uint8_t>(cr);
+            }
+        const frame::CapturedImage image{frame::PixelFormat::Yuyv, 2 * kPairs, kRows, bytes};
+        ASSERT_TRUE(table.use(image));
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x)
+                ASSERT_EQ(table.rgba(x, y), packedPixelRgb(image, x, y)) << "pixel " << x << ", " << y;
+    }
+}
+
 TEST(CameraColourTable, RefusesEmptyAndTruncatedImages) {
     CameraColourTable table;
     EXPECT_FALSE(table.use({}));
