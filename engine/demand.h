@@ -16,7 +16,11 @@ struct Demand {
     bool depthImage = true;  // the depth panel, or the camera panel's depth overlay
     bool confidencePanel = true; // the confidence panel
     int cameraPanelWidth = 0;    // pixels the camera panel is shown at; 0 = hidden
-    bool infraredPanel = false;  // the infrared panel (its image is made only while it is shown)
+    // The camera panel's depth overlay is shown: a two-sensor frame's depth is aligned to the colour image
+    // for it (a single camera's is the depth panel's image).
+    bool depthOverCamera = false;
+    bool colourOverDepth = false; // the depth panel's overlay of the camera colour aligned to the depth
+    bool infraredPanel = false;   // the infrared panel (its image is made only while it is shown)
     bool fog = false;
     bool aura = false;
     bool automaticRange = false; // the colormap follows the data (shown depth's percentiles)
@@ -47,7 +51,7 @@ struct Demand {
     bool needsPointColors() const { return (cloud && pointColors) || accumulate; }
     // The camera image, for any product above or as the guide of upsampling.
     bool needsCameraImage() const {
-        return needsPointColors() || cameraPanelWidth > 0 || fog || aura ||
+        return needsPointColors() || cameraPanelWidth > 0 || colourOverDepth || fog || aura ||
                (processing.upsampling && needsDepth());
     }
 };

@@ -57,6 +57,7 @@ void ProcessingGraph::reset() {
     decoded_.clear();
     depth_.clear();
     pointColors_.clear();
+    colourOverlay_.clear();
     cameraImage_.clear();
     effectsImage_.clear();
     alignedDepth_.clear();
@@ -114,6 +115,7 @@ processing::ShownFramePtr ProcessingGraph::run(const frame::FramePtr& captured, 
     addImages(*shown, *frame, demand);
     addInfrared(*shown, frame, demand);
     addEffects(*shown, *frame, demand);
+    addDepthOverCamera(*shown, *frame, demand);
     addDepthProducts(*shown, demand);
     timings_ = nullptr;
     return shown;
@@ -144,16 +146,8 @@ processing::ShownDepth ProcessingGraph::shownDepth(const frame::FramePtr& frame,
 // The images that come from the camera alone: the points' colours and the camera panel's picture.
 void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Frame& frame,
                                 const Demand& demand) {
+    addPointColours(shown, frame, demand);
     const frame::CapturedImage& image = frame.capturedImage;
-    if (demand.needsPointColors() && shown.depth.data) {
-        const int w = shown.depth.width(), h = shown.depth.height();
-        const ColoursKey key{ImageKey{image.bytes, w, h}, frame.rig ? shown.depth.data : nullptr};
-        const processing::PointColours& colours = cached(pointColors_, key, kPointColorsStage, [&] {
-            return processing::framePointColours(frame, shown.depth.data->depthMeters, colourTable_);
-        });
-        shown.pointColors = colours.colors;
-        shown.pointSeen = colours.seen;
-    }
     if (demand.cameraPanelWidth > 0 && !image.empty()) {
         const int w = cameraPanelImageWidth(image.width, demand.cameraPanelWidth);
         const int h = std::max(1, image.height * w / std::max(image.width, 1));
@@ -161,6 +155,41 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
             return std::make_shared<const processing::RgbImage>(processing::cameraRgbImage(image, w, h));
         });
     }
+}
+
+// One colour per shown depth sample serves the camera-coloured points and the depth panel's colour
+// overlay alike; each reader gets it only when it is shown.
+void ProcessingGraph::addPointColours(processing::ShownFrame& shown, const frame::Frame& frame,
+                                      const Demand& demand) {
+    const frame::CapturedImage& image = frame.capturedImage;
+    const bool overlay = demand.colourOverDepth && !image.empty();
+    if ((!demand.needsPointColors() && !overlay) || !shown.depth.data)
+        return;
+    const int w = shown.depth.width(), h = shown.depth.height();
+    const ColoursKey key{ImageKey{image.bytes, w, h}, frame.rig ? shown.depth.data : nullptr};
+    const processing::PointColours& colours = cached(pointColors_, key, kPointColorsStage, [&] {
+        return processing::framePointColours(frame, shown.depth.data->depthMeters, colourTable_);
+    });
+    if (demand.needsPointColors()) {
+        shown.pointColors = colours.colors;
+        shown.pointSeen = colours.seen;
+    }
+    if (overlay)
+        shown.colourOverDepth = cached(colourOverlay_, colours.colors, kColourOverlayStage, [&] {
+            return std::make_shared<const processing::RgbaImage>(processing::seenColourOverlay(colours));
+        });
+}
+
+// The camera panel's depth overlay of a two-sensor frame, at the size fog and aura align the depth to:
+// one aligned depth serves all three.
+void ProcessingGraph::addDepthOverCamera(processing::ShownFrame& shown, const frame::Frame& frame,
+                                         const Demand& demand) {
+    if (!demand.depthOverCamera || frame.capturedImage.empty())
+        return;
+    const auto [w, h] = processing::halfCameraSize(frame.capturedImage);
+    const std::shared_ptr<const frame::DepthData> depth = colourViewDepth(shown, frame, w, h);
+    if (depth != shown.depth.data)
+        shown.depthOverCamera = depth;
 }
 
 // The infrared panel's picture, made only while the panel is shown.
@@ -185,7 +214,7 @@ void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Fra
     const auto camera = cached(effectsImage_, ImageKey{image.bytes, w, h}, kEffectsImageStage, [&] {
         return std::make_shared<const processing::RgbImage>(processing::cameraRgbImage(image, w, h));
     });
-    const std::shared_ptr<const frame::DepthData> depth = effectsDepth(shown, frame, w, h);
+    const std::shared_ptr<const frame::DepthData> depth = colourViewDepth(shown, frame, w, h);
     // The aura's matte measures pixels physically, with the camera of the depth it is made from.
     const bool aligned = depth != shown.depth.data;
     const frame::Intrinsics intrinsics =
@@ -209,13 +238,14 @@ void ProcessingGraph::addEffects(processing::ShownFrame& shown, const frame::Fra
     }
 }
 
-// Fog and aura mix depth into the camera image pixel by pixel, so with two sensors they need the depth as
-// the colour sensor would see it; a single camera's depth already shares the image's view and is used as
-// it is. The aligned depth has no confidence: which colour pixel a sample covers is not a property the
-// sensor measured, so fog's confidence overlay shows nothing there rather than a guess.
-std::shared_ptr<const frame::DepthData> ProcessingGraph::effectsDepth(const processing::ShownFrame& shown,
-                                                                      const frame::Frame& frame, int width,
-                                                                      int height) {
+// Fog, aura and the camera panel's depth overlay mix depth into the camera image pixel by pixel, so with
+// two sensors they need the depth as the colour sensor would see it; a single camera's depth already shares
+// the image's view and is used as it is. The aligned depth has no confidence: which colour pixel a sample
+// covers is not a property the sensor measured, so fog's confidence overlay shows nothing there rather than a
+// guess.
+std::shared_ptr<const frame::DepthData> ProcessingGraph::colourViewDepth(const processing::ShownFrame& shown,
+                                                                         const frame::Frame& frame, int width,
+                                                                         int height) {
     const std::shared_ptr<const frame::DepthData>& depth = shown.depth.data;
     if (!depth || !frame.rig || processing::isSingleCamera(*frame.rig))
         return depth;

@@ -25,6 +25,7 @@ inline constexpr std::string_view kEffectsImageStage = "effects image";
 inline constexpr std::string_view kFogStage = "fog";
 inline constexpr std::string_view kAuraStage = "aura";
 inline constexpr std::string_view kAlignedDepthStage = "aligned depth";
+inline constexpr std::string_view kColourOverlayStage = "colour overlay";
 inline constexpr std::string_view kDepthRangeStage = "depth range";
 inline constexpr std::string_view kPointCountStage = "point count";
 inline constexpr std::string_view kDecimationStage = "decimation";
@@ -119,10 +120,12 @@ private:
     frame::FramePtr decodedFrame(const frame::FramePtr& captured, const Demand& demand);
     processing::ShownDepth shownDepth(const frame::FramePtr& frame, const Demand& demand);
     void addImages(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
+    void addPointColours(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
+    void addDepthOverCamera(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addInfrared(processing::ShownFrame& shown, const frame::FramePtr& frame, const Demand& demand);
     void addEffects(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
-    std::shared_ptr<const frame::DepthData> effectsDepth(const processing::ShownFrame& shown,
-                                                         const frame::Frame& frame, int width, int height);
+    std::shared_ptr<const frame::DepthData> colourViewDepth(const processing::ShownFrame& shown,
+                                                            const frame::Frame& frame, int width, int height);
     void addDepthProducts(processing::ShownFrame& shown, const Demand& demand);
     processing::ShownCloud shownCloud(const processing::ShownFrame& shown, const Demand& demand);
 
@@ -132,6 +135,8 @@ private:
     Memo<frame::FramePtr, frame::FramePtr> decoded_;
     Memo<DepthKey, processing::ShownDepth> depth_;
     Memo<ColoursKey, processing::PointColours> pointColors_;
+    Memo<std::shared_ptr<const processing::RgbImage>, std::shared_ptr<const processing::RgbaImage>>
+        colourOverlay_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> effectsImage_;
     Memo<AlignedKey, std::shared_ptr<const frame::DepthData>> alignedDepth_;

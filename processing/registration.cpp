@@ -223,6 +223,19 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
     return {std::move(colours), std::make_shared<const frame::Plane<std::uint8_t>>(std::move(r.seen))};
 }
 
+RgbaImage seenColourOverlay(const PointColours& colours) {
+    const RgbImage& rgb = *colours.colors;
+    const std::size_t n = static_cast<std::size_t>(rgb.width) * static_cast<std::size_t>(rgb.height);
+    RgbaImage out{rgb.width, rgb.height, std::vector<std::uint8_t>(n * 4, 0)};
+    for (std::size_t i = 0; i < n; ++i) {
+        if (colours.seen && colours.seen->pixels[i] == 0)
+            continue;
+        std::copy_n(&rgb.pixels[i * 3], 3, &out.pixels[i * 4]);
+        out.pixels[i * 4 + 3] = 255;
+    }
+    return out;
+}
+
 RgbImage colourAlignedToDepth(const frame::Frame& frame, const frame::Plane<float>& depth, int width,
                               int height, CameraColourTable& table) {
     frame::Plane<float> nearest(width, height);

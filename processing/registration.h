@@ -57,6 +57,11 @@ struct PointColours {
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
                                CameraColourTable& table);
 
+// The depth panel's colour overlay: each depth sample's colour, opaque where the colour camera sees it and
+// fully transparent (black, so that no filtering bleeds a colour into it) where it does not. The point
+// colours' gray stands for "unseen" in the cloud; over the depth panel it would read as a measured gray.
+RgbaImage seenColourOverlay(const PointColours& colours);
+
 // The colour image seen from the depth sensor, at width x height of the depth map's view: each pixel takes
 // the colour where the colour camera sees the depth sample nearest it (registerDepth on the depth map
 // resampled nearest), kUnseenGray where it sees none. The guide of upsampling on a two-sensor frame; a

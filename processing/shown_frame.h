@@ -53,6 +53,13 @@ struct ShownFrame {
     // (outside its view or hidden: they are gray); null when it sees them all.
     std::shared_ptr<const frame::Plane<std::uint8_t>> pointSeen;
     std::shared_ptr<const RgbImage> cameraImage; // the camera panel, at the size it is shown
+    // The camera panel's depth overlay of a two-sensor frame: the shown depth aligned to the colour image
+    // (0 where the depth sensor saw nothing there). Null for a single camera, whose depth panel image
+    // already lies over the camera image.
+    std::shared_ptr<const frame::DepthData> depthOverCamera;
+    // The depth panel's colour overlay: one colour per shown depth sample, transparent where the colour
+    // camera does not see it (processing::seenColourOverlay).
+    std::shared_ptr<const RgbaImage> colourOverDepth;
     // The infrared panel: the frame's infrared contrast-stretched to gray, at its own size.
     std::shared_ptr<const RgbImage> infraredImage;
     std::shared_ptr<const RgbaImage> fog;

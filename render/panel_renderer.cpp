@@ -39,11 +39,12 @@ ivec2 texelUnder(ivec2 size) {
 constexpr const char* kDepthMain = R"glsl(
 uniform float minMeters;
 uniform float inverseRangeMeters;
+uniform float holeAlpha;
 
 void main() {
     float d = texelFetch(depthMap, texelUnder(textureSize(depthMap, 0)), 0).r;
-    vec3 color = validDepth(d) ? colormapColor((d - minMeters) * inverseRangeMeters) : vec3(0.0);
-    fragColor = vec4(color, 1.0);
+    fragColor = validDepth(d) ? vec4(colormapColor((d - minMeters) * inverseRangeMeters), 1.0)
+                              : vec4(0.0, 0.0, 0.0, holeAlpha);
 }
 )glsl";
 
@@ -58,8 +59,8 @@ void main() {
 constexpr float kMinRangeMeters = 1e-6f;
 
 Expected<gl::Program> linkPanel(const char* name, const char* main, Colormap colormap = Colormap::Jet) {
-    const std::string fragment =
-        std::string("#version 330 core\n") + kFrameTexturesGlsl + colormapGlsl(colormap) + kPanelCommon + main;
+    const std::string fragment = std::string("#version 330 core\n") + kFrameTexturesGlsl +
+                                 colormapGlsl(colormap) + kPanelCommon + main;
     Expected<gl::Program> program = gl::Program::link(kFullscreenVertexShader, fragment);
     if (!program)
         return Error{std::string(name) + " panel shaders: " + program.error().message};
@@ -82,6 +83,7 @@ Status PanelRenderer::init() {
         panel->viewportSize = panel->program.uniformLocation("viewportSize");
         panel->minMeters = panel->program.uniformLocation("minMeters");
         panel->inverseRangeMeters = panel->program.uniformLocation("inverseRangeMeters");
+        panel->holeAlpha = panel->program.uniformLocation("holeAlpha");
     }
     emptyVertexArray_ = gl::VertexArray::create();
     glUseProgram(0);
@@ -89,12 +91,13 @@ Status PanelRenderer::init() {
 }
 
 void PanelRenderer::renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters,
-                                float maxMeters, Colormap colormap) {
+                                float maxMeters, Colormap colormap, DepthHoles holes) {
     const Panel& panel = depth_[static_cast<std::size_t>(colormap)];
     if (!begin(target, textures, panel, textures.hasDepth()))
         return;
     glUniform1f(panel.minMeters, minMeters);
     glUniform1f(panel.inverseRangeMeters, 1.0f / glm::max(maxMeters - minMeters, kMinRangeMeters));
+    glUniform1f(panel.holeAlpha, holes == DepthHoles::Transparent ? 0.0f : 1.0f);
     draw();
 }
 

@@ -10,18 +10,22 @@
 
 namespace dc::render {
 
+// What the depth panel shows where there is no measurement: black on its own, nothing (alpha 0) as an
+// overlay, so that the image beneath shows through.
+enum class DepthHoles { Black, Transparent };
+
 // The 2D data panels beside the cloud: depth in a colormap, confidence as red/green/blue (the camera panel
-// shows the engine's image as it is). Each fills its whole target with one fullscreen triangle; the caller sizes the target, usually to
-// the data's own resolution. Depth and confidence show the sample under each pixel without filtering, so
-// a panel at native size is pixel-exact. All leave framebuffer 0 bound.
+// shows the engine's image as it is). Each fills its whole target with one fullscreen triangle; the caller
+// sizes the target, usually to the data's own resolution. Depth and confidence show the sample under each
+// pixel without filtering, so a panel at native size is pixel-exact. All leave framebuffer 0 bound.
 class PanelRenderer {
 public:
     // Compiles the shaders; needs a current context.
     Status init();
-    // colormapColor(colormap, (d - minMeters) / (maxMeters - minMeters)), black where there is no
-    // measurement.
+    // colormapColor(colormap, (d - minMeters) / (maxMeters - minMeters)), opaque; `holes` says what is
+    // drawn where there is no measurement.
     void renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters, float maxMeters,
-                     Colormap colormap = Colormap::Jet);
+                     Colormap colormap = Colormap::Jet, DepthHoles holes = DepthHoles::Black);
     // Low red, medium green, high blue (the sample's colors); black without depth.
     void renderConfidence(RenderTarget& target, const FrameTextures& textures);
 
@@ -31,12 +35,13 @@ private:
         GLint viewportSize = -1;
         GLint minMeters = -1;
         GLint inverseRangeMeters = -1;
+        GLint holeAlpha = -1;
     };
 
     bool begin(RenderTarget& target, const FrameTextures& textures, const Panel& panel, bool hasData) const;
     void draw() const;
 
-    gl::VertexArray emptyVertexArray_; // core profile draws need a bound VAO even without attributes
+    gl::VertexArray emptyVertexArray_;        // core profile draws need a bound VAO even without attributes
     std::array<Panel, kColormapCount> depth_; // one per colormap (colormapGlsl says why)
     Panel confidence_;
 };

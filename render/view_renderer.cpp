@@ -45,6 +45,9 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     if (shown.depth.data != depth_.data)
         panelsDrawnWith_.reset();
     depth_ = shown.depth;
+    if (shown.depthOverCamera != depthOverCamera_)
+        overlayDrawnWith_.reset();
+    depthOverCamera_ = shown.depthOverCamera;
     pointColors_ = shown.pointColors;
     cloud_ = shown.cloud;
     uploadOnce(shown.cameraImage, cameraUploaded_, [this](const processing::RgbImage& image) {
@@ -58,6 +61,9 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     });
     uploadOnce(shown.aura, auraUploaded_, [this](const processing::RgbaImage& image) {
         aura_.upload(image.width, image.height, image.pixels.data());
+    });
+    uploadOnce(shown.colourOverDepth, colourOverDepthUploaded_, [this](const processing::RgbaImage& image) {
+        colourOverDepth_.upload(image.width, image.height, image.pixels.data());
     });
 }
 
@@ -88,14 +94,23 @@ void ViewRenderer::syncAccumulated(processing::AccumulationWorker& worker) {
 }
 
 void ViewRenderer::renderPanels(const PanelParams& params) {
-    if (panelsDrawnWith_ == params || !depth_.data || (!params.depth && !params.confidence))
+    const bool panels = panelsDrawnWith_ != params && depth_.data && (params.depth || params.confidence);
+    const bool overlay = overlayDrawnWith_ != params && depthOverCamera_ && params.depthOverCamera;
+    if (!panels && !overlay)
         return;
-    const FrameTextures& textures = texturesFor(panelDepth_, depth_, pointColors_, false);
     // The last frame's drawing samples these panel textures. Debian 12's llvmpipe now and then lost a pass
     // that redrew them before that drawing had finished (the panel read back unchanged after a colormap
     // change in two test runs of three; a glFlush did not help): the passes start once it has. By now
     // that is the previous frame's composite alone, and a redraw happens only when what it shows changes.
     glFinish();
+    if (panels)
+        drawDataPanels(params);
+    if (overlay)
+        drawDepthOverCamera(params);
+}
+
+void ViewRenderer::drawDataPanels(const PanelParams& params) {
+    const FrameTextures& textures = texturesFor(panelDepth_, depth_, pointColors_, false);
     if (params.depth) {
         depthTarget_.resize(textures.depthWidth(), textures.depthHeight());
         panels_.renderDepth(depthTarget_, textures, params.minMeters, params.maxMeters, params.colormap);
@@ -106,6 +121,18 @@ void ViewRenderer::renderPanels(const PanelParams& params) {
     }
     panelsDrawnWith_ = params;
     ++panelRenders_;
+}
+
+// The depth panel's colours and range on the depth as the colour camera sees it; where it saw no depth the
+// camera image shows through, since a colour there would be a depth nobody measured.
+void ViewRenderer::drawDepthOverCamera(const PanelParams& params) {
+    processing::ShownDepth aligned;
+    aligned.data = depthOverCamera_;
+    const FrameTextures& textures = texturesFor(overlayDepth_, aligned, nullptr, false);
+    depthOverCameraTarget_.resize(textures.depthWidth(), textures.depthHeight());
+    panels_.renderDepth(depthOverCameraTarget_, textures, params.minMeters, params.maxMeters, params.colormap,
+                        DepthHoles::Transparent);
+    overlayDrawnWith_ = params;
 }
 
 void ViewRenderer::setCloudPath(CloudPath path) {

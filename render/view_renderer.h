@@ -24,6 +24,7 @@ namespace dc::render {
 struct PanelParams {
     bool depth = true;
     bool confidence = true;
+    bool depthOverCamera = false; // the camera panel's overlay of a two-sensor frame's aligned depth
     float minMeters = 0.0f;
     float maxMeters = 2.5f;
     Colormap colormap = Colormap::Jet;
@@ -51,7 +52,8 @@ public:
     // Brings accumulated points up to date, unless the worker is adding right now (then the points uploaded
     // last time are drawn again).
     void syncAccumulated(processing::AccumulationWorker& worker);
-    // Draws the depth and confidence panels at the depth map's size if their data or `params` changed.
+    // Draws the depth and confidence panels at the depth map's size, and the depth over the camera at the
+    // aligned depth's size, where their data or `params` changed.
     void renderPanels(const PanelParams& params);
     // Draws the cloud into cloudTarget() (params.accumulated is filled in by accumulate mode), unless
     // nothing it shows changed since the last time: the same samples, parameters, size and path.
@@ -67,6 +69,10 @@ public:
     const RenderTarget& depthTarget() const { return depthTarget_; }
     const RenderTarget& confidenceTarget() const { return confidenceTarget_; }
     const RgbaTexture& cameraTexture() const { return camera_; }
+    // The shown frame's depth aligned to the colour image in the depth panel's colours, holes transparent;
+    // drawn only while the frame has one (ShownFrame::depthOverCamera) and params ask for it.
+    const RenderTarget& depthOverCameraTarget() const { return depthOverCameraTarget_; }
+    const RgbaTexture& colourOverDepthTexture() const { return colourOverDepth_; }
     const RgbaTexture& infraredTexture() const { return infrared_; }
     const RgbaTexture& fogTexture() const { return fog_; }
     const RgbaTexture& auraTexture() const { return aura_; }
@@ -108,9 +114,13 @@ private:
                                      const std::shared_ptr<const processing::RgbImage>& colors,
                                      bool withColors);
     void drawCloud(const CloudParams& params, bool accumulated);
+    void drawDataPanels(const PanelParams& params);
+    void drawDepthOverCamera(const PanelParams& params);
 
     UploadedDepth panelDepth_;
     UploadedDepth cloudDepth_; // the cloud's samples when they are decimated
+    UploadedDepth overlayDepth_;
+    std::shared_ptr<const frame::DepthData> depthOverCamera_;
     processing::ShownDepth depth_;
     std::shared_ptr<const processing::RgbImage> pointColors_;
     processing::ShownCloud cloud_;
@@ -124,15 +134,19 @@ private:
     RenderTarget cloudTarget_;
     RenderTarget depthTarget_{Sampling::Nearest};
     RenderTarget confidenceTarget_{Sampling::Nearest};
+    RenderTarget depthOverCameraTarget_{Sampling::Nearest};
     RgbaTexture camera_;
     RgbaTexture infrared_;
     RgbaTexture fog_;
     RgbaTexture aura_;
+    RgbaTexture colourOverDepth_;
     std::shared_ptr<const processing::RgbImage> cameraUploaded_;
     std::shared_ptr<const processing::RgbImage> infraredUploaded_;
     std::shared_ptr<const processing::RgbaImage> fogUploaded_;
     std::shared_ptr<const processing::RgbaImage> auraUploaded_;
-    std::optional<PanelParams> panelsDrawnWith_; // reset by a new depth map
+    std::shared_ptr<const processing::RgbaImage> colourOverDepthUploaded_;
+    std::optional<PanelParams> panelsDrawnWith_;  // reset by a new depth map
+    std::optional<PanelParams> overlayDrawnWith_; // reset by a new aligned depth
     std::uint64_t uploads_ = 0;
     std::uint64_t panelRenders_ = 0;
     std::uint64_t cloudRenders_ = 0;

@@ -68,7 +68,7 @@ bool stageToggle(const char* label, const char* stage, bool* value, bool availab
     return changed && available;
 }
 
-bool depthSection(DepthRange& range) {
+bool depthSection(DepthRange& range, DepthView& view) {
     int colormap = static_cast<int>(range.colormap);
     bool changed = ImGui::Combo("Colormap", &colormap, "jet\0turbo\0viridis\0grayscale\0");
     range.colormap = static_cast<render::Colormap>(colormap);
@@ -76,6 +76,15 @@ bool depthSection(DepthRange& range) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "Follow the 2nd to 98th depth percentile, smoothed over frames; off: the fixed range.");
+    // Beside the range's switch, and its opacity only while it is on: the View group must still fit a
+    // 1280x720 window.
+    ImGui::SameLine();
+    changed |= ImGui::Checkbox("Colour over depth", &view.colourOverlay);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Lay the camera's colour, aligned to the depth, over the depth panel; depth the "
+                          "colour camera does not see stays uncovered.");
+    if (view.colourOverlay)
+        changed |= ImGui::SliderFloat("Colour opacity", &view.overlayOpacity, 0.0f, 1.0f, "%.2f");
     ImGui::BeginDisabled(range.automatic);
     changed |= ImGui::DragFloatRange2("Depth range", &range.minMeters, &range.maxMeters, 0.01f, 0.0f, 100.0f,
                                       "%.2f m", "%.2f m", ImGuiSliderFlags_AlwaysClamp);
@@ -263,7 +272,7 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
     if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
         changed |= confidenceSection(settings.cloud);
         changed |= viewSection(settings.cloud);
-        changed |= depthSection(settings.depthRange);
+        changed |= depthSection(settings.depthRange, settings.depthView);
     }
     if (ImGui::CollapsingHeader("Panels", ImGuiTreeNodeFlags_DefaultOpen))
         changed |= panelsSection(settings.panels, result);

@@ -37,8 +37,8 @@ void drawLegend(const DepthLegend& legend) {
 
 } // namespace
 
-PanelResult drawDepthPanel(const PanelImage& image, const DepthLegend& legend, const ProbeSource& probe,
-                           bool* open) {
+PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, const DepthLegend& legend,
+                           const ProbeSource& probe, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kDepthTitle, open, result)) {
         ImGui::End();
@@ -46,8 +46,11 @@ PanelResult drawDepthPanel(const PanelImage& image, const DepthLegend& legend, c
     }
     const float legendHeight = ImGui::GetTextLineHeight() * 0.6f + ImGui::GetTextLineHeightWithSpacing() +
                                ImGui::GetStyle().ItemSpacing.y * 2.0f;
-    if (ImGui::BeginChild("##depth", ImVec2(0.0f, -legendHeight)))
-        interactWithImage(drawImage(image, ImageFit::Fit, "No depth yet."), probe, result);
+    if (ImGui::BeginChild("##depth", ImVec2(0.0f, -legendHeight))) {
+        const ImageRect shown = drawImage(image, ImageFit::Fit, "No depth yet.");
+        drawOverlay(colour.image, shown, colour.opacity);
+        interactWithImage(shown, probe, result);
+    }
     ImGui::EndChild();
     drawLegend(legend);
     ImGui::End();

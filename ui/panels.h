@@ -90,9 +90,16 @@ struct DepthLegend {
     bool automatic = false;
 };
 
-// Depth in the chosen colormap, with the colormap and its range as a legend.
-PanelResult drawDepthPanel(const PanelImage& image, const DepthLegend& legend, const ProbeSource& probe,
-                           bool* open);
+// An image laid over a panel's own at an opacity (none: an empty image).
+struct PanelOverlay {
+    PanelImage image;
+    float opacity = 0.5f;
+};
+
+// Depth in the chosen colormap, with the colormap and its range as a legend, and the camera's colour
+// aligned to it laid over it when `colour` has an image.
+PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, const DepthLegend& legend,
+                           const ProbeSource& probe, bool* open);
 
 // Confidence as red (low), green (medium), blue (high); `available` false says the source has none,
 // `estimated` that it was estimated from the depth because the camera reports none.
@@ -108,7 +115,8 @@ struct CameraPanelResult {
         0; // the width in pixels the image is shown at (0 when hidden), to render it at that size
 };
 
-// The camera image, fitted or filling the panel, optionally with the depth panel's image laid over it.
+// The camera image, fitted or filling the panel, optionally with the depth laid over it: the depth panel's
+// image for a single camera, the depth aligned to the colour image for two sensors.
 CameraPanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay,
                                   const CameraView& view, const ProbeSource& probe, bool* open);
 

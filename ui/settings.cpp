@@ -159,6 +159,8 @@ void sanitize(Settings& s) {
         r.colormap = d.depthRange.colormap;
     s.camera.overlayOpacity =
         std::clamp(finiteOr(s.camera.overlayOpacity, d.camera.overlayOpacity), 0.0f, 1.0f);
+    s.depthView.overlayOpacity =
+        std::clamp(finiteOr(s.depthView.overlayOpacity, d.depthView.overlayOpacity), 0.0f, 1.0f);
     s.accumulate.budgetThousands = std::clamp(s.accumulate.budgetThousands, 10, 4000);
     s.accumulate.voxelMillimeters =
         std::clamp(finiteOr(s.accumulate.voxelMillimeters, d.accumulate.voxelMillimeters), 0.5f, 100.0f);
@@ -205,6 +207,8 @@ std::string settingsToJson(const Settings& s) {
     j["camera"] = {{"fill", s.camera.fill},
                    {"depthOverlay", s.camera.depthOverlay},
                    {"overlayOpacity", s.camera.overlayOpacity}};
+    j["depthPanel"] = {{"colourOverlay", s.depthView.colourOverlay},
+                       {"overlayOpacity", s.depthView.overlayOpacity}};
     j["accumulate"] = {{"enabled", s.accumulate.enabled},
                        {"budgetThousands", s.accumulate.budgetThousands},
                        {"voxelMillimeters", s.accumulate.voxelMillimeters}};
@@ -267,6 +271,9 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(cam, "fill", s.camera.fill);
     read(cam, "depthOverlay", s.camera.depthOverlay);
     read(cam, "overlayOpacity", s.camera.overlayOpacity);
+    const json& dp = j.contains("depthPanel") ? j["depthPanel"] : none;
+    read(dp, "colourOverlay", s.depthView.colourOverlay);
+    read(dp, "overlayOpacity", s.depthView.overlayOpacity);
     const json& acc = j.contains("accumulate") ? j["accumulate"] : none;
     read(acc, "enabled", s.accumulate.enabled);
     read(acc, "budgetThousands", s.accumulate.budgetThousands);

@@ -77,12 +77,19 @@ struct CameraView {
     float overlayOpacity = 0.5f;
 };
 
+// The depth panel can have the camera's colour, aligned to the depth, laid over it.
+struct DepthView {
+    bool colourOverlay = false;
+    float overlayOpacity = 0.5f;
+};
+
 // Everything the user can set; plain data, edited by the panels, persisted between runs.
 struct Settings {
     PanelVisibility panels;
     CloudSettings cloud;
     DepthRange depthRange;
     CameraView camera;
+    DepthView depthView;
     AccumulateSettings accumulate;
     RecordSettings record;
     processing::ProcessingSettings processing;

@@ -62,6 +62,8 @@ engine::Demand Viewer::demandOf() const {
     d.depthImage = show.depth || (show.camera && settings_.camera.depthOverlay);
     d.confidencePanel = show.confidence;
     d.cameraPanelWidth = show.camera ? cameraShownWidth_ : 0;
+    d.depthOverCamera = show.camera && settings_.camera.depthOverlay;
+    d.colourOverDepth = show.depth && settings_.depthView.colourOverlay;
     d.infraredPanel = show.infrared;
     d.fog = show.fog;
     d.aura = show.aura;
@@ -103,7 +105,11 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     updateLegend();
     const auto start = Clock::now();
     const PanelVisibility& show = settings_.panels;
-    renderer_.renderPanels({show.depth || (show.camera && settings_.camera.depthOverlay), show.confidence,
+    // A two-sensor frame's depth over the camera is drawn aligned to the colour image; a single camera's
+    // is the depth panel's image, drawn for it even while the depth panel is hidden.
+    const bool depthOverCamera = show.camera && settings_.camera.depthOverlay;
+    const bool aligned = shown_ && shown_->depthOverCamera;
+    renderer_.renderPanels({show.depth || (depthOverCamera && !aligned), show.confidence, depthOverCamera,
                             legend_.minMeters, legend_.maxMeters, legend_.colormap});
     instrument_.recordStage("panels", millisecondsSince(start));
     if (shown_ && show.cloud)

@@ -253,8 +253,11 @@ void Viewer::drawSidePanels(float x, float w, float h) {
     const ProbeSource probe = probeSource();
     if (show.depth) {
         placePanel(kDepthTitle, x, 0, w, h);
-        afterPanel(kDepthTitle,
-                   drawDepthPanel(imageOf(renderer_.depthTarget()), legend_, probe, &show.depth));
+        const DepthView& view = settings_.depthView;
+        const bool overlay = view.colourOverlay && shown_ && shown_->colourOverDepth;
+        const PanelImage colour = overlay ? imageOf(renderer_.colourOverDepthTexture()) : PanelImage{};
+        afterPanel(kDepthTitle, drawDepthPanel(imageOf(renderer_.depthTarget()),
+                                               {colour, view.overlayOpacity}, legend_, probe, &show.depth));
     }
     if (show.confidence) {
         placePanel(kConfidenceTitle, x, h, w, h);
@@ -265,9 +268,11 @@ void Viewer::drawSidePanels(float x, float w, float h) {
     }
     if (show.camera) {
         placePanel(kCameraTitle, x, 2.0f * h, w, h);
+        const PanelImage depth = shown_ && shown_->depthOverCamera
+                                     ? imageOf(renderer_.depthOverCameraTarget())
+                                     : imageOf(renderer_.depthTarget());
         const CameraPanelResult r =
-            drawCameraPanel(imageOf(renderer_.cameraTexture()), imageOf(renderer_.depthTarget()),
-                            settings_.camera, probe, &show.camera);
+            drawCameraPanel(imageOf(renderer_.cameraTexture()), depth, settings_.camera, probe, &show.camera);
         afterPanel(kCameraTitle, r.panel);
         if (r.shownWidth > 0)
             cameraShownWidth_ = r.shownWidth;

@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 namespace dc::engine::test {
 namespace {
 
@@ -292,6 +294,130 @@ TEST(ProcessingGraphRig, FogAndAuraOfATwoSensorFrameUseTheDepthAlignedToTheColou
     // The same frame again aligns nothing again.
     graph.run(frame, demand, 2, false);
     EXPECT_EQ(graph.runs(kAlignedDepthStage), 1u);
+}
+
+// A quarter of the synthetic rig's sizes, to keep the tests quick.
+frame::FramePtr smallRigFrame() {
+    devices::SyntheticConfig config = devices::syntheticRigConfig();
+    config.depthWidth = 212;
+    config.depthHeight = 120;
+    config.cameraWidth = 320;
+    config.cameraHeight = 180;
+    devices::SyntheticDevice device(config);
+    return device.open() ? device.makeFrame(0, 0.0) : nullptr;
+}
+
+// The camera panel's depth overlay of a two-sensor frame is the shown depth aligned to the colour image,
+// holes (colour pixels no sample covers) included, made only while the overlay is shown and aligned once
+// for it and fog together.
+TEST(ProcessingGraphRig, DepthOverCameraIsTheAlignedDepthMadeOnlyWhileShown) {
+    const frame::FramePtr frame = smallRigFrame();
+    ASSERT_TRUE(frame && frame->rig);
+    ProcessingGraph graph;
+    Demand demand;
+    demand.cameraPanelWidth = 320;
+    const processing::ShownFramePtr hidden = graph.run(frame, demand, 1, true);
+    EXPECT_FALSE(hidden->depthOverCamera);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 0u) << "nothing aligned for an overlay that is off";
+
+    demand.depthOverCamera = true;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 2, false);
+    ASSERT_TRUE(shown->depthOverCamera && shown->depth.data);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 1u);
+    const auto [w, h] = processing::halfCameraSize(frame->capturedImage);
+    const frame::Plane<float> aligned =
+        processing::alignDepthToColour(shown->depth.data->depthMeters, *frame->rig, w, h);
+    const frame::Plane<float>& overlay = shown->depthOverCamera->depthMeters;
+    ASSERT_EQ(overlay.width, w);
+    ASSERT_EQ(overlay.height, h);
+    EXPECT_EQ(overlay.pixels, aligned.pixels);
+    const auto holes = std::count(overlay.pixels.begin(), overlay.pixels.end(), 0.0f);
+    EXPECT_GT(holes, 0) << "the depth sensor's shadows leave colour pixels without depth";
+    EXPECT_LT(holes, static_cast<long>(overlay.pixels.size()) / 2);
+
+    demand.fog = true;
+    graph.run(frame, demand, 3, false);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 1u) << "fog uses the overlay's aligned depth";
+}
+
+// A single camera's depth over the camera is the depth panel's image: nothing is aligned for it.
+TEST(ProcessingGraphRig, DepthOverCameraOfASingleCameraAlignsNothing) {
+    const frame::FramePtr frame = syntheticFrames(1).front();
+    ASSERT_FALSE(frame->rig);
+    ProcessingGraph graph;
+    Demand demand;
+    demand.cameraPanelWidth = 320;
+    demand.depthOverCamera = true;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
+    EXPECT_FALSE(shown->depthOverCamera);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 0u);
+}
+
+// The depth panel's colour overlay is the registered colour of each depth sample, fully transparent exactly
+// where the colour camera does not see the sample, and made only while shown.
+TEST(ProcessingGraphRig, ColourOverDepthIsTheRegisteredColourAndTransparentWhereUnseen) {
+    const frame::FramePtr frame = smallRigFrame();
+    ASSERT_TRUE(frame && frame->rig);
+    ProcessingGraph graph;
+    Demand demand = cloudOnly();
+    demand.depthImage = true;
+    const processing::ShownFramePtr off = graph.run(frame, demand, 1, true);
+    EXPECT_FALSE(off->colourOverDepth);
+    EXPECT_EQ(graph.runs(kColourOverlayStage), 0u);
+    EXPECT_EQ(graph.runs(kPointColorsStage), 0u) << "no colour is made for a cloud coloured by depth";
+
+    demand.colourOverDepth = true;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 2, false);
+    ASSERT_TRUE(shown->colourOverDepth && shown->depth.data);
+    EXPECT_FALSE(shown->pointColors) << "the points do not take the camera's colour";
+    EXPECT_EQ(graph.runs(kColourOverlayStage), 1u);
+    processing::CameraColourTable table;
+    const processing::PointColours expected =
+        processing::framePointColours(*frame, shown->depth.data->depthMeters, table);
+    ASSERT_TRUE(expected.seen);
+    const processing::RgbaImage& overlay = *shown->colourOverDepth;
+    ASSERT_EQ(overlay.width, shown->depth.width());
+    ASSERT_EQ(overlay.height, shown->depth.height());
+    std::size_t seen = 0, unseen = 0;
+    for (std::size_t i = 0; i < expected.seen->pixels.size(); ++i) {
+        const std::uint8_t* rgba = &overlay.pixels[i * 4];
+        if (expected.seen->pixels[i] == 0) {
+            ++unseen;
+            ASSERT_EQ(rgba[3], 0) << "sample " << i << " is not seen by the colour camera";
+            continue;
+        }
+        ++seen;
+        ASSERT_EQ(rgba[3], 255) << "sample " << i;
+        for (std::size_t c = 0; c < 3; ++c)
+            ASSERT_EQ(rgba[c], expected.colors->pixels[i * 3 + c]) << "sample " << i << " channel " << c;
+    }
+    EXPECT_GT(seen, 0u);
+    EXPECT_GT(unseen, 0u);
+    // The colour sensor's narrower view: the depth map's centre is seen, its margins are not.
+    EXPECT_EQ(overlay.pixels[(60 * 212 + 106) * 4 + 3], 255);
+    EXPECT_EQ(overlay.pixels[(60 * 212 + 0) * 4 + 3], 0);
+
+    graph.run(frame, demand, 3, false);
+    EXPECT_EQ(graph.runs(kColourOverlayStage), 1u) << "the same frame again makes nothing again";
+}
+
+// With one camera the colour over depth is the camera image at the depth's size, opaque everywhere.
+TEST(ProcessingGraphRig, ColourOverDepthOfASingleCameraIsTheCameraImageAtTheDepthsSize) {
+    const frame::FramePtr frame = syntheticFrames(1).front();
+    ProcessingGraph graph;
+    Demand demand;
+    demand.colourOverDepth = true;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
+    ASSERT_TRUE(shown->colourOverDepth && shown->depth.data);
+    const processing::RgbImage camera =
+        processing::pointColors(frame->capturedImage, shown->depth.width(), shown->depth.height());
+    const processing::RgbaImage& overlay = *shown->colourOverDepth;
+    ASSERT_EQ(overlay.pixels.size(), camera.pixels.size() / 3 * 4);
+    for (std::size_t i = 0; i < camera.pixels.size() / 3; ++i) {
+        ASSERT_EQ(overlay.pixels[i * 4 + 3], 255) << "pixel " << i;
+        for (std::size_t c = 0; c < 3; ++c)
+            ASSERT_EQ(overlay.pixels[i * 4 + c], camera.pixels[i * 3 + c]) << "pixel " << i;
+    }
 }
 
 // A single camera's fog is made from the shown depth itself, as before two sensors existed: nothing is

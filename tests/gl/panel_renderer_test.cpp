@@ -68,6 +68,26 @@ TEST_F(PanelRendererTest, DepthPanelIsTheJetColormapOfEachSample) {
     EXPECT_EQ(pixelAt(rgba, kWidth, 4, 2), kBlack); // NaN
 }
 
+// As an overlay the depth panel keeps its colours and lets the image beneath show where there is no depth.
+TEST_F(PanelRendererTest, DepthOverlayHasTheSameColoursAndTransparentHoles) {
+    frame::DepthData depth = rampDepth();
+    depth.depthMeters.at(3, 0) = 0.0f;
+    depth.depthMeters.at(4, 2) = std::numeric_limits<float>::quiet_NaN();
+    depth.depthMeters.at(5, 4) = -1.0f;
+    uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
+    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters, Colormap::Jet, DepthHoles::Transparent);
+    const std::vector<std::uint8_t> rgba = target_.readRgba();
+    ASSERT_TRUE(noGlError());
+    for (int v = 0; v < kHeight; ++v) {
+        for (int u = 0; u < kWidth; ++u) {
+            const float d = depth.depthMeters.at(u, v);
+            const Rgba expected = d > 0.0f ? expectedDepthColor(d) : Rgba{0, 0, 0, 0};
+            ASSERT_TRUE(near(pixelAt(rgba, kWidth, u, v), expected, 1)) << "at " << u << ", " << v;
+        }
+    }
+}
+
 class DepthColormapTest : public PanelRendererTest, public ::testing::WithParamInterface<Colormap> {};
 
 TEST_P(DepthColormapTest, DepthPanelFollowsTheChosenColormap) {

@@ -8,6 +8,7 @@
 #include "render/colormap.h"
 #include "ui_fixture.h"
 
+#include <array>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -98,6 +99,25 @@ protected:
     }
 
     void clickAt(ImVec2 at) { click(at, 0.0); }
+
+    // The synthetic two-sensor camera at a quarter of its sizes (quick), noise-free.
+    void startSmallRig() {
+        devices::SyntheticConfig rig = devices::syntheticRigConfig();
+        rig.depthWidth = 212;
+        rig.depthHeight = 120;
+        rig.cameraWidth = 320;
+        rig.cameraHeight = 180;
+        rig.noise = false;
+        ASSERT_NO_FATAL_FAILURE(startViewer(rig));
+        frame(0.0);
+    }
+
+    std::array<int, 4> screenPixel(ImVec2 at) {
+        const auto rgba = gui_.target().readRgba();
+        const std::size_t i =
+            (static_cast<std::size_t>(at.y) * gui_.target().width() + static_cast<std::size_t>(at.x)) * 4;
+        return {rgba[i], rgba[i + 1], rgba[i + 2], rgba[i + 3]};
+    }
 };
 
 TEST_F(InstrumentTest, HoverOnTheDepthPanelReadsTheKnownDepthAtAKnownPixel) {
@@ -119,20 +139,82 @@ TEST_F(InstrumentTest, HoverOnTheDepthPanelReadsTheKnownDepthAtAKnownPixel) {
 // A two-sensor camera: the status line names its calibration, and the readout tells a point the colour
 // sensor sees from one outside its narrower view (the depth map's left margin).
 TEST_F(InstrumentTest, ATwoSensorSourceNamesItsCalibrationAndHoverSaysWhatTheColourCameraCannotSee) {
-    devices::SyntheticConfig rig = devices::syntheticRigConfig();
-    rig.depthWidth = 212; // a quarter of the rig's sizes keeps the test quick
-    rig.depthHeight = 120;
-    rig.cameraWidth = 320;
-    rig.cameraHeight = 180;
-    rig.noise = false;
-    ASSERT_NO_FATAL_FAILURE(startViewer(rig));
-    frame(0.0);
+    ASSERT_NO_FATAL_FAILURE(startSmallRig());
     EXPECT_NE(viewer_->statusLine().calibration.find("synthetic rig"), std::string::npos);
     ASSERT_TRUE(mouseOverDepthPixel(kDepthTitle, 2, 60, 1).has_value());
     ASSERT_GT(viewer_->hoverProbe()->depthMeters, 0.0f);
     EXPECT_FALSE(viewer_->hoverProbe()->seenByColour);
     ASSERT_TRUE(mouseOverDepthPixel(kDepthTitle, 106, 60, 1).has_value());
     EXPECT_TRUE(viewer_->hoverProbe()->seenByColour);
+}
+
+// The depth panel's "Colour over depth": the camera's colour appears over the depth the colour camera sees,
+// and the depth it cannot see (the depth map's margins) stays as the depth panel draws it.
+TEST_F(InstrumentTest, ColourOverDepthCheckboxLaysTheSeenColourOverTheDepthPanel) {
+    ASSERT_NO_FATAL_FAILURE(startSmallRig());
+    viewer_->settings().depthRange.automatic = false; // fixed colours: only the overlay changes the panel
+    frame(0.0);
+    const auto seen = mouseOverDepthPixel(kDepthTitle, 106, 60, 1);
+    const auto unseen = mouseOverDepthPixel(kDepthTitle, 2, 60, 1);
+    ASSERT_TRUE(seen && unseen);
+    ASSERT_FALSE(viewer_->hoverProbe()->seenByColour);
+    gui_.io().MousePos = {0.0f, 0.0f};
+    frame(0.0);
+    const auto seenBefore = screenPixel(*seen);
+    const auto unseenBefore = screenPixel(*unseen);
+    EXPECT_FALSE(viewer_->demand().colourOverDepth);
+
+    const auto toggle = locate(kControlsTitle, "Colour over depth", 1.0f, 8.0f);
+    ASSERT_TRUE(toggle.has_value()) << "the checkbox is in the View group, reachable without scrolling";
+    clickAt(*toggle);
+    ASSERT_TRUE(viewer_->settings().depthView.colourOverlay);
+    EXPECT_TRUE(viewer_->demand().colourOverDepth);
+    gui_.io().MousePos = {0.0f, 0.0f};
+    ASSERT_TRUE(frameUntil([&] { return viewer_->shown()->colourOverDepth != nullptr; }));
+    frame(0.0);
+    EXPECT_NE(screenPixel(*seen), seenBefore) << "the colour is laid over the depth";
+    EXPECT_EQ(screenPixel(*unseen), unseenBefore) << "no colour where the colour camera sees nothing";
+
+    clickAt(*toggle);
+    EXPECT_FALSE(viewer_->demand().colourOverDepth);
+    gui_.io().MousePos = {0.0f, 0.0f};
+    frame(0.0);
+    EXPECT_EQ(screenPixel(*seen), seenBefore) << "off again: the plain depth panel";
+}
+
+// The camera panel's "Depth over camera" of a two-sensor frame: the depth aligned to the colour image in
+// the depth panel's colours and range, transparent exactly where no depth sample covers a colour pixel.
+TEST_F(InstrumentTest, DepthOverCameraOfATwoSensorFrameIsTheAlignedDepthInTheDepthPanelsColours) {
+    ASSERT_NO_FATAL_FAILURE(startSmallRig());
+    viewer_->settings().camera.depthOverlay = true;
+    ASSERT_TRUE(frameUntil([&] { return viewer_->shown()->depthOverCamera != nullptr; }));
+    frame(0.0);
+    const frame::Plane<float>& aligned = shown().depthOverCamera->depthMeters;
+    const auto& target = renderer_.depthOverCameraTarget();
+    ASSERT_EQ(target.width(), aligned.width);
+    ASSERT_EQ(target.height(), aligned.height);
+    ASSERT_NE(aligned.width, shown().depth.width()) << "the colour image's geometry, not the depth map's";
+    const DepthLegend legend = viewer_->depthLegend();
+    const auto rgba = target.readRgba();
+    std::size_t holes = 0;
+    for (int v = 0; v < aligned.height; ++v) {
+        for (int u = 0; u < aligned.width; ++u) {
+            const float d = aligned.at(u, v);
+            const std::size_t i = (static_cast<std::size_t>(v) * aligned.width + u) * 4;
+            if (!(d > 0.0f)) {
+                ++holes;
+                ASSERT_EQ(rgba[i + 3], 0) << "a hole at " << u << ", " << v << " is transparent";
+                continue;
+            }
+            ASSERT_EQ(rgba[i + 3], 255) << "at " << u << ", " << v;
+            const auto expected = render::colormapColor(
+                legend.colormap, (d - legend.minMeters) / (legend.maxMeters - legend.minMeters));
+            for (int c = 0; c < 3; ++c)
+                ASSERT_NEAR(rgba[i + c], expected[static_cast<std::size_t>(c)] * 255.0f, 2.0f)
+                    << "at " << u << ", " << v << " channel " << c;
+        }
+    }
+    EXPECT_GT(holes, 0u) << "the depth sensor's shadows leave colour pixels without depth";
 }
 
 TEST_F(InstrumentTest, ConfidenceAndCameraPanelsReadOutTheSameSample) {
