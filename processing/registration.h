@@ -58,8 +58,8 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
                                CameraColourTable& table);
 
 // The depth panel's colour overlay: each depth sample's colour, opaque where the colour camera sees it and
-// fully transparent (black, so that no filtering bleeds a colour into it) where it does not. The point
-// colours' gray stands for "unseen" in the cloud; over the depth panel it would read as a measured gray.
+// fully transparent (alpha 0, black) where it does not. The point colours' gray stands for "unseen" in the
+// cloud; over the depth panel it would read as a colour the camera saw.
 RgbaImage seenColourOverlay(const PointColours& colours);
 
 // The colour image seen from the depth sensor, at width x height of the depth map's view: each pixel takes

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "render/gl_objects.h"
+#include "render/render_target.h"
 
 #include <cstdint>
 
@@ -11,6 +12,7 @@ namespace dc::render {
 // changes.
 class RgbaTexture {
 public:
+    explicit RgbaTexture(Sampling sampling = Sampling::Linear) : sampling_(sampling) {}
     void upload(int width, int height, const std::uint8_t* rgba);
     void uploadRgb(int width, int height, const std::uint8_t* rgb);
     GLuint id() const { return texture_.id(); }
@@ -21,6 +23,7 @@ private:
     void upload(int width, int height, GLenum format, const std::uint8_t* pixels);
 
     gl::Texture texture_;
+    Sampling sampling_;
     int width_ = 0;
     int height_ = 0;
 };

@@ -139,7 +139,7 @@ private:
     RgbaTexture infrared_;
     RgbaTexture fog_;
     RgbaTexture aura_;
-    RgbaTexture colourOverDepth_;
+    RgbaTexture colourOverDepth_{Sampling::Nearest}; // one colour per depth sample, as the depth panel
     std::shared_ptr<const processing::RgbImage> cameraUploaded_;
     std::shared_ptr<const processing::RgbImage> infraredUploaded_;
     std::shared_ptr<const processing::RgbaImage> fogUploaded_;

@@ -8,6 +8,7 @@
 #include "render/colormap.h"
 #include "ui_fixture.h"
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <filesystem>
@@ -168,17 +169,17 @@ TEST_F(InstrumentTest, ColourOverDepthCheckboxLaysTheSeenColourOverTheDepthPanel
     ASSERT_TRUE(toggle.has_value()) << "the checkbox is in the View group, reachable without scrolling";
     clickAt(*toggle);
     ASSERT_TRUE(viewer_->settings().depthView.colourOverlay);
-    EXPECT_TRUE(viewer_->demand().colourOverDepth);
     gui_.io().MousePos = {0.0f, 0.0f};
     ASSERT_TRUE(frameUntil([&] { return viewer_->shown()->colourOverDepth != nullptr; }));
     frame(0.0);
+    EXPECT_TRUE(viewer_->demand().colourOverDepth);
     EXPECT_NE(screenPixel(*seen), seenBefore) << "the colour is laid over the depth";
     EXPECT_EQ(screenPixel(*unseen), unseenBefore) << "no colour where the colour camera sees nothing";
 
     clickAt(*toggle);
-    EXPECT_FALSE(viewer_->demand().colourOverDepth);
     gui_.io().MousePos = {0.0f, 0.0f};
     frame(0.0);
+    EXPECT_FALSE(viewer_->demand().colourOverDepth) << "nothing made for an overlay that is off";
     EXPECT_EQ(screenPixel(*seen), seenBefore) << "off again: the plain depth panel";
 }
 
@@ -215,6 +216,16 @@ TEST_F(InstrumentTest, DepthOverCameraOfATwoSensorFrameIsTheAlignedDepthInTheDep
         }
     }
     EXPECT_GT(holes, 0u) << "the depth sensor's shadows leave colour pixels without depth";
+
+    // The camera panel lays this image over the camera's, not the depth panel's image.
+    auto drawsTexture = [&](unsigned texture) {
+        const ImDrawList* list = ImGui::FindWindowByName(kCameraTitle)->DrawList;
+        return std::any_of(list->CmdBuffer.begin(), list->CmdBuffer.end(), [&](const ImDrawCmd& cmd) {
+            return cmd.TextureId == reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(texture));
+        });
+    };
+    EXPECT_TRUE(drawsTexture(target.colorTexture()));
+    EXPECT_FALSE(drawsTexture(renderer_.depthTarget().colorTexture()));
 }
 
 TEST_F(InstrumentTest, ConfidenceAndCameraPanelsReadOutTheSameSample) {

@@ -24,6 +24,7 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     s.cloud.orbit.panMeters = {0.1f, -0.05f};
     s.depthRange = {0.5f, 4.0f, true, render::Colormap::Turbo};
     s.camera = {true, true, 0.3f};
+    s.depthView = {true, 0.7f};
     s.panels.stats = true;
     s.panels.log = true;
     s.processing.smoothing = true;
@@ -55,6 +56,8 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     EXPECT_TRUE(r.camera.fill);
     EXPECT_TRUE(r.camera.depthOverlay);
     EXPECT_FLOAT_EQ(r.camera.overlayOpacity, 0.3f);
+    EXPECT_TRUE(r.depthView.colourOverlay);
+    EXPECT_FLOAT_EQ(r.depthView.overlayOpacity, 0.7f);
     EXPECT_TRUE(r.panels.stats);
     EXPECT_TRUE(r.panels.log);
     EXPECT_TRUE(r.processing.smoothing);
@@ -101,7 +104,9 @@ TEST(Settings, SanitizeRemovesNonFiniteValues) {
     s.depthRange.maxMeters = -INFINITY;
     s.processing.fog.blurSigmaPixels = -3.0f;
     s.processing.aura.separationMeters = std::nanf("");
+    s.depthView.overlayOpacity = std::nanf("");
     sanitize(s);
+    EXPECT_EQ(s.depthView.overlayOpacity, DepthView{}.overlayOpacity);
     EXPECT_EQ(s.processing.fog.blurSigmaPixels, 0.0f);
     EXPECT_EQ(s.processing.aura.separationMeters, processing::AuraSettings{}.separationMeters);
     EXPECT_TRUE(std::isfinite(s.cloud.orbit.yawRadians));
