@@ -66,6 +66,24 @@ void RenderTarget::applySampling() const {
     glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, filter);
 }
 
+void RenderTarget::blitInto(PixelRect destination, PixelRect clip) const {
+    if (empty() || destination.width <= 0 || destination.height <= 0 || clip.width <= 0 || clip.height <= 0)
+        return;
+    GLint previousRead = 0;
+    glGetIntegerv(GL_READ_FRAMEBUFFER_BINDING, &previousRead);
+    const GLboolean scissored = glIsEnabled(GL_SCISSOR_TEST);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(clip.x, clip.y, clip.width, clip.height);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
+    const bool sameSize = destination.width == width_ && destination.height == height_;
+    glBlitFramebuffer(0, 0, width_, height_, destination.x, destination.y, destination.x + destination.width,
+                      destination.y + destination.height, GL_COLOR_BUFFER_BIT,
+                      sameSize ? GL_NEAREST : GL_LINEAR);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, static_cast<GLuint>(previousRead));
+    if (!scissored)
+        glDisable(GL_SCISSOR_TEST);
+}
+
 std::vector<std::uint8_t> RenderTarget::readRgba() const {
     if (empty())
         return {};

@@ -13,6 +13,11 @@ namespace dc::render {
 // pixels of a data panel visible when zoomed in.
 enum class Sampling { Linear, Nearest };
 
+// A rectangle of framebuffer pixels, GL's way: (x, y) is its bottom-left corner.
+struct PixelRect {
+    int x = 0, y = 0, width = 0, height = 0;
+};
+
 // An offscreen framebuffer: an RGBA8 color texture (what the UI shows) and a depth renderbuffer (for the
 // cloud's depth test). Holds no GL object until the first resize(), so it can be built before a context.
 //
@@ -34,6 +39,12 @@ public:
     int height() const { return height_; }
     bool empty() const { return width_ == 0 || height_ == 0; }
     GLuint colorTexture() const { return color_.id(); }
+
+    // Copies the colour image into `destination` of the bound draw framebuffer, scaled when the sizes
+    // differ, only within `clip`: no shader, no blending, no texture sampling. The cheapest way a finished
+    // image reaches the window (on llvmpipe a copy of rows when the formats match); the draw framebuffer
+    // must not be multisampled.
+    void blitInto(PixelRect destination, PixelRect clip) const;
 
     // Tightly packed RGBA rows, top row first; empty before the first resize().
     std::vector<std::uint8_t> readRgba() const;

@@ -134,6 +134,43 @@ void readPointer(CloudPanelResult& result, ImVec2 origin, ImVec2 size) {
     result.doubleClicked = ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left);
 }
 
+// What the draw callback copies where: ImGui keeps only a pointer until the frame is rendered, and there
+// is one cloud panel.
+struct CloudCopy {
+    const render::RenderTarget* picture = nullptr;
+    ImVec2 min, max; // on screen
+};
+CloudCopy gCloudCopy;
+
+// Screen coordinates of the frame being rendered to GL's framebuffer pixels, bottom-left origin.
+render::PixelRect framebufferRect(const ImDrawData& data, ImVec2 min, ImVec2 max) {
+    const ImVec2 s = data.FramebufferScale;
+    const float height = data.DisplaySize.y * s.y;
+    const float x0 = (min.x - data.DisplayPos.x) * s.x, x1 = (max.x - data.DisplayPos.x) * s.x;
+    const float y0 = (min.y - data.DisplayPos.y) * s.y, y1 = (max.y - data.DisplayPos.y) * s.y;
+    return {static_cast<int>(std::lround(x0)), static_cast<int>(std::lround(height - y1)),
+            static_cast<int>(std::lround(x1 - x0)), static_cast<int>(std::lround(y1 - y0))};
+}
+
+void copyCloud(const ImDrawList*, const ImDrawCmd* command) {
+    const auto& copy = *static_cast<const CloudCopy*>(command->UserCallbackData);
+    const ImDrawData& data = *ImGui::GetDrawData();
+    const ImVec4 clip = command->ClipRect;
+    copy.picture->blitInto(framebufferRect(data, copy.min, copy.max),
+                           framebufferRect(data, {clip.x, clip.y}, {clip.z, clip.w}));
+}
+
+// The cloud's pixels, copied into the window where ImGui would have drawn them (windows above it still
+// draw over it, in order).
+void drawPicture(const render::RenderTarget& picture, ImVec2 min, ImVec2 max) {
+    if (picture.empty())
+        return;
+    gCloudCopy = {&picture, min, max};
+    ImDrawList* list = ImGui::GetWindowDrawList();
+    list->AddCallback(copyCloud, &gCloudCopy);
+    list->AddCallback(ImDrawCallback_ResetRenderState, nullptr);
+}
+
 } // namespace
 
 std::vector<LabelBox> placeLabels(const std::vector<ImVec2>& anchors, const std::vector<ImVec2>& sizes,
@@ -161,8 +198,9 @@ std::vector<LabelBox> placeLabels(const std::vector<ImVec2>& anchors, const std:
     return placed;
 }
 
-CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const CloudOverlay& overlay,
-                                const std::string& message, bool zoomed, bool* open) {
+CloudPanelResult drawCloudPanel(const render::RenderTarget& picture, CloudSettings& cloud,
+                                const CloudOverlay& overlay, const std::string& message, bool zoomed,
+                                bool* open) {
     CloudPanelResult result;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
     result.panel.visible = ImGui::Begin(kCloudTitle, open);
@@ -185,11 +223,7 @@ CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, c
         ImGui::SetItemAllowOverlap(); // the zoom button drawn over the view must still take clicks
         result.viewChanged = applyMouse(cloud);
         readPointer(result, origin, avail);
-        if (!image.empty()) {
-            ImGui::GetWindowDrawList()->AddImage(
-                reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(image.textureId)), origin,
-                {origin.x + avail.x, origin.y + avail.y}, kFlippedUv0, kFlippedUv1);
-        }
+        drawPicture(picture, origin, {origin.x + avail.x, origin.y + avail.y});
         result.labels = drawOverlay(overlay, origin, avail);
         ImGui::SetCursorScreenPos(
             {origin.x + avail.x - ImGui::CalcTextSize("Restore").x - 24.0f, origin.y + 8.0f});

@@ -3,6 +3,7 @@
 #include "devices/replay/replay_device.h"
 #include "engine/instrument.h"
 #include "processing/pipeline.h"
+#include "render/render_target.h"
 #include "ui/file_picker.h"
 #include "ui/log_store.h"
 #include "ui/panel_image.h"
@@ -78,9 +79,11 @@ struct CloudPanelResult {
 
 // The rotating cloud. Left-drag orbits, right- or middle-drag pans, the wheel zooms, a double-click resets
 // the manual view, a click is reported (anchors). `message` (e.g. an unsupported source) is drawn over the
-// panel when not empty.
-CloudPanelResult drawCloudPanel(const PanelImage& image, CloudSettings& cloud, const CloudOverlay& overlay,
-                                const std::string& message, bool zoomed, bool* open);
+// panel when not empty. The cloud reaches the window as a copy of `picture`'s pixels, not a textured quad:
+// on a software GL that is the cheaper of the two by far, and it is the same picture.
+CloudPanelResult drawCloudPanel(const render::RenderTarget& picture, CloudSettings& cloud,
+                                const CloudOverlay& overlay, const std::string& message, bool zoomed,
+                                bool* open);
 
 // How the depth panel maps meters to colour: the range actually used (fixed or automatic) and the ramp.
 struct DepthLegend {

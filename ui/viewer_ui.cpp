@@ -237,7 +237,7 @@ void Viewer::drawControls(float width, float height) {
 void Viewer::drawCloud(float x, float y, float w, float h) {
     placePanel(kCloudTitle, x, y, w, h);
     const CloudPanelResult r =
-        drawCloudPanel(imageOf(renderer_.cloudTarget()), settings_.cloud, cloudOverlay(), cloudMessage(),
+        drawCloudPanel(renderer_.cloudTarget(), settings_.cloud, cloudOverlay(), cloudMessage(),
                        zoomed_ == kCloudTitle, &settings_.panels.cloud);
     afterPanel(kCloudTitle, r.panel);
     measurementLabels_ = r.labels;

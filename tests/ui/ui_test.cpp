@@ -2,6 +2,7 @@
 
 #include "ui_fixture.h"
 
+#include <algorithm>
 #include <chrono>
 #include <iterator>
 #include <thread>
@@ -65,6 +66,32 @@ TEST_F(UiTest, TheAutoRotateCheckboxStopsAndStartsTheMotion) {
     click(*box, 0.0);
     ASSERT_TRUE(viewer_->settings().cloud.motion.enabled);
     EXPECT_NE(cloudSnapshot(1.0), cloudSnapshot(3.0)) << "with rotation the view moves over time";
+}
+
+TEST_F(UiTest, TheCloudOnTheScreenIsThePanelsPictureCopiedPixelForPixel) {
+    // The cloud reaches the window by a framebuffer copy in the middle of ImGui's drawing: it must land
+    // upright, at the panel's content origin, at its size.
+    ASSERT_NO_FATAL_FAILURE(startViewer(smallScene()));
+    for (int i = 0; i < 3; ++i)
+        frame(0.1 * i); // the cloud target takes the panel's size after the first frame
+    const ImGuiWindow* w = ImGui::FindWindowByName(kCloudTitle);
+    ASSERT_NE(w, nullptr);
+    const render::RenderTarget& cloud = renderer_.cloudTarget();
+    const std::vector<std::uint8_t> picture = cloud.readRgba(), screen = gui_.target().readRgba();
+    ASSERT_GT(litPixels(picture), picture.size() / 4 / 20) << "a cloud to compare";
+    const int x0 = static_cast<int>(w->DC.CursorStartPos.x), y0 = static_cast<int>(w->DC.CursorStartPos.y);
+    ASSERT_LE(x0 + cloud.width(), gui_.target().width());
+    ASSERT_LE(y0 + cloud.height(), gui_.target().height());
+    std::size_t compared = 0, different = 0;
+    // Below the zoom button drawn over the picture, inside the window's one-pixel border.
+    for (int y = 48; y + 1 < cloud.height(); ++y)
+        for (int x = 1; x + 1 < cloud.width(); ++x, ++compared) {
+            const std::size_t p = (static_cast<std::size_t>(y) * cloud.width() + x) * 4;
+            const std::size_t s = (static_cast<std::size_t>(y0 + y) * gui_.target().width() + x0 + x) * 4;
+            different += !std::equal(&picture[p], &picture[p] + 3, &screen[s]);
+        }
+    EXPECT_GT(compared, 10000u);
+    EXPECT_EQ(different, 0u) << "of " << compared << " pixels";
 }
 
 TEST_F(UiTest, DraggingTheCloudOrbitsTheView) {
