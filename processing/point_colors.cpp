@@ -19,16 +19,6 @@ frame::CapturedImage tinyImage(frame::PixelFormat format, int width, std::vector
     return {format, width, 1, std::make_shared<const std::vector<std::uint8_t>>(std::move(bytes))};
 }
 
-// frame::toByte without the library call: for x = min(v, 1) * 255 in (0, 255], lround(x) is its integer part
-// plus one when the fraction (exact in float) is at least a half.
-std::uint8_t roundedByte(float v) {
-    if (!(v > 0.0f))
-        return 0;
-    const float x = std::min(v, 1.0f) * 255.0f;
-    const int whole = static_cast<int>(x);
-    return static_cast<std::uint8_t>(whole + (x - static_cast<float>(whole) >= 0.5f ? 1 : 0));
-}
-
 void storeRgb(std::uint32_t rgba, std::uint8_t* out) {
     out[0] = static_cast<std::uint8_t>(rgba);
     out[1] = static_cast<std::uint8_t>(rgba >> 8);
@@ -37,10 +27,10 @@ void storeRgb(std::uint32_t rgba, std::uint8_t* out) {
 
 } // namespace
 
-CameraColourTable::CameraColourTable() {
+CameraColourTable::CameraColourTable()
+    : ycbcr_(new std::uint32_t[std::size_t{1} << 24]), pairsFilled_((std::size_t{1} << 16) / 64) {
     for (int v = 0; v < 256; ++v) {
         const auto b = static_cast<std::uint8_t>(v);
-        normalised_[static_cast<std::size_t>(v)] = static_cast<float>(b) / 255.0f;
         rgbByte_[static_cast<std::size_t>(v)] =
             packRgba(frame::pixelRgb(tinyImage(frame::PixelFormat::Rgb24, 1, {b, b, b}), 0, 0)) & 0xffu;
     }
@@ -57,8 +47,8 @@ bool CameraColourTable::use(const frame::CapturedImage& image) {
     return true;
 }
 
-// The same addressing as frame::pixelRgb.
-std::uint32_t CameraColourTable::rgba(int xi, int yi) const {
+// The same addressing as frame::pixelRgb; the conversion itself is pixelRgb's, through the table.
+std::uint32_t CameraColourTable::rgba(int xi, int yi) {
     const auto x = static_cast<std::size_t>(xi), y = static_cast<std::size_t>(yi);
     switch (format_) {
     case frame::PixelFormat::Nv12: {
@@ -79,10 +69,24 @@ std::uint32_t CameraColourTable::rgba(int xi, int yi) const {
     return 0xff808080u;
 }
 
-std::uint32_t CameraColourTable::ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr) const {
-    const frame::Rgb c = frame::ycbcrToRgb({normalised_[y], normalised_[cb], normalised_[cr]});
-    return static_cast<std::uint32_t>(roundedByte(c.r)) | static_cast<std::uint32_t>(roundedByte(c.g)) << 8 |
-           static_cast<std::uint32_t>(roundedByte(c.b)) << 16 | 0xff000000u;
+std::uint32_t CameraColourTable::ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr) {
+    const std::uint32_t pair = static_cast<std::uint32_t>(cb) << 8 | cr;
+    if (!(pairsFilled_[pair / 64] >> (pair % 64) & 1))
+        fillPair(pair);
+    return ycbcr_[std::size_t{pair} << 8 | y];
+}
+
+// pixelRgb of a 2x1 NV12 image for each luma, so the table holds exactly what pixelRgb computes.
+void CameraColourTable::fillPair(std::uint32_t pair) {
+    auto bytes = std::make_shared<std::vector<std::uint8_t>>(4);
+    (*bytes)[2] = static_cast<std::uint8_t>(pair >> 8);
+    (*bytes)[3] = static_cast<std::uint8_t>(pair & 0xff);
+    const frame::CapturedImage image{frame::PixelFormat::Nv12, 2, 1, bytes};
+    for (std::uint32_t y = 0; y < 256; ++y) {
+        (*bytes)[0] = static_cast<std::uint8_t>(y);
+        ycbcr_[std::size_t{pair} << 8 | y] = packRgba(frame::pixelRgb(image, 0, 0));
+    }
+    pairsFilled_[pair / 64] |= std::uint64_t{1} << (pair % 64);
 }
 
 RgbImage pointColors(const frame::CapturedImage& image, int width, int height, CameraColourTable& table) {

@@ -11,21 +11,23 @@
 namespace dc::processing {
 
 // The packed RGBA colour of camera-image pixels, exactly as packing frame::pixelRgb's result gives it,
-// without pixelRgb's per-call checks: the same conversion (frame::ycbcrToRgb on the same normalised
-// values) and the same rounding, per pixel. A table of every YCbCr triplet's result was tried first; its
-// 64 MB made each look-up a cache miss, several times the cost of the arithmetic.
+// at the cost of a table look-up: the table holds pixelRgb's own results for every YCbCr triplet, filled
+// one chroma pair (256 lumas) at a time when a pair is first met, so only the colours a scene uses take
+// memory.
 class CameraColourTable {
 public:
     CameraColourTable();
     // Prepares for the pixels of `image`; false when the image is empty or malformed.
     bool use(const frame::CapturedImage& image);
     // The colour of pixel (x, y), which must lie inside the image last passed to use().
-    std::uint32_t rgba(int x, int y) const;
+    std::uint32_t rgba(int x, int y);
 
 private:
-    std::uint32_t ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr) const;
+    std::uint32_t ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr);
+    void fillPair(std::uint32_t pair);
 
-    std::array<float, 256> normalised_{};      // pixelRgb's byte / 255.0f
+    std::unique_ptr<std::uint32_t[]> ycbcr_;   // [cb][cr][y], rows valid where pairsFilled_ says so
+    std::vector<std::uint64_t> pairsFilled_;   // one bit per (cb, cr)
     std::array<std::uint32_t, 256> rgbByte_{}; // RGB24: each channel's byte as pixelRgb and packing give it
     const std::uint8_t* bytes_ = nullptr;
     frame::PixelFormat format_ = frame::PixelFormat::Nv12;
