@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace dc::processing {
 
@@ -83,32 +84,70 @@ std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame:
     return out;
 }
 
-// The nearest depth over each colour pixel, every sample covering its footprint: a depth pixel at depth z
-// spans z / fDepth meters, which the colour camera at distance zc sees as fColour z / (fDepth zc) pixels.
-// A fifth more covers the stretch of lens distortion and slanted surfaces, so neighbouring samples of one
-// surface leave no gap for a farther one to show through. Each piece owns a band of colour rows, so no two
-// threads write one pixel.
+// Half the side, in colour pixels, of the square a sample covers: a depth pixel at depth z spans z / fDepth
+// meters, which the colour camera at distance zc sees as fColour z / (fDepth zc) pixels. A fifth more
+// covers the stretch of lens distortion and slanted surfaces, so neighbouring samples of one surface leave
+// no gap for a farther one to show through.
+double footprintHalf(const Projected& p, float depthMeters, double pixelsPerDepthPixel) {
+    return std::max(0.5, 0.6 * pixelsPerDepthPixel * depthMeters / p.z);
+}
+
+// The colour rows each depth row's samples reach (lowest, highest), so that a band of colour rows visits
+// only the depth rows that reach it instead of every sample.
+std::vector<std::pair<double, double>>
+rowReach(const std::vector<Projected>& points, const frame::Plane<float>& depth, double pixelsPerDepthPixel) {
+    std::vector<std::pair<double, double>> reach(
+        static_cast<std::size_t>(depth.height),
+        {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()});
+    parallelRanges(depth.height, 16, [&](int begin, int end) {
+        for (int v = begin; v < end; ++v) {
+            auto& [low, high] = reach[static_cast<std::size_t>(v)];
+            for (std::size_t i = static_cast<std::size_t>(v) * depth.width,
+                             rowEnd = i + static_cast<std::size_t>(depth.width);
+                 i < rowEnd; ++i) {
+                const Projected& p = points[i];
+                if (!(p.z > 0.0f))
+                    continue;
+                const double half = footprintHalf(p, depth.pixels[i], pixelsPerDepthPixel);
+                low = std::min(low, p.y - half);
+                high = std::max(high, p.y + half);
+            }
+        }
+    });
+    return reach;
+}
+
+// The nearest depth over each colour pixel, every sample covering its footprint. Each piece owns a band of
+// colour rows, so no two threads write one pixel.
 std::vector<float> nearestDepth(const std::vector<Projected>& points, const frame::Plane<float>& depth,
                                 double pixelsPerDepthPixel, int width, int height) {
     std::vector<float> zbuffer(static_cast<std::size_t>(width) * height,
                                std::numeric_limits<float>::infinity());
+    const auto reach = rowReach(points, depth, pixelsPerDepthPixel);
     parallelRanges(height, 32, [&](int bandBegin, int bandEnd) {
-        for (std::size_t i = 0; i < points.size(); ++i) {
-            const Projected& p = points[i];
-            if (!(p.z > 0.0f))
+        for (int v = 0; v < depth.height; ++v) {
+            const auto [low, high] = reach[static_cast<std::size_t>(v)];
+            if (high < bandBegin - 1.0 || low > bandEnd)
                 continue;
-            const double half = std::max(0.5, 0.6 * pixelsPerDepthPixel * depth.pixels[i] / p.z);
-            const int y0 = std::max(bandBegin, static_cast<int>(std::ceil(p.y - half)));
-            const int y1 = std::min(bandEnd - 1, static_cast<int>(std::floor(p.y + half)));
-            if (y0 > y1)
-                continue;
-            const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - half)));
-            const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + half)));
-            for (int y = y0; y <= y1; ++y)
-                for (int x = x0; x <= x1; ++x) {
-                    float& nearest = zbuffer[static_cast<std::size_t>(y) * width + x];
-                    nearest = std::min(nearest, p.z);
-                }
+            for (std::size_t i = static_cast<std::size_t>(v) * depth.width,
+                             rowEnd = i + static_cast<std::size_t>(depth.width);
+                 i < rowEnd; ++i) {
+                const Projected& p = points[i];
+                if (!(p.z > 0.0f))
+                    continue;
+                const double half = footprintHalf(p, depth.pixels[i], pixelsPerDepthPixel);
+                const int y0 = std::max(bandBegin, static_cast<int>(std::ceil(p.y - half)));
+                const int y1 = std::min(bandEnd - 1, static_cast<int>(std::floor(p.y + half)));
+                if (y0 > y1)
+                    continue;
+                const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - half)));
+                const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + half)));
+                for (int y = y0; y <= y1; ++y)
+                    for (int x = x0; x <= x1; ++x) {
+                        float& nearest = zbuffer[static_cast<std::size_t>(y) * width + x];
+                        nearest = std::min(nearest, p.z);
+                    }
+            }
         }
     });
     return zbuffer;
