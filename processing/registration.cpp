@@ -84,12 +84,20 @@ std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame:
     return out;
 }
 
-// Half the side, in colour pixels, of the square a sample covers: a depth pixel at depth z spans z / fDepth
-// meters, which the colour camera at distance zc sees as fColour z / (fDepth zc) pixels. A fifth more
-// covers the stretch of lens distortion and slanted surfaces, so neighbouring samples of one surface leave
-// no gap for a farther one to show through.
-double footprintHalf(const Projected& p, float depthMeters, double pixelsPerDepthPixel) {
-    return std::max(0.5, 0.6 * pixelsPerDepthPixel * depthMeters / p.z);
+// Calls visit(sample, half) for each projected sample of depth row v, where half is half the side, in
+// colour pixels, of the square the sample covers: a depth pixel at depth z spans z / fDepth meters, which
+// the colour camera at distance zc sees as fColour z / (fDepth zc) pixels. A fifth more covers the stretch
+// of lens distortion and slanted surfaces, so neighbouring samples of one surface leave no gap for a
+// farther one to show through.
+template <class Visit>
+void forEachInRow(const std::vector<Projected>& points, const frame::Plane<float>& depth, int v,
+                  double pixelsPerDepthPixel, Visit&& visit) {
+    const std::size_t rowBegin = static_cast<std::size_t>(v) * static_cast<std::size_t>(depth.width);
+    for (std::size_t i = rowBegin; i < rowBegin + static_cast<std::size_t>(depth.width); ++i) {
+        const Projected& p = points[i];
+        if (p.z > 0.0f)
+            visit(p, std::max(0.5, 0.6 * pixelsPerDepthPixel * depth.pixels[i] / p.z));
+    }
 }
 
 // The colour rows each depth row's samples reach (lowest, highest), so that a band of colour rows visits
@@ -102,16 +110,10 @@ rowReach(const std::vector<Projected>& points, const frame::Plane<float>& depth,
     parallelRanges(depth.height, 16, [&](int begin, int end) {
         for (int v = begin; v < end; ++v) {
             auto& [low, high] = reach[static_cast<std::size_t>(v)];
-            for (std::size_t i = static_cast<std::size_t>(v) * depth.width,
-                             rowEnd = i + static_cast<std::size_t>(depth.width);
-                 i < rowEnd; ++i) {
-                const Projected& p = points[i];
-                if (!(p.z > 0.0f))
-                    continue;
-                const double half = footprintHalf(p, depth.pixels[i], pixelsPerDepthPixel);
+            forEachInRow(points, depth, v, pixelsPerDepthPixel, [&](const Projected& p, double half) {
                 low = std::min(low, p.y - half);
                 high = std::max(high, p.y + half);
-            }
+            });
         }
     });
     return reach;
@@ -129,17 +131,9 @@ std::vector<float> nearestDepth(const std::vector<Projected>& points, const fram
             const auto [low, high] = reach[static_cast<std::size_t>(v)];
             if (high < bandBegin - 1.0 || low > bandEnd)
                 continue;
-            for (std::size_t i = static_cast<std::size_t>(v) * depth.width,
-                             rowEnd = i + static_cast<std::size_t>(depth.width);
-                 i < rowEnd; ++i) {
-                const Projected& p = points[i];
-                if (!(p.z > 0.0f))
-                    continue;
-                const double half = footprintHalf(p, depth.pixels[i], pixelsPerDepthPixel);
+            forEachInRow(points, depth, v, pixelsPerDepthPixel, [&](const Projected& p, double half) {
                 const int y0 = std::max(bandBegin, static_cast<int>(std::ceil(p.y - half)));
                 const int y1 = std::min(bandEnd - 1, static_cast<int>(std::floor(p.y + half)));
-                if (y0 > y1)
-                    continue;
                 const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - half)));
                 const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + half)));
                 for (int y = y0; y <= y1; ++y)
@@ -147,7 +141,7 @@ std::vector<float> nearestDepth(const std::vector<Projected>& points, const fram
                         float& nearest = zbuffer[static_cast<std::size_t>(y) * width + x];
                         nearest = std::min(nearest, p.z);
                     }
-            }
+            });
         }
     });
     return zbuffer;

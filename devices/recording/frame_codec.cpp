@@ -82,6 +82,25 @@ Capabilities capabilitiesFromBits(std::uint8_t b) {
             .pose = (b & 16) != 0};
 }
 
+// The intrinsics as frame metadata and the rig's cameras both store them: fx fy cx cy, width height.
+void putIntrinsics(ByteWriter& w, const frame::Intrinsics& k) {
+    for (const double v : {k.fx, k.fy, k.cx, k.cy})
+        w.put(v);
+    w.put(static_cast<std::int32_t>(k.width));
+    w.put(static_cast<std::int32_t>(k.height));
+}
+
+frame::Intrinsics getIntrinsics(ByteReader& r) {
+    frame::Intrinsics k;
+    k.fx = r.get<double>();
+    k.fy = r.get<double>();
+    k.cx = r.get<double>();
+    k.cy = r.get<double>();
+    k.width = r.get<std::int32_t>();
+    k.height = r.get<std::int32_t>();
+    return k;
+}
+
 } // namespace
 
 const char* toString(ColorStorage storage) {
@@ -249,11 +268,7 @@ FrameEncoder& FrameEncoder::operator=(FrameEncoder&&) noexcept = default;
 namespace {
 
 void putCamera(ByteWriter& w, const frame::CameraModel& camera) {
-    const frame::Intrinsics& k = camera.intrinsics;
-    for (const double v : {k.fx, k.fy, k.cx, k.cy})
-        w.put(v);
-    w.put(static_cast<std::int32_t>(k.width));
-    w.put(static_cast<std::int32_t>(k.height));
+    putIntrinsics(w, camera.intrinsics);
     w.put(static_cast<std::uint8_t>(camera.lens.model));
     for (const double c : camera.lens.coefficients)
         w.put(c);
@@ -280,11 +295,7 @@ Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& fra
     std::vector<std::uint8_t> meta;
     ByteWriter m(meta);
     m.put(frame.sequence);
-    const frame::Intrinsics& k = frame.cameraIntrinsics;
-    for (const double v : {k.fx, k.fy, k.cx, k.cy})
-        m.put(v);
-    m.put(static_cast<std::int32_t>(k.width));
-    m.put(static_cast<std::int32_t>(k.height));
+    putIntrinsics(m, frame.cameraIntrinsics);
     m.put(static_cast<std::uint8_t>(frame.pose.has_value()));
     if (frame.pose)
         for (const double v : frame.pose->cameraToWorld)
@@ -363,13 +374,7 @@ Status FrameDecoder::Impl::unpack(const SectionHeader& h, std::span<const std::u
 
 Status FrameDecoder::Impl::decodeMeta(ByteReader r, frame::Frame& frame) {
     frame.sequence = r.get<std::uint64_t>();
-    frame::Intrinsics& k = frame.cameraIntrinsics;
-    k.fx = r.get<double>();
-    k.fy = r.get<double>();
-    k.cx = r.get<double>();
-    k.cy = r.get<double>();
-    k.width = r.get<std::int32_t>();
-    k.height = r.get<std::int32_t>();
+    frame.cameraIntrinsics = getIntrinsics(r);
     if (r.get<std::uint8_t>() != 0) {
         frame::Pose pose;
         for (double& v : pose.cameraToWorld)
@@ -385,13 +390,7 @@ namespace {
 
 frame::CameraModel getCamera(ByteReader& r) {
     frame::CameraModel camera;
-    frame::Intrinsics& k = camera.intrinsics;
-    k.fx = r.get<double>();
-    k.fy = r.get<double>();
-    k.cx = r.get<double>();
-    k.cy = r.get<double>();
-    k.width = r.get<std::int32_t>();
-    k.height = r.get<std::int32_t>();
+    camera.intrinsics = getIntrinsics(r);
     const auto model = r.get<std::uint8_t>();
     camera.lens.model = model <= static_cast<std::uint8_t>(frame::LensModel::InverseBrownConrady)
                             ? static_cast<frame::LensModel>(model)
@@ -400,7 +399,7 @@ frame::CameraModel getCamera(ByteReader& r) {
         c = r.get<double>();
     // An unknown lens model cannot be applied: the camera is refused rather than drawn undistorted.
     if (model > static_cast<std::uint8_t>(frame::LensModel::InverseBrownConrady))
-        k.fx = 0.0;
+        camera.intrinsics.fx = 0.0;
     return camera;
 }
 

@@ -23,6 +23,7 @@
 #include <fstream>
 #include <iterator>
 #include <netinet/in.h>
+#include <optional>
 #include <span>
 #include <sys/socket.h>
 #include <sys/wait.h>
@@ -52,10 +53,13 @@ std::array<std::uint8_t, 3> colorRgb(int x, int y, std::int64_t i) {
             static_cast<std::uint8_t>((7 * n + x + y) % 256)};
 }
 // The frame index a stamp names; -1 if the stamp is not on publish_camera.py's grid.
-std::int64_t frameIndex(std::int64_t stampNs) {
+// Which of the publisher's frames carries this stamp; none when it is not a stamp the publisher sent.
+std::optional<std::int64_t> frameIndex(std::int64_t stampNs) {
     const std::int64_t offset = stampNs - kStartNs;
     const std::int64_t i = (offset + kPeriodNs / 2) / kPeriodNs;
-    return std::llabs(offset - i * kPeriodNs) < 2 ? i : -1;
+    if (offset < 0 || std::llabs(offset - i * kPeriodNs) >= 2)
+        return std::nullopt;
+    return i;
 }
 
 std::string readFile(const std::string& path) {
@@ -187,8 +191,9 @@ protected:
         ASSERT_GE(std::distance(paired, got.frames.end()), 5) << "the colour subscription never caught up";
         std::int64_t previous = -1;
         for (const frame::FramePtr& f : std::span(paired, got.frames.end())) {
-            const std::int64_t i = frameIndex(f->timestampNs);
-            ASSERT_GE(i, 0) << "stamp " << f->timestampNs << " is not one the publisher sent";
+            const std::optional<std::int64_t> sent = frameIndex(f->timestampNs);
+            ASSERT_TRUE(sent) << "stamp " << f->timestampNs << " is not one the publisher sent";
+            const std::int64_t i = *sent;
             EXPECT_GT(i, previous) << "frames out of order";
             previous = i;
             expectDepth(*f, i, meters);
@@ -368,7 +373,9 @@ TEST_F(RosLive, ColorBeyondTheToleranceIsNotPaired) {
     ASSERT_EQ(got.frames.size(), 4u) << publisherLog();
     for (const frame::FramePtr& f : got.frames) {
         EXPECT_EQ(f->capturedImage.width, 0) << "paired across an 8 ms gap with a 3 ms tolerance";
-        expectDepth(*f, frameIndex(f->timestampNs), false);
+        const std::optional<std::int64_t> sent = frameIndex(f->timestampNs);
+        ASSERT_TRUE(sent) << "stamp " << f->timestampNs << " is not one the publisher sent";
+        expectDepth(*f, *sent, false);
     }
     EXPECT_GT(device->pairer().unpaired(), 0u);
     EXPECT_EQ(device->pairer().paired(), 0u);
@@ -484,7 +491,9 @@ TEST_F(RosLive, PoseComesFromTfAndTfStaticAtTheImageStamp) {
                 posed.push_back(std::move(f));
     ASSERT_EQ(posed.size(), 5u) << publisherLog();
     for (const frame::FramePtr& f : posed) {
-        const std::int64_t i = frameIndex(f->timestampNs);
+        const std::optional<std::int64_t> sent = frameIndex(f->timestampNs);
+        ASSERT_TRUE(sent) << "stamp " << f->timestampNs << " is not one the publisher sent";
+        const std::int64_t i = *sent;
         ASSERT_TRUE(f->pose) << "frame " << i << " has no pose";
         // map -> camera_link (1 m up, /tf_static) then camera_link -> optical frame (90 degrees about z,
         // sliding 1 cm a frame, /tf): publish_camera.py's transforms.
@@ -554,7 +563,9 @@ TEST_F(RosLive, PublisherThatStopsShowsStalledAndItsReturnStreamsAgain) {
     const Captured again = capture(*device, 2);
     ASSERT_EQ(again.frames.size(), 2u) << publisherLog();
     EXPECT_EQ(device->state(), DeviceState::Streaming);
-    expectDepth(*again.frames.back(), frameIndex(again.frames.back()->timestampNs), false);
+    const std::optional<std::int64_t> sent = frameIndex(again.frames.back()->timestampNs);
+    ASSERT_TRUE(sent) << "stamp " << again.frames.back()->timestampNs << " is not one the publisher sent";
+    expectDepth(*again.frames.back(), *sent, false);
 }
 
 TEST_F(RosLive, MasterThatGoesAwayShowsDisconnectedAndStreamingResumesWhenItIsBack) {
