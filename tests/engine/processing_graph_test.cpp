@@ -8,6 +8,7 @@
 #include "processing/camera_image.h"
 #include "processing/confidence_estimator.h"
 #include "processing/fog.h"
+#include "tests/small_rig.h"
 
 #include <gtest/gtest.h>
 
@@ -226,18 +227,17 @@ TEST_F(ProcessingGraphTest, ANewFrameRerunsWhatItFeedsAndResetStartsOver) {
 namespace dc::engine::test {
 namespace {
 
+// The first frame of the synthetic rig at a quarter of its sizes; null when the device cannot open.
+frame::FramePtr smallRigFrame() {
+    devices::SyntheticDevice device(dc::test::smallRigConfig());
+    return device.open() ? device.makeFrame(0, 0.0) : nullptr;
+}
+
 // A two-sensor frame: the cloud is placed with the depth sensor's intrinsics, its points coloured where the
 // colour sensor sees them, and the mask of those it cannot see travels with the colours.
 TEST(ProcessingGraphRig, PointsOfATwoSensorFrameAreRegisteredAndCarryTheSeenMask) {
-    devices::SyntheticConfig config = devices::syntheticRigConfig();
-    config.depthWidth = 212; // a quarter of the rig's depth, to keep the test quick
-    config.depthHeight = 120;
-    config.cameraWidth = 320;
-    config.cameraHeight = 180;
-    devices::SyntheticDevice device(config);
-    ASSERT_TRUE(device.open());
-    const frame::FramePtr frame = device.makeFrame(0, 0.0);
-    ASSERT_TRUE(frame->rig);
+    const frame::FramePtr frame = smallRigFrame();
+    ASSERT_TRUE(frame && frame->rig);
 
     ProcessingGraph graph;
     Demand demand;
@@ -258,15 +258,8 @@ TEST(ProcessingGraphRig, PointsOfATwoSensorFrameAreRegisteredAndCarryTheSeenMask
 // Fog and aura of a two-sensor frame are made from the depth as the colour sensor sees it, aligned once at
 // the effects' size and shared by both.
 TEST(ProcessingGraphRig, FogAndAuraOfATwoSensorFrameUseTheDepthAlignedToTheColourImage) {
-    devices::SyntheticConfig config = devices::syntheticRigConfig();
-    config.depthWidth = 212;
-    config.depthHeight = 120;
-    config.cameraWidth = 320;
-    config.cameraHeight = 180;
-    devices::SyntheticDevice device(config);
-    ASSERT_TRUE(device.open());
-    const frame::FramePtr frame = device.makeFrame(0, 0.0);
-    ASSERT_TRUE(frame->rig);
+    const frame::FramePtr frame = smallRigFrame();
+    ASSERT_TRUE(frame && frame->rig);
 
     ProcessingGraph graph;
     Demand demand;
@@ -294,17 +287,6 @@ TEST(ProcessingGraphRig, FogAndAuraOfATwoSensorFrameUseTheDepthAlignedToTheColou
     // The same frame again aligns nothing again.
     graph.run(frame, demand, 2, false);
     EXPECT_EQ(graph.runs(kAlignedDepthStage), 1u);
-}
-
-// A quarter of the synthetic rig's sizes, to keep the tests quick.
-frame::FramePtr smallRigFrame() {
-    devices::SyntheticConfig config = devices::syntheticRigConfig();
-    config.depthWidth = 212;
-    config.depthHeight = 120;
-    config.cameraWidth = 320;
-    config.cameraHeight = 180;
-    devices::SyntheticDevice device(config);
-    return device.open() ? device.makeFrame(0, 0.0) : nullptr;
 }
 
 // The camera panel's depth overlay of a two-sensor frame is the shown depth aligned to the colour image,

@@ -6,6 +6,7 @@
 #include "devices/synthetic/synthetic_scene.h"
 #include "processing/point_cloud.h"
 #include "render/colormap.h"
+#include "tests/small_rig.h"
 #include "ui_fixture.h"
 
 #include <algorithm>
@@ -103,11 +104,7 @@ protected:
 
     // The synthetic two-sensor camera at a quarter of its sizes (quick), noise-free.
     void startSmallRig() {
-        devices::SyntheticConfig rig = devices::syntheticRigConfig();
-        rig.depthWidth = 212;
-        rig.depthHeight = 120;
-        rig.cameraWidth = 320;
-        rig.cameraHeight = 180;
+        devices::SyntheticConfig rig = dc::test::smallRigConfig();
         rig.noise = false;
         ASSERT_NO_FATAL_FAILURE(startViewer(rig));
         frame(0.0);

@@ -4,6 +4,7 @@
 #include "frame/camera_model.h"
 #include "processing/point_cloud.h"
 #include "processing/registration.h"
+#include "tests/small_rig.h"
 
 #include <gtest/gtest.h>
 
@@ -280,12 +281,7 @@ TEST(AlignedDepth, IsTheDepthTheColourSensorWouldSeeThroughItsLens) {
 
 // The raw frame's cloud (export's PLY, accumulation of raw frames) is coloured the same registered way.
 TEST(Registration, TheRawFramesCloudOfATwoSensorFrameTakesTheRegisteredColours) {
-    devices::SyntheticConfig config = devices::syntheticRigConfig();
-    config.depthWidth = 212;
-    config.depthHeight = 120;
-    config.cameraWidth = 320;
-    config.cameraHeight = 180;
-    devices::SyntheticDevice device(config);
+    devices::SyntheticDevice device(dc::test::smallRigConfig());
     ASSERT_TRUE(device.open());
     const frame::FramePtr frame = device.makeFrame(0, 0.0);
     CameraColourTable table;
