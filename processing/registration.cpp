@@ -3,6 +3,7 @@
 #include "processing/parallel.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <utility>
@@ -18,11 +19,15 @@ float sameSurfaceMeters(float colourZ) {
     return 0.01f + 0.02f * colourZ;
 }
 
-// The colour-sensor position of every depth sample; z <= 0 where it lands nowhere near the colour image.
+// The colour-sensor position of every depth sample, and half the side of the square it covers in the
+// colour image (see footprintHalf); z <= 0 where it lands nowhere near the colour image.
 struct Projected {
-    float x = 0, y = 0, z = 0;
-    bool inside = false; // within the colour image (else only near it, covering its border pixels)
+    float x = 0, y = 0, z = 0, half = 0;
 };
+
+bool insideImage(const Projected& p, int width, int height) {
+    return p.x >= -0.5f && p.y >= -0.5f && p.x < width - 0.5f && p.y < height - 0.5f;
+}
 
 // Where depth samples may land: the colour camera, how far outside its image a sample still counts (it
 // covers border pixels), and the ideal normalised radius (squared) beyond which the lens polynomial no
@@ -32,6 +37,7 @@ struct ColourTarget {
     frame::CameraModel camera;
     double marginPixels = 0.0;
     double maxRadius2 = std::numeric_limits<double>::infinity();
+    double pixelsPerDepthPixel = 1.0;
 };
 
 // The largest ideal radius the image's corners and edge midpoints come from, a fifth more.
@@ -48,100 +54,163 @@ double lensRadius2(const frame::CameraModel& camera) {
     return 1.44 * worst;
 }
 
-std::vector<Projected> projectAll(const frame::Plane<float>& depth, const frame::CameraModel& depthCamera,
-                                  const ColourTarget& target, const frame::RigidTransform& toColour) {
-    std::vector<Projected> out(depth.pixels.size());
-    const frame::CameraModel& colourCamera = target.camera;
-    const frame::Intrinsics& kc = colourCamera.intrinsics;
-    const double margin = target.marginPixels;
-    const frame::Intrinsics& kd = depthCamera.intrinsics;
-    const bool pinhole = depthCamera.lens.model == frame::LensModel::None;
+// The per-sample arithmetic of projectAll in single precision: it runs for every depth sample, and float
+// keeps positions within a thousandth of a colour pixel of the double-precision model. A colour lens given
+// as the inverse polynomial needs the iterative inversion, which stays in double.
+class FloatProjector {
+public:
+    explicit FloatProjector(const ColourTarget& target)
+        : camera_(target.camera), fx_(static_cast<float>(target.camera.intrinsics.fx)),
+          fy_(static_cast<float>(target.camera.intrinsics.fy)),
+          cx_(static_cast<float>(target.camera.intrinsics.cx)),
+          cy_(static_cast<float>(target.camera.intrinsics.cy)),
+          maxRadius2_(static_cast<float>(target.maxRadius2)) {
+        for (std::size_t i = 0; i < 5; ++i)
+            k_[i] = static_cast<float>(target.camera.lens.coefficients[i]);
+    }
+
+    // The pixel of colour-frame point q (meters); false when the lens does not image it.
+    bool project(float qx, float qy, float qz, float& px, float& py) const {
+        if (!(qz > 0.0f))
+            return false;
+        float x = qx / qz, y = qy / qz;
+        const float r2 = x * x + y * y;
+        if (r2 > maxRadius2_)
+            return false;
+        switch (camera_.lens.model) {
+        case frame::LensModel::None:
+            break;
+        case frame::LensModel::BrownConrady: {
+            const float radial = 1.0f + r2 * (k_[0] + r2 * (k_[1] + r2 * k_[4]));
+            const float xd = x * radial + 2.0f * k_[2] * x * y + k_[3] * (r2 + 2.0f * x * x);
+            y = y * radial + k_[2] * (r2 + 2.0f * y * y) + 2.0f * k_[3] * x * y;
+            x = xd;
+            break;
+        }
+        case frame::LensModel::InverseBrownConrady: {
+            const auto d = frame::distortPoint(camera_.lens, x, y);
+            x = static_cast<float>(d[0]);
+            y = static_cast<float>(d[1]);
+            break;
+        }
+        }
+        px = fx_ * x + cx_;
+        py = fy_ * y + cy_;
+        return true;
+    }
+
+private:
+    const frame::CameraModel& camera_;
+    float fx_, fy_, cx_, cy_, maxRadius2_;
+    std::array<float, 5> k_{};
+};
+
+// The colour-sensor position of every depth sample, and for each depth row the colour rows its samples'
+// squares reach (lowest, highest), so that a band of colour rows visits only the depth rows that reach it.
+struct ProjectedDepth {
+    std::vector<Projected> points;
+    std::vector<std::pair<float, float>> rowReach;
+};
+
+// Half the side, in colour pixels, of the square a sample covers: a depth pixel at depth z spans z / fDepth
+// meters, which the colour camera at distance zc sees as fColour z / (fDepth zc) pixels. A fifth more
+// covers the stretch of lens distortion and slanted surfaces, so neighbouring samples of one surface leave
+// no gap for a farther one to show through.
+float footprintHalf(float pixelsPerDepthPixel, float z, float colourZ) {
+    return std::max(0.5f, 0.6f * pixelsPerDepthPixel * z / colourZ);
+}
+
+// The depth rays through row v's pixels at z = 1, in the colour sensor's axes (R applied). A pinhole ray is
+// linear in u, so the row costs one rotation; a lens is inverted per pixel.
+void rotatedRays(const frame::CameraModel& depthCamera, const frame::RigidTransform& toColour, int v,
+                 int width, std::vector<std::array<float, 3>>& rays) {
+    const auto rotate = [&r = toColour.rotation](const std::array<double, 3>& p) {
+        return std::array<double, 3>{r[0] * p[0] + r[1] * p[1] + r[2] * p[2],
+                                     r[3] * p[0] + r[4] * p[1] + r[5] * p[2],
+                                     r[6] * p[0] + r[7] * p[1] + r[8] * p[2]};
+    };
+    rays.resize(static_cast<std::size_t>(width));
+    const frame::Intrinsics& k = depthCamera.intrinsics;
+    if (depthCamera.lens.model == frame::LensModel::None) {
+        const auto origin = rotate({-k.cx / k.fx, (v - k.cy) / k.fy, 1.0});
+        const auto step = rotate({1.0 / k.fx, 0.0, 0.0});
+        for (int u = 0; u < width; ++u)
+            for (std::size_t i = 0; i < 3; ++i)
+                rays[static_cast<std::size_t>(u)][i] = static_cast<float>(origin[i] + u * step[i]);
+        return;
+    }
+    for (int u = 0; u < width; ++u) {
+        const auto ray = rotate(frame::pixelRay(depthCamera, u, v));
+        for (std::size_t i = 0; i < 3; ++i)
+            rays[static_cast<std::size_t>(u)][i] = static_cast<float>(ray[i]);
+    }
+}
+
+ProjectedDepth projectAll(const frame::Plane<float>& depth, const frame::CameraModel& depthCamera,
+                          const ColourTarget& target, const frame::RigidTransform& toColour) {
+    ProjectedDepth out{std::vector<Projected>(depth.pixels.size()),
+                       std::vector<std::pair<float, float>>(static_cast<std::size_t>(depth.height),
+                                                            {std::numeric_limits<float>::infinity(),
+                                                             -std::numeric_limits<float>::infinity()})};
+    const FloatProjector projector(target);
+    const frame::Intrinsics& kc = target.camera.intrinsics;
+    const auto margin = static_cast<float>(target.marginPixels);
+    const auto perDepthPixel = static_cast<float>(target.pixelsPerDepthPixel);
+    const auto& t = toColour.translationMeters;
+    const float tx = static_cast<float>(t[0]), ty = static_cast<float>(t[1]), tz = static_cast<float>(t[2]);
     parallelRanges(depth.height, 16, [&](int rowBegin, int rowEnd) {
-        for (int v = rowBegin; v < rowEnd; ++v)
+        std::vector<std::array<float, 3>> rays;
+        for (int v = rowBegin; v < rowEnd; ++v) {
+            rotatedRays(depthCamera, toColour, v, depth.width, rays);
+            auto& [low, high] = out.rowReach[static_cast<std::size_t>(v)];
+            const std::size_t row = static_cast<std::size_t>(v) * static_cast<std::size_t>(depth.width);
             for (int u = 0; u < depth.width; ++u) {
-                const float z = depth.at(u, v);
+                const float z = depth.pixels[row + static_cast<std::size_t>(u)];
                 if (!(z > 0.0f) || !std::isfinite(z))
                     continue;
-                const auto ray = pinhole
-                                     ? std::array<double, 3>{(u - kd.cx) / kd.fx, (v - kd.cy) / kd.fy, 1.0}
-                                     : frame::pixelRay(depthCamera, u, v);
-                const auto q = toColour.apply({ray[0] * z, ray[1] * z, z});
-                if (!(q[2] > 0.0) || (q[0] * q[0] + q[1] * q[1]) / (q[2] * q[2]) > target.maxRadius2)
+                const auto& ray = rays[static_cast<std::size_t>(u)];
+                const float qz = ray[2] * z + tz;
+                float x = 0.0f, y = 0.0f;
+                // Written so that a NaN (from a lens that cannot be inverted) fails the bounds too.
+                if (!projector.project(ray[0] * z + tx, ray[1] * z + ty, qz, x, y) ||
+                    !(x >= -0.5f - margin && y >= -0.5f - margin && x < kc.width - 0.5f + margin &&
+                      y < kc.height - 0.5f + margin))
                     continue;
-                const auto pixel = frame::projectPoint(colourCamera, q);
-                if (!pixel)
-                    continue;
-                const auto [x, y] = *pixel;
-                // Written so that a NaN (from a lens that cannot be inverted) fails it too.
-                if (!(x >= -0.5 - margin && y >= -0.5 - margin && x < kc.width - 0.5 + margin &&
-                      y < kc.height - 0.5 + margin))
-                    continue;
-                const bool inside = x >= -0.5 && y >= -0.5 && x < kc.width - 0.5 && y < kc.height - 0.5;
-                out[static_cast<std::size_t>(v) * depth.width + u] = {
-                    static_cast<float>(x), static_cast<float>(y), static_cast<float>(q[2]), inside};
+                const float half = footprintHalf(perDepthPixel, z, qz);
+                out.points[row + static_cast<std::size_t>(u)] = {x, y, qz, half};
+                low = std::min(low, y - half);
+                high = std::max(high, y + half);
             }
+        }
     });
     return out;
 }
 
-// Calls visit(sample, half) for each projected sample of depth row v, where half is half the side, in
-// colour pixels, of the square the sample covers: a depth pixel at depth z spans z / fDepth meters, which
-// the colour camera at distance zc sees as fColour z / (fDepth zc) pixels. A fifth more covers the stretch
-// of lens distortion and slanted surfaces, so neighbouring samples of one surface leave no gap for a
-// farther one to show through.
-template <class Visit>
-void forEachInRow(const std::vector<Projected>& points, const frame::Plane<float>& depth, int v,
-                  double pixelsPerDepthPixel, Visit&& visit) {
-    const std::size_t rowBegin = static_cast<std::size_t>(v) * static_cast<std::size_t>(depth.width);
-    for (std::size_t i = rowBegin; i < rowBegin + static_cast<std::size_t>(depth.width); ++i) {
-        const Projected& p = points[i];
-        if (p.z > 0.0f)
-            visit(p, std::max(0.5, 0.6 * pixelsPerDepthPixel * depth.pixels[i] / p.z));
-    }
-}
-
-// The colour rows each depth row's samples reach (lowest, highest), so that a band of colour rows visits
-// only the depth rows that reach it instead of every sample.
-std::vector<std::pair<double, double>>
-rowReach(const std::vector<Projected>& points, const frame::Plane<float>& depth, double pixelsPerDepthPixel) {
-    std::vector<std::pair<double, double>> reach(
-        static_cast<std::size_t>(depth.height),
-        {std::numeric_limits<double>::infinity(), -std::numeric_limits<double>::infinity()});
-    parallelRanges(depth.height, 16, [&](int begin, int end) {
-        for (int v = begin; v < end; ++v) {
-            auto& [low, high] = reach[static_cast<std::size_t>(v)];
-            forEachInRow(points, depth, v, pixelsPerDepthPixel, [&](const Projected& p, double half) {
-                low = std::min(low, p.y - half);
-                high = std::max(high, p.y + half);
-            });
-        }
-    });
-    return reach;
-}
-
-// The nearest depth over each colour pixel, every sample covering its footprint. Each piece owns a band of
+// The nearest depth over each colour pixel, every sample covering its square. Each piece owns a band of
 // colour rows, so no two threads write one pixel.
-std::vector<float> nearestDepth(const std::vector<Projected>& points, const frame::Plane<float>& depth,
-                                double pixelsPerDepthPixel, int width, int height) {
+std::vector<float> nearestDepth(const ProjectedDepth& projected, int depthWidth, int width, int height) {
     std::vector<float> zbuffer(static_cast<std::size_t>(width) * height,
                                std::numeric_limits<float>::infinity());
-    const auto reach = rowReach(points, depth, pixelsPerDepthPixel);
+    const std::size_t rowLength = static_cast<std::size_t>(depthWidth);
     parallelRanges(height, 32, [&](int bandBegin, int bandEnd) {
-        for (int v = 0; v < depth.height; ++v) {
-            const auto [low, high] = reach[static_cast<std::size_t>(v)];
-            if (high < bandBegin - 1.0 || low > bandEnd)
+        for (std::size_t v = 0; v < projected.rowReach.size(); ++v) {
+            const auto [low, high] = projected.rowReach[v];
+            if (high < static_cast<float>(bandBegin) - 1.0f || low > static_cast<float>(bandEnd))
                 continue;
-            forEachInRow(points, depth, v, pixelsPerDepthPixel, [&](const Projected& p, double half) {
-                const int y0 = std::max(bandBegin, static_cast<int>(std::ceil(p.y - half)));
-                const int y1 = std::min(bandEnd - 1, static_cast<int>(std::floor(p.y + half)));
-                const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - half)));
-                const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + half)));
-                for (int y = y0; y <= y1; ++y)
-                    for (int x = x0; x <= x1; ++x) {
-                        float& nearest = zbuffer[static_cast<std::size_t>(y) * width + x];
-                        nearest = std::min(nearest, p.z);
-                    }
-            });
+            for (std::size_t i = v * rowLength; i < (v + 1) * rowLength; ++i) {
+                const Projected& p = projected.points[i];
+                if (!(p.z > 0.0f))
+                    continue;
+                const int y0 = std::max(bandBegin, static_cast<int>(std::ceil(p.y - p.half)));
+                const int y1 = std::min(bandEnd - 1, static_cast<int>(std::floor(p.y + p.half)));
+                const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - p.half)));
+                const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + p.half)));
+                for (int y = y0; y <= y1; ++y) {
+                    float* line = &zbuffer[static_cast<std::size_t>(y) * static_cast<std::size_t>(width)];
+                    for (int x = x0; x <= x1; ++x)
+                        line[x] = std::min(line[x], p.z);
+                }
+            }
         }
     });
     return zbuffer;
@@ -171,14 +240,14 @@ ColourView viewFromColour(const frame::Plane<float>& depth, const frame::RigCali
                                          rig.depth.lens};
     const frame::CameraModel colourCamera{rig.colour.intrinsics.scaledTo(colourWidth, colourHeight),
                                           rig.colour.lens};
-    ColourView view;
     const double pixelsPerDepthPixel = std::max(colourCamera.intrinsics.fx / depthCamera.intrinsics.fx,
                                                 colourCamera.intrinsics.fy / depthCamera.intrinsics.fy);
     // Samples just outside the image still cover its border pixels: twice a footprint is ample.
-    const ColourTarget target{colourCamera, 2.0 * pixelsPerDepthPixel + 1.0, lensRadius2(colourCamera)};
-    view.points = projectAll(depth, depthCamera, target, rig.depthToColour);
-    view.zbuffer = nearestDepth(view.points, depth, pixelsPerDepthPixel, colourWidth, colourHeight);
-    return view;
+    const ColourTarget target{colourCamera, 2.0 * pixelsPerDepthPixel + 1.0, lensRadius2(colourCamera),
+                              pixelsPerDepthPixel};
+    ProjectedDepth projected = projectAll(depth, depthCamera, target, rig.depthToColour);
+    std::vector<float> zbuffer = nearestDepth(projected, depth.width, colourWidth, colourHeight);
+    return {std::move(projected.points), std::move(zbuffer)};
 }
 
 bool registrable(const frame::Plane<float>& depth, const frame::RigCalibration& rig, int colourWidth,
@@ -200,7 +269,7 @@ Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCal
     parallelRanges(static_cast<int>(view.points.size()), 4096, [&](int begin, int end) {
         for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
             const Projected& p = view.points[i];
-            if (!p.inside)
+            if (!(p.z > 0.0f) || !insideImage(p, colourWidth, colourHeight))
                 continue;
             // Projections start at -0.5, so truncating x + 0.5 rounds to the nearest pixel.
             const auto x = std::min(static_cast<std::int32_t>(p.x + 0.5f), colourWidth - 1);
