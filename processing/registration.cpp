@@ -20,7 +20,7 @@ float sameSurfaceMeters(float colourZ) {
 }
 
 // The colour-sensor position of every depth sample, and half the side of the square it covers in the
-// colour image (see footprintHalf); z <= 0 where it lands nowhere near the colour image.
+// colour image (see FloatTarget); z <= 0 where it lands nowhere near the colour image.
 struct Projected {
     float x = 0, y = 0, z = 0, half = 0;
 };
@@ -54,133 +54,152 @@ double lensRadius2(const frame::CameraModel& camera) {
     return 1.44 * worst;
 }
 
-// The per-sample arithmetic of projectAll in single precision: it runs for every depth sample, and float
-// keeps positions within a thousandth of a colour pixel of the double-precision model. A colour lens given
-// as the inverse polynomial needs the iterative inversion, which stays in double.
-class FloatProjector {
-public:
-    explicit FloatProjector(const ColourTarget& target)
-        : camera_(target.camera), fx_(static_cast<float>(target.camera.intrinsics.fx)),
-          fy_(static_cast<float>(target.camera.intrinsics.fy)),
-          cx_(static_cast<float>(target.camera.intrinsics.cx)),
-          cy_(static_cast<float>(target.camera.intrinsics.cy)),
-          maxRadius2_(static_cast<float>(target.maxRadius2)) {
+// The colour camera and the transform in single precision, as projectRow uses them: positions stay within
+// a thousandth of a colour pixel of the double-precision model, and float lanes are twice as wide.
+struct FloatTarget {
+    float fx, fy, cx, cy;
+    std::array<float, 5> k;         // the lens coefficients
+    float maxRadius2;               // see ColourTarget
+    float left, top, right, bottom; // where a sample still lands: the image and its margin
+    // Half the side, in colour pixels, of the square a sample covers, is this times z / zc (at least half
+    // a pixel): a depth pixel at depth z spans z / fDepth meters, which the colour camera at distance zc
+    // sees as fColour z / (fDepth zc) pixels. A fifth more covers the stretch of lens distortion and
+    // slanted surfaces, so neighbouring samples of one surface leave no gap for a farther one to show
+    // through.
+    float halfPerDepthOverColourZ;
+    std::array<float, 3> t; // the translation, meters
+
+    FloatTarget(const ColourTarget& target, const frame::RigidTransform& toColour)
+        : fx(static_cast<float>(target.camera.intrinsics.fx)),
+          fy(static_cast<float>(target.camera.intrinsics.fy)),
+          cx(static_cast<float>(target.camera.intrinsics.cx)),
+          cy(static_cast<float>(target.camera.intrinsics.cy)), k{},
+          maxRadius2(static_cast<float>(target.maxRadius2)),
+          left(static_cast<float>(-0.5 - target.marginPixels)), top(left),
+          right(static_cast<float>(target.camera.intrinsics.width - 0.5 + target.marginPixels)),
+          bottom(static_cast<float>(target.camera.intrinsics.height - 0.5 + target.marginPixels)),
+          halfPerDepthOverColourZ(static_cast<float>(0.6 * target.pixelsPerDepthPixel)), t{} {
         for (std::size_t i = 0; i < 5; ++i)
-            k_[i] = static_cast<float>(target.camera.lens.coefficients[i]);
+            k[i] = static_cast<float>(target.camera.lens.coefficients[i]);
+        for (std::size_t i = 0; i < 3; ++i)
+            t[i] = static_cast<float>(toColour.translationMeters[i]);
     }
-
-    // The pixel of colour-frame point q (meters); false when the lens does not image it.
-    bool project(float qx, float qy, float qz, float& px, float& py) const {
-        if (!(qz > 0.0f))
-            return false;
-        float x = qx / qz, y = qy / qz;
-        const float r2 = x * x + y * y;
-        if (r2 > maxRadius2_)
-            return false;
-        switch (camera_.lens.model) {
-        case frame::LensModel::None:
-            break;
-        case frame::LensModel::BrownConrady: {
-            const float radial = 1.0f + r2 * (k_[0] + r2 * (k_[1] + r2 * k_[4]));
-            const float xd = x * radial + 2.0f * k_[2] * x * y + k_[3] * (r2 + 2.0f * x * x);
-            y = y * radial + k_[2] * (r2 + 2.0f * y * y) + 2.0f * k_[3] * x * y;
-            x = xd;
-            break;
-        }
-        case frame::LensModel::InverseBrownConrady: {
-            const auto d = frame::distortPoint(camera_.lens, x, y);
-            x = static_cast<float>(d[0]);
-            y = static_cast<float>(d[1]);
-            break;
-        }
-        }
-        px = fx_ * x + cx_;
-        py = fy_ * y + cy_;
-        return true;
-    }
-
-private:
-    const frame::CameraModel& camera_;
-    float fx_, fy_, cx_, cy_, maxRadius2_;
-    std::array<float, 5> k_{};
 };
 
 // The colour-sensor position of every depth sample, and for each depth row the colour rows its samples'
 // squares reach (lowest, highest), so that a band of colour rows visits only the depth rows that reach it.
 struct ProjectedDepth {
     std::vector<Projected> points;
-    std::vector<std::pair<float, float>> rowReach;
+    std::vector<std::pair<int, int>> rowReach;
 };
 
-// Half the side, in colour pixels, of the square a sample covers: a depth pixel at depth z spans z / fDepth
-// meters, which the colour camera at distance zc sees as fColour z / (fDepth zc) pixels. A fifth more
-// covers the stretch of lens distortion and slanted surfaces, so neighbouring samples of one surface leave
-// no gap for a farther one to show through.
-float footprintHalf(float pixelsPerDepthPixel, float z, float colourZ) {
-    return std::max(0.5f, 0.6f * pixelsPerDepthPixel * z / colourZ);
+// The depth rays through one row's pixels at z = 1, in the colour sensor's axes (R applied), one array per
+// axis. A pinhole ray is linear in u, so the row costs one rotation; a lens is inverted per pixel.
+struct RowRays {
+    std::vector<float> x, y, z;
+
+    void fill(const frame::CameraModel& depthCamera, const frame::RigidTransform& toColour, int v,
+              int width) {
+        const auto rotate = [&r = toColour.rotation](const std::array<double, 3>& p) {
+            return std::array<double, 3>{r[0] * p[0] + r[1] * p[1] + r[2] * p[2],
+                                         r[3] * p[0] + r[4] * p[1] + r[5] * p[2],
+                                         r[6] * p[0] + r[7] * p[1] + r[8] * p[2]};
+        };
+        for (auto* axis : {&x, &y, &z})
+            axis->resize(static_cast<std::size_t>(width));
+        const frame::Intrinsics& k = depthCamera.intrinsics;
+        if (depthCamera.lens.model == frame::LensModel::None) {
+            const auto origin = rotate({-k.cx / k.fx, (v - k.cy) / k.fy, 1.0});
+            const auto step = rotate({1.0 / k.fx, 0.0, 0.0});
+            for (int u = 0; u < width; ++u) {
+                const auto i = static_cast<std::size_t>(u);
+                x[i] = static_cast<float>(origin[0] + u * step[0]);
+                y[i] = static_cast<float>(origin[1] + u * step[1]);
+                z[i] = static_cast<float>(origin[2] + u * step[2]);
+            }
+            return;
+        }
+        for (int u = 0; u < width; ++u) {
+            const auto ray = rotate(frame::pixelRay(depthCamera, u, v));
+            const auto i = static_cast<std::size_t>(u);
+            x[i] = static_cast<float>(ray[0]);
+            y[i] = static_cast<float>(ray[1]);
+            z[i] = static_cast<float>(ray[2]);
+        }
+    }
+};
+
+// floor and ceil of a coordinate near the image, through one truncating conversion: x86-64's baseline
+// (SSE2) has no rounding instruction, and std::floor becomes a sequence several times as long.
+int floorOf(float v) {
+    const auto i = static_cast<int>(v);
+    return i - static_cast<int>(v < static_cast<float>(i));
+}
+int ceilOf(float v) {
+    const auto i = static_cast<int>(v);
+    return i + static_cast<int>(v > static_cast<float>(i));
 }
 
-// The depth rays through row v's pixels at z = 1, in the colour sensor's axes (R applied). A pinhole ray is
-// linear in u, so the row costs one rotation; a lens is inverted per pixel.
-void rotatedRays(const frame::CameraModel& depthCamera, const frame::RigidTransform& toColour, int v,
-                 int width, std::vector<std::array<float, 3>>& rays) {
-    const auto rotate = [&r = toColour.rotation](const std::array<double, 3>& p) {
-        return std::array<double, 3>{r[0] * p[0] + r[1] * p[1] + r[2] * p[2],
-                                     r[3] * p[0] + r[4] * p[1] + r[5] * p[2],
-                                     r[6] * p[0] + r[7] * p[1] + r[8] * p[2]};
-    };
-    rays.resize(static_cast<std::size_t>(width));
-    const frame::Intrinsics& k = depthCamera.intrinsics;
-    if (depthCamera.lens.model == frame::LensModel::None) {
-        const auto origin = rotate({-k.cx / k.fx, (v - k.cy) / k.fy, 1.0});
-        const auto step = rotate({1.0 / k.fx, 0.0, 0.0});
-        for (int u = 0; u < width; ++u)
-            for (std::size_t i = 0; i < 3; ++i)
-                rays[static_cast<std::size_t>(u)][i] = static_cast<float>(origin[i] + u * step[i]);
-        return;
-    }
+// One row of samples projected into the colour image. Every lane is computed and the samples that land
+// nowhere are written as z = 0, without a branch, so that the loop vectorises; only a colour lens given as
+// the inverse polynomial (iterative to apply) goes through the double-precision model.
+template <frame::LensModel kLens>
+void projectRow(const float* depth, const RowRays& rays, int width, const FloatTarget& c,
+                const frame::Lens& lens, Projected* out) {
     for (int u = 0; u < width; ++u) {
-        const auto ray = rotate(frame::pixelRay(depthCamera, u, v));
-        for (std::size_t i = 0; i < 3; ++i)
-            rays[static_cast<std::size_t>(u)][i] = static_cast<float>(ray[i]);
+        const auto i = static_cast<std::size_t>(u);
+        const float z = depth[i];
+        const float qz = rays.z[i] * z + c.t[2];
+        const float inverseZ = 1.0f / qz;
+        float x = (rays.x[i] * z + c.t[0]) * inverseZ;
+        float y = (rays.y[i] * z + c.t[1]) * inverseZ;
+        const float r2 = x * x + y * y;
+        if constexpr (kLens == frame::LensModel::BrownConrady) {
+            const float radial = 1.0f + r2 * (c.k[0] + r2 * (c.k[1] + r2 * c.k[4]));
+            const float xd = x * radial + 2.0f * c.k[2] * x * y + c.k[3] * (r2 + 2.0f * x * x);
+            y = y * radial + c.k[2] * (r2 + 2.0f * y * y) + 2.0f * c.k[3] * x * y;
+            x = xd;
+        } else if constexpr (kLens == frame::LensModel::InverseBrownConrady) {
+            const auto d = frame::distortPoint(lens, x, y);
+            x = static_cast<float>(d[0]);
+            y = static_cast<float>(d[1]);
+        }
+        const float px = c.fx * x + c.cx;
+        const float py = c.fy * y + c.cy;
+        // Comparisons that a NaN (no depth, a lens that cannot be inverted) fails as well.
+        const bool lands = (z > 0.0f) & (z < std::numeric_limits<float>::infinity()) & (qz > 0.0f) &
+                           (r2 <= c.maxRadius2) & (px >= c.left) & (py >= c.top) & (px < c.right) &
+                           (py < c.bottom);
+        // A square wider than any image is as good as a larger one, and keeps the conversions in range.
+        const float half = std::min(std::max(0.5f, c.halfPerDepthOverColourZ * z * inverseZ), 16384.0f);
+        out[i] = lands ? Projected{px, py, qz, half} : Projected{};
     }
 }
 
 ProjectedDepth projectAll(const frame::Plane<float>& depth, const frame::CameraModel& depthCamera,
                           const ColourTarget& target, const frame::RigidTransform& toColour) {
     ProjectedDepth out{std::vector<Projected>(depth.pixels.size()),
-                       std::vector<std::pair<float, float>>(static_cast<std::size_t>(depth.height),
-                                                            {std::numeric_limits<float>::infinity(),
-                                                             -std::numeric_limits<float>::infinity()})};
-    const FloatProjector projector(target);
-    const frame::Intrinsics& kc = target.camera.intrinsics;
-    const auto margin = static_cast<float>(target.marginPixels);
-    const auto perDepthPixel = static_cast<float>(target.pixelsPerDepthPixel);
-    const auto& t = toColour.translationMeters;
-    const float tx = static_cast<float>(t[0]), ty = static_cast<float>(t[1]), tz = static_cast<float>(t[2]);
+                       std::vector<std::pair<int, int>>(static_cast<std::size_t>(depth.height),
+                                                        {std::numeric_limits<int>::max(), -1})};
+    const FloatTarget floatTarget(target, toColour);
+    const frame::Lens& lens = target.camera.lens;
+    const auto row = lens.model == frame::LensModel::None ? projectRow<frame::LensModel::None>
+                     : lens.model == frame::LensModel::BrownConrady
+                         ? projectRow<frame::LensModel::BrownConrady>
+                         : projectRow<frame::LensModel::InverseBrownConrady>;
     parallelRanges(depth.height, 16, [&](int rowBegin, int rowEnd) {
-        std::vector<std::array<float, 3>> rays;
+        RowRays rays;
         for (int v = rowBegin; v < rowEnd; ++v) {
-            rotatedRays(depthCamera, toColour, v, depth.width, rays);
+            rays.fill(depthCamera, toColour, v, depth.width);
+            const std::size_t first = static_cast<std::size_t>(v) * static_cast<std::size_t>(depth.width);
+            Projected* points = &out.points[first];
+            row(&depth.pixels[first], rays, depth.width, floatTarget, lens, points);
             auto& [low, high] = out.rowReach[static_cast<std::size_t>(v)];
-            const std::size_t row = static_cast<std::size_t>(v) * static_cast<std::size_t>(depth.width);
-            for (int u = 0; u < depth.width; ++u) {
-                const float z = depth.pixels[row + static_cast<std::size_t>(u)];
-                if (!(z > 0.0f) || !std::isfinite(z))
-                    continue;
-                const auto& ray = rays[static_cast<std::size_t>(u)];
-                const float qz = ray[2] * z + tz;
-                float x = 0.0f, y = 0.0f;
-                // Written so that a NaN (from a lens that cannot be inverted) fails the bounds too.
-                if (!projector.project(ray[0] * z + tx, ray[1] * z + ty, qz, x, y) ||
-                    !(x >= -0.5f - margin && y >= -0.5f - margin && x < kc.width - 0.5f + margin &&
-                      y < kc.height - 0.5f + margin))
-                    continue;
-                const float half = footprintHalf(perDepthPixel, z, qz);
-                out.points[row + static_cast<std::size_t>(u)] = {x, y, qz, half};
-                low = std::min(low, y - half);
-                high = std::max(high, y + half);
-            }
+            for (int u = 0; u < depth.width; ++u)
+                if (points[u].z > 0.0f) {
+                    low = std::min(low, ceilOf(points[u].y - points[u].half));
+                    high = std::max(high, floorOf(points[u].y + points[u].half));
+                }
         }
     });
     return out;
@@ -195,16 +214,16 @@ std::vector<float> nearestDepth(const ProjectedDepth& projected, int depthWidth,
     parallelRanges(height, 32, [&](int bandBegin, int bandEnd) {
         for (std::size_t v = 0; v < projected.rowReach.size(); ++v) {
             const auto [low, high] = projected.rowReach[v];
-            if (high < static_cast<float>(bandBegin) - 1.0f || low > static_cast<float>(bandEnd))
+            if (high < bandBegin || low >= bandEnd)
                 continue;
             for (std::size_t i = v * rowLength; i < (v + 1) * rowLength; ++i) {
                 const Projected& p = projected.points[i];
                 if (!(p.z > 0.0f))
                     continue;
-                const int y0 = std::max(bandBegin, static_cast<int>(std::ceil(p.y - p.half)));
-                const int y1 = std::min(bandEnd - 1, static_cast<int>(std::floor(p.y + p.half)));
-                const int x0 = std::max(0, static_cast<int>(std::ceil(p.x - p.half)));
-                const int x1 = std::min(width - 1, static_cast<int>(std::floor(p.x + p.half)));
+                const int y0 = std::max(bandBegin, ceilOf(p.y - p.half));
+                const int y1 = std::min(bandEnd - 1, floorOf(p.y + p.half));
+                const int x0 = std::max(0, ceilOf(p.x - p.half));
+                const int x1 = std::min(width - 1, floorOf(p.x + p.half));
                 for (int y = y0; y <= y1; ++y) {
                     float* line = &zbuffer[static_cast<std::size_t>(y) * static_cast<std::size_t>(width)];
                     for (int x = x0; x <= x1; ++x)
