@@ -43,8 +43,8 @@ struct Case {
 } // namespace
 
 CLI::App* addBenchRegistrationCommand(CLI::App& bench, BenchRegistrationOptions& o) {
-    CLI::App* cmd =
-        bench.add_subcommand("registration", "two-sensor point colours: 848x480 depth into 1280x720");
+    CLI::App* cmd = bench.add_subcommand(
+        "registration", "two-sensor point colours and aligned depth: 848x480 depth into 1280x720");
     cmd->add_option("--runs", o.runs, "measured runs per case")
         ->check(CLI::Range(5, 10000))
         ->capture_default_str();
@@ -71,6 +71,11 @@ int runBenchRegistration(const BenchRegistrationOptions& o) {
                                        frame->capturedImage.height);
          }},
         {"registered colours", [&] { processing::framePointColours(*frame, depth, table); }},
+        {"aligned depth",
+         [&] {
+             processing::alignDepthToColour(depth, *frame->rig, frame->capturedImage.width,
+                                            frame->capturedImage.height);
+         }},
         {"single-camera colours (baseline)",
          [&] { processing::framePointColours(oneCamera, depth, table); }}};
     std::printf("depthcloud bench registration --runs %d: %dx%d depth -> %dx%d colour, synthetic rig, median "
