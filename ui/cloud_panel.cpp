@@ -203,7 +203,11 @@ CloudPanelResult drawCloudPanel(const render::RenderTarget& picture, CloudSettin
                                 bool* open) {
     CloudPanelResult result;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
-    result.panel.visible = ImGui::Begin(kCloudTitle, open);
+    // The picture is copied over the whole content region, replacing what is there: a background under it
+    // would be filled and then overwritten, and on a software rasteriser that fill is a panel-sized pass of
+    // every frame.
+    result.panel.visible = ImGui::Begin(
+        kCloudTitle, open, picture.empty() ? ImGuiWindowFlags_None : ImGuiWindowFlags_NoBackground);
     ImGui::PopStyleVar();
     result.panel.windowPos = ImGui::GetWindowPos();
     result.panel.windowSize = ImGui::GetWindowSize();

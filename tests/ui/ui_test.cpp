@@ -92,6 +92,7 @@ TEST_F(UiTest, TheCloudOnTheScreenIsThePanelsPictureCopiedPixelForPixel) {
         }
     EXPECT_GT(compared, 10000u);
     EXPECT_EQ(different, 0u) << "of " << compared << " pixels";
+    EXPECT_TRUE(w->Flags & ImGuiWindowFlags_NoBackground) << "no background is filled under the copy";
 }
 
 TEST_F(UiTest, DraggingTheCloudOrbitsTheView) {
