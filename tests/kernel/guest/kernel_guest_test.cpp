@@ -81,7 +81,7 @@ void expectPatternFrames(Device& device, int count, float scale) {
     for (int got = 0; got < count;) {
         const CaptureResult r = nextCapture(device);
         ASSERT_TRUE(r.kind == CaptureResult::Kind::Frame || r.kind == CaptureResult::Kind::Error)
-            << "no frame in 20 s";
+            << "no frame (" << static_cast<int>(r.kind) << "): " << r.message;
         if (r.kind != CaptureResult::Kind::Frame) {
             std::printf("capture error (frame dropped): %s\n", r.message.c_str());
             continue;
@@ -301,7 +301,9 @@ TEST(Uvc, DepthAndColourArrivePairedAndRegisteredWithTheCalibrationGiven) {
                                               frame::CalibrationFormat::OpenCvStereoYaml);
     ASSERT_TRUE(text) << text.error().message;
     std::ofstream(path) << *text;
-    auto device = openLiveSourceSpec("usb:8086:0b07:calib=" + path);
+    // Checking a frame takes seconds under TCG: longer than the default watchdog, which would call the
+    // camera stalled between two captures.
+    auto device = openLiveSourceSpec("usb:8086:0b07:watchdog=60000:calib=" + path);
     ASSERT_TRUE(device) << device.error().message;
     auto& uvc = dynamic_cast<UvcDevice&>(**device);
     ASSERT_TRUE(uvc.open());
@@ -312,7 +314,7 @@ TEST(Uvc, DepthAndColourArrivePairedAndRegisteredWithTheCalibrationGiven) {
     for (int i = 0; i < 60 && rigFrames < 5; ++i) {
         const CaptureResult r = nextCapture(uvc);
         ASSERT_TRUE(r.kind == CaptureResult::Kind::Frame || r.kind == CaptureResult::Kind::Error)
-            << "no frame in 20 s";
+            << "no frame (" << static_cast<int>(r.kind) << "): " << r.message;
         if (r.kind != CaptureResult::Kind::Frame || r.frame->capturedImage.empty())
             continue; // an error or a depth frame whose colour came too late: counted by the pairer
         const frame::Frame& f = *r.frame;

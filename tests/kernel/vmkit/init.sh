@@ -200,6 +200,24 @@ check_headless() {
 	then result headless-usb PASS; else result headless-usb FAIL; fi
 }
 
+# The whole application on the camera's two sensors, with the two-sensor calibration the guest test wrote:
+# registered colours all the way to the panels, so neither the unregistered colours nor the approximate
+# geometry are reported.
+check_headless_rig() {
+	out=$SCRATCH/headless-rig
+	[ -s /host$SCRATCH/rig.yaml ] || { echo "no rig.yaml from the guest test"; result headless-usb-rig FAIL; return; }
+	in_host $DEPTHCLOUD --source usb:$VID:$PID:calib=$SCRATCH/rig.yaml --headless --frames 3 --out $out \
+		> /tmp/headless-rig.log 2>&1; rc=$?
+	sed 's/^/  headless-rig: /' /tmp/headless-rig.log
+	echo "  headless-rig: exit status $rc"
+	ls -l /host$out 2>&1 | sed 's/^/  headless-rig: /'
+	sed 's/^/  headless-rig summary.json: /' /host$out/summary.json 2>/dev/null
+	if [ $rc = 0 ] && [ -s /host$out/cloud.png ] && [ -s /host$out/camera.png ] &&
+		grep -q '"frames": 3' /host$out/summary.json && ! grep -q "not registered" /tmp/headless-rig.log &&
+		! grep -q "approximate geometry" /tmp/headless-rig.log
+	then result headless-usb-rig PASS; else result headless-usb-rig FAIL; fi
+}
+
 # Everything is set up first and our programs start once each: under TCG, loading their libraries over
 # 9p is what takes longest.
 ENV="" FILTER=""
@@ -216,5 +234,6 @@ done
 case $FILTER in *Loopback*Vivid*) FILTER="$FILTER:Virtual.*" ;; esac # both virtual cameras are up
 [ -n "$FILTER" ] && in_host /usr/bin/env $ENV $GUEST_TEST --gtest_filter="${FILTER#:}" --gtest_color=no
 [ $UVC = 1 ] && check_headless
+[ $UVC = 1 ] && check_headless_rig
 [ $UVC = 1 ] && tail -5 /tmp/feeder.log /tmp/colour-feeder.log
 finish
