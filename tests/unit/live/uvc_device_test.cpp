@@ -301,9 +301,11 @@ class UvcRigTest : public UvcDeviceTest {
 protected:
     void SetUp() override {
         UvcDeviceTest::SetUp();
-        // The depth size first would be today's choice; the calibrated 16x12 must win.
-        fake_.addNode(kColor,
-                      {.modes = {{V4L2_PIX_FMT_YUYV, kW, kH, {30}}, {V4L2_PIX_FMT_YUYV, 16, 12, {30}}}});
+        // The depth size first would be today's choice; the calibrated 16x12 must win. 12x4 is of another
+        // shape than the calibration.
+        fake_.addNode(kColor, {.modes = {{V4L2_PIX_FMT_YUYV, kW, kH, {30}},
+                                         {V4L2_PIX_FMT_YUYV, 16, 12, {30}},
+                                         {V4L2_PIX_FMT_YUYV, 12, 4, {30}}}});
     }
 
     UvcConfig rigConfig(std::optional<frame::Calibration> calibration) const {
@@ -354,6 +356,27 @@ TEST_F(UvcRigTest, StreamsThatDoNotFitTheCalibrationAreRefusedNamingItsField) {
         << s.error().message;
     EXPECT_NE(s.error().message.find("rig.yaml"), std::string::npos) << s.error().message;
     EXPECT_EQ(fake_.openFds(), 1) << "nothing left open but the wake-up eventfd";
+}
+
+// The colour node changing size under us: the same shape keeps the calibration (scaled), another shape
+// cannot be registered and ends the stream with the calibration's field named.
+TEST_F(UvcRigTest, AColourSizeChangeKeepsTheRigOnlyWhileItFits) {
+    const frame::Calibration calibration = rigCalibration();
+    UvcDevice d(rigConfig(calibration), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    fake_.changeFormat(kColor, 8, 6);
+    EXPECT_EQ(next(d).kind, CaptureResult::Kind::Error) << "restarted at the new size";
+    const CaptureResult r = pairedFrame(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    ASSERT_TRUE(r.frame->rig);
+    EXPECT_EQ(r.frame->cameraIntrinsics, calibration.rig->colour.intrinsics.scaledTo(8, 6));
+    fake_.changeFormat(kColor, 12, 4);
+    const CaptureResult refused = next(d);
+    EXPECT_EQ(refused.kind, CaptureResult::Kind::Disconnected);
+    EXPECT_NE(refused.message.find("cam1.resolution 16x12 does not fit the colour stream's 12x4"),
+              std::string::npos)
+        << refused.message;
 }
 
 TEST_F(UvcRigTest, ColourWithoutATwoSensorCalibrationIsSaidToBeUnregistered) {
