@@ -228,6 +228,15 @@ bool nearPixelBorder(double v) {
     return std::abs(v - std::floor(v) - 0.5) < 0.05;
 }
 
+// Whether the colour pixel of a projection is certain: inside the image, not on a pixel border, and away
+// from where the first row's frame number lands (a sample far nearer than the rest, hiding what is behind).
+bool predictable(const std::array<double, 2>& p, const frame::Plane<float>& depth) {
+    const auto odd = expectedColourPixel(0, 0, depth.at(0, 0));
+    return p[0] >= 0.0 && p[1] >= 0.0 && p[0] <= kColourWidth - 1.0 && p[1] <= kColourHeight - 1.0 &&
+           !nearPixelBorder(p[0]) && !nearPixelBorder(p[1]) &&
+           std::hypot(p[0] - odd[0], p[1] - odd[1]) >= 3.0;
+}
+
 // Checks one rig frame: the colour image is the feeder's pattern, and the registration puts sampled depth
 // pixels on the colour pixel the calibration predicts, whose pattern spells that very pixel. Returns the
 // number of depth pixels checked.
@@ -247,14 +256,11 @@ int expectRegisteredAsPredicted(const frame::Frame& f) {
     EXPECT_EQ(wrong, 0) << "colour pixels that are not the feeder's pattern";
     const processing::Registration reg =
         processing::registerDepth(depth, *f.rig, kColourWidth, kColourHeight);
-    // The frame number in the first row is a sample far nearer than the rest: what it hides is not checked.
-    const auto odd = expectedColourPixel(0, 0, depth.at(0, 0));
     int checked = 0, misplaced = 0;
     for (int y = 8; y < kHeight; y += 12)
         for (int x = 5; x < kWidth; x += 12) {
             const auto [u, v] = expectedColourPixel(x, y, depth.at(x, y));
-            if (u < 0.0 || v < 0.0 || u > kColourWidth - 1.0 || v > kColourHeight - 1.0 ||
-                nearPixelBorder(u) || nearPixelBorder(v) || std::hypot(u - odd[0], v - odd[1]) < 3.0)
+            if (!predictable({u, v}, depth))
                 continue;
             const auto cu = static_cast<int>(std::lround(u)), cv = static_cast<int>(std::lround(v));
             const std::int32_t got = reg.colourPixel[static_cast<std::size_t>(y) * kWidth + x];
@@ -281,8 +287,7 @@ void expectPointColoursFromThePredictedPixels(const frame::Frame& f) {
     for (int y = 20; y < kHeight; y += 40)
         for (int x = 20; x < kWidth; x += 40) {
             const auto [u, v] = expectedColourPixel(x, y, depth.at(x, y));
-            if (u < 0.0 || v < 0.0 || u > kColourWidth - 1.0 || v > kColourHeight - 1.0 ||
-                nearPixelBorder(u) || nearPixelBorder(v))
+            if (!predictable({u, v}, depth))
                 continue;
             const std::size_t i = static_cast<std::size_t>(y) * kWidth + x;
             const std::uint32_t expected =
