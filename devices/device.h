@@ -19,6 +19,10 @@ struct Capabilities {
     // No calibration is known: the intrinsics come from a default field of view, so the cloud's geometry is
     // approximate. The session says so in its first event (kApproximateIntrinsicsMessage).
     bool approximateIntrinsics = false;
+    // Colour comes from a sensor of its own (a separate colour node) and no two-sensor calibration relates
+    // it to the depth sensor: each point takes the colour at its own pixel, not where the colour sensor saw
+    // it, so colours are misplaced by the sensors' baseline and differing fields of view.
+    bool unregisteredColour = false;
     // Frame timestamps are CLOCK_MONOTONIC capture times, so now - timestampNs is the frame's age.
     bool monotonicTimestamps = false;
     // Frame timestamps are CLOCK_REALTIME publish times (a ROS publisher's header stamps, on this machine or
@@ -30,6 +34,9 @@ struct Capabilities {
 
 inline constexpr const char* kApproximateIntrinsicsMessage =
     "approximate geometry: no calibration file, intrinsics assume a default field of view (add calib=FILE)";
+
+inline constexpr const char* kUnregisteredColourMessage =
+    "colours not registered: separate colour sensor without a two-sensor calibration (add calib=FILE)";
 
 // What the consumers of a source's frames need right now, so the source can leave out what nobody shows
 // (a replay skips decoding its video; a live camera could skip converting its colour).

@@ -154,6 +154,7 @@ InstrumentStatus Instrument::status() {
     drainEvents();
     InstrumentStatus s{session_->description(), state_,       message_,     running_,
                        countFrames(),           std::nullopt, std::nullopt, stages_.recent()};
+    s.unregisteredColour = session_->capabilities().unregisteredColour;
     if (replay_ && running_) {
         const devices::replay::ReplayStatus r = replay_->status();
         if (r.atEnd && !r.loop)

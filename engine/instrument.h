@@ -40,6 +40,7 @@ struct InstrumentStatus {
     std::optional<double> latencyMs;  // device timestamp to on screen, median; none when clocks differ
     std::optional<double> nominalFps; // what the source announces, when it says
     std::vector<StageSummary> stages; // that ran within the last second, largest first
+    bool unregisteredColour = false;  // the source's Capabilities::unregisteredColour
 };
 
 struct RecordingStatus {

@@ -174,7 +174,8 @@ struct StatusLine {
     std::string cloudPath; // e.g. "CPU splat (software GL)"
     std::vector<processing::StageTiming> stageMedians;
     std::optional<double> latencyMs; // median device timestamp to screen; none when clocks differ
-    std::string calibration;         // a two-sensor camera's calibration in use; empty for one camera
+    // A two-sensor camera's calibration in use, or that its colours are not registered; empty for one camera.
+    std::string calibration;
 };
 
 struct StageHistory {

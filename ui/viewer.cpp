@@ -2,6 +2,7 @@
 
 #include "base/files.h"
 #include "base/log.h"
+#include "devices/device.h"
 #include "exporting/ply.h"
 #include "frame/camera_model.h"
 #include "frame/image_io.h"
@@ -306,6 +307,8 @@ StatusLine Viewer::statusLine() {
         line.stageMedians.push_back({stage.name, stage.medianMs});
     if (shown_ && shown_->frame && shown_->frame->rig)
         line.calibration = frame::describe(*shown_->frame->rig);
+    else if (s.unregisteredColour && shown_ && shown_->frame && !shown_->frame->capturedImage.empty())
+        line.calibration = devices::kUnregisteredColourMessage;
     return line;
 }
 

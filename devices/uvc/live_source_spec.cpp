@@ -60,10 +60,6 @@ Status parseOption(const std::string& key, const std::string& value, UvcConfig& 
         auto calibration = frame::loadCalibration(value);
         if (!calibration)
             return calibration.error();
-        // Registering a live colour node to the depth node needs the pair's own colour stream paths.
-        if (calibration->rig)
-            return Error{"calib=" + value + " in --source: two-sensor calibration (" + calibration->format +
-                         ") is not yet supported for live cameras; give the depth sensor's alone"};
         config.calibration = std::move(*calibration);
     } else if (key == "color") {
         config.color = value != "none";

@@ -12,8 +12,9 @@ namespace dc::devices {
 // The live sources of --source:
 //   v4l2:/dev/videoN[:OPTION...]            a depth node (Z16, or Y16)
 //   usb:VID:PID[:SERIAL][:OPTION...]        a USB camera by its ids (hex), found again after a replug
-// OPTION: WxH[@FPS] (depth mode), format=Z16|Y16, scale=METERS_PER_UNIT, calib=FILE (OpenCV or ROS
-// camera_info YAML), color=/dev/videoM|none, watchdog=MS (default 2000).
+// OPTION: WxH[@FPS] (depth mode), format=Z16|Y16, scale=METERS_PER_UNIT, calib=FILE (one camera: OpenCV
+// or ROS camera_info YAML; two sensors, depth and colour: OpenCV stereo YAML/JSON or Kalibr camchain),
+// color=/dev/videoM|none, watchdog=MS (default 2000).
 inline constexpr const char* kLiveSourceSpecHelp = "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS]";
 
 bool isLiveSourceSpec(const std::string& spec);

@@ -61,10 +61,23 @@ Status openWithMode(v4l2::V4l2Node& node, const std::string& path, const v4l2::C
     return {};
 }
 
+// The first of `requests` that `modes` offer; the error is the last one's.
+Expected<v4l2::ChosenMode> firstOffered(const std::vector<v4l2::V4l2Mode>& modes,
+                                        const std::vector<v4l2::ChosenMode>& requests) {
+    Expected<v4l2::ChosenMode> mode = Error{"no mode requested"};
+    for (const v4l2::ChosenMode& request : requests)
+        if ((mode = v4l2::chooseMode(modes, request)))
+            break;
+    return mode;
+}
+
 } // namespace
 
 UvcDevice::UvcDevice(UvcConfig config, v4l2::Syscalls& sys)
-    : config_(std::move(config)), sys_(sys), depth_(sys), color_(sys) {}
+    : config_(std::move(config)), sys_(sys), depth_(sys), color_(sys) {
+    if (config_.calibration && config_.calibration->rig)
+        rig_ = std::make_shared<const frame::RigCalibration>(*config_.calibration->rig);
+}
 
 UvcDevice::~UvcDevice() {
     closeNodes();
@@ -84,6 +97,7 @@ Capabilities UvcDevice::capabilities() const {
     c.color = config_.color;
     c.reconnects = true;
     c.approximateIntrinsics = !config_.calibration;
+    c.unregisteredColour = config_.color && !rig_;
     c.monotonicTimestamps = true;
     c.nominalFps = config_.fps; // the rate asked for; 0 (unknown) when the camera's default is used
     return c;
@@ -163,7 +177,12 @@ Status UvcDevice::configureDepth() {
         fourcc = V4L2_PIX_FMT_Y16;
     if (!config_.depthFourcc && !probed->offers(fourcc))
         return Error{depthPath_ + " offers no Z16 or Y16 depth format (is it the camera's color node?)"};
-    auto mode = v4l2::chooseMode(probed->modes, {fourcc, config_.width, config_.height, config_.fps});
+    std::vector<v4l2::ChosenMode> requests{{fourcc, config_.width, config_.height, config_.fps}};
+    // A two-sensor calibration holds for the size each sensor was calibrated at: ask for that one first.
+    if (rig_ && config_.width == 0)
+        requests.insert(requests.begin(),
+                        {fourcc, rig_->depth.intrinsics.width, rig_->depth.intrinsics.height, config_.fps});
+    auto mode = firstOffered(probed->modes, requests);
     if (!mode)
         return Error{depthPath_ + ": no usable depth mode: " + mode.error().message};
     if (Status s = openWithMode(depth_, depthPath_, *mode, depthFormat_); !s)
@@ -181,10 +200,14 @@ Status UvcDevice::openColor() {
     const std::uint32_t fourcc = v4l2::preferredImageFormat(*probed).value_or(0);
     if (fourcc == 0)
         return Error{"it offers no YUYV/NV12/RGB24/MJPEG/GREY format"};
-    // The depth size first (same aspect, least to resample), else the default choice.
-    auto mode = v4l2::chooseMode(probed->modes, {fourcc, depthFormat_.width, depthFormat_.height, depthFps_});
-    if (!mode)
-        mode = v4l2::chooseMode(probed->modes, {fourcc, 0, 0, depthFps_});
+    // The calibrated colour size first, then the depth size (same aspect, least to resample), else the
+    // default choice.
+    std::vector<v4l2::ChosenMode> requests{{fourcc, depthFormat_.width, depthFormat_.height, depthFps_},
+                                           {fourcc, 0, 0, depthFps_}};
+    if (rig_)
+        requests.insert(requests.begin(),
+                        {fourcc, rig_->colour.intrinsics.width, rig_->colour.intrinsics.height, depthFps_});
+    auto mode = firstOffered(probed->modes, requests);
     if (!mode)
         return mode.error();
     return openWithMode(color_, colorPath_, *mode, colorFormat_);
@@ -216,6 +239,10 @@ void UvcDevice::chooseDepthScale() {
 void UvcDevice::chooseIntrinsics() {
     const int w = depthFormat_.width;
     const int h = depthFormat_.height;
+    if (rig_) { // checkRigSizes() refuses a stream of another shape
+        depthIntrinsics_ = rig_->depth.intrinsics.scaledTo(w, h);
+        return;
+    }
     if (config_.calibration) {
         const frame::Intrinsics& k = config_.calibration->intrinsics;
         if (std::abs(static_cast<double>(k.width) / k.height - static_cast<double>(w) / h) > 0.01)
@@ -233,22 +260,44 @@ void UvcDevice::chooseIntrinsics() {
                std::to_string(std::lround(fov)) + " degrees horizontal)");
 }
 
+// A two-sensor calibration fits only streams of its sensors' shapes: anything else would colour every
+// point from the wrong place.
+Status UvcDevice::checkRigSizes() const {
+    if (!rig_)
+        return {};
+    const bool color = !colorPath_.empty();
+    if (Status s = frame::checkStreamSizes(*config_.calibration, depthFormat_.width, depthFormat_.height,
+                                           color ? colorFormat_.width : 0, color ? colorFormat_.height : 0);
+        !s)
+        return Error{description() + ": " + rig_->name + ": " + s.error().message};
+    return {};
+}
+
+Status UvcDevice::configureBoth() {
+    Status s = resolveNodes();
+    if (s)
+        s = configureDepth();
+    if (!s)
+        return s;
+    configureColor();
+    return checkRigSizes();
+}
+
 Status UvcDevice::doOpen() {
     if (!wake_.valid()) {
         if (const int r = wake_.create(sys_); r < 0)
             return Error{std::string("cannot create the capture thread's wake-up eventfd: ") +
                          std::strerror(-r)};
     }
-    Status s = resolveNodes();
-    if (s)
-        s = configureDepth();
-    if (!s) {
+    if (Status s = configureBoth(); !s) {
         closeNodes();
         return s;
     }
-    configureColor();
     logInfo(description() + ": depth " + depthPath_ + " " + formatText(depthFormat_) +
-            (colorPath_.empty() ? ", no color" : ", color " + colorPath_ + " " + formatText(colorFormat_)));
+            (colorPath_.empty() ? ", no color" : ", color " + colorPath_ + " " + formatText(colorFormat_)) +
+            (rig_ ? ", " + frame::describe(*rig_) : ""));
+    if (!colorPath_.empty() && !rig_)
+        logWarning(description() + ": " + kUnregisteredColourMessage);
     return {};
 }
 
@@ -296,13 +345,9 @@ void UvcDevice::closeNodes() {
 
 Status UvcDevice::doReconnect() {
     closeNodes();
-    Status s = resolveNodes();
+    Status s = configureBoth();
     if (s)
-        s = configureDepth();
-    if (s) {
-        configureColor();
         s = startStreaming();
-    }
     if (!s)
         closeNodes();
     else
@@ -345,6 +390,8 @@ std::optional<CaptureResult> UvcDevice::restartAfterFormatChange(v4l2::V4l2Node&
     (isDepth ? depthFormat_ : colorFormat_) = now;
     if (isDepth)
         depthIntrinsics_ = depthIntrinsics_.scaledTo(now.width, now.height);
+    if (Status s = checkRigSizes(); !s) // reconnecting asks for the calibrated sizes again
+        return disconnect(s.error().message);
     pairer_.reset();
     return CaptureResult{CaptureResult::Kind::Error, nullptr,
                          node.path() + ": the format changed under us; restarted at " + formatText(now)};
@@ -409,11 +456,18 @@ frame::FramePtr UvcDevice::makeFrame(PairedCapture capture) {
     frame->timestampNs = capture.depth.timestampNs;
     frame->cameraIntrinsics = depthIntrinsics_;
     if (capture.color) {
-        // The frame model keeps one set of intrinsics (depth follows by scaling), as for a registered
-        // sensor; the depth camera's is the one that places points in 3D.
         frame->capturedImage = std::move(capture.color->image);
-        frame->cameraIntrinsics =
-            depthIntrinsics_.scaledTo(frame->capturedImage.width, frame->capturedImage.height);
+        const int w = frame->capturedImage.width, h = frame->capturedImage.height;
+        if (rig_) {
+            // A rig frame's image intrinsics are the colour sensor's; its depth intrinsics come from the rig.
+            frame->rig = rig_;
+            frame->cameraIntrinsics = rig_->colour.intrinsics.scaledTo(w, h);
+        } else {
+            // Without a calibration between the sensors the frame model's single camera stands in: the
+            // depth camera's intrinsics (the ones that place points in 3D), scaled to the image. The
+            // status line says the colours are not registered.
+            frame->cameraIntrinsics = depthIntrinsics_.scaledTo(w, h);
+        }
     }
     frame->sceneDepth = frame::DepthData{std::move(capture.depth.depthMeters), {}};
     return frame;

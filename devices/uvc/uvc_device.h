@@ -9,6 +9,7 @@
 #include "frame/calibration.h"
 
 #include <chrono>
+#include <memory>
 #include <optional>
 #include <string>
 
@@ -24,10 +25,12 @@ struct UvcConfig {
     std::optional<std::uint32_t> depthFourcc; // 'Z16 ' or 'Y16 '; default: Z16 when offered, else Y16
     int width = 0;                            // 0: the largest depth size up to 1280x720
     int height = 0;
-    double fps = 0.0;                              // 0: 30 when offered, else the highest rate
-    std::optional<float> depthScaleMeters;         // meters per unit; default: known-camera table, else 1 mm
-    std::optional<frame::Calibration> calibration; // default: a field-of-view guess, flagged approximate
-    std::chrono::milliseconds watchdog{2000};      // no frame for this long while streaming: Stalled
+    double fps = 0.0;                      // 0: 30 when offered, else the highest rate
+    std::optional<float> depthScaleMeters; // meters per unit; default: known-camera table, else 1 mm
+    // Default: a field-of-view guess, flagged approximate. A two-sensor file (`rig`) places the colour
+    // node's image with its own sensor's model and the transform between the sensors.
+    std::optional<frame::Calibration> calibration;
+    std::chrono::milliseconds watchdog{2000}; // no frame for this long while streaming: Stalled
     std::string sysfsRoot = "/sys";
 };
 
@@ -54,6 +57,8 @@ public:
     const std::string& depthNodePath() const { return depthPath_; }
     const std::string& colorNodePath() const { return colorPath_; }
     const FramePairer& pairer() const { return pairer_; }
+    // The two-sensor calibration the frames carry (null without one).
+    const std::shared_ptr<const frame::RigCalibration>& rig() const { return rig_; }
 
 protected:
     Status doOpen() override;
@@ -72,6 +77,8 @@ private:
     Status openColor();
     void chooseDepthScale();
     void chooseIntrinsics();
+    Status checkRigSizes() const;
+    Status configureBoth();
     Status startStreaming();
     void closeNodes();
 
@@ -96,6 +103,7 @@ private:
     double depthFps_ = 0.0;
     float depthScale_ = 0.001f;
     frame::Intrinsics depthIntrinsics_;
+    std::shared_ptr<const frame::RigCalibration> rig_;
     FramePairer pairer_{0};
     std::optional<StampedDepth> depthOnly_; // the newest depth frame when there is no color to pair with
     std::vector<v4l2::NodeReadiness> ready_;

@@ -146,6 +146,39 @@ TEST_F(InstrumentTest, ATwoSensorSourceNamesItsCalibrationAndHoverSaysWhatTheCol
     EXPECT_TRUE(viewer_->hoverProbe()->seenByColour);
 }
 
+// A live camera whose colour node is a sensor of its own, opened without a two-sensor calibration: the
+// synthetic single camera's frames under such a device's capabilities.
+class UnregisteredColourDevice final : public devices::Device {
+public:
+    explicit UnregisteredColourDevice(const devices::SyntheticConfig& config) : inner_(config) {}
+    std::string description() const override { return "camera with a separate colour node"; }
+    devices::Capabilities capabilities() const override {
+        devices::Capabilities c = inner_.capabilities();
+        c.unregisteredColour = true;
+        return c;
+    }
+
+protected:
+    Status doOpen() override { return inner_.open(); }
+    Status doStart() override { return inner_.start(); }
+    void doStop() override { (void)inner_.stop(); }
+    void doClose() override { inner_.close(); }
+    devices::CaptureResult doCapture(std::chrono::milliseconds timeout) override {
+        return inner_.capture(timeout);
+    }
+
+private:
+    devices::SyntheticDevice inner_;
+};
+
+TEST_F(InstrumentTest, AColourSensorWithoutCalibrationIsSaidToBeUnregisteredOnTheStatusLine) {
+    EXPECT_TRUE(viewer_->statusLine().calibration.empty()) << "one camera: nothing to say";
+    ASSERT_NO_FATAL_FAILURE(start(std::make_unique<UnregisteredColourDevice>(smallScene()), "uvc"));
+    ASSERT_TRUE(viewer_->update(0.0, std::chrono::seconds(5)));
+    frame(0.0);
+    EXPECT_EQ(viewer_->statusLine().calibration, devices::kUnregisteredColourMessage);
+}
+
 // The depth panel's "Colour over depth": the camera's colour appears over the depth the colour camera sees,
 // and the depth it cannot see (the depth map's margins) stays as the depth panel draws it.
 TEST_F(InstrumentTest, ColourOverDepthCheckboxLaysTheSeenColourOverTheDepthPanel) {

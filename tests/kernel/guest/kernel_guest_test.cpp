@@ -9,13 +9,17 @@
 #include "devices/uvc/live_source_spec.h"
 #include "devices/uvc/usb/hotplug_monitor.h"
 #include "devices/uvc/usb/usb_enumeration.h"
+#include "devices/uvc/uvc_device.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
+#include "frame/calibration.h"
+#include "processing/registration.h"
 #include "tests/kernel/vmkit/src/test_pattern.h"
 
 #include <gtest/gtest.h>
 #include <linux/videodev2.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -36,6 +40,16 @@ constexpr float kD435Scale = 0.001f; // the known-camera table's value for 8086:
 std::string env(const char* name) {
     const char* v = std::getenv(name);
     return v ? v : "";
+}
+
+// The next capture that is a frame or an error: a capture that took a buffer but completed no frame (a
+// depth frame whose colour is still on its way) comes back as a timeout, and is tried again.
+CaptureResult nextCapture(Device& device) {
+    const auto end = Clock::now() + 20s;
+    CaptureResult r;
+    while (r.kind == CaptureResult::Kind::Timeout && Clock::now() < end)
+        r = device.capture(5000ms);
+    return r;
 }
 
 // Checks a depth map against the feeder's pattern: every pixel must be exactly raw * scale of the raw
@@ -65,9 +79,9 @@ long patternFrame(const frame::Plane<float>& meters, float scale, std::string& w
 void expectPatternFrames(Device& device, int count, float scale) {
     long last = -1;
     for (int got = 0; got < count;) {
-        const CaptureResult r = device.capture(5000ms);
+        const CaptureResult r = nextCapture(device);
         ASSERT_TRUE(r.kind == CaptureResult::Kind::Frame || r.kind == CaptureResult::Kind::Error)
-            << r.message;
+            << "no frame (" << static_cast<int>(r.kind) << "): " << r.message;
         if (r.kind != CaptureResult::Kind::Frame) {
             std::printf("capture error (frame dropped): %s\n", r.message.c_str());
             continue;
@@ -176,6 +190,175 @@ TEST(Uvc, DepthInMetersEqualsWhatTheFeederSent) {
     ASSERT_TRUE((*device)->start());
     EXPECT_TRUE((*device)->capabilities().approximateIntrinsics);
     expectPatternFrames(**device, 10, kD435Scale);
+    (*device)->close();
+}
+
+// ---- two sensors: the gadget's colour function beside its depth function -------------------------
+
+constexpr int kColourWidth = 320; // the colour function's YUYV size (init.sh)
+constexpr int kColourHeight = 240;
+
+// The calibration the test gives the camera, in plain numbers: a 640x480 depth sensor, a 320x240 colour
+// sensor with a narrower view, turned 0.02 rad about y and 5 cm to the side, both without lens distortion.
+constexpr double kFxD = 500.0, kFyD = 500.0, kCxD = 319.5, kCyD = 239.5;
+constexpr double kFxC = 280.0, kFyC = 280.0, kCxC = 160.25, kCyC = 118.75;
+constexpr double kAngle = 0.02;
+constexpr std::array<double, 3> kT{-0.05, 0.01, 0.002};
+
+frame::RigCalibration testRig() {
+    frame::RigCalibration rig;
+    rig.depth.intrinsics = {kFxD, kFyD, kCxD, kCyD, kWidth, kHeight};
+    rig.colour.intrinsics = {kFxC, kFyC, kCxC, kCyC, kColourWidth, kColourHeight};
+    const double c = std::cos(kAngle), s = std::sin(kAngle);
+    rig.depthToColour.rotation = {c, 0, s, 0, 1, 0, -s, 0, c};
+    rig.depthToColour.translationMeters = kT;
+    return rig;
+}
+
+// Where depth pixel (x, y) at z meters lands in the colour image: unproject, rotate about y, move, project.
+std::array<double, 2> expectedColourPixel(int x, int y, double z) {
+    const double px = (x - kCxD) / kFxD * z, py = (y - kCyD) / kFyD * z;
+    const double c = std::cos(kAngle), s = std::sin(kAngle);
+    const double qx = c * px + s * z + kT[0], qy = py + kT[1], qz = -s * px + c * z + kT[2];
+    return {kFxC * qx / qz + kCxC, kFyC * qy / qz + kCyC};
+}
+
+// A projection this close to the border between two pixels could be rounded either way.
+bool nearPixelBorder(double v) {
+    return std::abs(v - std::floor(v) - 0.5) < 0.05;
+}
+
+// Whether the colour pixel of a projection is certain: inside the image, not on a pixel border, and away
+// from where the first row's frame number lands (a sample far nearer than the rest, hiding what is behind).
+bool predictable(const std::array<double, 2>& p, const frame::Plane<float>& depth) {
+    const auto odd = expectedColourPixel(0, 0, depth.at(0, 0));
+    return p[0] >= 0.0 && p[1] >= 0.0 && p[0] <= kColourWidth - 1.0 && p[1] <= kColourHeight - 1.0 &&
+           !nearPixelBorder(p[0]) && !nearPixelBorder(p[1]) &&
+           std::hypot(p[0] - odd[0], p[1] - odd[1]) >= 3.0;
+}
+
+// Checks one rig frame: the colour image is the feeder's pattern, and the registration puts sampled depth
+// pixels on the colour pixel the calibration predicts, whose pattern spells that very pixel. Returns the
+// number of depth pixels checked.
+int expectRegisteredAsPredicted(const frame::Frame& f) {
+    const frame::Plane<float>& depth = f.sceneDepth->depthMeters;
+    const auto* bytes = f.capturedImage.bytes->data();
+    const auto spells = [&](int x, int y) {
+        unsigned px = 0, py = 0;
+        dc_colour_pattern_at(bytes, kColourWidth, static_cast<unsigned>(x), static_cast<unsigned>(y), &px,
+                             &py);
+        return static_cast<int>(px) == x && static_cast<int>(py) == y;
+    };
+    int wrong = 0;
+    for (int y = 0; y < kColourHeight; ++y)
+        for (int x = 0; x < kColourWidth; ++x)
+            wrong += !spells(x, y);
+    EXPECT_EQ(wrong, 0) << "colour pixels that are not the feeder's pattern";
+    const processing::Registration reg =
+        processing::registerDepth(depth, *f.rig, kColourWidth, kColourHeight);
+    int checked = 0, misplaced = 0;
+    for (int y = 8; y < kHeight; y += 12)
+        for (int x = 5; x < kWidth; x += 12) {
+            const auto [u, v] = expectedColourPixel(x, y, depth.at(x, y));
+            if (!predictable({u, v}, depth))
+                continue;
+            const auto cu = static_cast<int>(std::lround(u)), cv = static_cast<int>(std::lround(v));
+            const std::int32_t got = reg.colourPixel[static_cast<std::size_t>(y) * kWidth + x];
+            if (got != cv * kColourWidth + cu && misplaced++ == 0)
+                ADD_FAILURE() << "depth (" << x << "," << y << ") at " << depth.at(x, y)
+                              << " m should land on colour (" << cu << "," << cv << "), registered to "
+                              << (got < 0 ? std::string("nothing")
+                                          : std::to_string(got % kColourWidth) + "," +
+                                                std::to_string(got / kColourWidth));
+            ++checked;
+        }
+    EXPECT_EQ(misplaced, 0) << "of " << checked << " depth pixels";
+    return checked;
+}
+
+// The colour the points get (the cloud's, fog's and upsampling's source) is the predicted pixel's.
+void expectPointColoursFromThePredictedPixels(const frame::Frame& f) {
+    const frame::Plane<float>& depth = f.sceneDepth->depthMeters;
+    processing::CameraColourTable table;
+    const processing::PointColours colours = processing::framePointColours(f, depth, table);
+    ASSERT_TRUE(colours.colors && colours.seen) << "colours registered from a second sensor";
+    ASSERT_TRUE(table.use(f.capturedImage));
+    int compared = 0;
+    for (int y = 20; y < kHeight; y += 40)
+        for (int x = 20; x < kWidth; x += 40) {
+            const auto [u, v] = expectedColourPixel(x, y, depth.at(x, y));
+            if (!predictable({u, v}, depth))
+                continue;
+            const std::size_t i = static_cast<std::size_t>(y) * kWidth + x;
+            const std::uint32_t expected =
+                table.rgba(static_cast<int>(std::lround(u)), static_cast<int>(std::lround(v)));
+            EXPECT_EQ(processing::packRgba(&colours.colors->pixels[3 * i]), expected) << x << "," << y;
+            ++compared;
+        }
+    EXPECT_GT(compared, 50);
+}
+
+TEST(Uvc, DepthAndColourArrivePairedAndRegisteredWithTheCalibrationGiven) {
+    ASSERT_FALSE(env("COLOUR_VIDEO").empty());
+    const std::string path = env("TMPDIR") + "/rig.yaml";
+    const frame::RigCalibration rig = testRig();
+    const auto text = frame::writeCalibration({rig.colour.intrinsics, "", rig, "", ""},
+                                              frame::CalibrationFormat::OpenCvStereoYaml);
+    ASSERT_TRUE(text) << text.error().message;
+    std::ofstream(path) << *text;
+    // Checking a frame takes seconds under TCG: longer than the default watchdog, which would call the
+    // camera stalled between two captures.
+    auto device = openLiveSourceSpec("usb:8086:0b07:watchdog=60000:calib=" + path);
+    ASSERT_TRUE(device) << device.error().message;
+    auto& uvc = dynamic_cast<UvcDevice&>(**device);
+    ASSERT_TRUE(uvc.open());
+    ASSERT_TRUE(uvc.start());
+    EXPECT_EQ(uvc.colorNodePath(), env("COLOUR_VIDEO")) << "the camera's own colour node";
+    EXPECT_FALSE(uvc.capabilities().unregisteredColour);
+    int rigFrames = 0, checked = 0;
+    for (int i = 0; i < 60 && rigFrames < 5; ++i) {
+        const CaptureResult r = nextCapture(uvc);
+        ASSERT_TRUE(r.kind == CaptureResult::Kind::Frame || r.kind == CaptureResult::Kind::Error)
+            << "no frame (" << static_cast<int>(r.kind) << "): " << r.message;
+        if (r.kind != CaptureResult::Kind::Frame || r.frame->capturedImage.empty())
+            continue; // an error or a depth frame whose colour came too late: counted by the pairer
+        const frame::Frame& f = *r.frame;
+        ASSERT_TRUE(f.rig) << "a paired frame carries the calibration";
+        EXPECT_NEAR(f.rig->depthToColour.translationMeters[0], kT[0], 1e-9);
+        EXPECT_EQ(f.capturedImage.format, frame::PixelFormat::Yuyv);
+        ASSERT_EQ(f.capturedImage.width, kColourWidth);
+        ASSERT_EQ(f.capturedImage.height, kColourHeight);
+        EXPECT_EQ(f.cameraIntrinsics, rig.colour.intrinsics)
+            << "a rig frame's image intrinsics: the colour sensor's";
+        EXPECT_EQ(f.depthIntrinsics(), rig.depth.intrinsics);
+        std::string why;
+        const long number = patternFrame(f.sceneDepth->depthMeters, kD435Scale, why);
+        ASSERT_GE(number, 0) << why;
+        checked += expectRegisteredAsPredicted(f);
+        if (rigFrames == 0)
+            expectPointColoursFromThePredictedPixels(f);
+        ++rigFrames;
+        std::printf("frame %ld: depth and colour paired, registered as the calibration predicts\n", number);
+    }
+    EXPECT_EQ(rigFrames, 5);
+    EXPECT_GT(checked, 5 * 300) << "depth pixels compared with the prediction";
+    std::printf("METRIC uvcRigPaired=%llu unpaired=%llu (pairer, TCG guest)\n",
+                static_cast<unsigned long long>(uvc.pairer().paired()),
+                static_cast<unsigned long long>(uvc.pairer().unpaired()));
+    uvc.close();
+}
+
+TEST(Uvc, AColourNodeWithoutTwoSensorCalibrationIsSaidToBeUnregistered) {
+    auto device = openLiveSourceSpec("usb:8086:0b07");
+    ASSERT_TRUE(device) << device.error().message;
+    EXPECT_TRUE((*device)->capabilities().unregisteredColour);
+    ASSERT_TRUE((*device)->open());
+    ASSERT_TRUE((*device)->start());
+    CaptureResult r;
+    for (int i = 0; i < 20 && !(r.frame && !r.frame->capturedImage.empty()); ++i)
+        r = nextCapture(**device);
+    ASSERT_TRUE(r.frame && !r.frame->capturedImage.empty()) << r.message;
+    EXPECT_FALSE(r.frame->rig) << "no calibration relates the sensors";
     (*device)->close();
 }
 

@@ -50,14 +50,41 @@ if [ -x /host$GUEST_TEST ] && [ -x /host$DEPTHCLOUD ]; then result build-dir PAS
 in_host /usr/bin/env LD_LIBRARY_PATH=$UDEV/usr/lib/x86_64-linux-gnu/systemd $UDEV/systemd-udevd --daemon \
 	&& result udevd PASS || result udevd FAIL
 
-# /dev/videoN whose driver is $1 and index $2 (0 = main capture node)
+# /dev/videoN whose driver is $1 and index $2 (0 = main capture node), and with $3 on a USB interface of
+# that number (uvcvideo: each UVC function of the gadget is a camera of its own on its own interfaces)
 find_node() {
 	for d in /sys/class/video4linux/video*; do
 		[ -e "$d" ] || continue
 		drv=$(basename "$(readlink "$d/device/driver")" 2>/dev/null)
+		[ -z "$3" ] || [ "$(cat "$d/device/bInterfaceNumber" 2>/dev/null)" = "$3" ] || continue
 		[ "$drv" = "$1" ] && [ "$(cat "$d/index")" = "${2:-0}" ] && { echo /dev/$(basename "$d"); return 0; }
 	done
 	return 1
+}
+
+# A UVC function $1 of gadget $G streaming one uncompressed format: guidFormat $2 (16 bytes as printf
+# escapes), 16 bits per pixel, $3 x $4 pixels, nominally 30 fps.
+add_uvc_function() {
+	F=$G/functions/$1
+	mkdir $F || return 1
+	mkdir $F/control/header/h
+	ln -s $F/control/header/h $F/control/class/fs/h
+	ln -s $F/control/header/h $F/control/class/ss/h
+	U=$F/streaming/uncompressed/u
+	mkdir -p $U/f
+	printf "$2" > $U/guidFormat
+	echo 16 > $U/bBitsPerPixel 2>/dev/null
+	echo $3 > $U/f/wWidth; echo $4 > $U/f/wHeight
+	echo $(($3 * $4 * 2)) > $U/f/dwMaxVideoFrameBufferSize
+	echo $(($3 * $4 * 2 * 8 * 30)) > $U/f/dwMinBitRate; echo $(($3 * $4 * 2 * 8 * 30)) > $U/f/dwMaxBitRate
+	echo 333333 > $U/f/dwDefaultFrameInterval; echo 333333 > $U/f/dwFrameInterval
+	mkdir $F/streaming/header/h
+	ln -s $U $F/streaming/header/h/u
+	ln -s $F/streaming/header/h $F/streaming/class/fs/h
+	ln -s $F/streaming/header/h $F/streaming/class/hs/h
+	ln -s $F/streaming/header/h $F/streaming/class/ss/h
+	echo 3072 > $F/streaming_maxpacket  # 3x1024 high-bandwidth ISO (the patched dummy_hcd)
+	ln -s $F $G/configs/c.1/$1
 }
 
 setup_uvc_gadget() {
@@ -72,27 +99,12 @@ setup_uvc_gadget() {
 	echo "VDC0001" > strings/0x409/serialnumber
 	mkdir configs/c.1 configs/c.1/strings/0x409
 	echo "UVC" > configs/c.1/strings/0x409/configuration; echo 500 > configs/c.1/MaxPower
-	F=$G/functions/uvc.0
-	mkdir $F || return 1
-	mkdir $F/control/header/h
-	ln -s $F/control/header/h $F/control/class/fs/h
-	ln -s $F/control/header/h $F/control/class/ss/h
-	U=$F/streaming/uncompressed/z16
-	mkdir -p $U/480p
-	# guidFormat Z16 = 5a313620-0000-0010-8000-00aa00389b71 (mixed-endian GUID bytes)
-	printf '\x5a\x31\x36\x20\x00\x00\x10\x00\x80\x00\x00\xaa\x00\x38\x9b\x71' > $U/guidFormat
-	echo 16 > $U/bBitsPerPixel 2>/dev/null
-	echo 640 > $U/480p/wWidth; echo 480 > $U/480p/wHeight
-	echo 614400 > $U/480p/dwMaxVideoFrameBufferSize
-	echo 147456000 > $U/480p/dwMinBitRate; echo 147456000 > $U/480p/dwMaxBitRate
-	echo 333333 > $U/480p/dwDefaultFrameInterval; echo 333333 > $U/480p/dwFrameInterval
-	mkdir $F/streaming/header/h
-	ln -s $U $F/streaming/header/h/z16
-	ln -s $F/streaming/header/h $F/streaming/class/fs/h
-	ln -s $F/streaming/header/h $F/streaming/class/hs/h
-	ln -s $F/streaming/header/h $F/streaming/class/ss/h
-	echo 3072 > $F/streaming_maxpacket  # 3x1024 high-bandwidth ISO (the patched dummy_hcd)
-	ln -s $F $G/configs/c.1/uvc.0
+	# Two sensors, as a RealSense has: depth on uvc.0 (interfaces 0 and 1), colour on uvc.1 (2 and 3).
+	# guidFormat Z16 = 5a313620-0000-0010-8000-00aa00389b71, YUY2 = 32595559-0000-0010-8000-00aa00389b71
+	# (mixed-endian GUID bytes)
+	add_uvc_function uvc.0 '\x5a\x31\x36\x20\x00\x00\x10\x00\x80\x00\x00\xaa\x00\x38\x9b\x71' 640 480 &&
+	add_uvc_function uvc.1 '\x59\x55\x59\x32\x00\x00\x10\x00\x80\x00\x00\xaa\x00\x38\x9b\x71' 320 240 ||
+		return 1
 	UDC=$(ls /sys/class/udc | head -1)
 	echo $UDC > $G/UDC || return 1
 	cd /
@@ -102,12 +114,17 @@ start_uvc() {
 	echo "--- UVC gadget on dummy_hcd -> uvcvideo"
 	setup_uvc_gadget || { dmesg | tail -20; result uvc-gadget FAIL; return 1; }
 	modprobe uvcvideo || { result uvc-gadget FAIL; return 1; }
-	uvcfeeder -r 10 > /tmp/feeder.log 2>&1 &
+	# The gadget connects once every function's node is open: both feeders first.
+	uvcfeeder -n 0 -s 1 -r 10 > /tmp/feeder.log 2>&1 &
 	FEEDER=$!
-	i=0; while ! UVC_NODE=$(find_node uvcvideo 0) && [ $i -lt 200 ]; do sleep 0.1; i=$((i+1)); done
-	[ -n "$UVC_NODE" ] || { cat /tmp/feeder.log; dmesg | tail -30; result uvc-gadget FAIL; return 1; }
+	uvcfeeder -n 1 -s 3 -c -w 320 -h 240 -r 10 > /tmp/colour-feeder.log 2>&1 &
+	i=0; while ! { UVC_NODE=$(find_node uvcvideo 0 00) && COLOUR_NODE=$(find_node uvcvideo 0 02); } &&
+		[ $i -lt 200 ]; do sleep 0.1; i=$((i+1)); done
+	[ -n "$UVC_NODE" ] && [ -n "$COLOUR_NODE" ] ||
+		{ cat /tmp/feeder.log /tmp/colour-feeder.log; dmesg | tail -30; result uvc-gadget FAIL; return 1; }
 	result uvc-gadget PASS
-	ENV="$ENV VIDEO=$UVC_NODE UDC_FILE=/sys/kernel/config/usb_gadget/depthcam/UDC UDC_NAME=$UDC FEEDER_PID=$FEEDER"
+	ENV="$ENV VIDEO=$UVC_NODE COLOUR_VIDEO=$COLOUR_NODE UDC_FILE=/sys/kernel/config/usb_gadget/depthcam/UDC"
+	ENV="$ENV UDC_NAME=$UDC FEEDER_PID=$FEEDER"
 	FILTER="$FILTER:Uvc.*"
 }
 
@@ -171,13 +188,34 @@ check_devices_command() {
 # The whole application, headless, on the USB camera.
 check_headless() {
 	out=$SCRATCH/headless
-	in_host $DEPTHCLOUD --source usb:$VID:$PID --headless --frames 3 --out $out; rc=$?
+	in_host $DEPTHCLOUD --source usb:$VID:$PID --headless --frames 3 --out $out > /tmp/headless.log 2>&1; rc=$?
+	sed 's/^/  headless: /' /tmp/headless.log
 	ls -l /host$out 2>&1 | sed 's/^/  headless: /'
 	sed 's/^/  summary.json: /' /host$out/summary.json 2>/dev/null
+	# the colour node is the camera's own, and no calibration relates it to depth: it must say so
 	if [ $rc = 0 ] && [ -s /host$out/cloud.png ] && [ -s /host$out/depth.png ] &&
+		grep -q "colours not registered" /tmp/headless.log &&
 		grep -q '"frames": 3' /host$out/summary.json && grep -q '"depthWidth": 640' /host$out/summary.json &&
 		grep -q '"latencyMs": [0-9]' /host$out/summary.json
 	then result headless-usb PASS; else result headless-usb FAIL; fi
+}
+
+# The whole application on the camera's two sensors, with the two-sensor calibration the guest test wrote:
+# registered colours all the way to the panels, so neither the unregistered colours nor the approximate
+# geometry are reported.
+check_headless_rig() {
+	out=$SCRATCH/headless-rig
+	[ -s /host$SCRATCH/rig.yaml ] || { echo "no rig.yaml from the guest test"; result headless-usb-rig FAIL; return; }
+	in_host $DEPTHCLOUD --source usb:$VID:$PID:calib=$SCRATCH/rig.yaml --headless --frames 3 --out $out \
+		> /tmp/headless-rig.log 2>&1; rc=$?
+	sed 's/^/  headless-rig: /' /tmp/headless-rig.log
+	echo "  headless-rig: exit status $rc"
+	ls -l /host$out 2>&1 | sed 's/^/  headless-rig: /'
+	sed 's/^/  headless-rig summary.json: /' /host$out/summary.json 2>/dev/null
+	if [ $rc = 0 ] && [ -s /host$out/cloud.png ] && [ -s /host$out/camera.png ] &&
+		grep -q '"frames": 3' /host$out/summary.json && ! grep -q "not registered" /tmp/headless-rig.log &&
+		! grep -q "approximate geometry" /tmp/headless-rig.log
+	then result headless-usb-rig PASS; else result headless-usb-rig FAIL; fi
 }
 
 # Everything is set up first and our programs start once each: under TCG, loading their libraries over
@@ -196,5 +234,6 @@ done
 case $FILTER in *Loopback*Vivid*) FILTER="$FILTER:Virtual.*" ;; esac # both virtual cameras are up
 [ -n "$FILTER" ] && in_host /usr/bin/env $ENV $GUEST_TEST --gtest_filter="${FILTER#:}" --gtest_color=no
 [ $UVC = 1 ] && check_headless
-[ $UVC = 1 ] && tail -5 /tmp/feeder.log
+[ $UVC = 1 ] && check_headless_rig
+[ $UVC = 1 ] && tail -5 /tmp/feeder.log /tmp/colour-feeder.log
 finish

@@ -348,6 +348,60 @@ TEST(LiveSourceSpec, ParsesNodesUsbIdsSerialsAndOptions) {
         EXPECT_FALSE(parseLiveSourceSpec(bad)) << bad;
 }
 
+// A depth and colour camera's calibration in Kalibr's layout: depth 640x480 (cam0), colour 320x240
+// (cam1) 25 mm to the side.
+constexpr const char* kRigCamchain = R"(cam0:
+  camera_model: pinhole
+  distortion_model: none
+  distortion_coeffs: []
+  intrinsics: [500.0, 500.0, 319.5, 239.5]
+  resolution: [640, 480]
+cam1:
+  T_cn_cnm1:
+  - [1.0, 0.0, 0.0, -0.025]
+  - [0.0, 1.0, 0.0, 0.0]
+  - [0.0, 0.0, 1.0, 0.0]
+  - [0.0, 0.0, 0.0, 1.0]
+  camera_model: pinhole
+  distortion_model: none
+  distortion_coeffs: []
+  intrinsics: [300.0, 300.0, 159.5, 119.5]
+  resolution: [320, 240]
+)";
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+    const fs::path path = fs::temp_directory_path() / (std::to_string(::getpid()) + "-" + name);
+    std::ofstream(path) << text;
+    return path.string();
+}
+
+TEST(LiveSourceSpec, TakesATwoSensorCalibration) {
+    const std::string path = writeTemp("camchain.yaml", kRigCamchain);
+    for (const std::string& spec :
+         {"v4l2:/dev/video3:color=/dev/video5:calib=" + path, "usb:8086:0b07:calib=" + path}) {
+        auto c = parseLiveSourceSpec(spec);
+        ASSERT_TRUE(c) << c.error().message;
+        ASSERT_TRUE(c->calibration && c->calibration->rig) << spec;
+        EXPECT_EQ(c->calibration->format, "Kalibr camchain");
+        EXPECT_EQ(c->calibration->rig->depth.intrinsics.width, 640);
+        EXPECT_EQ(c->calibration->rig->colour.intrinsics.width, 320);
+        EXPECT_DOUBLE_EQ(c->calibration->rig->depthToColour.translationMeters[0], -0.025);
+    }
+    fs::remove(path);
+}
+
+TEST(LiveSourceSpec, ABadTwoSensorCalibrationIsAnErrorNamingTheField) {
+    std::string text = kRigCamchain;
+    text.replace(text.find("[0.0, 1.0, 0.0, 0.0]"), 20, "[0.0, 2.0, 0.0, 0.0]");
+    const std::string path = writeTemp("bad-camchain.yaml", text);
+    const auto c = parseLiveSourceSpec("v4l2:/dev/video3:calib=" + path);
+    ASSERT_FALSE(c);
+    EXPECT_NE(c.error().message.find("cam1.T_cn_cnm1: not a rotation"), std::string::npos)
+        << c.error().message;
+    EXPECT_NE(c.error().message.find(path), std::string::npos) << c.error().message;
+    fs::remove(path);
+}
+
 TEST(KnownCameras, ExactProductsBeforeVendorWideEntries) {
     const usb::KnownCamera* d435 = usb::findKnownCamera(0x8086, 0x0b07);
     ASSERT_TRUE(d435);

@@ -285,5 +285,116 @@ TEST_F(UvcDeviceTest, ANodeWithoutDepthFormatsIsRefusedWithAReason) {
     EXPECT_EQ(fake_.openFds(), 1);
 }
 
+// ---- two sensors ----------------------------------------------------------------------------------
+
+// A depth sensor of this fixture's 8x6 and a colour sensor calibrated at 16x12, 25 mm apart.
+frame::Calibration rigCalibration(int colourWidth = 16, int colourHeight = 12) {
+    frame::RigCalibration rig;
+    rig.depth.intrinsics = {10.0, 10.0, 3.5, 2.5, kW, kH};
+    rig.colour.intrinsics = {18.0, 18.0, 7.5, 5.5, colourWidth, colourHeight};
+    rig.depthToColour.translationMeters = {-0.025, 0.0, 0.0};
+    rig.name = "rig.yaml (Kalibr camchain)";
+    return {rig.colour.intrinsics, "Kalibr camchain", rig, "cam0.resolution", "cam1.resolution"};
+}
+
+class UvcRigTest : public UvcDeviceTest {
+protected:
+    void SetUp() override {
+        UvcDeviceTest::SetUp();
+        // The depth size first would be today's choice; the calibrated 16x12 must win. 12x4 is of another
+        // shape than the calibration.
+        fake_.addNode(kColor, {.modes = {{V4L2_PIX_FMT_YUYV, kW, kH, {30}},
+                                         {V4L2_PIX_FMT_YUYV, 16, 12, {30}},
+                                         {V4L2_PIX_FMT_YUYV, 12, 4, {30}}}});
+    }
+
+    UvcConfig rigConfig(std::optional<frame::Calibration> calibration) const {
+        UvcConfig c = config();
+        c.colorNode = kColor;
+        c.calibration = std::move(calibration);
+        return c;
+    }
+
+    // One depth frame and the colour frame taken with it.
+    CaptureResult pairedFrame(UvcDevice& d) {
+        const std::int64_t t0 = base::monotonicNowNs() / 1000 * 1000;
+        FakeFrame depth = depthFrame(0);
+        depth.timestampNs = t0;
+        FakeFrame color{std::vector<std::uint8_t>(
+            static_cast<std::size_t>(d.colorFormat().width) * d.colorFormat().height * 2, 0x55)};
+        color.timestampNs = t0 + 1'000'000;
+        fake_.pushFrame(kDepth, depth);
+        fake_.pushFrame(kColor, color);
+        return next(d);
+    }
+};
+
+TEST_F(UvcRigTest, ATwoSensorCalibrationRidesWithEveryPairedFrame) {
+    const frame::Calibration calibration = rigCalibration();
+    UvcDevice d(rigConfig(calibration), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    EXPECT_EQ(d.colorFormat().width, 16) << "the size the colour sensor was calibrated at";
+    EXPECT_FALSE(d.capabilities().unregisteredColour);
+    EXPECT_FALSE(d.capabilities().approximateIntrinsics);
+    const CaptureResult r = pairedFrame(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    ASSERT_TRUE(r.frame->rig);
+    EXPECT_EQ(r.frame->rig, d.rig());
+    EXPECT_EQ(r.frame->rig->depthToColour, calibration.rig->depthToColour);
+    EXPECT_EQ(r.frame->cameraIntrinsics, calibration.rig->colour.intrinsics) << "the colour sensor's";
+    EXPECT_EQ(r.frame->depthIntrinsics(), calibration.rig->depth.intrinsics) << "the depth sensor's";
+    EXPECT_EQ(r.frame->capturedImage.width, 16);
+}
+
+TEST_F(UvcRigTest, StreamsThatDoNotFitTheCalibrationAreRefusedNamingItsField) {
+    UvcDevice d(rigConfig(rigCalibration(20, 10)), fake_); // no 2:1 colour mode is offered
+    const Status s = d.open();
+    ASSERT_FALSE(s);
+    EXPECT_NE(s.error().message.find("calibration cam1.resolution 20x10 does not fit the colour stream's"),
+              std::string::npos)
+        << s.error().message;
+    EXPECT_NE(s.error().message.find("rig.yaml"), std::string::npos) << s.error().message;
+    EXPECT_EQ(fake_.openFds(), 1) << "nothing left open but the wake-up eventfd";
+}
+
+// The colour node changing size under us: the same shape keeps the calibration (scaled), another shape
+// cannot be registered and ends the stream with the calibration's field named.
+TEST_F(UvcRigTest, AColourSizeChangeKeepsTheRigOnlyWhileItFits) {
+    const frame::Calibration calibration = rigCalibration();
+    UvcDevice d(rigConfig(calibration), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    fake_.changeFormat(kColor, 8, 6);
+    EXPECT_EQ(next(d).kind, CaptureResult::Kind::Error) << "restarted at the new size";
+    const CaptureResult r = pairedFrame(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    ASSERT_TRUE(r.frame->rig);
+    EXPECT_EQ(r.frame->cameraIntrinsics, calibration.rig->colour.intrinsics.scaledTo(8, 6));
+    fake_.changeFormat(kColor, 12, 4);
+    const CaptureResult refused = next(d);
+    EXPECT_EQ(refused.kind, CaptureResult::Kind::Disconnected);
+    EXPECT_NE(refused.message.find("cam1.resolution 16x12 does not fit the colour stream's 12x4"),
+              std::string::npos)
+        << refused.message;
+}
+
+TEST_F(UvcRigTest, ColourWithoutATwoSensorCalibrationIsSaidToBeUnregistered) {
+    frame::Calibration single = rigCalibration();
+    single.rig.reset();
+    single.intrinsics = {10.0, 10.0, 3.5, 2.5, kW, kH};
+    UvcDevice d(rigConfig(single), fake_);
+    EXPECT_TRUE(d.capabilities().unregisteredColour);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    const CaptureResult r = pairedFrame(d);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    EXPECT_FALSE(r.frame->rig);
+    EXPECT_EQ(r.frame->depthIntrinsics(), single.intrinsics) << "one camera: the file's intrinsics";
+    UvcConfig depthOnly = rigConfig(std::nullopt);
+    depthOnly.color = false;
+    EXPECT_FALSE(UvcDevice(depthOnly, fake_).capabilities().unregisteredColour) << "no colour at all";
+}
+
 } // namespace
 } // namespace dc::devices

@@ -4,8 +4,13 @@
  * gadget goes away (UDC unbound: the gadget node returns ENODEV) it waits for the node to come back
  * and serves it again, so an unplug/replug test needs no restart.
  *
- * usage: uvcfeeder [-d /dev/videoN] [-w W] [-h H] [-m maxpayload] [-r fps (default 10)] [-v]
- *   Without -d it looks for the video node whose driver is "g_uvc".
+ * usage: uvcfeeder [-d /dev/videoN | -n INDEX] [-c] [-s INTERFACE] [-w W] [-h H] [-m maxpayload]
+ *                  [-r fps (default 10)] [-v]
+ *   Without -d it serves the INDEX-th (default 0) video node whose driver is "g_uvc": one per UVC function,
+ *   numbered in the order the gadget binds them, also after an unbind. -c sends the YUYV colour pattern
+ *   of test_pattern.h instead of the depth pattern; -s is the function's VideoStreaming interface number
+ *   (default 1, the first function's). Frames go out on a grid of the period on CLOCK_MONOTONIC, so that
+ *   feeders of two functions at one rate send each frame together, as a camera's two sensors would.
  * It answers the UVC class requests that the host (uvcvideo) sends
  * (VS PROBE/COMMIT; everything else is stalled), and once the host starts
  * streaming (UVC_EVENT_STREAMON) it queues frames.  On the original kernel 6.1
@@ -33,6 +38,9 @@
 
 static unsigned W = 640, H = 480, MAXPAYLOAD = 3072;
 static int verbose;
+static int colour;            /* -c: the colour pattern (YUYV) */
+static unsigned node_index;   /* -n: which g_uvc node */
+static unsigned vs_intf = 1;  /* -s: the VideoStreaming interface whose requests are ours */
 static int fd;
 static int streaming;
 static unsigned nbufs;
@@ -64,7 +72,10 @@ static void fill_ctrl(struct uvc_streaming_control *c)
 static void fill_frame(void *p, size_t len)
 {
 	(void)len;
-	dc_fill_pattern(p, W, H, W, seq);
+	if (colour)
+		dc_fill_colour_pattern(p, W, H);
+	else
+		dc_fill_pattern(p, W, H, W, seq);
 	seq++;
 }
 
@@ -119,7 +130,7 @@ static int stream_on(void)
 	 * YUYV/MJPEG, so fall back to YUYV (also 16 bpp: the same bytes go out). */
 	static const uint32_t try_fcc[] = {V4L2_PIX_FMT_Z16, V4L2_PIX_FMT_YUYV};
 	int ok = 0;
-	for (unsigned i = 0; i < 2 && !ok; i++) {
+	for (unsigned i = colour ? 1 : 0; i < 2 && !ok; i++) {
 		f.fmt.pix.pixelformat = try_fcc[i];
 		f.fmt.pix.field = V4L2_FIELD_NONE;
 		f.fmt.pix.sizeimage = W * H * 2;
@@ -181,9 +192,9 @@ static void handle_setup(const struct usb_ctrlrequest *ctrl, struct uvc_request_
 		       ctrl->bRequestType, ctrl->bRequest, ctrl->wValue, ctrl->wIndex, ctrl->wLength);
 	if ((ctrl->bRequestType & USB_TYPE_MASK) != USB_TYPE_CLASS)
 		return;
-	/* interface 0 = VideoControl, 1 = VideoStreaming in the configfs layout */
+	/* each function has a VideoControl interface and then its VideoStreaming one (-s) */
 	unsigned intf = ctrl->wIndex & 0xff;
-	if (intf != 1 || (cs != UVC_VS_PROBE_CONTROL && cs != UVC_VS_COMMIT_CONTROL))
+	if (intf != vs_intf || (cs != UVC_VS_PROBE_CONTROL && cs != UVC_VS_COMMIT_CONTROL))
 		return; /* stall every VC request: no controls implemented */
 	struct uvc_streaming_control *c = cs == UVC_VS_PROBE_CONTROL ? &probe : &commit;
 	unsigned sz = sizeof *c;
@@ -242,6 +253,7 @@ static void serve(const char *dev);
 
 static int find_gadget_node(char *out, size_t n)
 {
+	unsigned seen = 0;
 	for (int i = 0; i < 16; i++) {
 		char p[32];
 		snprintf(p, sizeof p, "/dev/video%d", i);
@@ -251,7 +263,7 @@ static int find_gadget_node(char *out, size_t n)
 		struct v4l2_capability cap = {0};
 		int ok = ioctl(f, VIDIOC_QUERYCAP, &cap) == 0 && !strcmp((char *)cap.driver, "g_uvc");
 		close(f);
-		if (ok) {
+		if (ok && seen++ == node_index) {
 			snprintf(out, n, "%s", p);
 			return 0;
 		}
@@ -263,9 +275,12 @@ int main(int argc, char **argv)
 {
 	char dev[32] = "";
 	int opt;
-	while ((opt = getopt(argc, argv, "d:w:h:m:r:v")) != -1) {
+	while ((opt = getopt(argc, argv, "d:n:cs:w:h:m:r:v")) != -1) {
 		switch (opt) {
 		case 'd': snprintf(dev, sizeof dev, "%s", optarg); break;
+		case 'n': node_index = (unsigned)atoi(optarg); break;
+		case 'c': colour = 1; break;
+		case 's': vs_intf = (unsigned)atoi(optarg); break;
 		case 'w': W = atoi(optarg); break;
 		case 'h': H = atoi(optarg); break;
 		case 'm': MAXPAYLOAD = atoi(optarg); break;
@@ -337,7 +352,7 @@ static void serve(const char *dev)
 		if (!holding && nheld && now >= next_due) {
 			queue_frame(held[0]);
 			memmove(held, held + 1, --nheld * sizeof held[0]);
-			next_due = (next_due + period_s < now) ? now + period_s : next_due + period_s;
+			next_due = ((double)(long long)(now / period_s) + 1.0) * period_s; /* the next tick of the grid */
 		}
 		struct timespec wait = {0, 0}, *waitp = NULL;
 		if (!holding && nheld) {
