@@ -48,16 +48,16 @@ bool CameraColourTable::use(const frame::CapturedImage& image) {
 }
 
 // The same addressing as frame::pixelRgb; the conversion itself is pixelRgb's, through the table.
-std::uint32_t CameraColourTable::rgba(int xi, int yi) {
+template <class Convert> std::uint32_t CameraColourTable::colourAt(int xi, int yi, Convert&& convert) const {
     const auto x = static_cast<std::size_t>(xi), y = static_cast<std::size_t>(yi);
     switch (format_) {
     case frame::PixelFormat::Nv12: {
         const std::uint8_t* chroma = bytes_ + width_ * height_ + ((y / 2) * ((width_ + 1) / 2) + x / 2) * 2;
-        return ycbcr(bytes_[y * width_ + x], chroma[0], chroma[1]);
+        return convert(bytes_[y * width_ + x], chroma[0], chroma[1]);
     }
     case frame::PixelFormat::Yuyv: {
         const std::uint8_t* pair = bytes_ + y * 4 * ((width_ + 1) / 2) + (x / 2) * 4;
-        return ycbcr(pair[(x & 1) * 2], pair[1], pair[3]);
+        return convert(pair[(x & 1) * 2], pair[1], pair[3]);
     }
     case frame::PixelFormat::Rgb24: {
         const std::uint8_t* p = bytes_ + (y * width_ + x) * 3;
@@ -69,9 +69,24 @@ std::uint32_t CameraColourTable::rgba(int xi, int yi) {
     return 0xff808080u;
 }
 
+std::uint32_t CameraColourTable::rgba(int x, int y) {
+    return colourAt(x, y,
+                    [this](std::uint8_t l, std::uint8_t cb, std::uint8_t cr) { return ycbcr(l, cb, cr); });
+}
+
+std::optional<std::uint32_t> CameraColourTable::filledRgba(int x, int y) const {
+    bool missing = false;
+    const std::uint32_t rgba = colourAt(x, y, [&](std::uint8_t l, std::uint8_t cb, std::uint8_t cr) {
+        const std::uint32_t pair = static_cast<std::uint32_t>(cb) << 8 | cr;
+        missing = !filled(pair);
+        return missing ? 0u : ycbcr_[std::size_t{pair} << 8 | l];
+    });
+    return missing ? std::nullopt : std::optional<std::uint32_t>(rgba);
+}
+
 std::uint32_t CameraColourTable::ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr) {
     const std::uint32_t pair = static_cast<std::uint32_t>(cb) << 8 | cr;
-    if (!(pairsFilled_[pair / 64] >> (pair % 64) & 1))
+    if (!filled(pair))
         fillPair(pair);
     return ycbcr_[std::size_t{pair} << 8 | y];
 }

@@ -6,6 +6,7 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace dc::processing {
@@ -21,9 +22,15 @@ public:
     bool use(const frame::CapturedImage& image);
     // The colour of pixel (x, y), which must lie inside the image last passed to use().
     std::uint32_t rgba(int x, int y);
+    // The same, when the table holds the pixel's chroma pair already; nothing when it does not. It only
+    // reads, so threads may call it together while none calls rgba().
+    std::optional<std::uint32_t> filledRgba(int x, int y) const;
 
 private:
     std::uint32_t ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr);
+    bool filled(std::uint32_t pair) const { return pairsFilled_[pair / 64] >> (pair % 64) & 1; }
+    // The pixel's colour, its YCbCr triplet converted by convert(y, cb, cr).
+    template <class Convert> std::uint32_t colourAt(int x, int y, Convert&& convert) const;
     void fillPair(std::uint32_t pair);
 
     std::unique_ptr<std::uint32_t[]> ycbcr_;   // [cb][cr][y], rows valid where pairsFilled_ says so

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <mutex>
 #include <utility>
 
 namespace dc::processing {
@@ -332,15 +333,31 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
         RgbImage{depth.width, depth.height, std::vector<std::uint8_t>(depth.pixels.size() * 3, kUnseenGray)});
     const bool usable = table.use(image);
     Registration r = registerDepth(depth, *frame.rig, usable ? image.width : 0, usable ? image.height : 0);
-    for (std::size_t i = 0; i < r.colourPixel.size(); ++i) {
-        const std::int32_t pixel = r.colourPixel[i];
-        if (pixel == Registration::kUnseen)
-            continue;
-        const std::uint32_t rgba = table.rgba(pixel % image.width, pixel / image.width);
-        colours->pixels[i * 3] = static_cast<std::uint8_t>(rgba);
-        colours->pixels[i * 3 + 1] = static_cast<std::uint8_t>(rgba >> 8);
-        colours->pixels[i * 3 + 2] = static_cast<std::uint8_t>(rgba >> 16);
-    }
+    const auto store = [&pixels = colours->pixels](std::size_t i, std::uint32_t rgba) {
+        pixels[i * 3] = static_cast<std::uint8_t>(rgba);
+        pixels[i * 3 + 1] = static_cast<std::uint8_t>(rgba >> 8);
+        pixels[i * 3 + 2] = static_cast<std::uint8_t>(rgba >> 16);
+    };
+    // The table fills itself as colours are first met, which one thread must do alone: the threads look up
+    // what it holds and leave the few samples it lacks (most only in a scene's first frames) for after.
+    std::mutex missedMutex;
+    std::vector<std::size_t> missed;
+    parallelRanges(static_cast<int>(r.colourPixel.size()), 4096, [&](int begin, int end) {
+        std::vector<std::size_t> mine;
+        for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
+            const std::int32_t pixel = r.colourPixel[i];
+            if (pixel == Registration::kUnseen)
+                continue;
+            if (const auto rgba = table.filledRgba(pixel % image.width, pixel / image.width))
+                store(i, *rgba);
+            else
+                mine.push_back(i);
+        }
+        const std::lock_guard lock(missedMutex);
+        missed.insert(missed.end(), mine.begin(), mine.end());
+    });
+    for (const std::size_t i : missed)
+        store(i, table.rgba(r.colourPixel[i] % image.width, r.colourPixel[i] / image.width));
     return {std::move(colours), std::make_shared<const frame::Plane<std::uint8_t>>(std::move(r.seen))};
 }
 

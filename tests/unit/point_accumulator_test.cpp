@@ -318,6 +318,30 @@ TEST(CameraColourTable, GivesExactlyWhatPixelRgbGivesForEveryYCbCrTriplet) {
     }
 }
 
+TEST(CameraColourTable, FilledRgbaGivesNothingUntilAColourIsInTheTableThenWhatRgbaGives) {
+    std::mt19937 rng(7);
+    CameraColourTable table;
+    for (const auto format : {frame::PixelFormat::Nv12, frame::PixelFormat::Yuyv}) {
+        const frame::CapturedImage image = randomImage(format, 33, 21, rng);
+        ASSERT_TRUE(table.use(image));
+        std::size_t before = 0;
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x)
+                before += table.filledRgba(x, y).has_value();
+        EXPECT_LT(before, static_cast<std::size_t>(image.width * image.height) / 10)
+            << frame::toString(format) << ": random chroma is rarely met twice";
+        for (int y = 0; y < image.height; ++y)
+            for (int x = 0; x < image.width; ++x) {
+                const std::uint32_t expected = table.rgba(x, y);
+                ASSERT_EQ(table.filledRgba(x, y), expected)
+                    << frame::toString(format) << " " << x << ", " << y;
+            }
+    }
+    const frame::CapturedImage rgb = randomImage(frame::PixelFormat::Rgb24, 5, 4, rng);
+    ASSERT_TRUE(table.use(rgb));
+    EXPECT_EQ(table.filledRgba(3, 2), packedPixelRgb(rgb, 3, 2)) << "RGB needs no table";
+}
+
 TEST(CameraColourTable, RefusesEmptyAndTruncatedImages) {
     CameraColourTable table;
     EXPECT_FALSE(table.use({}));
