@@ -186,13 +186,15 @@ void passWeights(Grid& g, const SmootherPass& pass) {
 }
 
 // One horizontal sweep of the kLanes rows of block b: to lines, solved, back. `lines` holds 2 x kLanes rows.
-template <class V> void horizontalBlock(Grid& g, int b, float scale, float* lines, float* forward) {
+// The pass's first sweep reads the data itself (fromData), which spares copying it into sum and weight.
+template <class V>
+void horizontalBlock(Grid& g, int b, float scale, bool fromData, float* lines, float* forward) {
     const std::size_t stride = static_cast<std::size_t>(g.paddedWidth), lineSize = stride * kLanes;
     const std::size_t first = static_cast<std::size_t>(b) * lineSize;
     float* s = lines;
     float* w = lines + lineSize;
-    interleave<true>(g.sum.data() + first, stride, g.paddedWidth, s);
-    interleave<true>(g.weight.data() + first, stride, g.paddedWidth, w);
+    interleave<true>((fromData ? g.dataSum : g.sum).data() + first, stride, g.paddedWidth, s);
+    interleave<true>((fromData ? g.dataWeight : g.weight).data() + first, stride, g.paddedWidth, w);
     solvePathLaplacian<V, 2, kLanes * sizeof(float) / sizeof(V)>(g.width, g.edgeH.data() + first, {s, w},
                                                                  kLanes, scale, forward);
     interleave<false>(g.sum.data() + first, stride, g.paddedWidth, s);
@@ -210,7 +212,7 @@ template <class V> void verticalStrip(Grid& g, std::size_t x0, float scale, floa
 // each instruction set has registers for (a wider generic vector is split through memory). flatten
 // inlines the solve into each, so that it is compiled for that instruction set.
 struct Sweeps {
-    void (*horizontal)(Grid&, int b, float scale, float* lines);
+    void (*horizontal)(Grid&, int b, float scale, bool fromData, float* lines);
     void (*vertical)(Grid&, std::size_t x0, float scale);
 };
 
@@ -222,14 +224,14 @@ float* forwardScratch(int n) {
 }
 
 [[gnu::target("arch=x86-64-v3"), gnu::flatten]] void horizontalAvx2(Grid& g, int b, float scale,
-                                                                    float* lines) {
-    horizontalBlock<Octet>(g, b, scale, lines, forwardScratch(g.paddedWidth));
+                                                                    bool fromData, float* lines) {
+    horizontalBlock<Octet>(g, b, scale, fromData, lines, forwardScratch(g.paddedWidth));
 }
 [[gnu::target("arch=x86-64-v3"), gnu::flatten]] void verticalAvx2(Grid& g, std::size_t x0, float scale) {
     verticalStrip<Octet>(g, x0, scale, forwardScratch(g.paddedHeight));
 }
-[[gnu::flatten]] void horizontalSse2(Grid& g, int b, float scale, float* lines) {
-    horizontalBlock<Quad>(g, b, scale, lines, forwardScratch(g.paddedWidth));
+[[gnu::flatten]] void horizontalSse2(Grid& g, int b, float scale, bool fromData, float* lines) {
+    horizontalBlock<Quad>(g, b, scale, fromData, lines, forwardScratch(g.paddedWidth));
 }
 [[gnu::flatten]] void verticalSse2(Grid& g, std::size_t x0, float scale) {
     verticalStrip<Quad>(g, x0, scale, forwardScratch(g.paddedHeight));
@@ -242,12 +244,12 @@ const Sweeps& sweeps() {
     return chosen;
 }
 
-void horizontalSweep(Grid& g, float scale) {
+void horizontalSweep(Grid& g, float scale, bool fromData) {
     parallelRanges(g.paddedHeight / kLanes, 1, [&](int b0, int b1) {
         thread_local std::vector<float> lines;
         lines.resize(2 * static_cast<std::size_t>(g.paddedWidth) * kLanes);
         for (int b = b0; b < b1; ++b)
-            sweeps().horizontal(g, b, scale, lines.data());
+            sweeps().horizontal(g, b, scale, fromData, lines.data());
     });
 }
 
@@ -277,11 +279,9 @@ void runPass(Grid& g, const SmootherPass& pass) {
     if (pass.iterations <= 0)
         return;
     passWeights(g, pass);
-    std::copy(g.dataSum.begin(), g.dataSum.end(), g.sum.begin());
-    std::copy(g.dataWeight.begin(), g.dataWeight.end(), g.weight.begin());
     for (int t = 0; t < pass.iterations; ++t) {
         const float scale = iterationLambda(pass.lambda, t, pass.iterations);
-        horizontalSweep(g, scale);
+        horizontalSweep(g, scale, t == 0);
         verticalSweep(g, scale);
     }
     rowsInParallel(g.height, [&](int y) {
@@ -344,14 +344,15 @@ struct GlobalSmoother::Buffers {
     BilinearTaps tapsX, tapsY;             // output pixel -> sensor samples
     std::vector<float> rows;               // sensor rows interpolated to the output width: 4 quantities
     std::vector<float> measuredWeight;     // bilinear weight of the measured samples, output size
-    std::vector<float> medianValue;        // the final median, output size
+    std::vector<float> medianValue;        // a final median other than 3 x 3, output size
 
     bool prepareSensor(const frame::DepthData& depth);
     void reduceGuide(ColorView guide);
     void interpolateRows();
     void upsampleSensor(float footprintSigma);
-    void median(const GlobalSmootherParams& params, ColorView guide);
-    void finish(frame::DepthData& out);
+    const float* medianRow(int y, std::vector<float>& scratch) const;
+    bool otherMedian(const GlobalSmootherParams& params, ColorView guide);
+    void finish(const GlobalSmootherParams& params, ColorView guide, frame::DepthData& out);
 };
 
 bool GlobalSmoother::Buffers::prepareSensor(const frame::DepthData& depth) {
@@ -429,10 +430,11 @@ void GlobalSmoother::Buffers::interpolateRows() {
 
 namespace {
 
-// One output row from the two interpolated sensor rows around it (sum, weight, lo, hi, each n long).
+// One output row from the two interpolated sensor rows around it (sum, weight, lo, hi, each n long), with
+// the data's own depth as the row's value (what dataAsValue() would compute) for the first pass's weights.
 DC_VECTOR_KERNEL void combineRows(const float* __restrict a, const float* __restrict b, float f,
                                   float inverseSigma, float* __restrict sum, float* __restrict weight,
-                                  float* __restrict measuredWeight, int n) {
+                                  float* __restrict value, float* __restrict measuredWeight, int n) {
     for (int x = 0; x < n; ++x) {
         const float lo = std::min(a[2 * n + x], b[2 * n + x]);
         const float hi = std::max(a[3 * n + x], b[3 * n + x]);
@@ -442,13 +444,14 @@ DC_VECTOR_KERNEL void combineRows(const float* __restrict a, const float* __rest
         measuredWeight[x] = m;
         sum[x] = ((1.0f - f) * a[x] + f * b[x]) * factor;
         weight[x] = m * factor;
+        value[x] = weight[x] > 0.0f ? sum[x] / weight[x] : 0.0f;
     }
 }
 
 } // namespace
 
 // The output grid's data: the bilinear upsampling of the sensor's (denoised) depth over its measured
-// samples, each pixel's weight reduced where its footprint spans a depth edge.
+// samples, each pixel's weight reduced where its footprint spans a depth edge; their ratio as its depth.
 void GlobalSmoother::Buffers::upsampleSensor(float footprintSigma) {
     const int width = output.width;
     tapsX = bilinearTaps(sensor.width, width);
@@ -460,8 +463,9 @@ void GlobalSmoother::Buffers::upsampleSensor(float footprintSigma) {
     rowsInParallel(output.height, [&](int y) {
         const float* a = rows.data() + rowSize * tapsY.first[y];
         const float* b = rows.data() + rowSize * tapsY.second[y];
-        combineRows(a, b, tapsY.weight[y], inverseSigma, output.dataSum.data() + output.index(0, y),
-                    output.dataWeight.data() + output.index(0, y),
+        const std::size_t at = output.index(0, y);
+        combineRows(a, b, tapsY.weight[y], inverseSigma, output.dataSum.data() + at,
+                    output.dataWeight.data() + at, output.value.data() + at,
                     measuredWeight.data() + static_cast<std::size_t>(y) * width, width);
     });
 }
@@ -484,27 +488,89 @@ DC_VECTOR_KERNEL void outputRow(const float* __restrict smoothed, const float* _
 
 } // namespace
 
-void GlobalSmoother::Buffers::median(const GlobalSmootherParams& params, ColorView guide) {
+namespace {
+
+// Each column's three values (rows a, b, c) sorted, lo <= mid <= hi, at x + 1 for column x; the row's end
+// columns are repeated once beyond it (OpenCV's replicated border).
+DC_VECTOR_KERNEL void sortColumns(const float* __restrict a, const float* __restrict b,
+                                  const float* __restrict c, float* __restrict lo, float* __restrict mid,
+                                  float* __restrict hi, int n) {
+    for (int x = 0; x < n; ++x) {
+        const float small = std::min(a[x], b[x]), large = std::max(a[x], b[x]);
+        lo[x + 1] = std::min(small, c[x]);
+        mid[x + 1] = std::max(small, std::min(large, c[x]));
+        hi[x + 1] = std::max(large, c[x]);
+    }
+    for (float* p : {lo, mid, hi}) {
+        p[0] = p[1];
+        p[n + 1] = p[n];
+    }
+}
+
+float medianOf3(float p, float q, float r) {
+    return std::max(std::min(p, q), std::min(std::max(p, q), r));
+}
+
+// The median of each 3 x 3 window from its columns sorted: of the nine values it is the median of the
+// largest low, the median of the mids and the smallest high, which takes 7 comparisons per pixel instead
+// of a sort of 9.
+DC_VECTOR_KERNEL void medianOfColumns(const float* __restrict lo, const float* __restrict mid,
+                                      const float* __restrict hi, float* __restrict out, int n) {
+    for (int x = 0; x < n; ++x) {
+        const float largestLow = std::max(std::max(lo[x], lo[x + 1]), lo[x + 2]);
+        const float smallestHigh = std::min(std::min(hi[x], hi[x + 1]), hi[x + 2]);
+        out[x] = medianOf3(largestLow, medianOf3(mid[x], mid[x + 1], mid[x + 2]), smallestHigh);
+    }
+}
+
+} // namespace
+
+// The 3 x 3 median of row y of the output's value into `scratch` (4 rows of width + 2), returned.
+const float* GlobalSmoother::Buffers::medianRow(int y, std::vector<float>& scratch) const {
+    const int width = output.width;
+    const std::size_t n = static_cast<std::size_t>(width) + 2;
+    scratch.resize(4 * n);
+    const float* row = output.value.data() + output.index(0, y);
+    const float* above = y > 0 ? row - output.paddedWidth : row;
+    const float* below = y + 1 < output.height ? row + output.paddedWidth : row;
+    sortColumns(above, row, below, scratch.data(), scratch.data() + n, scratch.data() + 2 * n, width);
+    medianOfColumns(scratch.data(), scratch.data() + n, scratch.data() + 2 * n, scratch.data() + 3 * n,
+                    width);
+    return scratch.data() + 3 * n;
+}
+
+// The median filters other than 3 x 3 into medianValue; false when the value goes out unfiltered.
+bool GlobalSmoother::Buffers::otherMedian(const GlobalSmootherParams& params, ColorView guide) {
     const int width = output.width, height = output.height;
+    const int side = params.medianPixels;
+    if (params.weightedMedianRadius <= 0 && (side != 5 || width < side || height < side))
+        return false;
     const cv::Mat value(height, width, CV_32F, output.value.data(),
                         static_cast<std::size_t>(output.paddedWidth) * 4);
     medianValue.resize(static_cast<std::size_t>(width) * height);
     cv::Mat filtered(height, width, CV_32F, medianValue.data());
-    const int side = params.medianPixels;
     if (params.weightedMedianRadius > 0)
         weightedMedian(value, guide, params.weightedMedianRadius, params.weightedMedianSigma, filtered);
-    else if ((side == 3 || side == 5) && width >= side && height >= side)
-        cv::medianBlur(value, filtered, side);
     else
-        value.copyTo(filtered);
+        cv::medianBlur(value, filtered, side);
+    return true;
 }
 
-void GlobalSmoother::Buffers::finish(frame::DepthData& out) {
+// The final median (the 3 x 3 one computed row by row here, as each output row needs it) and the output.
+void GlobalSmoother::Buffers::finish(const GlobalSmootherParams& params, ColorView guide,
+                                     frame::DepthData& out) {
     const int width = output.width, height = output.height;
+    const bool median3 =
+        params.weightedMedianRadius <= 0 && params.medianPixels == 3 && width >= 3 && height >= 3;
+    const bool filtered = !median3 && otherMedian(params, guide);
     const auto offsetF = static_cast<float>(offset);
     rowsInParallel(height, [&](int y) {
+        thread_local std::vector<float> scratch;
         const std::size_t row = static_cast<std::size_t>(y) * width, at = output.index(0, y);
-        outputRow(medianValue.data() + row, output.dataSum.data() + at, output.dataWeight.data() + at,
+        const float* value = median3    ? medianRow(y, scratch)
+                             : filtered ? medianValue.data() + row
+                                        : output.value.data() + at;
+        outputRow(value, output.dataSum.data() + at, output.dataWeight.data() + at,
                   measuredWeight.data() + row, offsetF, out.depthMeters.pixels.data() + row, width);
     });
 }
@@ -534,12 +600,10 @@ frame::DepthData GlobalSmoother::upsample(const frame::DepthData& depth, ColorVi
     for (int round = 0; round < params.sensorDepthRounds; ++round)
         runPass(b.sensor, params.sensorDepth);
     b.upsampleSensor(params.footprintSigma);
-    dataAsValue(b.output);
     runPass(b.output, params.outputColor);
     for (int round = 0; round < params.outputDepthRounds; ++round)
         runPass(b.output, params.outputDepth);
-    b.median(params, guide);
-    b.finish(out);
+    b.finish(params, guide, out);
     return out;
 }
 
