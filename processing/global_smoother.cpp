@@ -402,6 +402,28 @@ void GlobalSmoother::Buffers::reduceGuide(ColorView guide) {
         sensor);
 }
 
+namespace {
+
+// One sensor row interpolated to the output width (see interpolateRows): z the row's depth, m 1 where it was
+// measured. Gathers through the taps over restrict pointers, so that it vectorises.
+DC_VECTOR_KERNEL void interpolateRow(const float* __restrict z, const std::uint8_t* __restrict m,
+                                     const int* __restrict first, const int* __restrict second,
+                                     const float* __restrict fraction, float* __restrict sum,
+                                     float* __restrict weight, float* __restrict lo, float* __restrict hi,
+                                     int width) {
+    for (int x = 0; x < width; ++x) {
+        const int c0 = first[x], c1 = second[x];
+        const float f = fraction[x], z0 = z[c0], z1 = z[c1];
+        const float m0 = m[c0], m1 = m[c1];
+        sum[x] = (1.0f - f) * m0 * z0 + f * m1 * z1;
+        weight[x] = (1.0f - f) * m0 + f * m1;
+        lo[x] = std::min(m0 > 0.0f ? z0 : FLT_MAX, m1 > 0.0f ? z1 : FLT_MAX);
+        hi[x] = std::max(m0 > 0.0f ? z0 : -FLT_MAX, m1 > 0.0f ? z1 : -FLT_MAX);
+    }
+}
+
+} // namespace
+
 // Each sensor row interpolated horizontally to the output width, as 4 rows: the measured values' weighted
 // sum and weight, and their minimum and maximum over the two taps (for the footprint's spread). Doing this
 // once per sensor row, not per output row, divides its cost by the upsampling factor.
@@ -411,20 +433,10 @@ void GlobalSmoother::Buffers::interpolateRows() {
     rows.resize(rowSize * sensor.height);
     rowsInParallel(sensor.height, [&](int r) {
         float* sum = rows.data() + rowSize * r;
-        float* weight = sum + width;
-        float* lo = weight + width;
-        float* hi = lo + width;
-        const float* z = sensor.value.data() + sensor.index(0, r);
-        const std::uint8_t* m = sensorValid.data() + static_cast<std::size_t>(r) * sensor.width;
-        for (int x = 0; x < width; ++x) {
-            const int c0 = tapsX.first[x], c1 = tapsX.second[x];
-            const float f = tapsX.weight[x];
-            const float m0 = m[c0], m1 = m[c1];
-            sum[x] = (1.0f - f) * m0 * z[c0] + f * m1 * z[c1];
-            weight[x] = (1.0f - f) * m0 + f * m1;
-            lo[x] = std::min(m0 > 0.0f ? z[c0] : FLT_MAX, m1 > 0.0f ? z[c1] : FLT_MAX);
-            hi[x] = std::max(m0 > 0.0f ? z[c0] : -FLT_MAX, m1 > 0.0f ? z[c1] : -FLT_MAX);
-        }
+        interpolateRow(sensor.value.data() + sensor.index(0, r),
+                       sensorValid.data() + static_cast<std::size_t>(r) * sensor.width, tapsX.first.data(),
+                       tapsX.second.data(), tapsX.weight.data(), sum, sum + width, sum + 2 * width,
+                       sum + 3 * width, width);
     });
 }
 

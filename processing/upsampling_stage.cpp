@@ -25,20 +25,25 @@ GuidedFilterParams guidedFilterParams(const UpsamplingParams& params) {
 GlobalSmootherParams globalSmootherParams(const UpsamplingParams& params, double factor, float depthNoise) {
     const float s = std::max(params.smoothness, 0.0f);
     const float noise = std::max(depthNoise, 0.0f);
-    const double f = std::max(factor, 1.0);
+    const auto f = static_cast<float>(std::max(factor, 1.0));
     GlobalSmootherParams p;
-    p.sensorColor = {6.0f * s, 2, 24.0f, 0.0f};
-    p.sensorDepth = {10.0f * s, 3, 0.0f, 0.4f * noise};
-    // The output passes bridge the band of about `factor` pixels that interpolation blurs at an edge: the
-    // colour pass's reach grows with it.
-    p.outputColor = {3.0f * s * static_cast<float>(std::pow(f, 2.5)), 1, 4.0f, 0.0f};
-    p.outputDepth = {100.0f * s * static_cast<float>(std::sqrt(f)), 1, 64.0f, 0.2f * noise};
     p.footprintSigma = 0.2f * noise;
     p.medianPixels = 3;
     if (params.method == UpsamplingMethod::Quality) {
-        p.outputColor.iterations = 3;
-        p.outputDepth.iterations = 3;
+        p.sensorColor = {6.0f * s, 2, 24.0f, 0.0f};
+        p.sensorDepth = {10.0f * s, 3, 0.0f, 0.4f * noise};
+        // The output passes bridge the band of about `factor` pixels that interpolation blurs at an edge:
+        // the colour pass's reach grows with it.
+        p.outputColor = {3.0f * s * std::pow(f, 2.5f), 3, 4.0f, 0.0f};
+        p.outputDepth = {100.0f * s * std::sqrt(f), 3, 64.0f, 0.2f * noise};
+        return p;
     }
+    // Real time: the sweeps that buy the least error left out (MAD on the four scenes +4 % on average, the
+    // cost about halved): one colour and two depth sweeps at the sensor, and at the output a single pass
+    // whose colour term, stronger than the quality mode's guard, does what the colour pass did there.
+    p.sensorColor = {6.0f * s, 1, 24.0f, 0.0f};
+    p.sensorDepth = {10.0f * s, 2, 0.0f, 0.4f * noise};
+    p.outputDepth = {100.0f * s * std::sqrt(f), 1, 32.0f, 0.24f * noise};
     return p;
 }
 
