@@ -51,7 +51,7 @@ struct Grid {
     std::vector<float> sum, weight;         // the same, smoothed in place by a pass
     std::vector<float> edgeH, edgeV;        // neighbour weights of the pass: to the right, below
     std::vector<float> value;               // the last pass's depth, centred
-    std::vector<float> colorH, colorV;      // squared colour distances to the right, below
+    ColorView guide;                        // the colour at the grid's size (not owned)
 
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * paddedWidth + x; }
 };
@@ -67,7 +67,7 @@ void resize(Grid& g, int width, int height) {
     g.paddedHeight = roundUp(height, kLanes);
     const std::size_t n = static_cast<std::size_t>(g.paddedWidth) * g.paddedHeight;
     for (std::vector<float>* plane :
-         {&g.dataSum, &g.dataWeight, &g.sum, &g.weight, &g.edgeH, &g.edgeV, &g.value, &g.colorH, &g.colorV})
+         {&g.dataSum, &g.dataWeight, &g.sum, &g.weight, &g.edgeH, &g.edgeV, &g.value})
         plane->assign(n, 0.0f);
 }
 
@@ -103,14 +103,6 @@ DC_VECTOR_KERNEL void colorDistanceRow(const std::uint8_t* __restrict row,
                   d2 = below[3 * x + 2] - row[3 * x + 2];
         v[x] = static_cast<float>(d0 * d0 + d1 * d1 + d2 * d2);
     }
-}
-
-void colorDistances(ColorView guide, Grid& g) {
-    rowsInParallel(g.height, [&](int y) {
-        const std::uint8_t* row = guide.pixels + y * guide.stride;
-        colorDistanceRow(row, y + 1 < g.height ? row + guide.stride : row, g.colorH.data() + g.index(0, y),
-                         g.colorV.data() + g.index(0, y), g.width);
-    });
 }
 
 // One neighbour weight: colour term 1 / (1 + (d / sigma)^8) from the squared distance d^2, times depth term
@@ -153,16 +145,20 @@ template <bool ToLines> void interleave(float* rows, std::size_t stride, int pad
         }
 }
 
-// The neighbour weights of rows [y0, y1) of block b: vertical ones in place, horizontal ones into `rows`
-// (kLanes rows of the padded width), then interleaved as the horizontal sweeps read them.
+// The neighbour weights of the kLanes rows of block b: vertical ones in place, horizontal ones into `rows`
+// (kLanes rows of the padded width, then 2 more for each row's colour distances), then interleaved as the
+// horizontal sweeps read them. The colour distances are computed here, row by row, rather than kept in two
+// planes: reading those planes from memory cost more than computing them again for each pass.
 DC_VECTOR_KERNEL void weightBlock(Grid& g, int b, float inverseColor, float inverseDepth, float* rows) {
     const std::size_t stride = static_cast<std::size_t>(g.paddedWidth);
+    float* __restrict ch = rows + kLanes * stride;
+    float* __restrict cv = ch + stride;
     for (int y = b * kLanes; y < std::min((b + 1) * kLanes, g.height); ++y) {
         const std::size_t i = g.index(0, y);
+        const std::uint8_t* colour = g.guide.pixels + y * g.guide.stride;
+        colorDistanceRow(colour, y + 1 < g.height ? colour + g.guide.stride : colour, ch, cv, g.width);
         const float* __restrict z = g.value.data() + i;
         const float* __restrict below = y + 1 < g.height ? z + g.paddedWidth : z;
-        const float* __restrict ch = g.colorH.data() + i;
-        const float* __restrict cv = g.colorV.data() + i;
         float* __restrict h = rows + (y - b * kLanes) * stride;
         float* __restrict v = g.edgeV.data() + i;
         for (int x = 0; x + 1 < g.width; ++x)
@@ -179,7 +175,7 @@ void passWeights(Grid& g, const SmootherPass& pass) {
     const float id = pass.depthSigma > 0.0f ? 1.0f / pass.depthSigma : 0.0f;
     parallelRanges(g.paddedHeight / kLanes, 1, [&](int b0, int b1) {
         thread_local std::vector<float> rows;
-        rows.assign(static_cast<std::size_t>(g.paddedWidth) * kLanes, 0.0f);
+        rows.assign(static_cast<std::size_t>(g.paddedWidth) * (kLanes + 2), 0.0f);
         for (int b = b0; b < b1; ++b)
             weightBlock(g, b, ic, id, rows.data());
     });
@@ -338,13 +334,13 @@ void weightedMedian(const cv::Mat& value, ColorView guide, int radius, float sig
 
 struct GlobalSmoother::Buffers {
     Grid sensor, output;
-    double offset = 0.0;                   // the data's weighted mean, subtracted while solving
-    std::vector<std::uint8_t> sensorValid; // 1 where the input was measured
-    std::vector<std::uint8_t> sensorGuide; // the guide reduced to the sensor's size, packed
-    BilinearTaps tapsX, tapsY;             // output pixel -> sensor samples
-    std::vector<float> rows;               // sensor rows interpolated to the output width: 4 quantities
-    std::vector<float> measuredWeight;     // bilinear weight of the measured samples, output size
-    std::vector<float> medianValue;        // a final median other than 3 x 3, output size
+    double offset = 0.0;                    // the data's weighted mean, subtracted while solving
+    std::vector<std::uint8_t> sensorValid;  // 1 where the input was measured
+    std::vector<std::uint8_t> sensorGuide;  // the guide reduced to the sensor's size, packed
+    BilinearTaps tapsX, tapsY;              // output pixel -> sensor samples
+    std::vector<float> rows;                // sensor rows interpolated to the output width: 4 quantities
+    std::vector<std::uint8_t> measuredMask; // 1 where the measured samples' bilinear weight is >= 0.5
+    std::vector<float> medianValue;         // a final median other than 3 x 3, output size
 
     bool prepareSensor(const frame::DepthData& depth);
     void reduceGuide(ColorView guide);
@@ -391,15 +387,14 @@ bool GlobalSmoother::Buffers::prepareSensor(const frame::DepthData& depth) {
 }
 
 void GlobalSmoother::Buffers::reduceGuide(ColorView guide) {
-    colorDistances(guide, output);
+    output.guide = guide;
     const cv::Mat full(guide.height, guide.width, CV_8UC3, const_cast<std::uint8_t*>(guide.pixels),
                        static_cast<std::size_t>(guide.stride));
     sensorGuide.resize(static_cast<std::size_t>(sensor.width) * sensor.height * 3);
     resized(full, {sensor.width, sensor.height})
         .copyTo(cv::Mat(sensor.height, sensor.width, CV_8UC3, sensorGuide.data()));
-    colorDistances(
-        {sensorGuide.data(), sensor.width, sensor.height, static_cast<std::ptrdiff_t>(sensor.width) * 3},
-        sensor);
+    sensor.guide = {sensorGuide.data(), sensor.width, sensor.height,
+                    static_cast<std::ptrdiff_t>(sensor.width) * 3};
 }
 
 namespace {
@@ -446,14 +441,14 @@ namespace {
 // the data's own depth as the row's value (what dataAsValue() would compute) for the first pass's weights.
 DC_VECTOR_KERNEL void combineRows(const float* __restrict a, const float* __restrict b, float f,
                                   float inverseSigma, float* __restrict sum, float* __restrict weight,
-                                  float* __restrict value, float* __restrict measuredWeight, int n) {
+                                  float* __restrict value, std::uint8_t* __restrict measuredMask, int n) {
     for (int x = 0; x < n; ++x) {
         const float lo = std::min(a[2 * n + x], b[2 * n + x]);
         const float hi = std::max(a[3 * n + x], b[3 * n + x]);
         const float spread = hi > lo ? (hi - lo) * inverseSigma : 0.0f;
         const float factor = 1.0f / (1.0f + spread * spread);
         const float m = (1.0f - f) * a[n + x] + f * b[n + x];
-        measuredWeight[x] = m;
+        measuredMask[x] = m >= 0.5f;
         sum[x] = ((1.0f - f) * a[x] + f * b[x]) * factor;
         weight[x] = m * factor;
         value[x] = weight[x] > 0.0f ? sum[x] / weight[x] : 0.0f;
@@ -469,7 +464,7 @@ void GlobalSmoother::Buffers::upsampleSensor(float footprintSigma) {
     tapsX = bilinearTaps(sensor.width, width);
     tapsY = bilinearTaps(sensor.height, output.height);
     interpolateRows();
-    measuredWeight.resize(static_cast<std::size_t>(width) * output.height);
+    measuredMask.resize(static_cast<std::size_t>(width) * output.height);
     const float inverseSigma = footprintSigma > 0.0f ? 1.0f / footprintSigma : 0.0f;
     const std::size_t rowSize = static_cast<std::size_t>(width) * 4;
     rowsInParallel(output.height, [&](int y) {
@@ -478,7 +473,7 @@ void GlobalSmoother::Buffers::upsampleSensor(float footprintSigma) {
         const std::size_t at = output.index(0, y);
         combineRows(a, b, tapsY.weight[y], inverseSigma, output.dataSum.data() + at,
                     output.dataWeight.data() + at, output.value.data() + at,
-                    measuredWeight.data() + static_cast<std::size_t>(y) * width, width);
+                    measuredMask.data() + static_cast<std::size_t>(y) * width, width);
     });
 }
 
@@ -487,14 +482,15 @@ namespace {
 // Output depth: the smoothed value where the bilinear map was measured and the value is a usable depth, else
 // the bilinear data itself, else 0. Branch-free, so that it vectorises.
 DC_VECTOR_KERNEL void outputRow(const float* __restrict smoothed, const float* __restrict dataSum,
-                                const float* __restrict dataWeight, const float* __restrict measuredWeight,
-                                float offset, float* __restrict out, int n) {
+                                const float* __restrict dataWeight,
+                                const std::uint8_t* __restrict measuredMask, float offset,
+                                float* __restrict out, int n) {
     for (int x = 0; x < n; ++x) {
         const float q = smoothed[x] + offset;
         const float own = dataSum[x] / std::max(dataWeight[x], FLT_MIN) + offset;
         const bool qUsable = q > 0.0f && q <= FLT_MAX, ownUsable = own > 0.0f && own <= FLT_MAX;
         const float chosen = qUsable ? q : ownUsable ? own : 0.0f;
-        out[x] = measuredWeight[x] >= 0.5f ? chosen : 0.0f;
+        out[x] = measuredMask[x] ? chosen : 0.0f;
     }
 }
 
@@ -582,8 +578,8 @@ void GlobalSmoother::Buffers::finish(const GlobalSmootherParams& params, ColorVi
         const float* value = median3    ? medianRow(y, scratch)
                              : filtered ? medianValue.data() + row
                                         : output.value.data() + at;
-        outputRow(value, output.dataSum.data() + at, output.dataWeight.data() + at,
-                  measuredWeight.data() + row, offsetF, out.depthMeters.pixels.data() + row, width);
+        outputRow(value, output.dataSum.data() + at, output.dataWeight.data() + at, measuredMask.data() + row,
+                  offsetF, out.depthMeters.pixels.data() + row, width);
     });
 }
 
