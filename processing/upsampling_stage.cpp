@@ -38,11 +38,12 @@ GlobalSmootherParams globalSmootherParams(const UpsamplingParams& params, double
         p.outputDepth = {100.0f * s * std::sqrt(f), 3, 64.0f, 0.2f * noise};
         return p;
     }
-    // Real time: the sweeps that buy the least error left out (MAD on the four scenes +4 % on average, the
-    // cost about halved): one colour and two depth sweeps at the sensor, and at the output a single pass
+    // Real time: the sweeps that buy the least error left out, so that it runs faster than OpenCV's fast
+    // global smoother at every factor (MAD on the four scenes about 4 % above the quality mode's passes
+    // with one sweep each): one colour and one depth sweep at the sensor, and at the output a single pass
     // whose colour term, stronger than the quality mode's guard, does what the colour pass did there.
     p.sensorColor = {6.0f * s, 1, 24.0f, 0.0f};
-    p.sensorDepth = {10.0f * s, 2, 0.0f, 0.4f * noise};
+    p.sensorDepth = {15.0f * s, 1, 0.0f, 0.4f * noise};
     p.outputDepth = {100.0f * s * std::sqrt(f), 1, 32.0f, 0.24f * noise};
     return p;
 }
