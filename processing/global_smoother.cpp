@@ -268,23 +268,31 @@ DC_VECTOR_KERNEL void ratioRow(const float* __restrict sum, const float* __restr
     }
 }
 
-// One pass: its weights from the colour distances and the previous pass's depth, the data smoothed, and
-// the result (smoothed data over smoothed weight) as the grid's new depth. A pixel that no weight reached
-// keeps its own data (0, the mean, where it has none).
-void runPass(Grid& g, const SmootherPass& pass) {
-    if (pass.iterations <= 0)
-        return;
+// A pass's smoothing: its weights from the colour distances and the previous pass's depth, and the data
+// and its weight smoothed into sum and weight.
+void smoothPass(Grid& g, const SmootherPass& pass) {
     passWeights(g, pass);
     for (int t = 0; t < pass.iterations; ++t) {
         const float scale = iterationLambda(pass.lambda, t, pass.iterations);
         horizontalSweep(g, scale, t == 0);
         verticalSweep(g, scale);
     }
-    rowsInParallel(g.height, [&](int y) {
-        const std::size_t i = g.index(0, y);
-        ratioRow(g.sum.data() + i, g.weight.data() + i, g.dataSum.data() + i, g.dataWeight.data() + i,
-                 g.value.data() + i, g.width);
-    });
+}
+
+// Row y of a pass's result (smoothed data over smoothed weight) into `value`. A pixel that no weight
+// reached keeps its own data (0, the mean, where it has none).
+void resultRow(const Grid& g, int y, float* value) {
+    const std::size_t i = g.index(0, y);
+    ratioRow(g.sum.data() + i, g.weight.data() + i, g.dataSum.data() + i, g.dataWeight.data() + i, value,
+             g.width);
+}
+
+// One pass, its result as the grid's new depth.
+void runPass(Grid& g, const SmootherPass& pass) {
+    if (pass.iterations <= 0)
+        return;
+    smoothPass(g, pass);
+    rowsInParallel(g.height, [&](int y) { resultRow(g, y, g.value.data() + g.index(0, y)); });
 }
 
 // The data as the grid's depth, for the first pass's weights (which use colour only) and for a grid that no
@@ -341,12 +349,16 @@ struct GlobalSmoother::Buffers {
     std::vector<float> rows;                // sensor rows interpolated to the output width: 4 quantities
     std::vector<std::uint8_t> measuredMask; // 1 where the measured samples' bilinear weight is >= 0.5
     std::vector<float> medianValue;         // a final median other than 3 x 3, output size
+    // The output's last pass left its result in sum and weight: finish() computes it row by row as it
+    // needs it, rather than writing a plane and reading it back.
+    bool resultPending = false;
 
     bool prepareSensor(const frame::DepthData& depth);
     void reduceGuide(ColorView guide);
     void interpolateRows();
     void upsampleSensor(float footprintSigma);
-    const float* medianRow(int y, std::vector<float>& scratch) const;
+    void runOutputPasses(const GlobalSmootherParams& params);
+    const float* medianRow(int y0, int y, std::vector<float>& scratch);
     bool otherMedian(const GlobalSmootherParams& params, ColorView guide);
     void finish(const GlobalSmootherParams& params, ColorView guide, frame::DepthData& out);
 };
@@ -533,18 +545,28 @@ DC_VECTOR_KERNEL void medianOfColumns(const float* __restrict lo, const float* _
 
 } // namespace
 
-// The 3 x 3 median of row y of the output's value into `scratch` (4 rows of width + 2), returned.
-const float* GlobalSmoother::Buffers::medianRow(int y, std::vector<float>& scratch) const {
-    const int width = output.width;
+// The 3 x 3 median of row y of the output's depth into `scratch` (7 rows of width + 2), returned; a thread
+// runs its rows in order from y0. A pending result is computed into the first three scratch rows, each row
+// once per run: row r in slot r % 3, so that at row y they hold rows y - 1, y and y + 1.
+const float* GlobalSmoother::Buffers::medianRow(int y0, int y, std::vector<float>& scratch) {
+    const int width = output.width, last = output.height - 1;
     const std::size_t n = static_cast<std::size_t>(width) + 2;
-    scratch.resize(4 * n);
-    const float* row = output.value.data() + output.index(0, y);
-    const float* above = y > 0 ? row - output.paddedWidth : row;
-    const float* below = y + 1 < output.height ? row + output.paddedWidth : row;
-    sortColumns(above, row, below, scratch.data(), scratch.data() + n, scratch.data() + 2 * n, width);
-    medianOfColumns(scratch.data(), scratch.data() + n, scratch.data() + 2 * n, scratch.data() + 3 * n,
-                    width);
-    return scratch.data() + 3 * n;
+    scratch.resize(7 * n);
+    const auto row = [&](int r) {
+        r = std::clamp(r, 0, last);
+        return resultPending ? scratch.data() + static_cast<std::size_t>(r % 3) * n
+                             : output.value.data() + output.index(0, r);
+    };
+    if (resultPending)
+        for (int r = y == y0 ? y - 1 : y + 1; r <= y + 1; ++r)
+            resultRow(output, std::clamp(r, 0, last), row(r));
+    const float* above = row(y - 1);
+    const float* centre = row(y);
+    const float* below = row(y + 1);
+    float* sorted = scratch.data() + 3 * n;
+    sortColumns(above, centre, below, sorted, sorted + n, sorted + 2 * n, width);
+    medianOfColumns(sorted, sorted + n, sorted + 2 * n, sorted + 3 * n, width);
+    return sorted + 3 * n;
 }
 
 // The median filters other than 3 x 3 into medianValue; false when the value goes out unfiltered.
@@ -570,17 +592,39 @@ void GlobalSmoother::Buffers::finish(const GlobalSmootherParams& params, ColorVi
     const int width = output.width, height = output.height;
     const bool median3 =
         params.weightedMedianRadius <= 0 && params.medianPixels == 3 && width >= 3 && height >= 3;
+    if (!median3 && resultPending) {
+        rowsInParallel(height,
+                       [&](int y) { resultRow(output, y, output.value.data() + output.index(0, y)); });
+        resultPending = false;
+    }
     const bool filtered = !median3 && otherMedian(params, guide);
     const auto offsetF = static_cast<float>(offset);
-    rowsInParallel(height, [&](int y) {
+    parallelRanges(height, kRowsPerPiece, [&](int y0, int y1) {
         thread_local std::vector<float> scratch;
-        const std::size_t row = static_cast<std::size_t>(y) * width, at = output.index(0, y);
-        const float* value = median3    ? medianRow(y, scratch)
-                             : filtered ? medianValue.data() + row
-                                        : output.value.data() + at;
-        outputRow(value, output.dataSum.data() + at, output.dataWeight.data() + at, measuredMask.data() + row,
-                  offsetF, out.depthMeters.pixels.data() + row, width);
+        for (int y = y0; y < y1; ++y) {
+            const std::size_t row = static_cast<std::size_t>(y) * width, at = output.index(0, y);
+            const float* value = median3    ? medianRow(y0, y, scratch)
+                                 : filtered ? medianValue.data() + row
+                                            : output.value.data() + at;
+            outputRow(value, output.dataSum.data() + at, output.dataWeight.data() + at,
+                      measuredMask.data() + row, offsetF, out.depthMeters.pixels.data() + row, width);
+        }
     });
+}
+
+// The output's passes; the last one's result is left pending for finish().
+void GlobalSmoother::Buffers::runOutputPasses(const GlobalSmootherParams& params) {
+    const bool colour = params.outputColor.iterations > 0;
+    const int total =
+        colour + (params.outputDepth.iterations > 0 ? std::max(params.outputDepthRounds, 0) : 0);
+    for (int i = 0; i < total; ++i) {
+        const SmootherPass& pass = colour && i == 0 ? params.outputColor : params.outputDepth;
+        if (i + 1 < total)
+            runPass(output, pass);
+        else
+            smoothPass(output, pass);
+    }
+    resultPending = total > 0;
 }
 
 GlobalSmoother::GlobalSmoother() : buffers_(std::make_unique<Buffers>()) {}
@@ -608,9 +652,7 @@ frame::DepthData GlobalSmoother::upsample(const frame::DepthData& depth, ColorVi
     for (int round = 0; round < params.sensorDepthRounds; ++round)
         runPass(b.sensor, params.sensorDepth);
     b.upsampleSensor(params.footprintSigma);
-    runPass(b.output, params.outputColor);
-    for (int round = 0; round < params.outputDepthRounds; ++round)
-        runPass(b.output, params.outputDepth);
+    b.runOutputPasses(params);
     b.finish(params, guide, out);
     return out;
 }
