@@ -346,7 +346,6 @@ struct GlobalSmoother::Buffers {
     std::vector<std::uint8_t> sensorValid;  // 1 where the input was measured
     std::vector<std::uint8_t> sensorGuide;  // the guide reduced to the sensor's size, packed
     BilinearTaps tapsX, tapsY;              // output pixel -> sensor samples
-    std::vector<float> rows;                // sensor rows interpolated to the output width: 4 quantities
     std::vector<std::uint8_t> measuredMask; // 1 where the measured samples' bilinear weight is >= 0.5
     std::vector<float> medianValue;         // a final median other than 3 x 3, output size
     // The output's last pass left its result in sum and weight: finish() computes it row by row as it
@@ -355,7 +354,13 @@ struct GlobalSmoother::Buffers {
 
     bool prepareSensor(const frame::DepthData& depth);
     void reduceGuide(ColorView guide);
-    void interpolateRows();
+    // A thread's last two sensor rows interpolated to the output width (see interpolatedRow).
+    struct InterpolatedRows {
+        std::vector<float> data;
+        int row[2] = {-1, -1};
+        int older = 0;
+    };
+    const float* interpolatedRow(int r, InterpolatedRows& cache) const;
     void upsampleSensor(float footprintSigma);
     void runOutputPasses(const GlobalSmootherParams& params);
     const float* medianRow(int y0, int y, std::vector<float>& scratch);
@@ -431,20 +436,25 @@ DC_VECTOR_KERNEL void interpolateRow(const float* __restrict z, const std::uint8
 
 } // namespace
 
-// Each sensor row interpolated horizontally to the output width, as 4 rows: the measured values' weighted
-// sum and weight, and their minimum and maximum over the two taps (for the footprint's spread). Doing this
-// once per sensor row, not per output row, divides its cost by the upsampling factor.
-void GlobalSmoother::Buffers::interpolateRows() {
+// Sensor row r interpolated horizontally to the output width, as 4 rows: the measured values' weighted sum
+// and weight, and their minimum and maximum over the two taps (for the footprint's spread). A thread keeps
+// the last two rows it interpolated: its output rows run in order and consecutive ones share sensor rows, so
+// each sensor row is interpolated about once per thread, and no plane of them is written and read back.
+const float* GlobalSmoother::Buffers::interpolatedRow(int r, InterpolatedRows& cache) const {
     const int width = output.width;
     const std::size_t rowSize = static_cast<std::size_t>(width) * 4;
-    rows.resize(rowSize * sensor.height);
-    rowsInParallel(sensor.height, [&](int r) {
-        float* sum = rows.data() + rowSize * r;
-        interpolateRow(sensor.value.data() + sensor.index(0, r),
-                       sensorValid.data() + static_cast<std::size_t>(r) * sensor.width, tapsX.first.data(),
-                       tapsX.second.data(), tapsX.weight.data(), sum, sum + width, sum + 2 * width,
-                       sum + 3 * width, width);
-    });
+    for (int k = 0; k < 2; ++k)
+        if (cache.row[k] == r)
+            return cache.data.data() + rowSize * k;
+    const int k = cache.older;
+    cache.older = 1 - k;
+    cache.row[k] = r;
+    float* sum = cache.data.data() + rowSize * k;
+    interpolateRow(sensor.value.data() + sensor.index(0, r),
+                   sensorValid.data() + static_cast<std::size_t>(r) * sensor.width, tapsX.first.data(),
+                   tapsX.second.data(), tapsX.weight.data(), sum, sum + width, sum + 2 * width,
+                   sum + 3 * width, width);
+    return sum;
 }
 
 namespace {
@@ -475,17 +485,20 @@ void GlobalSmoother::Buffers::upsampleSensor(float footprintSigma) {
     const int width = output.width;
     tapsX = bilinearTaps(sensor.width, width);
     tapsY = bilinearTaps(sensor.height, output.height);
-    interpolateRows();
     measuredMask.resize(static_cast<std::size_t>(width) * output.height);
     const float inverseSigma = footprintSigma > 0.0f ? 1.0f / footprintSigma : 0.0f;
-    const std::size_t rowSize = static_cast<std::size_t>(width) * 4;
-    rowsInParallel(output.height, [&](int y) {
-        const float* a = rows.data() + rowSize * tapsY.first[y];
-        const float* b = rows.data() + rowSize * tapsY.second[y];
-        const std::size_t at = output.index(0, y);
-        combineRows(a, b, tapsY.weight[y], inverseSigma, output.dataSum.data() + at,
-                    output.dataWeight.data() + at, output.value.data() + at,
-                    measuredMask.data() + static_cast<std::size_t>(y) * width, width);
+    parallelRanges(output.height, kRowsPerPiece, [&](int y0, int y1) {
+        thread_local InterpolatedRows cache;
+        cache = {std::move(cache.data), {-1, -1}, 0}; // rows of an earlier frame or piece are stale
+        cache.data.resize(static_cast<std::size_t>(width) * 8);
+        for (int y = y0; y < y1; ++y) {
+            const float* a = interpolatedRow(tapsY.first[y], cache);
+            const float* b = interpolatedRow(tapsY.second[y], cache);
+            const std::size_t at = output.index(0, y);
+            combineRows(a, b, tapsY.weight[y], inverseSigma, output.dataSum.data() + at,
+                        output.dataWeight.data() + at, output.value.data() + at,
+                        measuredMask.data() + static_cast<std::size_t>(y) * width, width);
+        }
     });
 }
 
