@@ -257,14 +257,15 @@ void verticalSweep(Grid& g, float scale) {
 }
 
 // value = sum / weight, or the data's own ratio where the smoothed weight is too small to divide by (0 where
-// there is no data either). Branch-free over restrict pointers, so that it vectorises.
+// there is no data either). Branch-free over restrict pointers, so that it vectorises, with one division.
 DC_VECTOR_KERNEL void ratioRow(const float* __restrict sum, const float* __restrict weight,
                                const float* __restrict dataSum, const float* __restrict dataWeight,
                                float* __restrict value, int n) {
     for (int x = 0; x < n; ++x) {
-        const float own = dataSum[x] / std::max(dataWeight[x], FLT_MIN);
-        const float smoothed = sum[x] / std::max(weight[x], kMinSolvedWeight);
-        value[x] = weight[x] > kMinSolvedWeight ? smoothed : dataWeight[x] > 0.0f ? own : 0.0f;
+        const bool solved = weight[x] > kMinSolvedWeight;
+        const float numerator = solved ? sum[x] : dataSum[x];
+        const float denominator = solved ? weight[x] : std::max(dataWeight[x], FLT_MIN);
+        value[x] = solved || dataWeight[x] > 0.0f ? numerator / denominator : 0.0f;
     }
 }
 
