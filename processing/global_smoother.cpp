@@ -52,6 +52,7 @@ struct Grid {
     std::vector<float> edgeH, edgeV;        // neighbour weights of the pass: to the right, below
     std::vector<float> value;               // the last pass's depth, centred
     ColorView guide;                        // the colour at the grid's size (not owned)
+    bool uniformWeight = false;             // every pixel's data weight is the same: weight is not solved
 
     std::size_t index(int x, int y) const { return static_cast<std::size_t>(y) * paddedWidth + x; }
 };
@@ -181,35 +182,50 @@ void passWeights(Grid& g, const SmootherPass& pass) {
     });
 }
 
-// One horizontal sweep of the kLanes rows of block b: to lines, solved, back. `lines` holds 2 x kLanes rows.
-// The pass's first sweep reads the data itself (fromData), which spares copying it into sum and weight.
-template <class V>
+// The planes a sweep solves: the data and its weight, or the data alone where the weight is the same
+// everywhere (g.uniformWeight), since smoothing a constant leaves it unchanged.
+std::size_t planesOf(const Grid& g) {
+    return g.uniformWeight ? 1 : 2;
+}
+
+// One horizontal sweep of the kLanes rows of block b over K planes: to lines, solved, back. `lines` holds
+// 2 x kLanes rows. The pass's first sweep reads the data itself (fromData), which spares copying it into
+// sum and weight.
+template <class V, std::size_t K>
 void horizontalBlock(Grid& g, int b, float scale, bool fromData, float* lines, float* forward) {
     const std::size_t stride = static_cast<std::size_t>(g.paddedWidth), lineSize = stride * kLanes;
     const std::size_t first = static_cast<std::size_t>(b) * lineSize;
-    float* s = lines;
-    float* w = lines + lineSize;
-    interleave<true>((fromData ? g.dataSum : g.sum).data() + first, stride, g.paddedWidth, s);
-    interleave<true>((fromData ? g.dataWeight : g.weight).data() + first, stride, g.paddedWidth, w);
-    solvePathLaplacian<V, 2, kLanes * sizeof(float) / sizeof(V)>(g.width, g.edgeH.data() + first, {s, w},
-                                                                 kLanes, scale, forward);
-    interleave<false>(g.sum.data() + first, stride, g.paddedWidth, s);
-    interleave<false>(g.weight.data() + first, stride, g.paddedWidth, w);
+    const std::array<std::vector<float>*, 2> from = {fromData ? &g.dataSum : &g.sum,
+                                                     fromData ? &g.dataWeight : &g.weight};
+    const std::array<std::vector<float>*, 2> to = {&g.sum, &g.weight};
+    std::array<float*, K> rhs;
+    for (std::size_t k = 0; k < K; ++k) {
+        rhs[k] = lines + k * lineSize;
+        interleave<true>(from[k]->data() + first, stride, g.paddedWidth, rhs[k]);
+    }
+    solvePathLaplacian<V, K, kLanes * sizeof(float) / sizeof(V)>(g.width, g.edgeH.data() + first, rhs, kLanes,
+                                                                 scale, forward);
+    for (std::size_t k = 0; k < K; ++k)
+        interleave<false>(to[k]->data() + first, stride, g.paddedWidth, rhs[k]);
 }
 
-// One vertical sweep of the kLanes columns from x0, in place.
-template <class V> void verticalStrip(Grid& g, std::size_t x0, float scale, float* forward) {
-    solvePathLaplacian<V, 2, kLanes * sizeof(float) / sizeof(V)>(g.height, g.edgeV.data() + x0,
-                                                                 {g.sum.data() + x0, g.weight.data() + x0},
+// One vertical sweep of the kLanes columns from x0 over K planes, in place.
+template <class V, std::size_t K> void verticalStrip(Grid& g, std::size_t x0, float scale, float* forward) {
+    std::array<float*, K> rhs;
+    rhs[0] = g.sum.data() + x0;
+    if constexpr (K > 1)
+        rhs[1] = g.weight.data() + x0;
+    solvePathLaplacian<V, K, kLanes * sizeof(float) / sizeof(V)>(g.height, g.edgeV.data() + x0, rhs,
                                                                  g.paddedWidth, scale, forward);
 }
 
 // The sweeps built twice: for x86-64-v3 (AVX2, FMA) with Octets, and for any x86-64 with Quads, the widths
 // each instruction set has registers for (a wider generic vector is split through memory). flatten
-// inlines the solve into each, so that it is compiled for that instruction set.
+// inlines the solve into each, so that it is compiled for that instruction set. Each for one plane and for
+// two.
 struct Sweeps {
-    void (*horizontal)(Grid&, int b, float scale, bool fromData, float* lines);
-    void (*vertical)(Grid&, std::size_t x0, float scale);
+    void (*horizontal[2])(Grid&, int b, float scale, bool fromData, float* lines);
+    void (*vertical[2])(Grid&, std::size_t x0, float scale);
 };
 
 // Each thread's scratch for the elimination's multipliers: n elements of kLanes floats.
@@ -219,40 +235,46 @@ float* forwardScratch(int n) {
     return forward.data();
 }
 
+template <std::size_t K>
 [[gnu::target("arch=x86-64-v3"), gnu::flatten]] void horizontalAvx2(Grid& g, int b, float scale,
                                                                     bool fromData, float* lines) {
-    horizontalBlock<Octet>(g, b, scale, fromData, lines, forwardScratch(g.paddedWidth));
+    horizontalBlock<Octet, K>(g, b, scale, fromData, lines, forwardScratch(g.paddedWidth));
 }
+template <std::size_t K>
 [[gnu::target("arch=x86-64-v3"), gnu::flatten]] void verticalAvx2(Grid& g, std::size_t x0, float scale) {
-    verticalStrip<Octet>(g, x0, scale, forwardScratch(g.paddedHeight));
+    verticalStrip<Octet, K>(g, x0, scale, forwardScratch(g.paddedHeight));
 }
+template <std::size_t K>
 [[gnu::flatten]] void horizontalSse2(Grid& g, int b, float scale, bool fromData, float* lines) {
-    horizontalBlock<Quad>(g, b, scale, fromData, lines, forwardScratch(g.paddedWidth));
+    horizontalBlock<Quad, K>(g, b, scale, fromData, lines, forwardScratch(g.paddedWidth));
 }
-[[gnu::flatten]] void verticalSse2(Grid& g, std::size_t x0, float scale) {
-    verticalStrip<Quad>(g, x0, scale, forwardScratch(g.paddedHeight));
+template <std::size_t K> [[gnu::flatten]] void verticalSse2(Grid& g, std::size_t x0, float scale) {
+    verticalStrip<Quad, K>(g, x0, scale, forwardScratch(g.paddedHeight));
 }
 
 const Sweeps& sweeps() {
-    static const Sweeps chosen = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")
-                                     ? Sweeps{horizontalAvx2, verticalAvx2}
-                                     : Sweeps{horizontalSse2, verticalSse2};
+    static const Sweeps chosen =
+        __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma")
+            ? Sweeps{{horizontalAvx2<1>, horizontalAvx2<2>}, {verticalAvx2<1>, verticalAvx2<2>}}
+            : Sweeps{{horizontalSse2<1>, horizontalSse2<2>}, {verticalSse2<1>, verticalSse2<2>}};
     return chosen;
 }
 
 void horizontalSweep(Grid& g, float scale, bool fromData) {
+    const auto sweep = sweeps().horizontal[planesOf(g) - 1];
     parallelRanges(g.paddedHeight / kLanes, 1, [&](int b0, int b1) {
         thread_local std::vector<float> lines;
         lines.resize(2 * static_cast<std::size_t>(g.paddedWidth) * kLanes);
         for (int b = b0; b < b1; ++b)
-            sweeps().horizontal(g, b, scale, fromData, lines.data());
+            sweep(g, b, scale, fromData, lines.data());
     });
 }
 
 void verticalSweep(Grid& g, float scale) {
+    const auto sweep = sweeps().vertical[planesOf(g) - 1];
     parallelRanges(g.paddedWidth / kLanes, 1, [&](int s0, int s1) {
         for (int s = s0; s < s1; ++s)
-            sweeps().vertical(g, static_cast<std::size_t>(s) * kLanes, scale);
+            sweep(g, static_cast<std::size_t>(s) * kLanes, scale);
     });
 }
 
@@ -284,8 +306,8 @@ void smoothPass(Grid& g, const SmootherPass& pass) {
 // reached keeps its own data (0, the mean, where it has none).
 void resultRow(const Grid& g, int y, float* value) {
     const std::size_t i = g.index(0, y);
-    ratioRow(g.sum.data() + i, g.weight.data() + i, g.dataSum.data() + i, g.dataWeight.data() + i, value,
-             g.width);
+    const float* weight = (g.uniformWeight ? g.dataWeight : g.weight).data() + i;
+    ratioRow(g.sum.data() + i, weight, g.dataSum.data() + i, g.dataWeight.data() + i, value, g.width);
 }
 
 // One pass, its result as the grid's new depth.
@@ -391,6 +413,7 @@ bool GlobalSmoother::Buffers::prepareSensor(const frame::DepthData& depth) {
     // A frame measured only with low confidence still has a shape: trust every sample alike then.
     const bool trustAll = total <= 0.0;
     offset = trustAll ? validSum / validCount : sum / total;
+    float lowest = FLT_MAX, highest = 0.0f;
     for (int y = 0; y < d.height; ++y)
         for (int x = 0; x < d.width; ++x) {
             const std::size_t i = static_cast<std::size_t>(y) * d.width + x, at = sensor.index(x, y);
@@ -400,7 +423,11 @@ bool GlobalSmoother::Buffers::prepareSensor(const frame::DepthData& depth) {
                                 : kConfidenceWeight[std::min<int>(depth.confidence.pixels[i], 2)];
             sensor.dataWeight[at] = w;
             sensor.dataSum[at] = w > 0.0f ? static_cast<float>(w * (d.pixels[i] - offset)) : 0.0f;
+            lowest = std::min(lowest, w);
+            highest = std::max(highest, w);
         }
+    // Every sample measured and weighted alike (dense data): its weight need not be smoothed.
+    sensor.uniformWeight = lowest == highest;
     return true;
 }
 
