@@ -103,10 +103,10 @@ Plane<float> oursGlobal(const Problem& p, processing::UpsamplingMethod method) {
 }
 
 // The quality mode with its output rounded to whole disparity levels, on the benchmark's scenes only (the
-// synthetic scene's meters are left as they are): the ground truth and the published output images it is
-// compared with (RCG's) are 8-bit, and on a slanted surface a continuous estimate differs from the truth's
-// integer staircase by a quarter level on average where a rounded one mostly matches it. A reading aid for
-// the comparison with RCG, not a mode: depthcloud's depths are not quantised.
+// synthetic scene's meters are left as they are): the ground truth holds whole levels (8-bit), as published
+// output images such as RCG's as a rule do, and on a slanted surface a continuous estimate differs from the
+// truth's integer staircase by a quarter level on average where a rounded one mostly matches it. A reading
+// aid for the comparison with RCG, not a mode: depthcloud's depths are not quantised.
 Plane<float> oursQualityWholeLevels(const Problem& p) {
     Plane<float> out = oursGlobal(p, processing::UpsamplingMethod::Quality);
     if (p.units == "levels")
