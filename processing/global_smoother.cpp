@@ -114,35 +114,52 @@ float neighbourWeight(float colorSquared, float inverseColorSigmaSquared, float 
     return 1.0f / ((1.0f + s2 * s2) * (q * q));
 }
 
-void transpose(Quad& a, Quad& b, Quad& c, Quad& d) {
-    const Quad ab0 = __builtin_shufflevector(a, b, 0, 4, 1, 5),
-               ab1 = __builtin_shufflevector(a, b, 2, 6, 3, 7);
-    const Quad cd0 = __builtin_shufflevector(c, d, 0, 4, 1, 5),
-               cd1 = __builtin_shufflevector(c, d, 2, 6, 3, 7);
-    a = __builtin_shufflevector(ab0, cd0, 0, 1, 4, 5);
-    b = __builtin_shufflevector(ab0, cd0, 2, 3, 6, 7);
-    c = __builtin_shufflevector(ab1, cd1, 0, 1, 4, 5);
-    d = __builtin_shufflevector(ab1, cd1, 2, 3, 6, 7);
+void transpose(Quad (&q)[4]) {
+    const Quad ab0 = __builtin_shufflevector(q[0], q[1], 0, 4, 1, 5),
+               ab1 = __builtin_shufflevector(q[0], q[1], 2, 6, 3, 7);
+    const Quad cd0 = __builtin_shufflevector(q[2], q[3], 0, 4, 1, 5),
+               cd1 = __builtin_shufflevector(q[2], q[3], 2, 6, 3, 7);
+    q[0] = __builtin_shufflevector(ab0, cd0, 0, 1, 4, 5);
+    q[1] = __builtin_shufflevector(ab0, cd0, 2, 3, 6, 7);
+    q[2] = __builtin_shufflevector(ab1, cd1, 0, 1, 4, 5);
+    q[3] = __builtin_shufflevector(ab1, cd1, 2, 3, 6, 7);
 }
 
-// kLanes rows of a plane (row stride `stride`) to and from lines[x * kLanes + lane], in 4 x 4 tiles.
-template <bool ToLines> void interleave(float* rows, std::size_t stride, int paddedWidth, float* lines) {
-    for (int quad = 0; quad < kLanes / 4; ++quad)
-        for (int x = 0; x < paddedWidth; x += 4) {
-            float* tile[4];
-            float* line[4];
-            for (int k = 0; k < 4; ++k) {
-                tile[k] = rows + (4 * quad + k) * stride + x;
-                line[k] = lines + static_cast<std::size_t>(x + k) * kLanes + 4 * quad;
-            }
-            float* const* from = ToLines ? tile : line;
-            float* const* to = ToLines ? line : tile;
-            Quad q[4];
-            for (int k = 0; k < 4; ++k)
-                std::memcpy(&q[k], from[k], sizeof(Quad));
-            transpose(q[0], q[1], q[2], q[3]);
-            for (int k = 0; k < 4; ++k)
-                std::memcpy(to[k], &q[k], sizeof(Quad));
+// The 8 x 8 transpose as AVX does it: pairs of rows interleaved, then pairs of pairs, then the halves of
+// rows k and k + 4 exchanged (24 shuffles for 64 values, where 4 x 4 tiles take 32).
+void transpose(Octet (&r)[8]) {
+    Octet t[8], u[8];
+    for (int k = 0; k < 8; k += 2) {
+        t[k] = __builtin_shufflevector(r[k], r[k + 1], 0, 8, 1, 9, 4, 12, 5, 13);
+        t[k + 1] = __builtin_shufflevector(r[k], r[k + 1], 2, 10, 3, 11, 6, 14, 7, 15);
+    }
+    for (int k = 0; k < 8; k += 4)
+        for (int j = 0; j < 2; ++j) {
+            u[k + 2 * j] = __builtin_shufflevector(t[k + j], t[k + j + 2], 0, 1, 8, 9, 4, 5, 12, 13);
+            u[k + 2 * j + 1] = __builtin_shufflevector(t[k + j], t[k + j + 2], 2, 3, 10, 11, 6, 7, 14, 15);
+        }
+    for (int k = 0; k < 4; ++k) {
+        r[k] = __builtin_shufflevector(u[k], u[k + 4], 0, 1, 2, 3, 8, 9, 10, 11);
+        r[k + 4] = __builtin_shufflevector(u[k], u[k + 4], 4, 5, 6, 7, 12, 13, 14, 15);
+    }
+}
+
+// kLanes rows of a plane (row stride `stride`) to and from lines[x * kLanes + lane], in square tiles of
+// V's lanes (4 x 4 or 8 x 8).
+template <class V, bool ToLines>
+void interleave(float* rows, std::size_t stride, int paddedWidth, float* lines) {
+    constexpr int n = sizeof(V) / sizeof(float);
+    for (int group = 0; group < kLanes / n; ++group)
+        for (int x = 0; x < paddedWidth; x += n) {
+            V tile[n];
+            for (int k = 0; k < n; ++k)
+                loadLanes(tile[k], ToLines ? rows + (n * group + k) * stride + x
+                                           : lines + static_cast<std::size_t>(x + k) * kLanes + n * group);
+            transpose(tile);
+            for (int k = 0; k < n; ++k)
+                storeLanes(ToLines ? lines + static_cast<std::size_t>(x + k) * kLanes + n * group
+                                   : rows + (n * group + k) * stride + x,
+                           tile[k]);
         }
 }
 
@@ -167,7 +184,7 @@ DC_VECTOR_KERNEL void weightBlock(Grid& g, int b, float inverseColor, float inve
         for (int x = 0; x < g.width; ++x)
             v[x] = neighbourWeight(cv[x], inverseColor, below[x] - z[x], inverseDepth);
     }
-    interleave<true>(rows, stride, g.paddedWidth, g.edgeH.data() + b * kLanes * stride);
+    interleave<Quad, true>(rows, stride, g.paddedWidth, g.edgeH.data() + b * kLanes * stride);
 }
 
 // The pass's neighbour weights, computed once per pass (not once per sweep).
@@ -201,12 +218,12 @@ void horizontalBlock(Grid& g, int b, float scale, bool fromData, float* lines, f
     std::array<float*, K> rhs;
     for (std::size_t k = 0; k < K; ++k) {
         rhs[k] = lines + k * lineSize;
-        interleave<true>(from[k]->data() + first, stride, g.paddedWidth, rhs[k]);
+        interleave<V, true>(from[k]->data() + first, stride, g.paddedWidth, rhs[k]);
     }
     solvePathLaplacian<V, K, kLanes * sizeof(float) / sizeof(V)>(g.width, g.edgeH.data() + first, rhs, kLanes,
                                                                  scale, forward);
     for (std::size_t k = 0; k < K; ++k)
-        interleave<false>(to[k]->data() + first, stride, g.paddedWidth, rhs[k]);
+        interleave<V, false>(to[k]->data() + first, stride, g.paddedWidth, rhs[k]);
 }
 
 // One vertical sweep of the kLanes columns from x0 over K planes, in place.
