@@ -388,6 +388,7 @@ struct GlobalSmoother::Buffers {
     BilinearTaps tapsX, tapsY;              // output pixel -> sensor samples
     std::vector<std::uint8_t> measuredMask; // 1 where the measured samples' bilinear weight is >= 0.5
     std::vector<float> medianValue;         // a final median other than 3 x 3, output size
+    std::vector<float> unsnapped;           // the output depth before snapEdges()
     // The output's last pass left its result in sum and weight: finish() computes it row by row as it
     // needs it, rather than writing a plane and reading it back.
     bool resultPending = false;
@@ -406,6 +407,7 @@ struct GlobalSmoother::Buffers {
     const float* medianRow(int y0, int y, std::vector<float>& scratch);
     bool otherMedian(const GlobalSmootherParams& params, ColorView guide);
     void finish(const GlobalSmootherParams& params, ColorView guide, frame::DepthData& out);
+    void snapEdges(float range, frame::DepthData& out);
 };
 
 bool GlobalSmoother::Buffers::prepareSensor(const frame::DepthData& depth) {
@@ -685,6 +687,55 @@ void GlobalSmoother::Buffers::runOutputPasses(const GlobalSmootherParams& params
     resultPending = total > 0;
 }
 
+namespace {
+
+// The minimum and maximum of each column's measured depths (> 0) over rows a, b, c, at x + 1 for column x;
+// the row's end columns are repeated once beyond it. A column with none has lo = FLT_MAX, hi = 0.
+DC_VECTOR_KERNEL void columnRange(const float* __restrict a, const float* __restrict b,
+                                  const float* __restrict c, float* __restrict lo, float* __restrict hi,
+                                  int n) {
+    for (int x = 0; x < n; ++x) {
+        const float pa = a[x] > 0.0f ? a[x] : FLT_MAX, pb = b[x] > 0.0f ? b[x] : FLT_MAX,
+                    pc = c[x] > 0.0f ? c[x] : FLT_MAX;
+        lo[x + 1] = std::min(std::min(pa, pb), pc);
+        hi[x + 1] = std::max(std::max(std::max(a[x], b[x]), c[x]), 0.0f);
+    }
+    for (float* p : {lo, hi}) {
+        p[0] = p[1];
+        p[n + 1] = p[n];
+    }
+}
+
+// Each measured pixel of `row` whose 3 x 3 range exceeds `range` to the nearer end of it (kept at a tie).
+DC_VECTOR_KERNEL void snapRow(const float* __restrict lo, const float* __restrict hi,
+                              const float* __restrict row, float* __restrict out, float range, int n) {
+    for (int x = 0; x < n; ++x) {
+        const float low = std::min(std::min(lo[x], lo[x + 1]), lo[x + 2]);
+        const float high = std::max(std::max(hi[x], hi[x + 1]), hi[x + 2]);
+        const float v = row[x], below = v - low, above = high - v;
+        const float snapped = below < above ? low : above < below ? high : v;
+        out[x] = v > 0.0f && high - low > range ? snapped : v;
+    }
+}
+
+} // namespace
+
+void GlobalSmoother::Buffers::snapEdges(float range, frame::DepthData& out) {
+    const int width = out.depthMeters.width, last = out.depthMeters.height - 1;
+    unsnapped = out.depthMeters.pixels;
+    const std::size_t n = static_cast<std::size_t>(width) + 2;
+    rowsInParallel(last + 1, [&](int y) {
+        thread_local std::vector<float> scratch;
+        scratch.resize(2 * n);
+        const auto row = [&](int r) {
+            return unsnapped.data() + static_cast<std::size_t>(std::clamp(r, 0, last)) * width;
+        };
+        columnRange(row(y - 1), row(y), row(y + 1), scratch.data(), scratch.data() + n, width);
+        snapRow(scratch.data(), scratch.data() + n, row(y),
+                out.depthMeters.pixels.data() + static_cast<std::size_t>(y) * width, range, width);
+    });
+}
+
 GlobalSmoother::GlobalSmoother() : buffers_(std::make_unique<Buffers>()) {}
 GlobalSmoother::~GlobalSmoother() = default;
 GlobalSmoother::GlobalSmoother(GlobalSmoother&&) noexcept = default;
@@ -712,6 +763,8 @@ frame::DepthData GlobalSmoother::upsample(const frame::DepthData& depth, ColorVi
     b.upsampleSensor(params.footprintSigma);
     b.runOutputPasses(params);
     b.finish(params, guide, out);
+    if (params.edgeSnapRange > 0.0f)
+        b.snapEdges(params.edgeSnapRange, out);
     return out;
 }
 

@@ -36,6 +36,8 @@ GlobalSmootherParams globalSmootherParams(const UpsamplingParams& params, double
         // the colour pass's reach grows with it.
         p.outputColor = {3.0f * s * std::pow(f, 2.5f), 3, 4.0f, 0.0f};
         p.outputDepth = {100.0f * s * std::sqrt(f), 3, 64.0f, 0.2f * noise};
+        // A 3 x 3 range of 6 noise sigmas is an edge (what noise leaves after smoothing spans far less).
+        p.edgeSnapRange = 6.0f * noise;
         return p;
     }
     // Real time: the sweeps that buy the least error left out, so that it runs faster than OpenCV's fast

@@ -129,6 +129,28 @@ TEST(GlobalSmoother, AReusedSmootherForgetsTheLastFrame) {
     }
 }
 
+// A step of 0.5 m under a single-colour guide: interpolation and smoothing leave a ramp; the edge snap (the
+// quality mode's last step) moves each pixel whose 3 x 3 neighbourhood spans the range to the nearer end,
+// which steepens the ramp: fewer pixels are left in between.
+TEST(GlobalSmoother, EdgeSnapSteepensABlurredStep) {
+    Case c = texturedCase(20, 10, 4, 1.0, 0.0);
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 20; ++x)
+            c.depth.depthMeters.at(x, y) = x < 10 ? 1.0f : 1.5f;
+    std::fill(c.guide.begin(), c.guide.end(), std::uint8_t{128});
+    const auto between = [](const Plane<float>& out) {
+        return std::count_if(out.pixels.begin(), out.pixels.end(), [](float d) {
+            return std::abs(d - 1.0f) > 1e-3f && std::abs(d - 1.5f) > 1e-3f;
+        });
+    };
+    GlobalSmootherParams p = paramsFor(c, 0.005);
+    const Plane<float> ramp = run(c, p);
+    p.edgeSnapRange = 0.03f;
+    const Plane<float> snapped = run(c, p);
+    EXPECT_LT(between(snapped), between(ramp) * 3 / 4);
+    expectMatchesReference(c, p);
+}
+
 TEST(GlobalSmoother, ConstantDepthStaysExactlyConstant) {
     Case c = texturedCase(33, 21, 3, 1.0, 0.0);
     for (float& d : c.depth.depthMeters.pixels)
