@@ -55,6 +55,10 @@ struct GlobalSmootherParams {
     // centre, so that a pixel at an edge takes the depth of the side whose colour it has.
     int weightedMedianRadius = 0;
     float weightedMedianSigma = 8.0f;
+    // Last, where the measured depths of a pixel's 3 x 3 neighbourhood span more than this (a depth edge,
+    // not noise), the pixel takes the nearer of their minimum and maximum: an edge that the smoothing left
+    // as a ramp a few pixels wide becomes a step again. 0 = off.
+    float edgeSnapRange = 0.0f;
 };
 
 // Upsamples a depth map to the size of a colour guide (8-bit, three channels in any order: only distances

@@ -25,20 +25,31 @@ GuidedFilterParams guidedFilterParams(const UpsamplingParams& params) {
 GlobalSmootherParams globalSmootherParams(const UpsamplingParams& params, double factor, float depthNoise) {
     const float s = std::max(params.smoothness, 0.0f);
     const float noise = std::max(depthNoise, 0.0f);
-    const double f = std::max(factor, 1.0);
+    const auto f = static_cast<float>(std::max(factor, 1.0));
     GlobalSmootherParams p;
-    p.sensorColor = {6.0f * s, 2, 24.0f, 0.0f};
-    p.sensorDepth = {10.0f * s, 3, 0.0f, 0.4f * noise};
-    // The output passes bridge the band of about `factor` pixels that interpolation blurs at an edge: the
-    // colour pass's reach grows with it.
-    p.outputColor = {3.0f * s * static_cast<float>(std::pow(f, 2.5)), 1, 4.0f, 0.0f};
-    p.outputDepth = {100.0f * s * static_cast<float>(std::sqrt(f)), 1, 64.0f, 0.2f * noise};
     p.footprintSigma = 0.2f * noise;
     p.medianPixels = 3;
     if (params.method == UpsamplingMethod::Quality) {
-        p.outputColor.iterations = 3;
-        p.outputDepth.iterations = 3;
+        p.sensorColor = {6.0f * s, 2, 24.0f, 0.0f};
+        p.sensorDepth = {10.0f * s, 3, 0.0f, 0.4f * noise};
+        // The output passes bridge the band of about `factor` pixels that interpolation blurs at an edge:
+        // the colour pass's reach grows with it.
+        p.outputColor = {3.0f * s * std::pow(f, 2.5f), 3, 4.0f, 0.0f};
+        p.outputDepth = {100.0f * s * std::sqrt(f), 3, 64.0f, 0.2f * noise};
+        // A 3 x 3 range of 6 noise sigmas is an edge (what noise leaves after smoothing spans far less).
+        p.edgeSnapRange = 6.0f * noise;
+        return p;
     }
+    // Real time: the sweeps that buy the least error left out, so that it runs faster than OpenCV's fast
+    // global smoother at every factor (MAD on the four scenes about 4 % above the quality mode's passes
+    // with one sweep each): one colour and one depth sweep at the sensor, and at the output a single pass
+    // whose colour term, stronger than the quality mode's guard, does what the colour pass did there.
+    p.sensorColor = {6.0f * s, 1, 24.0f, 0.0f};
+    p.sensorDepth = {15.0f * s, 1, 0.0f, 0.4f * noise};
+    // Beyond x4 the interpolated depth says less about where an edge runs, and the colour term, tightened
+    // with the factor, says more (tuned at x8 and x16).
+    const float colorSigma = 32.0f * std::min(1.0f, std::pow(4.0f / f, 0.7f));
+    p.outputDepth = {100.0f * s * std::sqrt(f), 1, colorSigma, 0.24f * noise};
     return p;
 }
 

@@ -83,7 +83,7 @@ TEST(BenchUpsample, WritesTableJsonAndChartOnTinyInputs) {
 
     std::ifstream in(json);
     const nlohmann::json report = nlohmann::json::parse(in);
-    ASSERT_EQ(report["middlebury"].size(), 4u * 13u) << "4 factors x 13 methods";
+    ASSERT_EQ(report["middlebury"].size(), 4u * 14u) << "4 factors x 14 methods";
     for (const auto& row : report["middlebury"]) {
         EXPECT_GE(row["mad"].get<double>(), 0.0);
         EXPECT_GT(row["medianMs"].get<double>(), 0.0);
@@ -95,6 +95,11 @@ TEST(BenchUpsample, WritesTableJsonAndChartOnTinyInputs) {
     for (const auto& c : (*global)["cases"])
         EXPECT_NEAR(c["ratio"].get<double>(), c["mad"].get<double>() / c["rcgMad"].get<double>(), 1e-9);
     EXPECT_EQ((*global)["cases"][3]["rcgMad"].get<double>(), 4.0) << "x16 read from the file";
+    const auto wholeLevels =
+        std::find_if(report["middlebury"].begin(), report["middlebury"].end(),
+                     [](const nlohmann::json& r) { return r["method"] == "ours quality, whole levels"; });
+    ASSERT_NE(wholeLevels, report["middlebury"].end())
+        << "the quality mode rounded, beside RCG's 8-bit outputs";
     EXPECT_TRUE(report["chain"]["fast"].contains("medianMs"));
     EXPECT_TRUE(report["chain"]["global"].contains("medianMs")) << "the chain with the global smoother too";
     EXPECT_GT(report["smoothing"]["flickerReduction"].get<double>(), 1.0);

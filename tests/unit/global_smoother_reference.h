@@ -161,6 +161,29 @@ inline double medianOf9(std::vector<double> v) {
     return v[4];
 }
 
+// Each measured pixel whose 3 x 3 neighbourhood's measured depths span more than `range` takes the nearer
+// of their minimum and maximum (kept at a tie); the image's edge rows and columns repeated beyond it.
+inline frame::Plane<double> snapEdges(const frame::Plane<double>& in, double range) {
+    frame::Plane<double> out = in;
+    for (int y = 0; y < in.height; ++y)
+        for (int x = 0; x < in.width; ++x) {
+            double low = std::numeric_limits<double>::infinity(), high = 0.0;
+            for (int dy = -1; dy <= 1; ++dy)
+                for (int dx = -1; dx <= 1; ++dx) {
+                    const double v =
+                        in.at(std::clamp(x + dx, 0, in.width - 1), std::clamp(y + dy, 0, in.height - 1));
+                    if (v > 0.0) {
+                        low = std::min(low, v);
+                        high = std::max(high, v);
+                    }
+                }
+            const double v = in.at(x, y);
+            if (v > 0.0 && high - low > range && v - low != high - v)
+                out.at(x, y) = v - low < high - v ? low : high;
+        }
+    return out;
+}
+
 inline frame::Plane<double> upsample(const frame::DepthData& depth, ColorView guide,
                                      const GlobalSmootherParams& p) {
     const frame::Plane<float>& d = depth.depthMeters;
@@ -249,7 +272,7 @@ inline frame::Plane<double> upsample(const frame::DepthData& depth, ColorView gu
                            : measured(own)                   ? own
                                                              : 0.0;
         }
-    return out;
+    return p.edgeSnapRange > 0.0f ? snapEdges(out, p.edgeSnapRange) : out;
 }
 
 } // namespace dc::processing::reference

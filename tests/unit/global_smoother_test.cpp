@@ -105,6 +105,52 @@ TEST(GlobalSmoother, QualityModeMatchesTheReference) {
     expectMatchesReference(c, globalSmootherParams(up, 4.0, 0.005f));
 }
 
+TEST(GlobalSmoother, MatchesTheReferenceAtXEight) {
+    const Case c = texturedCase(16, 12, 8, 2.0, 0.3);
+    expectMatchesReference(c, paramsFor(c, 0.005));
+}
+
+// Buffers and per-thread scratch kept from one frame to the next must not carry anything over: after a
+// first frame, a second, different one of the same size still matches the reference, on frames with many
+// rows (run in pieces on the thread pool) and with one sensor row (whose every output row reads it).
+TEST(GlobalSmoother, AReusedSmootherForgetsTheLastFrame) {
+    for (const int rows : {30, 1}) {
+        const Case first = texturedCase(40, rows, 3, 2.0, 0.3, 1);
+        const Case second = texturedCase(40, rows, 3, 1.0, 0.5, 2);
+        GlobalSmoother reused;
+        reused.upsample(first.depth, first.view(), paramsFor(first, 0.005));
+        const Plane<float> out =
+            reused.upsample(second.depth, second.view(), paramsFor(second, 0.005)).depthMeters;
+        const Plane<double> ref = reference::upsample(second.depth, second.view(), paramsFor(second, 0.005));
+        ASSERT_EQ(out.pixels.size(), ref.pixels.size());
+        for (std::size_t i = 0; i < ref.pixels.size(); ++i)
+            ASSERT_NEAR(out.pixels[i], ref.pixels[i], 1e-4 * std::abs(ref.pixels[i]))
+                << rows << " rows, pixel " << i;
+    }
+}
+
+// A step of 0.5 m under a single-colour guide: interpolation and smoothing leave a ramp; the edge snap (the
+// quality mode's last step) moves each pixel whose 3 x 3 neighbourhood spans the range to the nearer end,
+// which steepens the ramp: fewer pixels are left in between.
+TEST(GlobalSmoother, EdgeSnapSteepensABlurredStep) {
+    Case c = texturedCase(20, 10, 4, 1.0, 0.0);
+    for (int y = 0; y < 10; ++y)
+        for (int x = 0; x < 20; ++x)
+            c.depth.depthMeters.at(x, y) = x < 10 ? 1.0f : 1.5f;
+    std::fill(c.guide.begin(), c.guide.end(), std::uint8_t{128});
+    const auto between = [](const Plane<float>& out) {
+        return std::count_if(out.pixels.begin(), out.pixels.end(), [](float d) {
+            return std::abs(d - 1.0f) > 1e-3f && std::abs(d - 1.5f) > 1e-3f;
+        });
+    };
+    GlobalSmootherParams p = paramsFor(c, 0.005);
+    const Plane<float> ramp = run(c, p);
+    p.edgeSnapRange = 0.03f;
+    const Plane<float> snapped = run(c, p);
+    EXPECT_LT(between(snapped), between(ramp) * 3 / 4);
+    expectMatchesReference(c, p);
+}
+
 TEST(GlobalSmoother, ConstantDepthStaysExactlyConstant) {
     Case c = texturedCase(33, 21, 3, 1.0, 0.0);
     for (float& d : c.depth.depthMeters.pixels)
