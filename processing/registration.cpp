@@ -278,6 +278,25 @@ bool registrable(const frame::Plane<float>& depth, const frame::RigCalibration& 
 
 } // namespace
 
+namespace {
+
+// The colour pixel nearest sample i's projection when the colour camera sees the sample there (nothing
+// nearer hides it), else kUnseen.
+std::int32_t seenPixel(const ColourView& view, std::size_t i, int colourWidth, int colourHeight) {
+    const Projected& p = view.points[i];
+    if (!(p.z > 0.0f) || !insideImage(p, colourWidth, colourHeight))
+        return Registration::kUnseen;
+    // Projections start at -0.5, so truncating x + 0.5 rounds to the nearest pixel.
+    const auto x = std::min(static_cast<std::int32_t>(p.x + 0.5f), colourWidth - 1);
+    const auto y = std::min(static_cast<std::int32_t>(p.y + 0.5f), colourHeight - 1);
+    const std::int32_t pixel = y * colourWidth + x;
+    return p.z > view.zbuffer[static_cast<std::size_t>(pixel)] + sameSurfaceMeters(p.z)
+               ? Registration::kUnseen
+               : pixel;
+}
+
+} // namespace
+
 Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
                            int colourWidth, int colourHeight) {
     Registration out{colourWidth, colourHeight,
@@ -286,19 +305,10 @@ Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCal
     if (!registrable(depth, rig, colourWidth, colourHeight))
         return out;
     const ColourView view = viewFromColour(depth, rig, colourWidth, colourHeight);
-    parallelRanges(static_cast<int>(view.points.size()), 4096, [&](int begin, int end) {
+    parallelRanges(static_cast<int>(depth.pixels.size()), 4096, [&](int begin, int end) {
         for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
-            const Projected& p = view.points[i];
-            if (!(p.z > 0.0f) || !insideImage(p, colourWidth, colourHeight))
-                continue;
-            // Projections start at -0.5, so truncating x + 0.5 rounds to the nearest pixel.
-            const auto x = std::min(static_cast<std::int32_t>(p.x + 0.5f), colourWidth - 1);
-            const auto y = std::min(static_cast<std::int32_t>(p.y + 0.5f), colourHeight - 1);
-            const std::int32_t pixel = y * colourWidth + x;
-            if (p.z > view.zbuffer[static_cast<std::size_t>(pixel)] + sameSurfaceMeters(p.z))
-                continue;
-            out.colourPixel[i] = pixel;
-            out.seen.pixels[i] = 1;
+            out.colourPixel[i] = seenPixel(view, i, colourWidth, colourHeight);
+            out.seen.pixels[i] = out.colourPixel[i] != Registration::kUnseen;
         }
     });
     return out;
@@ -331,8 +341,10 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
                 nullptr};
     auto colours = std::make_shared<RgbImage>(
         RgbImage{depth.width, depth.height, std::vector<std::uint8_t>(depth.pixels.size() * 3, kUnseenGray)});
-    const bool usable = table.use(image);
-    Registration r = registerDepth(depth, *frame.rig, usable ? image.width : 0, usable ? image.height : 0);
+    auto seen = std::make_shared<frame::Plane<std::uint8_t>>(depth.width, depth.height);
+    if (!table.use(image) || !registrable(depth, *frame.rig, image.width, image.height))
+        return {std::move(colours), std::move(seen)};
+    const ColourView view = viewFromColour(depth, *frame.rig, image.width, image.height);
     const auto store = [&pixels = colours->pixels](std::size_t i, std::uint32_t rgba) {
         pixels[i * 3] = static_cast<std::uint8_t>(rgba);
         pixels[i * 3 + 1] = static_cast<std::uint8_t>(rgba >> 8);
@@ -341,24 +353,25 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
     // The table fills itself as colours are first met, which one thread must do alone: the threads look up
     // what it holds and leave the few samples it lacks (most only in a scene's first frames) for after.
     std::mutex missedMutex;
-    std::vector<std::size_t> missed;
-    parallelRanges(static_cast<int>(r.colourPixel.size()), 4096, [&](int begin, int end) {
-        std::vector<std::size_t> mine;
+    std::vector<std::pair<std::size_t, std::int32_t>> missed;
+    parallelRanges(static_cast<int>(depth.pixels.size()), 4096, [&](int begin, int end) {
+        std::vector<std::pair<std::size_t, std::int32_t>> mine;
         for (auto i = static_cast<std::size_t>(begin); i < static_cast<std::size_t>(end); ++i) {
-            const std::int32_t pixel = r.colourPixel[i];
+            const std::int32_t pixel = seenPixel(view, i, image.width, image.height);
             if (pixel == Registration::kUnseen)
                 continue;
+            seen->pixels[i] = 1;
             if (const auto rgba = table.filledRgba(pixel % image.width, pixel / image.width))
                 store(i, *rgba);
             else
-                mine.push_back(i);
+                mine.emplace_back(i, pixel);
         }
         const std::lock_guard lock(missedMutex);
         missed.insert(missed.end(), mine.begin(), mine.end());
     });
-    for (const std::size_t i : missed)
-        store(i, table.rgba(r.colourPixel[i] % image.width, r.colourPixel[i] / image.width));
-    return {std::move(colours), std::make_shared<const frame::Plane<std::uint8_t>>(std::move(r.seen))};
+    for (const auto& [i, pixel] : missed)
+        store(i, table.rgba(pixel % image.width, pixel / image.width));
+    return {std::move(colours), std::move(seen)};
 }
 
 RgbaImage seenColourOverlay(const PointColours& colours) {
