@@ -225,10 +225,15 @@ std::vector<float> nearestDepth(const ProjectedDepth& projected, int depthWidth,
                 const int y1 = std::min(bandEnd - 1, floorOf(p.y + p.half));
                 const int x0 = std::max(0, ceilOf(p.x - p.half));
                 const int x1 = std::min(width - 1, floorOf(p.x + p.half));
-                for (int y = y0; y <= y1; ++y) {
-                    float* line = &zbuffer[static_cast<std::size_t>(y) * static_cast<std::size_t>(width)];
-                    for (int x = x0; x <= x1; ++x)
-                        line[x] = std::min(line[x], p.z);
+                // Column by column: a square is two or three pixels wide, too few for vector lanes, and the
+                // vectorised row loop's wide stores stall the next sample's loads of the pixels they share.
+                for (int x = x0; x <= x1; ++x) {
+                    float* column = &zbuffer[static_cast<std::size_t>(x)];
+                    for (int y = y0; y <= y1; ++y) {
+                        float& nearest =
+                            column[static_cast<std::size_t>(y) * static_cast<std::size_t>(width)];
+                        nearest = std::min(nearest, p.z);
+                    }
                 }
             }
         }
