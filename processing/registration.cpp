@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <memory>
 #include <mutex>
 #include <utility>
 
@@ -207,12 +208,17 @@ ProjectedDepth projectAll(const frame::Plane<float>& depth, const frame::CameraM
 }
 
 // The nearest depth over each colour pixel, every sample covering its square. Each piece owns a band of
-// colour rows, so no two threads write one pixel.
-std::vector<float> nearestDepth(const ProjectedDepth& projected, int depthWidth, int width, int height) {
-    std::vector<float> zbuffer(static_cast<std::size_t>(width) * height,
-                               std::numeric_limits<float>::infinity());
+// colour rows, so no two threads write one pixel; each also clears its band, which would otherwise be
+// megabytes cleared on one thread.
+std::unique_ptr<float[]> nearestDepth(const ProjectedDepth& projected, int depthWidth, int width,
+                                      int height) {
+    auto zbuffer = std::make_unique_for_overwrite<float[]>(static_cast<std::size_t>(width) * height);
     const std::size_t rowLength = static_cast<std::size_t>(depthWidth);
     parallelRanges(height, 32, [&](int bandBegin, int bandEnd) {
+        const auto row = [width](int y) {
+            return static_cast<std::size_t>(y) * static_cast<std::size_t>(width);
+        };
+        std::fill(&zbuffer[row(bandBegin)], &zbuffer[row(bandEnd)], std::numeric_limits<float>::infinity());
         for (std::size_t v = 0; v < projected.rowReach.size(); ++v) {
             const auto [low, high] = projected.rowReach[v];
             if (high < bandBegin || low >= bandEnd)
@@ -228,7 +234,7 @@ std::vector<float> nearestDepth(const ProjectedDepth& projected, int depthWidth,
                 // Column by column: a square is two or three pixels wide, too few for vector lanes, and the
                 // vectorised row loop's wide stores stall the next sample's loads of the pixels they share.
                 for (int x = x0; x <= x1; ++x) {
-                    float* column = &zbuffer[static_cast<std::size_t>(x)];
+                    float* column = zbuffer.get() + x;
                     for (int y = y0; y <= y1; ++y) {
                         float& nearest =
                             column[static_cast<std::size_t>(y) * static_cast<std::size_t>(width)];
@@ -256,7 +262,7 @@ namespace {
 // The depth samples in the colour sensor's image, and the z-buffer they make there.
 struct ColourView {
     std::vector<Projected> points;
-    std::vector<float> zbuffer;
+    std::unique_ptr<float[]> zbuffer; // the colour image's size
 };
 
 ColourView viewFromColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig, int colourWidth,
@@ -271,7 +277,7 @@ ColourView viewFromColour(const frame::Plane<float>& depth, const frame::RigCali
     const ColourTarget target{colourCamera, 2.0 * pixelsPerDepthPixel + 1.0, lensRadius2(colourCamera),
                               pixelsPerDepthPixel};
     ProjectedDepth projected = projectAll(depth, depthCamera, target, rig.depthToColour);
-    std::vector<float> zbuffer = nearestDepth(projected, depth.width, colourWidth, colourHeight);
+    std::unique_ptr<float[]> zbuffer = nearestDepth(projected, depth.width, colourWidth, colourHeight);
     return {std::move(projected.points), std::move(zbuffer)};
 }
 
@@ -323,13 +329,10 @@ frame::Plane<float> alignDepthToColour(const frame::Plane<float>& depth, const f
                                        int colourWidth, int colourHeight) {
     if (!registrable(depth, rig, colourWidth, colourHeight))
         return frame::Plane<float>(std::max(colourWidth, 0), std::max(colourHeight, 0));
-    ColourView view = viewFromColour(depth, rig, colourWidth, colourHeight);
-    frame::Plane<float> aligned;
-    aligned.width = colourWidth;
-    aligned.height = colourHeight;
-    for (float& z : view.zbuffer)
-        z = std::isfinite(z) ? z : 0.0f;
-    aligned.pixels = std::move(view.zbuffer);
+    const ColourView view = viewFromColour(depth, rig, colourWidth, colourHeight);
+    frame::Plane<float> aligned(colourWidth, colourHeight);
+    std::transform(view.zbuffer.get(), view.zbuffer.get() + aligned.pixels.size(), aligned.pixels.begin(),
+                   [](float z) { return std::isfinite(z) ? z : 0.0f; });
     return aligned;
 }
 
