@@ -196,12 +196,15 @@ ProjectedDepth projectAll(const frame::Plane<float>& depth, const frame::CameraM
             const std::size_t first = static_cast<std::size_t>(v) * static_cast<std::size_t>(depth.width);
             Projected* points = &out.points[first];
             row(&depth.pixels[first], rays, depth.width, floatTarget, lens, points);
-            auto& [low, high] = out.rowReach[static_cast<std::size_t>(v)];
+            // ceil and floor are monotonic: the row's extremes are rounded once, not each sample's.
+            float low = std::numeric_limits<float>::infinity(), high = -low;
             for (int u = 0; u < depth.width; ++u)
                 if (points[u].z > 0.0f) {
-                    low = std::min(low, ceilOf(points[u].y - points[u].half));
-                    high = std::max(high, floorOf(points[u].y + points[u].half));
+                    low = std::min(low, points[u].y - points[u].half);
+                    high = std::max(high, points[u].y + points[u].half);
                 }
+            if (low <= high)
+                out.rowReach[static_cast<std::size_t>(v)] = {ceilOf(low), floorOf(high)};
         }
     });
     return out;
