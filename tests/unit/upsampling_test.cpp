@@ -142,12 +142,10 @@ TEST(UpsamplingStage, OnATwoSensorRigScoresWithinTenPercentOfOneCamera) {
     const DepthError registered = rigUpsamplingError(scene, scene.frame, UpsamplingMethod::Fast);
     ASSERT_GT(registered.count, 50000u);
     EXPECT_LT(registered.mad, 1.1 * ideal.mad) << "rig " << registered.mad << " m, one camera " << ideal.mad;
-    // The global smoother trusts the guide's edges more, and the registered guide's edges follow the sensor's
-    // coarse depth at discontinuities: about 24 % above the ideal guide (the colour sensor's own view: about
-    // 59 %). Bounded here so that losing the registration fails.
+    // The real-time global smoother meets it too (about 4 % above the ideal guide).
     const DepthError idealGlobal = rigUpsamplingError(scene, single, UpsamplingMethod::Global);
     const DepthError registeredGlobal = rigUpsamplingError(scene, scene.frame, UpsamplingMethod::Global);
-    EXPECT_LT(registeredGlobal.mad, 1.35 * idealGlobal.mad)
+    EXPECT_LT(registeredGlobal.mad, 1.1 * idealGlobal.mad)
         << "rig " << registeredGlobal.mad << " m, one camera " << idealGlobal.mad;
 }
 
