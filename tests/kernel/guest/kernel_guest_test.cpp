@@ -53,26 +53,22 @@ CaptureResult nextCapture(Device& device) {
 }
 
 // Checks a depth map against the feeder's pattern: every pixel must be exactly raw * scale of the raw
-// value the feeder sent for that frame. Returns the frame number, or -1 with `why` set.
-long patternFrame(const frame::Plane<float>& meters, float scale, std::string& why) {
+// value the feeder sent for that frame. Returns the frame number, or what differs.
+Expected<long> patternFrame(const frame::Plane<float>& meters, float scale) {
     const auto raw = [&](int x, int y) { return std::lround(meters.at(x, y) / scale); };
-    if (meters.width != kWidth || meters.height != kHeight) {
-        why = "size " + std::to_string(meters.width) + "x" + std::to_string(meters.height);
-        return -1;
-    }
+    if (meters.width != kWidth || meters.height != kHeight)
+        return Error{"size " + std::to_string(meters.width) + "x" + std::to_string(meters.height)};
     const auto frame = static_cast<unsigned>(raw(0, 0) | (raw(1, 0) << 16));
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const std::uint16_t expected =
                 dc_pattern(static_cast<unsigned>(x), static_cast<unsigned>(y), frame);
-            if (meters.at(x, y) != static_cast<float>(expected) * scale) {
-                why = "pixel (" + std::to_string(x) + "," + std::to_string(y) + ") of frame " +
-                      std::to_string(frame) + " is " + std::to_string(meters.at(x, y)) +
-                      " m, the feeder sent " + std::to_string(expected);
-                return -1;
-            }
+            if (meters.at(x, y) != static_cast<float>(expected) * scale)
+                return Error{"pixel (" + std::to_string(x) + "," + std::to_string(y) + ") of frame " +
+                             std::to_string(frame) + " is " + std::to_string(meters.at(x, y)) +
+                             " m, the feeder sent " + std::to_string(expected)};
         }
-    return frame;
+    return static_cast<long>(frame);
 }
 
 // Captures `count` frames from a device and checks each against the pattern; frame numbers must rise.
@@ -86,12 +82,11 @@ void expectPatternFrames(Device& device, int count, float scale) {
             std::printf("capture error (frame dropped): %s\n", r.message.c_str());
             continue;
         }
-        std::string why;
-        const long frame = patternFrame(r.frame->sceneDepth->depthMeters, scale, why);
-        ASSERT_GE(frame, 0) << why;
-        EXPECT_GT(frame, last) << "frames arrive in order";
-        std::printf("frame %ld: pattern exact, age at capture %.1f ms\n", frame, frameAgeMs(*r.frame));
-        last = frame;
+        const Expected<long> frame = patternFrame(r.frame->sceneDepth->depthMeters, scale);
+        ASSERT_TRUE(frame) << frame.error().message;
+        EXPECT_GT(*frame, last) << "frames arrive in order";
+        std::printf("frame %ld: pattern exact, age at capture %.1f ms\n", *frame, frameAgeMs(*r.frame));
+        last = *frame;
         ++got;
     }
 }
@@ -171,12 +166,11 @@ TEST(Uvc, V4l2NodeStreamsTheFeedersPatternPixelForPixel) {
         ASSERT_EQ(d.kind, v4l2::DequeueResult::Kind::Buffer) << d.message;
         frame::Plane<float> units;
         v4l2::depthToMeters(d.buffer.bytes, kWidth, kHeight, f.bytesPerLine, 1.0f, units);
-        std::string why;
-        const long frame = patternFrame(units, 1.0f, why);
-        ASSERT_GE(frame, 0) << why;
-        EXPECT_GT(frame, last);
+        const Expected<long> frame = patternFrame(units, 1.0f);
+        ASSERT_TRUE(frame) << frame.error().message;
+        EXPECT_GT(*frame, last);
         EXPECT_TRUE(d.buffer.monotonicTimestamp);
-        last = frame;
+        last = *frame;
         ASSERT_EQ(node.requeue(d.buffer.index), 0);
         ++got;
     }
@@ -331,14 +325,13 @@ TEST(Uvc, DepthAndColourArrivePairedAndRegisteredWithTheCalibrationGiven) {
         EXPECT_EQ(f.cameraIntrinsics, rig.colour.intrinsics)
             << "a rig frame's image intrinsics: the colour sensor's";
         EXPECT_EQ(f.depthIntrinsics(), rig.depth.intrinsics);
-        std::string why;
-        const long number = patternFrame(f.sceneDepth->depthMeters, kD435Scale, why);
-        ASSERT_GE(number, 0) << why;
+        const Expected<long> number = patternFrame(f.sceneDepth->depthMeters, kD435Scale);
+        ASSERT_TRUE(number) << number.error().message;
         checked += expectRegisteredAsPredicted(f);
         if (rigFrames == 0)
             expectPointColoursFromThePredictedPixels(f);
         ++rigFrames;
-        std::printf("frame %ld: depth and colour paired, registered as the calibration predicts\n", number);
+        std::printf("frame %ld: depth and colour paired, registered as the calibration predicts\n", *number);
     }
     EXPECT_EQ(rigFrames, 5);
     EXPECT_GT(checked, 5 * 300) << "depth pixels compared with the prediction";
@@ -420,8 +413,8 @@ TEST(Uvc, UnplugDisconnectsAndReplugResumesWithoutARestart) {
     ASSERT_TRUE(waitFor([&] { return session.state() == DeviceState::Streaming; }, 60s)) << "reconnected";
     const auto frame = session.waitForFrame(20s);
     ASSERT_TRUE(frame.has_value()) << "frames flow again in the same process";
-    std::string why;
-    EXPECT_GE(patternFrame((*frame)->sceneDepth->depthMeters, kD435Scale, why), 0) << why;
+    const Expected<long> number = patternFrame((*frame)->sceneDepth->depthMeters, kD435Scale);
+    EXPECT_TRUE(number) << number.error().message;
     std::vector<DeviceState> states;
     for (const SessionEvent& e : session.drainEvents())
         if (e.kind == SessionEvent::Kind::StateChanged) {
