@@ -8,6 +8,7 @@
 #include "processing/quality.h"
 #include "processing/registration.h"
 #include "processing/upsampling_stage.h"
+#include "tests/small_rig.h"
 
 #include <gtest/gtest.h>
 
@@ -89,12 +90,11 @@ TEST(GuidedUpsampling, BeatsInterpolationAgainstExactDepth) {
     EXPECT_LT(coarse.mad, 2.0 * interpolated.mad);
 }
 
-// The rig's first frame at a test-friendly size: 212x120 depth, 640x360 colour.
+// The rig's first frame at a test-friendly size: the small rig's 212x120 depth, with a 640x360 colour image
+// (a guide finer than the depth, as upsampling has on real rigs).
 struct RigScene {
     devices::SyntheticDevice device{[] {
-        devices::SyntheticConfig c = devices::syntheticRigConfig();
-        c.depthWidth = 212;
-        c.depthHeight = 120;
+        devices::SyntheticConfig c = test::smallRigConfig();
         c.cameraWidth = 640;
         c.cameraHeight = 360;
         return c;
