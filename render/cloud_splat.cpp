@@ -30,13 +30,22 @@ std::uint32_t confidenceRgb(std::uint8_t level) {
     return level == 0 ? 0x0000ffu : level == 1 ? 0x00ff00u : level == 2 ? 0xff0000u : 0u;
 }
 
+constexpr std::uint32_t kOpaque = 0xff000000u;
+
 } // namespace
+
+bool CloudSplatter::makesPicture(const CloudParams& params) {
+    return params.anchors.empty();
+}
 
 template <class Project>
 void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, int height, Project&& project) {
     width_ = std::max(width, 0);
     height_ = std::max(height, 0);
     keys_.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
+    const bool picture = makesPicture(params);
+    picture_.resize(picture ? keys_.size() : 0);
+    background_ = packRgb(params.background.r, params.background.g, params.background.b) | kOpaque;
     splats_.resize(kPieces);
     for (auto& bands : splats_) {
         bands.resize(kBands);
@@ -76,8 +85,11 @@ void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, in
     });
     pointCount_ = projected;
     processing::parallelRanges(kBands, 1, [&](int first, int last) {
-        for (int band = first; band < last; ++band)
+        for (int band = first; band < last; ++band) {
             write(band, bandRows, size);
+            if (picture)
+                paint(band, bandRows); // while the band's keys are still in this core's cache
+        }
     });
 }
 
@@ -97,6 +109,13 @@ void CloudSplatter::write(int band, int bandRows, int size) {
                     row[x] = std::min(row[x], s.key);
             }
         }
+}
+
+void CloudSplatter::paint(int band, int bandRows) {
+    const std::size_t first = static_cast<std::size_t>(std::min(height_, band * bandRows)) * width_;
+    const std::size_t end = static_cast<std::size_t>(std::min(height_, (band + 1) * bandRows)) * width_;
+    for (std::size_t i = first; i < end; ++i)
+        picture_[i] = keys_[i] == kEmpty ? background_ : static_cast<std::uint32_t>(keys_[i]) | kOpaque;
 }
 
 void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Intrinsics& k,

@@ -25,6 +25,11 @@ struct CloudParams;
 // The result is one 64-bit key per pixel, bottom row first like a GL texture: the window depth's float
 // bits in the high word (positive floats order like their bits) and the colour (R | G << 8 | B << 16) in
 // the low word, so "nearest wins" is a plain minimum. kEmpty where no point landed.
+//
+// When nothing else is drawn into the cloud (no anchors, see makesPicture), the splat also finishes the
+// picture itself: RGBA8 pixels, the background where no point landed, ready to be uploaded as the
+// cloud's image. On llvmpipe that saves a GL pass that would decode the keys, and the upload of keys
+// twice the picture's size. With anchors, the keys go to that pass, which draws them with depth.
 class CloudSplatter {
 public:
     static constexpr std::uint64_t kEmpty = ~std::uint64_t{0};
@@ -37,7 +42,14 @@ public:
     void splatWorld(const std::vector<processing::WorldPoint>& points, std::size_t count,
                     const CloudParams& params, int width, int height);
 
+    // Whether the splat of `params` finishes the picture (picture() holds it) rather than leaving the
+    // keys to a GL pass.
+    static bool makesPicture(const CloudParams& params);
+
     const std::vector<std::uint64_t>& keys() const { return keys_; }
+    // The finished picture, bottom row first like keys(): A << 24 | B << 16 | G << 8 | R per pixel, i.e.
+    // RGBA bytes. Empty after a splat that did not make it.
+    const std::vector<std::uint32_t>& picture() const { return picture_; }
     int width() const { return width_; }
     int height() const { return height_; }
     // Points that were projected (kept by confidence and near limit), whether or not they landed inside.
@@ -54,8 +66,11 @@ private:
     template <class Project>
     void run(int sourceRows, const CloudParams& params, int width, int height, Project&& project);
     void write(int band, int bands, int pointSize);
+    void paint(int band, int bandRows);
 
     std::vector<std::uint64_t> keys_;
+    std::vector<std::uint32_t> picture_;
+    std::uint32_t background_ = 0; // RGBA of the picture where no point landed
     int width_ = 0;
     int height_ = 0;
     std::size_t pointCount_ = 0;

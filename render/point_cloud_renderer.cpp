@@ -169,8 +169,18 @@ void PointCloudRenderer::renderSplat(RenderTarget& target, const CloudSplatter& 
     lastPointCount_ = splat.pointCount();
     if (target.empty())
         return;
+    const bool fits = splat.width() == target.width() && splat.height() == target.height();
+    if (fits && !splat.picture().empty()) {
+        // The finished picture replaces the target's colour as it is: no pass, no clear. Nothing reads the
+        // target's depth until a pass with anchors clears it again.
+        glBindTexture(GL_TEXTURE_2D, target.colorTexture());
+        glPixelStorei(GL_UNPACK_ALIGNMENT, 4);
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, splat.width(), splat.height(), GL_RGBA, GL_UNSIGNED_BYTE,
+                        splat.picture().data());
+        return;
+    }
     beginPass(target, params.background, true);
-    if (splat.width() == target.width() && splat.height() == target.height() && splatProgram_) {
+    if (fits && splatProgram_) {
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, splatKeys_.id());
         glPixelStorei(GL_UNPACK_ALIGNMENT, 4);

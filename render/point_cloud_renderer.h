@@ -61,8 +61,9 @@ public:
     // Clears `target` to the background and draws the cloud; draws nothing without depth or with invalid
     // intrinsics. Leaves framebuffer 0 bound.
     void render(RenderTarget& target, const FrameTextures& textures, const CloudParams& params);
-    // Clears `target` and shows a cloud splatted on the CPU (its size must be the target's), then draws
-    // the anchors depth-tested among its points. Leaves framebuffer 0 bound.
+    // Shows a cloud splatted on the CPU (its size must be the target's): its finished picture uploaded
+    // as the target's colour, or, when it left keys for a pass, clears `target`, draws them and the
+    // anchors depth-tested among its points and leaves framebuffer 0 bound.
     void renderSplat(RenderTarget& target, const CloudSplatter& splat, const CloudParams& params);
     // Vertices submitted by the last render(): every depth sample, culled ones included.
     std::size_t lastPointCount() const { return lastPointCount_; }

@@ -96,6 +96,28 @@ TEST_P(CloudSplatTest, SplatAndGlPointsAgree) {
     EXPECT_GE(agreeing, coveredBoth * 99 / 100) << agreeing << " of " << coveredBoth << " pixels agree";
 }
 
+// Without anchors the splat finishes the picture on the CPU; with one the keys go through a GL pass. An
+// anchor far outside the view adds nothing to the image, so both ways must give the same pixels.
+TEST_P(CloudSplatTest, TheFinishedPictureIsTheImageTheKeysPassDraws) {
+    const std::vector<std::uint8_t> picture = drawSplat();
+    ASSERT_FALSE(splatter_.picture().empty()) << "no anchors: the splat finishes the picture";
+    const glm::vec4 outside = glm::inverse(params_.viewProjection) * glm::vec4(-4.0f, 0.0f, 0.5f, 1.0f);
+    params_.anchors = {glm::vec3(outside) / outside.w};
+    const std::vector<std::uint8_t> keys = drawSplat();
+    ASSERT_TRUE(splatter_.picture().empty()) << "an anchor: the keys go to the GL pass";
+    ASSERT_TRUE(noGlError());
+    ASSERT_EQ(picture.size(), keys.size());
+    int differing = 0, background = 0;
+    for (int y = 0; y < kHeight; ++y)
+        for (int x = 0; x < kWidth; ++x) {
+            differing += !(pixelAt(picture, kWidth, x, y) == pixelAt(keys, kWidth, x, y));
+            background += !covered(picture, x, y);
+        }
+    EXPECT_EQ(differing, 0);
+    EXPECT_GT(background, 0) << "the background shows where no point landed";
+    EXPECT_LT(background, kWidth * kHeight) << "points landed";
+}
+
 // The pixel (top row first, as readRgba returns them) a point of the depth camera's frame lands on.
 std::pair<int, int> pixelOf(const glm::mat4& viewProjection, const glm::vec3& point) {
     const glm::vec4 clip = viewProjection * glm::vec4(point, 1.0f);
