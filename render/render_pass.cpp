@@ -7,14 +7,15 @@ void beginPass(const RenderTarget& target, const glm::vec3& clearColor, bool dep
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_CULL_FACE);
-    if (depthTest) {
-        glEnable(GL_DEPTH_TEST);
-        glDepthFunc(GL_LESS);
-    } else {
-        glDisable(GL_DEPTH_TEST);
-    }
-    glDepthMask(GL_TRUE); // glClear leaves the depth buffer alone while writes are masked
     glClearColor(clearColor.r, clearColor.g, clearColor.b, 1.0f);
+    if (!depthTest) {
+        glDisable(GL_DEPTH_TEST);
+        glClear(GL_COLOR_BUFFER_BIT); // a pass without the depth test leaves the depth buffer alone
+        return;
+    }
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE); // glClear leaves the depth buffer alone while writes are masked
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }

@@ -18,20 +18,25 @@ struct PixelRect {
     int x = 0, y = 0, width = 0, height = 0;
 };
 
-// An offscreen framebuffer: an RGBA8 color texture (what the UI shows) and a depth renderbuffer (for the
-// cloud's depth test). Holds no GL object until the first resize(), so it can be built before a context.
+// Whether a target has a depth buffer: the cloud's depth test needs one; a 2D panel or the UI's own
+// composite does not, and each frame's clear would write it for nothing.
+enum class DepthBuffer { With, Without };
+
+// An offscreen framebuffer: an RGBA8 color texture (what the UI shows) and, unless left out, a depth
+// renderbuffer. Holds no GL object until the first resize(), so it can be built before a context.
 //
 // GL stores the color texture bottom row first: show it with ImGui::Image(id, size, {0, 1}, {1, 0}).
 // readRgba() and savePng() already return the image top row first.
 class RenderTarget {
 public:
-    explicit RenderTarget(Sampling sampling = Sampling::Linear) : sampling_(sampling) {}
+    explicit RenderTarget(Sampling sampling = Sampling::Linear, DepthBuffer depth = DepthBuffer::With)
+        : sampling_(sampling), hasDepth_(depth == DepthBuffer::With) {}
 
     // Reallocates the attachments for a new size; a no-op when the size is unchanged.
     Status resize(int width, int height);
     // Binds the framebuffer for drawing and sets the viewport to cover it.
     void bind() const;
-    // Binds it and clears colour and depth (colour components in [0, 1]).
+    // Binds it and clears colour and the depth buffer if it has one (colour components in [0, 1]).
     void bindAndClear(float r, float g, float b, float a = 1.0f) const;
     void setSampling(Sampling sampling);
 
@@ -57,6 +62,7 @@ private:
     gl::Texture color_;
     gl::Renderbuffer depth_;
     Sampling sampling_;
+    bool hasDepth_ = true;
     int width_ = 0;
     int height_ = 0;
 };

@@ -132,9 +132,9 @@ private:
     PanelRenderer panels_;
     AccumulatedPoints accumulated_;
     RenderTarget cloudTarget_;
-    RenderTarget depthTarget_{Sampling::Nearest};
-    RenderTarget confidenceTarget_{Sampling::Nearest};
-    RenderTarget depthOverCameraTarget_{Sampling::Nearest};
+    RenderTarget depthTarget_{Sampling::Nearest, DepthBuffer::Without};
+    RenderTarget confidenceTarget_{Sampling::Nearest, DepthBuffer::Without};
+    RenderTarget depthOverCameraTarget_{Sampling::Nearest, DepthBuffer::Without};
     RgbaTexture camera_;
     RgbaTexture infrared_;
     RgbaTexture fog_;

@@ -27,7 +27,7 @@ public:
 private:
     ImGuiContext* context_ = nullptr;
     bool rendererReady_ = false;
-    render::RenderTarget target_;
+    render::RenderTarget target_{render::Sampling::Linear, render::DepthBuffer::Without}; // as a window's
 };
 
 } // namespace dc::ui
