@@ -16,6 +16,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -162,9 +163,27 @@ Status saveScreenshot(GLFWwindow* window, const std::string& path) {
     return frame::writeRgbaPng(path, w, h, flipped.data());
 }
 
-void drawFrame(GLFWwindow* window, ui::Viewer& viewer, ui::InputQueue& input, double t) {
+// The time between two of the display's refreshes (60 Hz where the display does not say).
+Clock::duration refreshPeriod() {
+    const GLFWvidmode* mode = glfwGetVideoMode(glfwGetPrimaryMonitor());
+    const int hz = mode && mode->refreshRate > 0 ? mode->refreshRate : 60;
+    return std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / hz));
+}
+
+// How long the next frame may wait for the engine's next result: until a refresh period after the last
+// frame began. A GL that swaps without waiting for the display (software GL, or vsync off) would
+// otherwise redraw as fast as the cores allow, frames the display never shows; a new result still starts
+// the frame at once, and where the swap waits for the display this is already over.
+std::chrono::milliseconds waitBudget(Clock::time_point lastFrameStart, Clock::duration period) {
+    const auto left = lastFrameStart + period - Clock::now();
+    // Rounded up: a wait rounded down would let the frames come a little faster than the display.
+    return std::max(std::chrono::ceil<std::chrono::milliseconds>(left), std::chrono::milliseconds(0));
+}
+
+void drawFrame(GLFWwindow* window, ui::Viewer& viewer, ui::InputQueue& input, double t,
+               std::chrono::milliseconds wait) {
+    viewer.update(t, wait);
     glfwPollEvents();
-    viewer.update(t);
     const auto uiStart = Clock::now();
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
@@ -260,11 +279,17 @@ int runGui(const ViewerOptions& options) {
         instrument.start();
         devices::LiveDeviceWatcher cameras;
         const auto start = Clock::now();
+        const Clock::duration period = refreshPeriod();
+        Clock::time_point frameStart = start;
         for (int frame = 0;; ++frame) {
             if (auto listing = cameras.takeUpdate())
                 viewer.setLiveSources(cameraEntries(*listing));
-            drawFrame(window.get(), viewer, input.queue,
-                      std::chrono::duration<double>(Clock::now() - start).count());
+            const std::chrono::milliseconds wait = waitBudget(frameStart, period);
+            const auto now = Clock::now();
+            drawFrame(window.get(), viewer, input.queue, std::chrono::duration<double>(now - start).count(),
+                      wait);
+            frameStart = now + std::chrono::duration_cast<Clock::duration>(
+                                   std::chrono::duration<double, std::milli>(viewer.lastWaitMs()));
             for (const std::string& path : std::exchange(input.dropped, {}))
                 (void)viewer.openPath(path);
             // Closing the window ends the run like the last of --frames: --out still gets its files.

@@ -98,6 +98,7 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     else if (changed && shown_)
         next = instrument_.waitForResult(redoWait_, false);
     lastWaitMs_ = millisecondsSince(waitStart);
+    timeSeconds += lastWaitMs_ * 1e-3; // the view moves on to when the frame is drawn, not when it waited
     if (!next)
         next = instrument_.update();
     const bool fresh = next && (*next)->newFrame;

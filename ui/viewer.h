@@ -53,8 +53,8 @@ public:
     Viewer(engine::Instrument& instrument, render::ViewRenderer& renderer, Settings settings);
 
     // Once per UI frame, before drawUi(): states the demand, takes the newest result (waiting up to `wait`
-    // for one from a frame not shown yet), uploads it and renders what changed. Returns whether a new
-    // frame's result arrived.
+    // for one from a frame not shown yet), uploads it and renders what changed. `timeSeconds` is the time
+    // of the call (the view's motion adds the wait to it). Returns whether a new frame's result arrived.
     bool update(double timeSeconds, std::chrono::milliseconds wait = std::chrono::milliseconds(0));
     // The ImGui panels, status line and shortcuts (between ImGui::NewFrame and ImGui::Render).
     void drawUi();

@@ -229,6 +229,42 @@ TEST(AppWindow, RunsUnderXvfbAndShowsCloudDepthAndConfidence) {
     EXPECT_TRUE(fs::exists(home.str() + "/depthcloud/settings.json")) << "settings are saved on exit";
 }
 
+nlohmann::json readSummary(const std::string& dir) {
+    std::ifstream in(dir + "/summary.json");
+    return nlohmann::json::parse(in, nullptr, false);
+}
+
+// Xvfb's GL is llvmpipe: a camera-sized cloud goes the CPU splat path, the status line says so, and the
+// window shows more of the camera's frames than it drops.
+TEST(AppWindow, SoftwareGlDrawsA640x480CameraOnTheSplatPathAndKeepsUp) {
+    TempDir out, home;
+    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1280x800x24' " +
+                            binary() + " --source synthetic:640x480@30 --frames 300 --out " + out.str());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json summary = readSummary(out.str());
+    ASSERT_FALSE(summary.is_discarded());
+    EXPECT_EQ(summary["cloudPath"], "CPU splat (software GL)");
+    EXPECT_EQ(summary["depthWidth"], 640);
+    EXPECT_GT(summary["frames"].get<int>(), 0);
+    EXPECT_GE(summary["frames"].get<int>(), summary["framesDropped"].get<int>());
+}
+
+// llvmpipe's swap does not wait for the display, so the window paces itself: a paused replay, where no
+// new frame arrives, is drawn no faster than the display refreshes (Xvfb names no rate: 60 Hz).
+TEST(AppWindow, APausedReplayIsDrawnNoFasterThanTheDisplayRefreshes) {
+    TempDir out, home, work;
+    const std::string take = work.str() + "/take.dcrec";
+    ASSERT_EQ(run(binary() + " record --source synthetic:64x48 --frames 3 " + take).exitCode, 0);
+    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1280x800x24' " +
+                            binary() + " --source replay:" + take + ":paused --frames 90 --out " + out.str());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json summary = readSummary(out.str());
+    ASSERT_FALSE(summary.is_discarded());
+    const double uiFps = summary["uiFps"].get<double>();
+    EXPECT_GT(uiFps, 0.0);
+    EXPECT_LE(uiFps, 60.0) << "one frame per refresh period at most";
+}
+
 // Real X input through xdotool: a click on the depth panel zooms it over the window, P saves a snapshot,
 // Ctrl+Q quits, and the screenshot written at exit shows the zoomed panel with its full-width legend.
 TEST(AppWindow, ClicksAndKeysGoThroughTheRealWindow) {
