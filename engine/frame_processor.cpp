@@ -127,15 +127,22 @@ std::optional<processing::ShownFramePtr> FrameProcessor::process(const Work& wor
     processing::ShownFramePtr shown = graph_.run(current_, work.demand, work.generation, fresh);
     for (const processing::StageTiming& t : shown->timings)
         stages_.add(t.name, t.milliseconds);
-    if (fresh)
-        accumulate(*shown, work.demand);
+    accumulate(*shown, work.demand, fresh);
     return shown;
 }
 
-// Accumulation adds exactly the points the cloud shows, once per new frame.
-void FrameProcessor::accumulate(const processing::ShownFrame& shown, const Demand& demand) {
-    if (!demand.accumulate || !shown.frame->pose || !shown.depth.data)
+// Accumulation adds exactly the points the cloud shows: once per new frame, and the shown frame again when
+// accumulation starts or its budget or voxel size changes (which starts it over), so that what it holds
+// follows the settings at once, a paused replay's too.
+void FrameProcessor::accumulate(const processing::ShownFrame& shown, const Demand& demand, bool fresh) {
+    if (!demand.accumulate) {
+        accumulatedWith_.reset();
         return;
+    }
+    const std::pair<std::size_t, float> with{demand.accumulateBudget, demand.accumulateVoxelMeters};
+    if ((!fresh && accumulatedWith_ == with) || !shown.frame->pose || !shown.depth.data)
+        return;
+    accumulatedWith_ = with;
     accumulation_.submit({shown.depth.data, shown.depth.intrinsics, shown.pointColors, *shown.frame->pose,
                           demand.minConfidence, demand.nearMeters, demand.accumulateBudget,
                           demand.accumulateVoxelMeters});

@@ -126,6 +126,30 @@ TEST_F(FrameProcessorTest, ADemandChangeRedoesTheCurrentFrameWhileTheSourceIsSil
     EXPECT_EQ(c.framesProcessed + c.framesSkipped + session_->stats().framesDropped, 2u);
 }
 
+// A smaller budget starts accumulation over with the newest points: the shown frame's, at once, though no
+// new frame comes (a paused replay).
+TEST_F(FrameProcessorTest, AccumulationFollowsABudgetChangeWhileTheSourceIsSilent) {
+    Demand d = cloudAndPanels();
+    d.accumulate = true;
+    d.accumulateBudget = 300'000;
+    processor_.setDemand(d);
+    device_->push(syntheticFrames(2));
+    ASSERT_TRUE(
+        processor_.waitFor(10s, [](const processing::ShownFrame& s) { return s.frame->sequence == 1; }));
+    accumulation_.waitIdle();
+    const std::size_t oneFrame = accumulation_.size();
+    ASSERT_GT(oneFrame, 2'000u);
+
+    d.accumulateBudget = 2'000;
+    const std::uint64_t smaller = processor_.setDemand(d);
+    const auto r = processor_.waitFor(
+        10s, [&](const processing::ShownFrame& s) { return s.demandGeneration == smaller; });
+    ASSERT_TRUE(r);
+    EXPECT_FALSE((*r)->newFrame) << "the same frame, redone";
+    accumulation_.waitIdle();
+    EXPECT_EQ(accumulation_.size(), 2'000u);
+}
+
 TEST_F(FrameProcessorTest, AfterASeekFramesDecodedBeforeItAreDroppedAndSmoothingStartsOver) {
     Demand d = cloudAndPanels();
     d.processing.smoothing = true;
