@@ -45,7 +45,9 @@ void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, in
     keys_.resize(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_));
     const bool picture = makesPicture(params);
     picture_.resize(picture ? keys_.size() : 0);
-    background_ = packRgb(params.background.r, params.background.g, params.background.b) | kOpaque;
+    // RGBA of the picture where no point landed.
+    const std::uint32_t background =
+        packRgb(params.background.r, params.background.g, params.background.b) | kOpaque;
     splats_.resize(kPieces);
     for (auto& bands : splats_) {
         bands.resize(kBands);
@@ -88,7 +90,7 @@ void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, in
         for (int band = first; band < last; ++band) {
             write(band, bandRows, size);
             if (picture)
-                paint(band, bandRows); // while the band's keys are still in this core's cache
+                paint(band, bandRows, background); // while the band's keys are still in this core's cache
         }
     });
 }
@@ -111,11 +113,11 @@ void CloudSplatter::write(int band, int bandRows, int size) {
         }
 }
 
-void CloudSplatter::paint(int band, int bandRows) {
+void CloudSplatter::paint(int band, int bandRows, std::uint32_t background) {
     const std::size_t first = static_cast<std::size_t>(std::min(height_, band * bandRows)) * width_;
     const std::size_t end = static_cast<std::size_t>(std::min(height_, (band + 1) * bandRows)) * width_;
     for (std::size_t i = first; i < end; ++i)
-        picture_[i] = keys_[i] == kEmpty ? background_ : static_cast<std::uint32_t>(keys_[i]) | kOpaque;
+        picture_[i] = keys_[i] == kEmpty ? background : static_cast<std::uint32_t>(keys_[i]) | kOpaque;
 }
 
 void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Intrinsics& k,

@@ -66,11 +66,10 @@ private:
     template <class Project>
     void run(int sourceRows, const CloudParams& params, int width, int height, Project&& project);
     void write(int band, int bands, int pointSize);
-    void paint(int band, int bandRows);
+    void paint(int band, int bandRows, std::uint32_t background);
 
     std::vector<std::uint64_t> keys_;
     std::vector<std::uint32_t> picture_;
-    std::uint32_t background_ = 0; // RGBA of the picture where no point landed
     int width_ = 0;
     int height_ = 0;
     std::size_t pointCount_ = 0;
