@@ -133,6 +133,7 @@ void ViewRenderer::drawDepthOverCamera(const PanelParams& params) {
     panels_.renderDepth(depthOverCameraTarget_, textures, params.minMeters, params.maxMeters, params.colormap,
                         DepthHoles::Transparent);
     overlayDrawnWith_ = params;
+    ++overlayRenders_;
 }
 
 void ViewRenderer::setCloudPath(CloudPath path) {
@@ -180,7 +181,12 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
 }
 
 void ViewRenderer::resizeCloud(int width, int height) {
-    cloudTarget_.resize(std::max(width, 1), std::max(height, 1));
+    width = std::max(width, 1);
+    height = std::max(height, 1);
+    if (width == cloudTarget_.width() && height == cloudTarget_.height())
+        return;
+    cloudTarget_.resize(width, height);
+    ++cloudResizes_; // the texture holds nothing drawn until the cloud is drawn again
 }
 
 } // namespace dc::render

@@ -82,6 +82,11 @@ public:
     std::uint64_t uploads() const { return uploads_; }
     std::uint64_t panelRenders() const { return panelRenders_; }
     std::uint64_t cloudRenders() const { return cloudRenders_; }
+    // Moves whenever a texture the panels show gets new contents: a window whose ImGui frame is the same
+    // and this the same shows the same picture (ui::RedrawCheck).
+    std::uint64_t contentVersion() const {
+        return uploads_ + panelRenders_ + overlayRenders_ + cloudRenders_ + cloudResizes_;
+    }
     // Points the last cloud drawing processed (after decimation; accumulated points in accumulate mode).
     std::size_t cloudPoints() const { return cloudRenderer_.lastPointCount(); }
 
@@ -149,6 +154,8 @@ private:
     std::optional<PanelParams> overlayDrawnWith_; // reset by a new aligned depth
     std::uint64_t uploads_ = 0;
     std::uint64_t panelRenders_ = 0;
+    std::uint64_t overlayRenders_ = 0;
+    std::uint64_t cloudResizes_ = 0;
     std::uint64_t cloudRenders_ = 0;
 };
 

@@ -45,6 +45,8 @@ struct CaseResult {
     BenchCase c;
     std::vector<PathResult> paths;
     double floorMs = 0;        // an ImGui frame compositing the panels, nothing new drawn
+    double stillMs = 0;        // a frame of the same still view as the window runs it: kept, not drawn
+    int stillDrawn = 0;        // of those timed, drawn all the same (0 when the check keeps every one)
     double bareGlPointsMs = 0; // GL_POINTS of every shown sample into the cloud panel's size, nothing else
     std::size_t shownSamples = 0;
     int cloudWidth = 0, cloudHeight = 0;
@@ -165,6 +167,17 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
                              gui.render();
                              return 0.0;
                          }).median();
+        // The same still view as the window runs it: the viewer's update and the ImGui frame, and the
+        // composite only if the picture changed (it does not: nothing moves).
+        viewer.settings().cloud.motion.enabled = false;
+        result.stillMs = timeFrames(o.frames, [&](int i) {
+                             gui.newFrame(1.0f / 60.0f);
+                             viewer.update(i / 60.0);
+                             viewer.drawUi();
+                             result.stillDrawn +=
+                                 gui.renderIfChanged(renderer.contentVersion()) && i >= kWarmupFrames;
+                             return 0.0;
+                         }).median();
         result.cloudWidth = renderer.cloudTarget().width();
         result.cloudHeight = renderer.cloudTarget().height();
         result.shownSamples = static_cast<std::size_t>(shown->depth.width()) * shown->depth.height();
@@ -178,6 +191,8 @@ void printResult(const CaseResult& r, const BenchOptions& o) {
                 r.c.name, r.shownSamples, o.width, o.height, r.cloudWidth, r.cloudHeight, o.frames);
     std::printf("  floor (composite, nothing new) %.2f ms | bare GL_POINTS of every sample %.2f ms\n",
                 r.floorMs, r.bareGlPointsMs);
+    std::printf("  still view (paused, nothing moves, kept: drawn %d of %d) %.3f ms\n", r.stillDrawn,
+                o.frames, r.stillMs);
     for (const PathResult& p : r.paths) {
         std::printf(
             "  %-10s frame median %.2f ms (p90 %.2f) = %.0f fps, %.2fx bare GL_POINTS; %llu points at "
@@ -208,6 +223,8 @@ nlohmann::json toJson(const CaseResult& r) {
             {"samples", r.shownSamples},
             {"cloudPanel", {r.cloudWidth, r.cloudHeight}},
             {"floorMs", r.floorMs},
+            {"stillViewMs", r.stillMs},
+            {"stillViewFramesDrawn", r.stillDrawn},
             {"bareGlPointsMs", r.bareGlPointsMs},
             {"paths", paths}};
 }

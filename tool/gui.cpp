@@ -11,6 +11,7 @@
 #include "tool/options.h"
 #include "tool/summary.h"
 #include "ui/input_queue.h"
+#include "ui/redraw_check.h"
 #include "ui/viewer.h"
 
 #include <backends/imgui_impl_glfw.h>
@@ -71,6 +72,7 @@ struct ImGuiScope {
 struct WindowInput {
     ui::InputQueue queue;
     std::vector<std::string> dropped; // files and folders dropped on the window, to open as sources
+    bool exposed = false;             // the window system lost the picture: it is drawn again
 };
 
 ui::InputQueue& queueOf(GLFWwindow* window) {
@@ -104,6 +106,10 @@ void onCursor(GLFWwindow* window, double x, double y) {
         {ui::InputEvent::Kind::CursorPos, 0, false, static_cast<float>(x), static_cast<float>(y)});
 }
 
+void onRefresh(GLFWwindow* window) {
+    static_cast<WindowInput*>(glfwGetWindowUserPointer(window))->exposed = true;
+}
+
 void onScroll(GLFWwindow* window, double x, double y) {
     queueOf(window).push(
         {ui::InputEvent::Kind::Scroll, 0, false, static_cast<float>(x), static_cast<float>(y)});
@@ -117,6 +123,7 @@ void queueInput(GLFWwindow* window, WindowInput& input) {
     glfwSetMouseButtonCallback(window, onMouseButton);
     glfwSetCursorPosCallback(window, onCursor);
     glfwSetScrollCallback(window, onScroll);
+    glfwSetWindowRefreshCallback(window, onRefresh);
 }
 
 WindowPtr openWindow() {
@@ -180,17 +187,8 @@ std::chrono::milliseconds waitBudget(Clock::time_point lastFrameStart, Clock::du
     return std::max(std::chrono::ceil<std::chrono::milliseconds>(left), std::chrono::milliseconds(0));
 }
 
-void drawFrame(GLFWwindow* window, ui::Viewer& viewer, ui::InputQueue& input, double t,
-               std::chrono::milliseconds wait) {
-    viewer.update(t, wait);
-    glfwPollEvents();
-    const auto uiStart = Clock::now();
-    ImGui_ImplOpenGL3_NewFrame();
-    ImGui_ImplGlfw_NewFrame();
-    input.apply(ImGui::GetIO());
-    ImGui::NewFrame();
-    viewer.drawUi();
-    ImGui::Render();
+// The finished ImGui frame into the back buffer.
+void composite(GLFWwindow* window) {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window, &w, &h);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -198,7 +196,28 @@ void drawFrame(GLFWwindow* window, ui::Viewer& viewer, ui::InputQueue& input, do
     glClearColor(0.08f, 0.08f, 0.1f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+}
+
+// One UI frame, drawn only if its picture is not the one the window shows already (nothing moved, no new
+// data, no input that changed anything): returns whether it drew.
+bool drawFrame(GLFWwindow* window, ui::Viewer& viewer, WindowInput& input, ui::RedrawCheck& redraw, double t,
+               std::chrono::milliseconds wait) {
+    viewer.update(t, wait);
+    glfwPollEvents();
+    const auto uiStart = Clock::now();
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    input.queue.apply(ImGui::GetIO());
+    ImGui::NewFrame();
+    viewer.drawUi();
+    ImGui::Render();
+    if (std::exchange(input.exposed, false))
+        redraw.forget();
+    if (!redraw.needed(*ImGui::GetDrawData(), viewer.renderer().contentVersion()))
+        return false;
+    composite(window);
     viewer.recordUiMilliseconds(std::chrono::duration<double, std::milli>(Clock::now() - uiStart).count());
+    return true;
 }
 
 // The picker's "Cameras" entries: the depth-capable devices, each opened by its --source value.
@@ -281,13 +300,14 @@ int runGui(const ViewerOptions& options) {
         const auto start = Clock::now();
         const Clock::duration period = refreshPeriod();
         Clock::time_point frameStart = start;
+        ui::RedrawCheck redraw;
         for (int frame = 0;; ++frame) {
             if (auto listing = cameras.takeUpdate())
                 viewer.setLiveSources(cameraEntries(*listing));
             const std::chrono::milliseconds wait = waitBudget(frameStart, period);
             const auto now = Clock::now();
-            drawFrame(window.get(), viewer, input.queue, std::chrono::duration<double>(now - start).count(),
-                      wait);
+            bool drawn = drawFrame(window.get(), viewer, input, redraw,
+                                   std::chrono::duration<double>(now - start).count(), wait);
             frameStart = now + std::chrono::duration_cast<Clock::duration>(
                                    std::chrono::duration<double, std::milli>(viewer.lastWaitMs()));
             for (const std::string& path : std::exchange(input.dropped, {}))
@@ -295,10 +315,15 @@ int runGui(const ViewerOptions& options) {
             // Closing the window ends the run like the last of --frames: --out still gets its files.
             const bool last =
                 glfwWindowShouldClose(window.get()) || (options.frames && frame + 1 >= *options.frames);
+            if (last && !drawn) { // the screenshot reads the back buffer, which the kept picture is not in
+                composite(window.get());
+                drawn = true;
+            }
             if (last && !options.outDirectory.empty())
                 status = writeOutputs(window.get(), viewer, options.outDirectory);
-            glfwSwapBuffers(window.get());
-            viewer.presented();
+            if (drawn)
+                glfwSwapBuffers(window.get());
+            viewer.presented(drawn);
             if (last)
                 break;
         }

@@ -49,6 +49,19 @@ void HeadlessUi::newFrame(float deltaSeconds) {
 
 void HeadlessUi::render() {
     ImGui::Render();
+    redraw_.forget();
+    draw();
+}
+
+bool HeadlessUi::renderIfChanged(std::uint64_t contentVersion) {
+    ImGui::Render();
+    if (!redraw_.needed(*ImGui::GetDrawData(), contentVersion))
+        return false;
+    draw();
+    return true;
+}
+
+void HeadlessUi::draw() {
     target_.bindAndClear(0.1f, 0.1f, 0.12f);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }

@@ -86,7 +86,6 @@ engine::Demand Viewer::demandOf() const {
 }
 
 bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
-    uiFrames_.tick();
     const engine::Demand demand = demandOf();
     const bool changed = !(demand == demand_);
     demand_ = demand;
@@ -105,7 +104,8 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     if (next)
         adopt(std::move(*next));
     updateLegend();
-    const auto start = Clock::now();
+    auto start = Clock::now();
+    std::uint64_t version = renderer_.contentVersion();
     const PanelVisibility& show = settings_.panels;
     // A two-sensor frame's depth over the camera is drawn aligned to the colour image; a single camera's
     // is the depth panel's image, drawn for it even while the depth panel is hidden.
@@ -113,9 +113,15 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     const bool aligned = shown_ && shown_->depthOverCamera;
     renderer_.renderPanels({show.depth || (depthOverCamera && !aligned), show.confidence, depthOverCamera,
                             legend_.minMeters, legend_.maxMeters, legend_.colormap});
-    instrument_.recordStage("panels", millisecondsSince(start));
+    // A stage's time is what its work costs: a frame where it had nothing to redraw is not a sample.
+    if (renderer_.contentVersion() != version)
+        instrument_.recordStage("panels", millisecondsSince(start));
+    start = Clock::now();
+    version = renderer_.contentVersion();
     if (shown_ && show.cloud)
         renderCloud(timeSeconds);
+    if (renderer_.contentVersion() != version)
+        instrument_.recordStage("cloud", millisecondsSince(start));
     return fresh;
 }
 
@@ -136,10 +142,14 @@ void Viewer::adopt(processing::ShownFramePtr shown) {
     }
 }
 
-void Viewer::presented() {
+void Viewer::presented(bool redrawn) {
     if (shown_ && !presentedShown_)
         instrument_.presented(*shown_);
     presentedShown_ = true;
+    if (redrawn)
+        uiFrames_.tick();
+    else
+        ++uiFramesKept_;
 }
 
 render::CloudParams Viewer::cloudParams(double timeSeconds) const {
@@ -185,14 +195,12 @@ std::string Viewer::cloudPathText() const {
 }
 
 void Viewer::renderCloud(double timeSeconds) {
-    const auto start = Clock::now();
     renderer_.setCloudPath(cloudPath());
     const render::CloudParams params = cloudParams(timeSeconds);
     if (accumulating())
         renderer_.syncAccumulated(instrument_.accumulation());
     cloudViewProjection_ = params.viewProjection;
     renderer_.renderCloud(params, accumulating());
-    instrument_.recordStage("cloud", millisecondsSince(start));
 }
 
 std::uint64_t Viewer::pointsShown() {
@@ -313,6 +321,28 @@ StatusLine Viewer::statusLine() {
     return line;
 }
 
+void Viewer::measure() {
+    const auto now = Clock::now();
+    const std::uint64_t version = renderer_.contentVersion();
+    if (measured_ && (version == measuredVersion_ || now - measuredAt_ < kMeasureInterval))
+        return;
+    measured_ = statsView();
+    measuredVersion_ = version;
+    measuredAt_ = now;
+}
+
+// The status line with the figures measure() took last; what the source is and does is always current.
+StatusLine Viewer::shownStatusLine() {
+    StatusLine line = statusLine();
+    line.frames = measured_->frames;
+    line.uiFps = measured_->uiFps;
+    line.latencyMs = measured_->latencyMs;
+    line.stageMedians.clear();
+    for (const StageHistory& stage : measured_->stages)
+        line.stageMedians.push_back({stage.name, stage.medianMs});
+    return line;
+}
+
 StatsView Viewer::statsView() {
     const engine::InstrumentStatus s = instrument_.status();
     StatsView v{s.frames, uiFrames_.perSecond(), pointsShown(), s.latencyMs, residentMebibytes(), {}};
@@ -327,8 +357,17 @@ StatsView Viewer::statsView() {
 
 ViewerSummary Viewer::summary() {
     const engine::InstrumentStatus s = instrument_.status();
-    ViewerSummary summary{s.source, s.frames, uiFrames_.perSecond(),      pointsShown(), cloudPathText(),
-                          0,        0,        instrument_.stages().all(), s.latencyMs};
+    ViewerSummary summary{s.source,
+                          s.frames,
+                          uiFrames_.perSecond(),
+                          uiFrames_.count(),
+                          uiFramesKept_,
+                          pointsShown(),
+                          cloudPathText(),
+                          0,
+                          0,
+                          instrument_.stages().all(),
+                          s.latencyMs};
     if (shown_) {
         summary.depthWidth = shown_->depth.width();
         summary.depthHeight = shown_->depth.height();

@@ -23,6 +23,8 @@ struct ViewerSummary {
     std::string source;
     engine::FrameCounts frames;
     double uiFps = 0.0; // UI frames drawn per second (with or without a new device frame)
+    std::uint64_t uiFramesDrawn = 0;
+    std::uint64_t uiFramesKept = 0; // UI frames whose picture was the one on screen already, not drawn
     std::uint64_t pointsDrawn = 0;
     std::string cloudPath; // Viewer::cloudPathText()
     int depthWidth = 0;
@@ -46,6 +48,10 @@ public:
     static constexpr std::chrono::milliseconds kRedoWait{250};
     // Each new frame moves the automatic depth range this fraction of the way to its own percentiles.
     static constexpr float kRangeFollowFraction = 0.2f;
+    // The status line's and stats panel's figures are taken this often at most, and only after something
+    // new was drawn: figures that change every frame cannot be read, and a still view whose figures kept
+    // changing would be redrawn for them alone.
+    static constexpr std::chrono::milliseconds kMeasureInterval{500};
     // Tests on a loaded machine wait longer, so "the next frame shows it" does not depend on the load.
     void setRedoWait(std::chrono::milliseconds wait) { redoWait_ = wait; }
 
@@ -58,8 +64,10 @@ public:
     bool update(double timeSeconds, std::chrono::milliseconds wait = std::chrono::milliseconds(0));
     // The ImGui panels, status line and shortcuts (between ImGui::NewFrame and ImGui::Render).
     void drawUi();
-    // What update() drew is on screen now (after the swap): counts it, and the latency.
-    void presented();
+    // What update() drew is on screen now: after the swap, or kept (`redrawn` false) because the frame
+    // would have drawn the picture the screen shows already. Counts the device frame it shows, the
+    // latency, and the UI frames drawn and kept.
+    void presented(bool redrawn = true);
 
     Settings& settings() { return settings_; }
     const Settings& settings() const { return settings_; }
@@ -138,6 +146,8 @@ private:
     void handleReplayKeys();
     void onCloudPointer(const CloudPanelResult& r);
     CloudOverlay cloudOverlay() const;
+    void measure();
+    StatusLine shownStatusLine();
 
     engine::Instrument& instrument_;
     render::ViewRenderer& renderer_;
@@ -172,6 +182,10 @@ private:
     RecordPanelState recordState_;
     std::vector<SourceEntry> liveSources_;
     base::RateMeter uiFrames_;
+    std::uint64_t uiFramesKept_ = 0;
+    std::optional<StatsView> measured_; // the figures on screen (kMeasureInterval)
+    std::uint64_t measuredVersion_ = 0; // ViewRenderer::contentVersion() when they were taken
+    std::chrono::steady_clock::time_point measuredAt_;
 };
 
 } // namespace dc::ui

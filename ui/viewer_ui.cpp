@@ -146,7 +146,8 @@ void Viewer::drawUi() {
     }
     hoverProbe_.reset();
     const float menuHeight = drawMenuBar();
-    const float statusHeight = drawStatusBar(statusLine());
+    measure();
+    const float statusHeight = drawStatusBar(shownStatusLine());
     Layout l = defaultLayout(menuHeight, statusHeight);
     PanelVisibility& show = settings_.panels;
     // The timeline is a strip under the panels, full width: nothing is placed over it, and it stays in
@@ -164,7 +165,7 @@ void Viewer::drawUi() {
     drawSidePanels(l.size.x - l.rightWidth, l.rightWidth, l.size.y / 3.0f);
     if (show.stats) {
         placePanel(kStatsTitle, l.leftWidth + 16.0f, 16.0f, 460.0f, 300.0f);
-        drawStatsPanel(statsView(), &show.stats);
+        drawStatsPanel(*measured_, &show.stats);
     }
     const std::vector<LogEntry> log = logs_.snapshot();
     if (show.log) {

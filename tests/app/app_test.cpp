@@ -249,8 +249,9 @@ TEST(AppWindow, SoftwareGlDrawsA640x480CameraOnTheSplatPathAndKeepsUp) {
     EXPECT_GE(summary["frames"].get<int>(), summary["framesDropped"].get<int>());
 }
 
-// llvmpipe's swap does not wait for the display, so the window paces itself: a paused replay, where no
-// new frame arrives, is drawn no faster than the display refreshes (Xvfb names no rate: 60 Hz).
+// llvmpipe's swap does not wait for the display, so the window paces itself: a paused replay turning on
+// its own (auto-rotate, the default), where no new frame arrives but every frame's picture is new, is drawn
+// no faster than the display refreshes (Xvfb names no rate: 60 Hz).
 TEST(AppWindow, APausedReplayIsDrawnNoFasterThanTheDisplayRefreshes) {
     TempDir out, home, work;
     const std::string take = work.str() + "/take.dcrec";
@@ -265,6 +266,31 @@ TEST(AppWindow, APausedReplayIsDrawnNoFasterThanTheDisplayRefreshes) {
     // The rate spans the last 31 frames; the wait before the first of them can be cut short by a slow frame
     // before it, so at most 31 frames in 30 periods.
     EXPECT_LE(uiFps, 60.0 * 31.0 / 30.0) << "one frame per refresh period at most";
+}
+
+// A paused replay with auto-rotate off shows one still picture: the window keeps it instead of drawing it
+// again each refresh. The old loop drew every one of the 300 frames.
+TEST(AppWindow, AStillPausedReplayKeepsItsPictureInsteadOfRedrawingIt) {
+    TempDir out, home, work;
+    const std::string take = work.str() + "/take.dcrec";
+    ASSERT_EQ(run(binary() + " record --source synthetic:64x48 --frames 3 " + take).exitCode, 0);
+    fs::create_directories(home.str() + "/depthcloud");
+    std::ofstream(home.str() + "/depthcloud/settings.json") << R"({"cloud": {"autoRotate": false}})";
+    const RunResult r =
+        run("XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1280x800x24' " + binary() +
+            " --source replay:" + take + ":paused --frames 300 --out " + out.str());
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    const nlohmann::json summary = readSummary(out.str());
+    ASSERT_FALSE(summary.is_discarded());
+    EXPECT_EQ(summary["frames"], 1) << "the paused replay's one frame is shown";
+    // Drawn: the start (layout, the first frame, its figures) and the last frame, whose screenshot reads
+    // the back buffer.
+    EXPECT_LT(summary["uiFramesDrawn"].get<int>(), 30);
+    EXPECT_EQ(summary["uiFramesDrawn"].get<int>() + summary["uiFramesKept"].get<int>(), 299)
+        << "every frame before the last is drawn or kept";
+    const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    ASSERT_FALSE(shot.empty());
+    EXPECT_GT(contrast(region(shot, 0.25, 0.1, 0.7, 0.7)), 15.0) << "the kept picture is the cloud";
 }
 
 // Real X input through xdotool: a click on the depth panel zooms it over the window, P saves a snapshot,

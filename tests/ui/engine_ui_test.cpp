@@ -101,6 +101,38 @@ protected:
 
     std::uint64_t shownSequence() const { return shown().frame->sequence; }
 
+    // One frame as the window draws it: only if its picture changes. Returns whether it was drawn.
+    bool windowFrame() {
+        gui_.newFrame(1.0f / 60.0f);
+        viewer_->update(0.0);
+        viewer_->drawUi();
+        const bool drawn = gui_.renderIfChanged(renderer_.contentVersion());
+        viewer_->presented(drawn);
+        return drawn;
+    }
+
+    // Whether the picture the window holds is the one a full redraw of the same frame draws.
+    bool keptPictureIsCurrent() {
+        const std::vector<std::uint8_t> kept = gui_.target().readRgba();
+        frame(0.0);
+        return gui_.target().readRgba() == kept;
+    }
+
+    // Window frames until none was drawn for longer than the figures' refresh interval.
+    bool settle() {
+        const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+        auto lastDrawn = std::chrono::steady_clock::now();
+        while (std::chrono::steady_clock::now() - lastDrawn < Viewer::kMeasureInterval + kQuiet) {
+            if (std::chrono::steady_clock::now() > deadline)
+                return false;
+            if (windowFrame())
+                lastDrawn = std::chrono::steady_clock::now();
+            std::this_thread::sleep_for(std::chrono::milliseconds(5));
+        }
+        return true;
+    }
+    static constexpr std::chrono::milliseconds kQuiet{200};
+
     fs::path dir_;
 };
 
@@ -149,6 +181,38 @@ TEST_F(EngineUiTest, APausedReplayShowsEverySettingChangeInTheNextFrame) {
     ASSERT_NO_FATAL_FAILURE(startPausedReplay());
     ASSERT_FALSE(instrument_->replay()->status().playing);
     expectEachSettingShowsInTheNextFrame(*this, *viewer_, renderer_, [this] { frame(0.0); });
+}
+
+// Nothing is computed for nobody, down to the composite: a still, paused view is not drawn again, and
+// each change to it is drawn in the very next frame, also one that only a texture shows (the cloud turned).
+TEST_F(EngineUiTest, AStillViewKeepsItsPictureAndEveryChangeIsDrawnInTheNextFrame) {
+    ASSERT_NO_FATAL_FAILURE(startPausedReplay());
+    ASSERT_TRUE(settle()) << "a paused view with nothing moving stops drawing";
+    for (int i = 0; i < 30; ++i)
+        ASSERT_FALSE(windowFrame()) << i;
+    EXPECT_TRUE(keptPictureIsCurrent());
+    EXPECT_GT(viewer_->summary().uiFramesKept, 30u);
+
+    ASSERT_TRUE(settle());
+    viewer_->settings().cloud.orbit.yawRadians += 0.3f; // as a drag would: only the cloud's texture changes
+    EXPECT_TRUE(windowFrame()) << "the turned cloud";
+    EXPECT_TRUE(keptPictureIsCurrent());
+
+    ASSERT_TRUE(settle());
+    viewer_->settings().depthRange.colormap = render::Colormap::Viridis;
+    EXPECT_TRUE(windowFrame()) << "the depth panel in another colormap";
+    EXPECT_TRUE(keptPictureIsCurrent());
+
+    ASSERT_TRUE(settle());
+    const ImGuiWindow* depth = ImGui::FindWindowByName(kDepthTitle);
+    ASSERT_NE(depth, nullptr);
+    gui_.io().MousePos = {depth->Pos.x + depth->Size.x * 0.5f, depth->Pos.y + depth->Size.y * 0.4f};
+    // ImGui draws the readout in the frame after the one that finds the mouse over the panel.
+    const bool first = windowFrame();
+    const bool second = windowFrame();
+    EXPECT_TRUE(first || second) << "the hover readout over the depth panel";
+    EXPECT_TRUE(viewer_->hoverProbe().has_value());
+    EXPECT_TRUE(keptPictureIsCurrent());
 }
 
 // Delivers two frames of the synthetic scene, then stays Stalled.
