@@ -38,6 +38,8 @@ public:
     void bind() const;
     // Binds it and clears colour and the depth buffer if it has one (colour components in [0, 1]).
     void bindAndClear(float r, float g, float b, float a = 1.0f) const;
+    // Binds it and clears the colour of `rect` alone (a picture redrawn only where it changed).
+    void bindAndClearWithin(PixelRect rect, float r, float g, float b) const;
     void setSampling(Sampling sampling);
 
     int width() const { return width_; }

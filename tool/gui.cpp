@@ -9,9 +9,10 @@
 #include "devices/uvc/live_device_watcher.h"
 #include "frame/image_io.h"
 #include "tool/options.h"
+#include "tool/partial_present.h"
 #include "tool/summary.h"
+#include "ui/frame_damage.h"
 #include "ui/input_queue.h"
-#include "ui/redraw_check.h"
 #include "ui/viewer.h"
 
 #include <backends/imgui_impl_glfw.h>
@@ -32,6 +33,8 @@ namespace dc::tool {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+constexpr float kBackground[3] = {0.08f, 0.08f, 0.1f};
 
 struct GlfwWindowDeleter {
     void operator()(GLFWwindow* w) const { glfwDestroyWindow(w); }
@@ -187,37 +190,61 @@ std::chrono::milliseconds waitBudget(Clock::time_point lastFrameStart, Clock::du
     return std::max(std::chrono::ceil<std::chrono::milliseconds>(left), std::chrono::milliseconds(0));
 }
 
-// The finished ImGui frame into the back buffer.
+// The finished ImGui frame into the back buffer, whole.
 void composite(GLFWwindow* window) {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window, &w, &h);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, w, h);
-    glClearColor(0.08f, 0.08f, 0.1f, 1.0f);
+    glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
-// One UI frame, drawn only if its picture is not the one the window shows already (nothing moved, no new
-// data, no input that changed anything): returns whether it drew.
-bool drawFrame(GLFWwindow* window, ui::Viewer& viewer, WindowInput& input, ui::RedrawCheck& redraw, double t,
-               std::chrono::milliseconds wait) {
-    viewer.update(t, wait);
-    glfwPollEvents();
-    const auto uiStart = Clock::now();
+// The finished ImGui frame into the back buffer where it changed, each part copied to the window.
+void presentParts(const PartialPresenter& presenter, const std::vector<ui::DamageRect>& rects) {
+    ImDrawData& data = *ImGui::GetDrawData();
+    const int height = static_cast<int>(data.DisplaySize.y * data.FramebufferScale.y);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, static_cast<int>(data.DisplaySize.x * data.FramebufferScale.x), height);
+    glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
+    ui::drawDamaged(data, rects, [height](const ui::DamageRect& r) {
+        glEnable(GL_SCISSOR_TEST);
+        glScissor(r.x0, height - r.y1, r.x1 - r.x0, r.y1 - r.y0);
+        glClear(GL_COLOR_BUFFER_BIT);
+        glDisable(GL_SCISSOR_TEST);
+    });
+    for (const ui::DamageRect& r : rects)
+        presenter.copy(r.x0, height - r.y1, r.x1 - r.x0, r.y1 - r.y0);
+}
+
+// Draws the frame where it changed: in parts for a presenter, whole for a swap. The last frame is drawn
+// whole for a swap even if unchanged, since the screenshot reads the back buffer. Returns whether it drew.
+bool drawChanged(GLFWwindow* window, const std::optional<PartialPresenter>& parts,
+                 const std::vector<ui::DamageRect>& changed, bool last) {
+    if (parts && !changed.empty())
+        presentParts(*parts, changed);
+    else if (!parts && (!changed.empty() || last))
+        composite(window);
+    else
+        return false;
+    return true;
+}
+
+// One ImGui frame, with the input that came in. Returns where its picture differs from the one the window
+// shows (nothing moved, no new data, no input that changed anything: nowhere).
+std::vector<ui::DamageRect> uiFrame(ui::Viewer& viewer, WindowInput& input, ui::FrameDamage& damage) {
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     input.queue.apply(ImGui::GetIO());
     ImGui::NewFrame();
     viewer.drawUi();
     ImGui::Render();
+    ImDrawData& data = *ImGui::GetDrawData();
+    ui::snapClipRects(data);
     if (std::exchange(input.exposed, false))
-        redraw.forget();
-    if (!redraw.needed(*ImGui::GetDrawData(), viewer.renderer().contentVersion()))
-        return false;
-    composite(window);
-    viewer.recordUiMilliseconds(std::chrono::duration<double, std::milli>(Clock::now() - uiStart).count());
-    return true;
+        damage.forget();
+    return damage.update(data, viewer.renderer().contentVersion(), ImGui::GetIO().Fonts->TexID);
 }
 
 // The picker's "Cameras" entries: the depth-capable devices, each opened by its --source value.
@@ -300,28 +327,36 @@ int runGui(const ViewerOptions& options) {
         const auto start = Clock::now();
         const Clock::duration period = refreshPeriod();
         Clock::time_point frameStart = start;
-        ui::RedrawCheck redraw;
+        ui::FrameDamage damage;
+        // Software GL draws only what changed, into a back buffer that nothing swaps; a GPU draws whole
+        // frames, synchronised with the display by the swap.
+        const std::optional<PartialPresenter> parts =
+            renderer.softwareGl() ? PartialPresenter::forCurrentContext() : std::nullopt;
+        logInfo(parts ? "window: drawn where it changes (software GL, GLX_MESA_copy_sub_buffer)"
+                      : "window: whole frames, swapped");
         for (int frame = 0;; ++frame) {
             if (auto listing = cameras.takeUpdate())
                 viewer.setLiveSources(cameraEntries(*listing));
             const std::chrono::milliseconds wait = waitBudget(frameStart, period);
             const auto now = Clock::now();
-            bool drawn = drawFrame(window.get(), viewer, input, redraw,
-                                   std::chrono::duration<double>(now - start).count(), wait);
+            viewer.update(std::chrono::duration<double>(now - start).count(), wait);
             frameStart = now + std::chrono::duration_cast<Clock::duration>(
                                    std::chrono::duration<double, std::milli>(viewer.lastWaitMs()));
+            glfwPollEvents(); // after the wait: the frame acts on the freshest input
+            const auto uiStart = Clock::now();
+            const std::vector<ui::DamageRect> changed = uiFrame(viewer, input, damage);
             for (const std::string& path : std::exchange(input.dropped, {}))
                 (void)viewer.openPath(path);
             // Closing the window ends the run like the last of --frames: --out still gets its files.
             const bool last =
                 glfwWindowShouldClose(window.get()) || (options.frames && frame + 1 >= *options.frames);
-            if (last && !drawn) { // the screenshot reads the back buffer, which the kept picture is not in
-                composite(window.get());
-                drawn = true;
-            }
+            const bool drawn = drawChanged(window.get(), parts, changed, last);
+            if (drawn)
+                viewer.recordUiMilliseconds(
+                    std::chrono::duration<double, std::milli>(Clock::now() - uiStart).count());
             if (last && !options.outDirectory.empty())
                 status = writeOutputs(window.get(), viewer, options.outDirectory);
-            if (drawn)
+            if (drawn && !parts)
                 glfwSwapBuffers(window.get());
             viewer.presented(drawn);
             if (last)

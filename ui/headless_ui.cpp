@@ -49,21 +49,23 @@ void HeadlessUi::newFrame(float deltaSeconds) {
 
 void HeadlessUi::render() {
     ImGui::Render();
-    redraw_.forget();
-    draw();
+    ImDrawData& data = *ImGui::GetDrawData();
+    snapClipRects(data);
+    damage_.forget(); // the next renderIfChanged() draws its whole frame
+    target_.bindAndClear(0.1f, 0.1f, 0.12f);
+    ImGui_ImplOpenGL3_RenderDrawData(&data);
 }
 
 bool HeadlessUi::renderIfChanged(std::uint64_t contentVersion) {
     ImGui::Render();
-    if (!redraw_.needed(*ImGui::GetDrawData(), contentVersion))
-        return false;
-    draw();
-    return true;
-}
-
-void HeadlessUi::draw() {
-    target_.bindAndClear(0.1f, 0.1f, 0.12f);
-    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    ImDrawData& data = *ImGui::GetDrawData();
+    snapClipRects(data);
+    const std::vector<DamageRect> rects = damage_.update(data, contentVersion, ImGui::GetIO().Fonts->TexID);
+    drawDamaged(data, rects, [this](const DamageRect& r) {
+        target_.bindAndClearWithin({r.x0, target_.height() - r.y1, r.x1 - r.x0, r.y1 - r.y0}, 0.1f, 0.1f,
+                                   0.12f);
+    });
+    return !rects.empty();
 }
 
 } // namespace dc::ui

@@ -2,7 +2,7 @@
 
 #include "base/expected.h"
 #include "render/render_target.h"
-#include "ui/redraw_check.h"
+#include "ui/frame_damage.h"
 
 #include <imgui.h>
 
@@ -21,19 +21,17 @@ public:
     void newFrame(float deltaSeconds);
     // Finishes the ImGui frame and draws it into target().
     void render();
-    // Finishes the ImGui frame and draws it only if the picture changes (RedrawCheck), as the window does;
-    // returns whether it drew.
+    // Finishes the ImGui frame and draws it, as the window does, only where the picture changes
+    // (FrameDamage); returns whether it drew anything.
     bool renderIfChanged(std::uint64_t contentVersion);
 
     ImGuiIO& io() { return ImGui::GetIO(); }
     const render::RenderTarget& target() const { return target_; }
 
 private:
-    void draw();
-
     ImGuiContext* context_ = nullptr;
     bool rendererReady_ = false;
-    RedrawCheck redraw_;
+    FrameDamage damage_;
     render::RenderTarget target_{render::Sampling::Linear, render::DepthBuffer::Without}; // as a window's
 };
 

@@ -6,10 +6,13 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 #include <sys/wait.h>
@@ -229,6 +232,39 @@ TEST(AppWindow, RunsUnderXvfbAndShowsCloudDepthAndConfidence) {
     EXPECT_TRUE(fs::exists(home.str() + "/depthcloud/settings.json")) << "settings are saved on exit";
 }
 
+// A window grabbed by xwd, as BGR: the X server's own copy of what the window shows, not the back
+// buffer --out reads. Reads the 32-bit TrueColor images Xvfb's 24-bit screen gives, nothing else.
+cv::Mat readXwd(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto card = [&](std::size_t index) { // the header's CARD32s are big-endian
+        const auto* p = reinterpret_cast<const unsigned char*>(bytes.data()) + index * 4;
+        return std::uint32_t(p[0]) << 24 | std::uint32_t(p[1]) << 16 | std::uint32_t(p[2]) << 8 | p[3];
+    };
+    if (bytes.size() < 100 || card(11) != 32)
+        return {};
+    const std::uint32_t headerSize = card(0), width = card(4), height = card(5), lsbFirst = card(7) == 0;
+    const std::uint32_t bytesPerLine = card(12), red = card(14), green = card(15), blue = card(16);
+    const std::size_t pixels = headerSize + std::size_t(card(19)) * 12;
+    if (bytes.size() < pixels + std::size_t(bytesPerLine) * height)
+        return {};
+    const auto channel = [](std::uint32_t value, std::uint32_t mask) {
+        return static_cast<std::uint8_t>((value & mask) >> std::countr_zero(mask));
+    };
+    const auto* data = reinterpret_cast<const unsigned char*>(bytes.data()) + pixels;
+    cv::Mat image(static_cast<int>(height), static_cast<int>(width), CV_8UC3);
+    for (std::uint32_t y = 0; y < height; ++y)
+        for (std::uint32_t x = 0; x < width; ++x) {
+            const unsigned char* p = data + std::size_t(y) * bytesPerLine + std::size_t(x) * 4;
+            std::uint32_t v = 0;
+            for (int b = 0; b < 4; ++b)
+                v |= std::uint32_t(p[lsbFirst ? b : 3 - b]) << (8 * b);
+            image.at<cv::Vec3b>(static_cast<int>(y), static_cast<int>(x)) =
+                cv::Vec3b(channel(v, blue), channel(v, green), channel(v, red));
+        }
+    return image;
+}
+
 nlohmann::json readSummary(const std::string& dir) {
     std::ifstream in(dir + "/summary.json");
     return nlohmann::json::parse(in, nullptr, false);
@@ -291,6 +327,43 @@ TEST(AppWindow, AStillPausedReplayKeepsItsPictureInsteadOfRedrawingIt) {
     const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
     ASSERT_FALSE(shot.empty());
     EXPECT_GT(contrast(region(shot, 0.25, 0.1, 0.7, 0.7)), 15.0) << "the kept picture is the cloud";
+}
+
+// On software GL the window draws only what changed into a back buffer nothing swaps, and copies those
+// parts to the screen. What the screen shows, grabbed from the X server after the mouse has moved a readout
+// from panel to panel, is the whole picture --out reads from the back buffer at exit.
+TEST(AppWindow, WhatTheScreenShowsIsTheWholePictureAfterPartialRedraws) {
+    TempDir out, home, work;
+    const std::string take = work.str() + "/take.dcrec";
+    ASSERT_EQ(run(binary() + " record --source synthetic:64x48 --frames 3 " + take).exitCode, 0);
+    fs::create_directories(home.str() + "/depthcloud");
+    std::ofstream(home.str() + "/depthcloud/settings.json") << R"({"cloud": {"autoRotate": false}})";
+    const std::string script = work.str() + "/drive.sh";
+    std::ofstream(script)
+        << binary() << " --source replay:" << take << ":paused --out " << out.str() << " &\n"
+        << "app=$!\n"
+        << "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\n"
+        << "sleep 3\n"
+        << "for at in '1100 120' '600 300' '640 640' '1100 500' '1100 300'; do\n"
+        << "  xdotool mousemove --window \"$w\" $at; sleep 0.5\n"
+        << "done\n"
+        << "sleep 1\n"
+        << "xwd -silent -id \"$w\" -out " << work.str() << "/screen.xwd\n"
+        << "xdotool key ctrl+q\n"
+        << "wait $app\n";
+    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
+                            " timeout 180 xvfb-run -a -s '-screen 0 1280x800x24' sh " + script);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("drawn where it changes"), std::string::npos) << r.output;
+    const cv::Mat screen = readXwd(work.str() + "/screen.xwd");
+    const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    ASSERT_FALSE(screen.empty());
+    ASSERT_FALSE(shot.empty());
+    ASSERT_EQ(screen.size(), shot.size());
+    cv::Mat difference;
+    cv::absdiff(screen, shot, difference);
+    EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0) << "the screen holds every part drawn";
+    EXPECT_GT(contrast(region(shot, 0.25, 0.1, 0.7, 0.7)), 15.0) << "and it is the cloud";
 }
 
 // Real X input through xdotool: a click on the depth panel zooms it over the window, P saves a snapshot,

@@ -1,0 +1,25 @@
+#pragma once
+
+#include <optional>
+
+namespace dc::tool {
+
+// Shows parts of a window's back buffer without a swap, through GLX_MESA_copy_sub_buffer. With no swap the
+// back buffer keeps what was drawn into it, so a frame need only draw what changed, and only that is copied
+// to the window. No Xlib header here: Xlib's macros (Status, None, Bool) would clash with the project's.
+class PartialPresenter {
+public:
+    // The presenter of the current GLX context's drawable; none where GLX or the extension is missing.
+    static std::optional<PartialPresenter> forCurrentContext();
+    // Copies the rectangle (GL's convention: (x, y) its bottom-left corner) of the back buffer to the
+    // window. Flushes GL first, as a swap does.
+    void copy(int x, int y, int width, int height) const;
+
+private:
+    PartialPresenter(void* display, unsigned long drawable) : display_(display), drawable_(drawable) {}
+
+    void* display_;
+    unsigned long drawable_;
+};
+
+} // namespace dc::tool
