@@ -304,14 +304,20 @@ TEST(AppWindow, APausedReplayIsDrawnNoFasterThanTheDisplayRefreshes) {
     EXPECT_LE(uiFps, 60.0 * 31.0 / 30.0) << "one frame per refresh period at most";
 }
 
+// A short recording to replay paused, and settings in `configHome` that turn auto-rotate off: a view in
+// which nothing moves.
+void prepareStillReplay(const std::string& take, const std::string& configHome) {
+    ASSERT_EQ(run(binary() + " record --source synthetic:64x48 --frames 3 " + take).exitCode, 0);
+    fs::create_directories(configHome + "/depthcloud");
+    std::ofstream(configHome + "/depthcloud/settings.json") << R"({"cloud": {"autoRotate": false}})";
+}
+
 // A paused replay with auto-rotate off shows one still picture: the window keeps it instead of drawing it
 // again each refresh. The old loop drew every one of the 300 frames.
 TEST(AppWindow, AStillPausedReplayKeepsItsPictureInsteadOfRedrawingIt) {
     TempDir out, home, work;
     const std::string take = work.str() + "/take.dcrec";
-    ASSERT_EQ(run(binary() + " record --source synthetic:64x48 --frames 3 " + take).exitCode, 0);
-    fs::create_directories(home.str() + "/depthcloud");
-    std::ofstream(home.str() + "/depthcloud/settings.json") << R"({"cloud": {"autoRotate": false}})";
+    ASSERT_NO_FATAL_FAILURE(prepareStillReplay(take, home.str()));
     const RunResult r =
         run("XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1280x800x24' " + binary() +
             " --source replay:" + take + ":paused --frames 300 --out " + out.str());
@@ -335,9 +341,7 @@ TEST(AppWindow, AStillPausedReplayKeepsItsPictureInsteadOfRedrawingIt) {
 TEST(AppWindow, WhatTheScreenShowsIsTheWholePictureAfterPartialRedraws) {
     TempDir out, home, work;
     const std::string take = work.str() + "/take.dcrec";
-    ASSERT_EQ(run(binary() + " record --source synthetic:64x48 --frames 3 " + take).exitCode, 0);
-    fs::create_directories(home.str() + "/depthcloud");
-    std::ofstream(home.str() + "/depthcloud/settings.json") << R"({"cloud": {"autoRotate": false}})";
+    ASSERT_NO_FATAL_FAILURE(prepareStillReplay(take, home.str()));
     const std::string script = work.str() + "/drive.sh";
     std::ofstream(script)
         << binary() << " --source replay:" << take << ":paused --out " << out.str() << " &\n"
