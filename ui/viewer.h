@@ -64,9 +64,9 @@ public:
     bool update(double timeSeconds, std::chrono::milliseconds wait = std::chrono::milliseconds(0));
     // The ImGui panels, status line and shortcuts (between ImGui::NewFrame and ImGui::Render).
     void drawUi();
-    // What update() drew is on screen now: after the swap, or kept (`redrawn` false) because the frame
-    // would have drawn the picture the screen shows already. Counts the device frame it shows, the
-    // latency, and the UI frames drawn and kept.
+    // What update() drew is on screen now: drawn and shown (`redrawn`), or kept because the frame would have
+    // drawn the picture the screen shows already. Counts the device frame it shows, the latency, and the
+    // UI frames drawn and kept.
     void presented(bool redrawn = true);
 
     Settings& settings() { return settings_; }
