@@ -53,13 +53,17 @@ void RenderTarget::bindAndClear(float r, float g, float b, float a) const {
     glClear(depth_ ? GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT : GL_COLOR_BUFFER_BIT);
 }
 
-void RenderTarget::bindAndClearWithin(PixelRect rect, float r, float g, float b) const {
-    bind();
+void clearColorWithin(PixelRect rect, float r, float g, float b) {
     glEnable(GL_SCISSOR_TEST);
     glScissor(rect.x, rect.y, rect.width, rect.height);
     glClearColor(r, g, b, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT);
     glDisable(GL_SCISSOR_TEST);
+}
+
+void RenderTarget::bindAndClearWithin(PixelRect rect, float r, float g, float b) const {
+    bind();
+    clearColorWithin(rect, r, g, b);
 }
 
 void RenderTarget::setSampling(Sampling sampling) {

@@ -18,6 +18,9 @@ struct PixelRect {
     int x = 0, y = 0, width = 0, height = 0;
 };
 
+// Clears the colour of `rect` of the bound draw framebuffer alone (a picture redrawn only where it changed).
+void clearColorWithin(PixelRect rect, float r, float g, float b);
+
 // Whether a target has a depth buffer: the cloud's depth test needs one; a 2D panel or the UI's own
 // composite does not, and each frame's clear would write it for nothing.
 enum class DepthBuffer { With, Without };
@@ -38,7 +41,7 @@ public:
     void bind() const;
     // Binds it and clears colour and the depth buffer if it has one (colour components in [0, 1]).
     void bindAndClear(float r, float g, float b, float a = 1.0f) const;
-    // Binds it and clears the colour of `rect` alone (a picture redrawn only where it changed).
+    // Binds it and clears the colour of `rect` alone (clearColorWithin).
     void bindAndClearWithin(PixelRect rect, float r, float g, float b) const;
     void setSampling(Sampling sampling);
 

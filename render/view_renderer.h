@@ -83,7 +83,7 @@ public:
     std::uint64_t panelRenders() const { return panelRenders_; }
     std::uint64_t cloudRenders() const { return cloudRenders_; }
     // Moves whenever a texture the panels show gets new contents: a window whose ImGui frame is the same
-    // and this the same shows the same picture (ui::RedrawCheck).
+    // and this the same shows the same picture (ui::FrameDamage).
     std::uint64_t contentVersion() const {
         return uploads_ + panelRenders_ + overlayRenders_ + cloudRenders_ + cloudResizes_;
     }

@@ -207,15 +207,11 @@ void presentParts(const PartialPresenter& presenter, const std::vector<ui::Damag
     const int height = static_cast<int>(data.DisplaySize.y * data.FramebufferScale.y);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, static_cast<int>(data.DisplaySize.x * data.FramebufferScale.x), height);
-    glClearColor(kBackground[0], kBackground[1], kBackground[2], 1.0f);
     ui::drawDamaged(data, rects, [height](const ui::DamageRect& r) {
-        glEnable(GL_SCISSOR_TEST);
-        glScissor(r.x0, height - r.y1, r.x1 - r.x0, r.y1 - r.y0);
-        glClear(GL_COLOR_BUFFER_BIT);
-        glDisable(GL_SCISSOR_TEST);
+        render::clearColorWithin(ui::pixelRectOf(r, height), kBackground[0], kBackground[1], kBackground[2]);
     });
     for (const ui::DamageRect& r : rects)
-        presenter.copy(r.x0, height - r.y1, r.x1 - r.x0, r.y1 - r.y0);
+        presenter.copy(ui::pixelRectOf(r, height));
 }
 
 // Draws the frame where it changed: in parts for a presenter, whole for a swap. The last frame is drawn

@@ -13,8 +13,8 @@ std::optional<PartialPresenter> PartialPresenter::forCurrentContext() {
     return PartialPresenter(display, drawable);
 }
 
-void PartialPresenter::copy(int x, int y, int width, int height) const {
-    glXCopySubBufferMESA(static_cast<Display*>(display_), drawable_, x, y, width, height);
+void PartialPresenter::copy(render::PixelRect rect) const {
+    glXCopySubBufferMESA(static_cast<Display*>(display_), drawable_, rect.x, rect.y, rect.width, rect.height);
 }
 
 } // namespace dc::tool

@@ -1,5 +1,7 @@
 #pragma once
 
+#include "render/render_target.h"
+
 #include <optional>
 
 namespace dc::tool {
@@ -11,9 +13,8 @@ class PartialPresenter {
 public:
     // The presenter of the current GLX context's drawable; none where GLX or the extension is missing.
     static std::optional<PartialPresenter> forCurrentContext();
-    // Copies the rectangle (GL's convention: (x, y) its bottom-left corner) of the back buffer to the
-    // window. Flushes GL first, as a swap does.
-    void copy(int x, int y, int width, int height) const;
+    // Copies the rectangle of the back buffer to the window. Flushes GL first, as a swap does.
+    void copy(render::PixelRect rect) const;
 
 private:
     PartialPresenter(void* display, unsigned long drawable) : display_(display), drawable_(drawable) {}

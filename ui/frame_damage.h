@@ -1,5 +1,7 @@
 #pragma once
 
+#include "render/render_target.h"
+
 #include <imgui.h>
 
 #include <cstddef>
@@ -16,6 +18,11 @@ struct DamageRect {
     bool empty() const { return x1 <= x0 || y1 <= y0; }
     bool operator==(const DamageRect&) const = default;
 };
+
+// The same pixels GL's way (bottom-left origin), in a framebuffer `height` pixels tall.
+inline render::PixelRect pixelRectOf(const DamageRect& r, int height) {
+    return {r.x0, height - r.y1, r.x1 - r.x0, r.y1 - r.y0};
+}
 
 // Where a finished ImGui frame would put other pixels on the screen than the frame composited before it.
 // A window (draw list) whose vertices, indices and commands are the same, over textures whose contents did

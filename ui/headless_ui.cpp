@@ -62,8 +62,7 @@ bool HeadlessUi::renderIfChanged(std::uint64_t contentVersion) {
     snapClipRects(data);
     const std::vector<DamageRect> rects = damage_.update(data, contentVersion, ImGui::GetIO().Fonts->TexID);
     drawDamaged(data, rects, [this](const DamageRect& r) {
-        target_.bindAndClearWithin({r.x0, target_.height() - r.y1, r.x1 - r.x0, r.y1 - r.y0}, 0.1f, 0.1f,
-                                   0.12f);
+        target_.bindAndClearWithin(pixelRectOf(r, target_.height()), 0.1f, 0.1f, 0.12f);
     });
     return !rects.empty();
 }

@@ -77,7 +77,8 @@ TEST(FrameDamage, OnlyTheWindowsThatChangedAndTheImagesWhoseTexturesChangedAreDa
     HandList tooltip("tooltip");
     tooltip.quad(500, 500, 600, 550, kFont, kEverywhere);
     lists.push_back(&tooltip.list);
-    EXPECT_EQ(damage.update(data = handData(lists), 8, kFont), Rects({{499, 499, 601, 551}})) << "one appeared";
+    EXPECT_EQ(damage.update(data = handData(lists), 8, kFont), Rects({{499, 499, 601, 551}}))
+        << "one appeared";
     lists.pop_back();
     EXPECT_EQ(damage.update(data = handData(lists), 8, kFont), Rects({{499, 499, 601, 551}})) << "and went";
     std::swap(lists[0], lists[1]);
@@ -109,7 +110,7 @@ protected:
             damage_.update(data, renderer_.contentVersion(), ImGui::GetIO().Fonts->TexID);
         long long area = 0;
         drawDamaged(data, rects, [&](const DamageRect& r) {
-            kept_.bindAndClearWithin({r.x0, kHeight - r.y1, r.x1 - r.x0, r.y1 - r.y0}, 0.1f, 0.1f, 0.12f);
+            kept_.bindAndClearWithin(pixelRectOf(r, kHeight), 0.1f, 0.1f, 0.12f);
             area += static_cast<long long>(r.x1 - r.x0) * (r.y1 - r.y0);
         });
         whole_.bindAndClear(0.1f, 0.1f, 0.12f);
