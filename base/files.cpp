@@ -111,4 +111,21 @@ Status writeTextFile(const std::string& path, const std::string& text) {
     return writeFileAtomically(path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
 }
 
+Expected<std::string> createFreshDirectory(const std::string& parent, const std::string& stem) {
+    std::error_code ec;
+    std::filesystem::create_directories(parent, ec);
+    if (ec)
+        return Error{parent + ": cannot create directory: " + ec.message()};
+    constexpr int kMaxTries = 10000;
+    for (int n = 1; n <= kMaxTries; ++n) {
+        const std::string path = parent + "/" + stem + (n == 1 ? "" : "-" + std::to_string(n));
+        if (std::filesystem::create_directory(path, ec))
+            return path;
+        if (ec)
+            return Error{path + ": cannot create directory: " + ec.message()};
+    }
+    return Error{parent + "/" + stem + ": every numbered name up to " + std::to_string(kMaxTries) +
+                 " is taken"};
+}
+
 } // namespace dc::base

@@ -28,4 +28,8 @@ Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t
                            const AtomicWriteFault& fault = {});
 Status writeTextFile(const std::string& path, const std::string& text);
 
+// Creates a directory under `parent` (made first if missing) that did not exist before: `stem`, else
+// `stem-2`, `stem-3`, … Creation is exclusive, so two savers never share one. Returns its path.
+Expected<std::string> createFreshDirectory(const std::string& parent, const std::string& stem);
+
 } // namespace dc::base

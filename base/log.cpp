@@ -24,6 +24,8 @@ const char* toString(LogLevel level) {
         return "debug";
     case LogLevel::Info:
         return "info";
+    case LogLevel::Notice:
+        return "notice";
     case LogLevel::Warning:
         return "warning";
     case LogLevel::Error:
@@ -34,7 +36,7 @@ const char* toString(LogLevel level) {
 
 void log(LogLevel level, const std::string& message) {
     std::lock_guard lock(gMutex);
-    const bool toStderr = level >= LogLevel::Warning || (level == LogLevel::Info && !gQuiet);
+    const bool toStderr = level >= LogLevel::Warning || (level >= LogLevel::Info && !gQuiet);
     if (toStderr)
         std::fprintf(stderr, "depthcloud: %s: %s\n", toString(level), message.c_str());
     if (gSink) {

@@ -6,7 +6,9 @@
 
 namespace dc {
 
-enum class LogLevel { Debug, Info, Warning, Error };
+// Notice: what the user asked for is done (a file saved, a take recorded); the window shows it as a toast,
+// as it shows warnings and errors.
+enum class LogLevel { Debug, Info, Notice, Warning, Error };
 
 const char* toString(LogLevel level);
 
@@ -24,6 +26,9 @@ void setLogQuiet(bool quiet); // keep stderr for warnings and errors only (headl
 
 inline void logInfo(const std::string& m) {
     log(LogLevel::Info, m);
+}
+inline void logNotice(const std::string& m) {
+    log(LogLevel::Notice, m);
 }
 inline void logWarning(const std::string& m) {
     log(LogLevel::Warning, m);

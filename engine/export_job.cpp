@@ -28,7 +28,6 @@ std::function<frame::Frame(frame::Frame)> processedDepth(const Demand& demand) {
     };
 }
 
-
 Expected<std::unique_ptr<ExportJob>> ExportJob::start(const std::string& replaySpec,
                                                       const exporting::ExportOptions& options) {
     auto source = devices::replay::openReplaySpecSource(replaySpec);
@@ -44,7 +43,7 @@ Expected<std::unique_ptr<ExportJob>> ExportJob::start(const std::string& replayS
             return !self->cancelled_.load();
         });
         if (r)
-            logInfo("exported " + std::to_string(r->framesWritten) + " frames to " + options.outDirectory);
+            logNotice("exported " + std::to_string(r->framesWritten) + " frames to " + options.outDirectory);
         else
             logError("export to " + options.outDirectory + ": " + r.error().message);
         std::lock_guard lock(self->mutex_);

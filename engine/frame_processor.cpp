@@ -35,6 +35,8 @@ void FrameProcessor::setSession(std::shared_ptr<devices::Session> session) {
         frameReady_ = session != nullptr; // frames may be waiting already
         awaitedSeek_ = 0;
         slot_.reset();
+        // The counts are the source's: another source's frames were neither shown nor dropped by this one.
+        counts_ = {};
     }
     // Once setFrameListener returns, the old session's capture thread no longer calls into us.
     if (old)
@@ -95,9 +97,11 @@ void FrameProcessor::run() {
         lock.lock();
         doneGeneration_ = work.generation;
         runs_ = graph_.allRuns();
-        counts_.framesSkipped = skipped_;
-        if (result && work.epoch == epoch_)
-            publish(std::move(*result), work);
+        if (work.epoch == epoch_) {
+            counts_.framesSkipped = skipped_;
+            if (result)
+                publish(std::move(*result), work);
+        }
     }
 }
 
@@ -109,6 +113,10 @@ std::optional<processing::ShownFramePtr> FrameProcessor::process(const Work& wor
     }
     bool fresh = false;
     bool taken = false;
+    if (work.epoch != countedEpoch_) {
+        countedEpoch_ = work.epoch;
+        skipped_ = 0;
+    }
     if (work.frameSignal && work.session) {
         std::optional<frame::FramePtr> next = work.session->takeLatest();
         const bool got = next && *next; // before the frame is moved into current_

@@ -22,8 +22,10 @@ namespace dc::engine {
 struct ProcessorCounts {
     std::uint64_t framesProcessed = 0; // new frames made into a result
     std::uint64_t redone = 0;          // results made again for a changed demand, with no new frame
-    std::uint64_t framesUnshown = 0;   // new frames whose result was replaced by a newer frame's before it was taken
-    std::uint64_t framesSkipped = 0;   // taken from the source but not new: decoded before a seek, or re-delivered
+    std::uint64_t framesUnshown =
+        0; // new frames whose result was replaced by a newer frame's before it was taken
+    std::uint64_t framesSkipped =
+        0; // taken from the source but not new: decoded before a seek, or re-delivered
     std::uint64_t resultsTaken = 0;
 };
 
@@ -41,7 +43,7 @@ public:
     FrameProcessor& operator=(const FrameProcessor&) = delete;
 
     // The source whose frames to process (null: none). A new source starts from nothing: its temporal
-    // state, remembered results and the current frame are dropped.
+    // state, remembered results, the current frame and the counts are dropped.
     void setSession(std::shared_ptr<devices::Session> session);
     // Returns the generation of `demand`: the current one when it equals the demand in force, a new one
     // (and a run on the current frame) when it differs.
@@ -52,8 +54,9 @@ public:
     // The newest result not taken yet.
     std::optional<processing::ShownFramePtr> take();
     // Waits up to `timeout` for a result that satisfies `ready` and takes it (none at the timeout).
-    std::optional<processing::ShownFramePtr> waitFor(std::chrono::milliseconds timeout,
-                                                     const std::function<bool(const processing::ShownFrame&)>& ready);
+    std::optional<processing::ShownFramePtr>
+    waitFor(std::chrono::milliseconds timeout,
+            const std::function<bool(const processing::ShownFrame&)>& ready);
 
     ProcessorCounts counts() const;
     // Frame arrival to result ready, milliseconds, for new frames (median and percentiles in the stats).
@@ -81,10 +84,11 @@ private:
 
     StageStats& stages_;
     processing::AccumulationWorker& accumulation_;
-    ProcessingGraph graph_;      // processor thread only
-    frame::FramePtr current_;    // processor thread only: the frame results are made of
+    ProcessingGraph graph_;            // processor thread only
+    frame::FramePtr current_;          // processor thread only: the frame results are made of
     std::uint64_t lastGeneration_ = 0; // processor thread only: the demand of the last result
     std::uint64_t skipped_ = 0;        // processor thread only; copied to counts_ under mutex_
+    std::uint64_t countedEpoch_ = 0;   // processor thread only: the session skipped_ counts for
     // Processor thread only: the budget and voxel size accumulation last added with; none while it is off.
     std::optional<std::pair<std::size_t, float>> accumulatedWith_;
 

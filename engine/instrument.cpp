@@ -188,6 +188,7 @@ Status Instrument::startRecording(const std::string& path,
     }
     recording_ = std::move(*r);
     recordingOptions_ = options;
+    recordingStarted_ = Clock::now();
     logInfo("recording to " + path);
     return {};
 }
@@ -215,8 +216,8 @@ Status Instrument::stopRecording() {
         logError("recording " + path + ": " + s.error().message);
         return s;
     }
-    logInfo("recorded " + std::to_string(stats.framesWritten) + " frames (" +
-            std::to_string(stats.framesDropped) + " dropped) to " + path);
+    logNotice("recorded " + std::to_string(stats.framesWritten) + " frames (" +
+              std::to_string(stats.framesDropped) + " dropped) to " + path);
     return {};
 }
 
@@ -225,8 +226,13 @@ RecordingStatus Instrument::recording() const {
         return {};
     const devices::recording::RecorderStats s = recording_->stats();
     // Frames accepted are written or about to be: the same count the final message gives once they are.
-    return {true,           recording_->path(), s.framesWritten + s.queueDepth, s.framesDropped,
-            s.bytesWritten, recordingOptions_};
+    return {true,
+            recording_->path(),
+            s.framesWritten + s.queueDepth,
+            s.framesDropped,
+            s.bytesWritten,
+            recordingOptions_,
+            recordingStarted_};
 }
 
 Status Instrument::startExport(exporting::ExportFormat format, const std::string& directory,

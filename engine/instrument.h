@@ -50,6 +50,7 @@ struct RecordingStatus {
     std::uint64_t dropped = 0;
     std::uint64_t bytesWritten = 0;
     devices::recording::RecordingOptions options; // how this take stores its frames
+    std::chrono::steady_clock::time_point started;
 };
 
 // The application: one source (session, replay timeline, recording, export) and the engine that turns its
@@ -133,7 +134,6 @@ private:
     std::uint64_t demandGeneration_ = 0;
     std::uint64_t lastShownTimestampNs_ = ~0ull;
     std::uint64_t shown_ = 0;
-    std::uint64_t droppedBefore_ = 0; // by sources replaced since start
     base::RollingStats latencyMs_;
     struct CountSample {
         std::chrono::steady_clock::time_point at;
@@ -143,6 +143,7 @@ private:
     std::deque<CountSample> countHistory_;
     std::unique_ptr<devices::recording::SessionRecording> recording_;
     devices::recording::RecordingOptions recordingOptions_;
+    std::chrono::steady_clock::time_point recordingStarted_;
     std::unique_ptr<ExportJob> exportJob_;
 };
 

@@ -11,6 +11,7 @@
 #include "tool/options.h"
 #include "tool/partial_present.h"
 #include "tool/summary.h"
+#include "tool/version.h"
 #include "ui/frame_damage.h"
 #include "ui/input_queue.h"
 #include "ui/viewer.h"
@@ -19,6 +20,7 @@
 #include <backends/imgui_impl_opengl3.h>
 
 #include <algorithm>
+#include <cfloat>
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -55,6 +57,13 @@ struct ImGuiScope {
     explicit ImGuiScope(GLFWwindow* window, const std::string& iniPath) : ini(iniPath) {
         ImGui::CreateContext();
         ImGui::GetIO().IniFilename = ini.c_str();
+        // A HiDPI screen (content scale 2 on a 4K laptop) gets text and widgets of the same physical size.
+        float scaleX = 1.0f, scaleY = 1.0f;
+        glfwGetWindowContentScale(window, &scaleX, &scaleY);
+        if (scaleX > 1.0f) {
+            ImGui::GetStyle().ScaleAllSizes(scaleX);
+            ImGui::GetIO().FontGlobalScale = scaleX;
+        }
         glfwReady = ImGui_ImplGlfw_InitForOpenGL(window, true);
         glReady = ImGui_ImplOpenGL3_Init("#version 330 core");
     }
@@ -109,6 +118,13 @@ void onCursor(GLFWwindow* window, double x, double y) {
         {ui::InputEvent::Kind::CursorPos, 0, false, static_cast<float>(x), static_cast<float>(y)});
 }
 
+// The mouse left the window: nothing is under it any more (no hover readout left behind), whatever the
+// last position inside was.
+void onCursorEnter(GLFWwindow* window, int entered) {
+    if (!entered)
+        queueOf(window).push({ui::InputEvent::Kind::CursorPos, 0, false, -FLT_MAX, -FLT_MAX});
+}
+
 void onRefresh(GLFWwindow* window) {
     static_cast<WindowInput*>(glfwGetWindowUserPointer(window))->exposed = true;
 }
@@ -125,16 +141,62 @@ void queueInput(GLFWwindow* window, WindowInput& input) {
     glfwSetCharCallback(window, onChar);
     glfwSetMouseButtonCallback(window, onMouseButton);
     glfwSetCursorPosCallback(window, onCursor);
+    glfwSetCursorEnterCallback(window, onCursorEnter);
     glfwSetScrollCallback(window, onScroll);
     glfwSetWindowRefreshCallback(window, onRefresh);
 }
 
-WindowPtr openWindow() {
+// The primary monitor's area for windows (without panels and docks); 1280x720 where none is known.
+ui::WindowPlacement workArea() {
+    ui::WindowPlacement area{0, 0, 1280, 720, false};
+    if (GLFWmonitor* monitor = glfwGetPrimaryMonitor())
+        glfwGetMonitorWorkarea(monitor, &area.x, &area.y, &area.width, &area.height);
+    if (area.width <= 0 || area.height <= 0)
+        area = {0, 0, 1280, 720, false};
+    return area;
+}
+
+// Where the window opens: where it was closed, kept on the screen; the first time, 1280x720 or 80 % of a
+// larger screen, centred, never larger than the screen.
+ui::WindowPlacement initialPlacement(const ui::WindowPlacement& saved) {
+    const ui::WindowPlacement area = workArea();
+    ui::WindowPlacement p = saved;
+    if (p.width <= 0 || p.height <= 0) {
+        p.width = std::max(1280, area.width * 4 / 5);
+        p.height = std::max(720, area.height * 4 / 5);
+        p.x = area.x + (area.width - std::min(p.width, area.width)) / 2;
+        p.y = area.y + (area.height - std::min(p.height, area.height)) / 2;
+    }
+    p.width = std::min(p.width, area.width);
+    p.height = std::min(p.height, area.height);
+    p.x = std::clamp(p.x, area.x, area.x + area.width - p.width);
+    p.y = std::clamp(p.y, area.y, area.y + area.height - p.height);
+    return p;
+}
+
+WindowPtr openWindow(const ui::WindowPlacement& saved) {
     glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 3);
     glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 3);
     glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
     glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
-    return WindowPtr(glfwCreateWindow(1280, 720, "depthcloud", nullptr, nullptr));
+    glfwWindowHint(GLFW_VISIBLE, GLFW_FALSE); // shown once in its place
+    const ui::WindowPlacement p = initialPlacement(saved);
+    WindowPtr window(glfwCreateWindow(p.width, p.height, "depthcloud", nullptr, nullptr));
+    if (!window)
+        return window;
+    glfwSetWindowPos(window.get(), p.x, p.y);
+    glfwShowWindow(window.get());
+    if (p.maximized)
+        glfwMaximizeWindow(window.get());
+    return window;
+}
+
+ui::WindowPlacement placementOf(GLFWwindow* window) {
+    ui::WindowPlacement p;
+    glfwGetWindowPos(window, &p.x, &p.y);
+    glfwGetWindowSize(window, &p.width, &p.height);
+    p.maximized = glfwGetWindowAttrib(window, GLFW_MAXIMIZED) == GLFW_TRUE;
+    return p;
 }
 
 ui::Settings loadSettings(const std::string& path, bool reset) {
@@ -227,6 +289,26 @@ bool drawChanged(GLFWwindow* window, const std::optional<PartialPresenter>& part
     return true;
 }
 
+std::pair<int, int> sizeOf(GLFWwindow* window) {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window, &w, &h);
+    return {w, h};
+}
+
+// Whether the window's framebuffer changed size since `size` (which it updates): the next frame is drawn
+// whole. Software GL gives the back buffer the window's new size only at a swap (Mesa revalidates the
+// drawable there), so where nothing else swaps this swaps once first: a copy from a back buffer of the old
+// size would leave the picture offset, or ask the X server for pixels outside its image and end the run.
+bool followSize(GLFWwindow* window, std::pair<int, int>& size, bool partsPresented) {
+    const std::pair<int, int> now = sizeOf(window);
+    if (now == size)
+        return false;
+    size = now;
+    if (partsPresented)
+        glfwSwapBuffers(window);
+    return true;
+}
+
 // One ImGui frame, with the input that came in. Returns where its picture differs from the one the window
 // shows (nothing moved, no new data, no input that changed anything: nowhere).
 std::vector<ui::DamageRect> uiFrame(ui::Viewer& viewer, WindowInput& input, ui::FrameDamage& damage) {
@@ -254,8 +336,10 @@ std::vector<ui::SourceEntry> cameraEntries(const devices::LiveDeviceListing& lis
 
 int writeOutputs(GLFWwindow* window, ui::Viewer& viewer, const std::string& dir) {
     Status s = saveScreenshot(window, dir + "/screenshot.png");
-    if (s)
-        s = viewer.savePanels(dir);
+    if (s) {
+        if (auto written = viewer.savePanels(dir); !written)
+            s = written.error();
+    }
     if (s) {
         const auto renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         s = base::writeTextFile(dir + "/summary.json",
@@ -277,15 +361,6 @@ int runGui(const ViewerOptions& options) {
                              "use --headless\n");
         return kExitFailure;
     }
-    WindowPtr window = openWindow();
-    if (!window) {
-        std::fprintf(stderr,
-                     "depthcloud: error: no OpenGL 3.3 context available for a window; use --headless\n");
-        return kExitFailure;
-    }
-    glfwMakeContextCurrent(window.get());
-    glfwSwapInterval(1);
-
     const std::string configDir = ui::configDirectory();
     std::error_code ec;
     std::filesystem::create_directories(configDir, ec);
@@ -296,6 +371,15 @@ int runGui(const ViewerOptions& options) {
     ui::Settings settings = loadSettings(settingsPath, options.reset);
     if (options.confidence)
         settings.cloud.minConfidence = *options.confidence;
+
+    WindowPtr window = openWindow(settings.window);
+    if (!window) {
+        std::fprintf(stderr,
+                     "depthcloud: error: no OpenGL 3.3 context available for a window; use --headless\n");
+        return kExitFailure;
+    }
+    glfwMakeContextCurrent(window.get());
+    glfwSwapInterval(1);
 
     ui::rememberSource(settings, options.source);
     auto device = devices::openSourceSpec(options.source);
@@ -318,12 +402,14 @@ int runGui(const ViewerOptions& options) {
         logInfo("source: " + options.source);
         engine::Instrument instrument(std::move(*device), options.source);
         ui::Viewer viewer(instrument, renderer, settings);
+        viewer.setAbout(versionLine());
         instrument.start();
         devices::LiveDeviceWatcher cameras;
         const auto start = Clock::now();
         const Clock::duration period = refreshPeriod();
         Clock::time_point frameStart = start;
         ui::FrameDamage damage;
+        std::pair<int, int> framebufferSize = sizeOf(window.get());
         // Software GL draws only what changed, into a back buffer that nothing swaps; a GPU draws whole
         // frames, synchronised with the display by the swap.
         const std::optional<PartialPresenter> parts =
@@ -339,10 +425,14 @@ int runGui(const ViewerOptions& options) {
             frameStart = now + std::chrono::duration_cast<Clock::duration>(
                                    std::chrono::duration<double, std::milli>(viewer.lastWaitMs()));
             glfwPollEvents(); // after the wait: the frame acts on the freshest input
+            if (followSize(window.get(), framebufferSize, parts.has_value()))
+                damage.forget();
             const auto uiStart = Clock::now();
             const std::vector<ui::DamageRect> changed = uiFrame(viewer, input, damage);
             for (const std::string& path : std::exchange(input.dropped, {}))
                 (void)viewer.openPath(path);
+            if (viewer.quitRequested())
+                glfwSetWindowShouldClose(window.get(), GLFW_TRUE);
             // Closing the window ends the run like the last of --frames: --out still gets its files.
             const bool last =
                 glfwWindowShouldClose(window.get()) || (options.frames && frame + 1 >= *options.frames);
@@ -358,6 +448,7 @@ int runGui(const ViewerOptions& options) {
             if (last)
                 break;
         }
+        viewer.settings().window = placementOf(window.get());
         if (Status s = base::writeTextFile(settingsPath, ui::settingsToJson(viewer.settings())); !s)
             logWarning("settings not saved: " + s.error().message);
     }

@@ -44,6 +44,26 @@ bool waitForFrame(ui::Viewer& viewer, double timeSeconds) {
     return false;
 }
 
+// Whether the frame shown has the camera's image, or the source has none to give.
+bool showsColour(ui::Viewer& viewer) {
+    const auto& shown = viewer.shown();
+    return !viewer.instrument().capabilities().color || (shown && !shown->frame->capturedImage.empty());
+}
+
+// A colour sensor may start later than the depth sensor, and on a busy machine the frames asked for can all
+// come before its first image: the run goes on, up to kFrameTimeout, for one that has it, so camera.png
+// shows the camera. Returns whether one came.
+bool waitForColour(ui::Viewer& viewer, double timeSeconds) {
+    const auto deadline = std::chrono::steady_clock::now() + kFrameTimeout;
+    while (!showsColour(viewer) && std::chrono::steady_clock::now() < deadline) {
+        if (viewer.update(timeSeconds, std::chrono::milliseconds(50)))
+            viewer.presented();
+        if (replayEnded(viewer.instrument()))
+            break;
+    }
+    return showsColour(viewer);
+}
+
 } // namespace
 
 int runHeadless(const ViewerOptions& options) {
@@ -77,7 +97,8 @@ int runHeadless(const ViewerOptions& options) {
             continue;
         }
         if (replayEnded(instrument) && shown > 0) {
-            std::fprintf(stderr, "depthcloud: note: the recording ended after %d frames (--frames asked for %d)\n",
+            std::fprintf(stderr,
+                         "depthcloud: note: the recording ended after %d frames (--frames asked for %d)\n",
                          shown, frames);
             break;
         }
@@ -85,13 +106,22 @@ int runHeadless(const ViewerOptions& options) {
         return fail("no frame from " + s.source + " within " + std::to_string(kFrameTimeout.count()) + " s" +
                     (s.message.empty() ? "" : ": " + s.message));
     }
-    if (Status s = viewer.savePanels(options.outDirectory); !s)
-        return fail(s.error().message);
+    if (!showsColour(viewer) && !waitForColour(viewer, shown * kHeadlessFrameSeconds))
+        std::fprintf(stderr,
+                     "depthcloud: note: no frame with the camera's image arrived within %lld s; "
+                     "camera.png is not written\n",
+                     static_cast<long long>(kFrameTimeout.count()));
+    auto written = viewer.savePanels(options.outDirectory);
+    if (!written)
+        return fail(written.error().message);
     const std::string summary = summaryJson(viewer.summary(), context->rendererName(), "headless");
     if (Status s = base::writeTextFile(options.outDirectory + "/summary.json", summary); !s)
         return fail(s.error().message);
-    std::printf("depthcloud: wrote cloud.png depth.png confidence.png camera.png summary.json to %s\n",
-                options.outDirectory.c_str());
+    written->emplace_back("summary.json");
+    std::string names;
+    for (const std::string& name : *written)
+        names += (names.empty() ? "" : " ") + name;
+    std::printf("depthcloud: wrote %s to %s\n", names.c_str(), options.outDirectory.c_str());
     return kExitOk;
 }
 

@@ -228,7 +228,7 @@ bool processingSection(processing::ProcessingSettings& p, const ControlsContext&
     return changed;
 }
 
-bool panelsSection(PanelVisibility& panels, ControlsResult& result) {
+bool panelsSection(PanelVisibility& panels, bool infraredAvailable, ControlsResult& result) {
     // Two columns: the list stays short enough to fit under the View group at 1280x720.
     const float column = ImGui::GetWindowContentRegionMin().x +
                          0.5f * (ImGui::GetWindowContentRegionMax().x - ImGui::GetWindowContentRegionMin().x);
@@ -247,7 +247,12 @@ bool panelsSection(PanelVisibility& panels, ControlsResult& result) {
     for (std::size_t i = 0; i < std::size(toggles); ++i) {
         if (i % 2 == 1)
             ImGui::SameLine(column);
+        const bool infrared = toggles[i].second == &panels.infrared;
+        ImGui::BeginDisabled(infrared && !infraredAvailable);
         changed |= ImGui::Checkbox(toggles[i].first, toggles[i].second);
+        ImGui::EndDisabled();
+        if (infrared && !infraredAvailable && ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+            ImGui::SetTooltip("This source delivers no infrared image.");
         if (toggles[i].second == &panels.timeline && ImGui::IsItemHovered())
             ImGui::SetTooltip("The strip under the panels while the source is a recording.");
     }
@@ -275,7 +280,7 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
         changed |= depthSection(settings.depthRange, settings.depthView);
     }
     if (ImGui::CollapsingHeader("Panels", ImGuiTreeNodeFlags_DefaultOpen))
-        changed |= panelsSection(settings.panels, result);
+        changed |= panelsSection(settings.panels, context.infraredAvailable, result);
     if (ImGui::CollapsingHeader("Measure", ImGuiTreeNodeFlags_DefaultOpen)) {
         anchorsSection(context, result);
         changed |= accumulateSection(settings.accumulate, context, result);

@@ -39,6 +39,11 @@ Status HeadlessUi::init(int width, int height) {
     return {};
 }
 
+Status HeadlessUi::resize(int width, int height) {
+    damage_.forget();
+    return target_.resize(width, height);
+}
+
 void HeadlessUi::newFrame(float deltaSeconds) {
     ImGuiIO& io = ImGui::GetIO();
     io.DeltaTime = deltaSeconds > 0.0f ? deltaSeconds : 1.0f / 60.0f;

@@ -18,6 +18,8 @@ public:
     HeadlessUi& operator=(const HeadlessUi&) = delete;
 
     Status init(int width, int height);
+    // As a window resized: the next frame is laid out and drawn whole at the new size.
+    Status resize(int width, int height);
     void newFrame(float deltaSeconds);
     // Finishes the ImGui frame and draws it into target().
     void render();

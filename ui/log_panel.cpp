@@ -12,6 +12,8 @@ ImVec4 levelColor(LogLevel level) {
         return {1.0f, 0.45f, 0.35f, 1.0f};
     case LogLevel::Warning:
         return {1.0f, 0.8f, 0.3f, 1.0f};
+    case LogLevel::Notice:
+        return {0.55f, 0.9f, 0.55f, 1.0f};
     case LogLevel::Debug:
         return ImGui::GetStyleColorVec4(ImGuiCol_TextDisabled);
     case LogLevel::Info:
@@ -28,7 +30,7 @@ void drawLogPanel(const std::vector<LogEntry>& entries, LogPanelState& state, bo
         return;
     }
     ImGui::SetNextItemWidth(ImGui::GetFontSize() * 7.0f);
-    ImGui::Combo("Level", &state.minLevel, "debug\0info\0warning\0error\0");
+    ImGui::Combo("Level", &state.minLevel, "debug\0info\0notice\0warning\0error\0");
     ImGui::SameLine();
     state.filter.Draw("Filter", ImGui::GetFontSize() * 12.0f);
     ImGui::Separator();
@@ -54,11 +56,11 @@ void drawToasts(const std::vector<LogEntry>& entries, float bottomMargin) {
     float y = vp->WorkPos.y + vp->WorkSize.y - bottomMargin - 8.0f;
     int shown = 0;
     for (auto it = entries.rbegin(); it != entries.rend() && shown < kMaxToasts; ++it) {
-        if (it->level < LogLevel::Warning || now - it->time > kShownFor)
+        if (it->level < LogLevel::Notice || now - it->time > kShownFor)
             continue;
         ImGui::SetNextWindowPos({vp->WorkPos.x + vp->WorkSize.x - 8.0f, y}, ImGuiCond_Always, {1.0f, 1.0f});
         ImGui::SetNextWindowBgAlpha(0.85f);
-        const std::string id = "##toast" + std::to_string(it->id);
+        const std::string id = kToastPrefix + std::to_string(it->id);
         constexpr ImGuiWindowFlags kFlags =
             ImGuiWindowFlags_NoDecoration | ImGuiWindowFlags_AlwaysAutoResize |
             ImGuiWindowFlags_NoSavedSettings | ImGuiWindowFlags_NoFocusOnAppearing | ImGuiWindowFlags_NoNav |

@@ -31,6 +31,8 @@ inline constexpr const char* kStatsTitle = "Stats";
 inline constexpr const char* kLogTitle = "Log";
 inline constexpr const char* kSourceTitle = "Source";
 inline constexpr const char* kTimelineTitle = "Timeline";
+// Every toast's window name starts so (drawToasts), which puts them in front of the panels.
+inline constexpr const char* kToastPrefix = "##toast";
 inline constexpr const char* kFogTitle = "Fog";
 inline constexpr const char* kAuraTitle = "Aura";
 
@@ -148,6 +150,7 @@ struct ControlsContext {
     std::uint64_t cloudPoints = 0; // points the cloud draws
     engine::RecordingStatus record;
     RecordPanelState* recordState = nullptr;
+    bool infraredAvailable = false; // the source delivers infrared: the Infrared panel can be shown
 };
 
 // What the controls ask for beyond settings.
@@ -176,6 +179,7 @@ struct StatusLine {
     std::optional<double> latencyMs; // median device timestamp to screen; none when clocks differ
     // A two-sensor camera's calibration in use, or that its colours are not registered; empty for one camera.
     std::string calibration;
+    std::string recording; // while recording: "REC 0:12 | 360 frames | 34.5 MB", first and in red
 };
 
 struct StageHistory {

@@ -169,6 +169,10 @@ void sanitize(Settings& s) {
         s.record.directory = d.record.directory;
     if (s.recentSources.size() > kMaxRecentSources)
         s.recentSources.resize(kMaxRecentSources);
+    constexpr int kMaxWindowPixels = 16384;
+    if (s.window.width <= 0 || s.window.height <= 0 || s.window.width > kMaxWindowPixels ||
+        s.window.height > kMaxWindowPixels)
+        s.window = d.window;
 }
 
 void rememberSource(Settings& settings, const std::string& source) {
@@ -183,9 +187,15 @@ std::string settingsToJson(const Settings& s) {
     const auto& c = s.cloud;
     json j;
     j["panels"] = {
-        {"cloud", s.panels.cloud},   {"depth", s.panels.depth},       {"confidence", s.panels.confidence},
-        {"camera", s.panels.camera}, {"controls", s.panels.controls}, {"stats", s.panels.stats},
-        {"log", s.panels.log},       {"infrared", s.panels.infrared}};
+        {"cloud", s.panels.cloud},       {"depth", s.panels.depth},       {"confidence", s.panels.confidence},
+        {"camera", s.panels.camera},     {"controls", s.panels.controls}, {"stats", s.panels.stats},
+        {"log", s.panels.log},           {"infrared", s.panels.infrared}, {"source", s.panels.source},
+        {"timeline", s.panels.timeline}, {"fog", s.panels.fog},           {"aura", s.panels.aura}};
+    j["window"] = {{"x", s.window.x},
+                   {"y", s.window.y},
+                   {"width", s.window.width},
+                   {"height", s.window.height},
+                   {"maximized", s.window.maximized}};
     j["cloud"] = {{"minConfidence", static_cast<int>(c.minConfidence)},
                   {"pointSizePixels", c.pointSizePixels},
                   {"nearMeters", c.nearMeters},
@@ -239,6 +249,12 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(p, "fog", s.panels.fog);
     read(p, "aura", s.panels.aura);
     read(p, "infrared", s.panels.infrared);
+    const json& w = j.contains("window") ? j["window"] : none;
+    read(w, "x", s.window.x);
+    read(w, "y", s.window.y);
+    read(w, "width", s.window.width);
+    read(w, "height", s.window.height);
+    read(w, "maximized", s.window.maximized);
     const json& c = j.contains("cloud") ? j["cloud"] : none;
     int level = static_cast<int>(s.cloud.minConfidence);
     read(c, "minConfidence", level);

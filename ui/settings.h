@@ -83,9 +83,19 @@ struct DepthView {
     float overlayOpacity = 0.5f;
 };
 
+// Where the window was and how large, in screen coordinates, as it was closed (width 0: never saved).
+struct WindowPlacement {
+    int x = 0;
+    int y = 0;
+    int width = 0;
+    int height = 0;
+    bool maximized = false;
+};
+
 // Everything the user can set; plain data, edited by the panels, persisted between runs.
 struct Settings {
     PanelVisibility panels;
+    WindowPlacement window;
     CloudSettings cloud;
     DepthRange depthRange;
     CameraView camera;

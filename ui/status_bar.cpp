@@ -58,6 +58,8 @@ float drawStatusBar(const StatusLine& s) {
                 ImGui::TextUnformatted(piece.c_str());
             return true;
         };
+        if (!s.recording.empty())
+            put(s.recording, false, true);
         for (const std::string& part : statusParts(s))
             put(part, false, false);
         if (!s.message.empty())

@@ -246,6 +246,7 @@ Status Viewer::openSource(const std::string& spec) {
     shown_.reset();
     pivotSet_ = false;
     followedRange_.reset();
+    measured_.reset();
     return {};
 }
 
@@ -259,21 +260,30 @@ Status Viewer::openPath(const std::string& path) {
     return openSource(*spec);
 }
 
-Status Viewer::savePanels(const std::string& directory) const {
+Expected<std::vector<std::string>> Viewer::savePanels(const std::string& directory) const {
     const std::pair<const char*, const render::RenderTarget*> panels[] = {
         {"cloud.png", &renderer_.cloudTarget()},
         {"depth.png", &renderer_.depthTarget()},
         {"confidence.png", &renderer_.confidenceTarget()}};
+    std::vector<std::string> written;
     for (const auto& [name, target] : panels) {
         if (target->width() == 0)
             return Error{std::string("cannot write ") + name + ": the panel has not been rendered"};
         if (Status s = target->savePng(directory + "/" + name); !s)
-            return s;
+            return s.error();
+        written.emplace_back(name);
     }
-    // The camera's own image at its full resolution (the panel shows it scaled to the panel); a depth-only
-    // camera has none, and its camera panel is simply not written.
+    // The camera's own image at its full resolution (the panel shows it scaled to the panel); a frame
+    // without one (a depth-only camera) has no camera.png.
     if (!shown_ || shown_->frame->capturedImage.empty())
-        return {};
+        return written;
+    if (Status s = saveCameraImage(directory + "/camera.png"); !s)
+        return s.error();
+    written.emplace_back("camera.png");
+    return written;
+}
+
+Status Viewer::saveCameraImage(const std::string& path) const {
     // A JPEG camera's image is decoded only for what shows it; the snapshot is one more reader.
     const auto captured = frame::JpegDecoder().decode(shown_->frame->capturedImage);
     if (!captured)
@@ -285,35 +295,59 @@ Status Viewer::savePanels(const std::string& directory) const {
     std::vector<std::uint8_t> rgba(static_cast<std::size_t>(image.width) * image.height * 4, 255);
     for (std::size_t i = 0, n = rgba.size() / 4; i < n; ++i)
         std::copy_n(&image.pixels[i * 3], 3, &rgba[i * 4]);
-    return frame::writeRgbaPng(directory + "/camera.png", image.width, image.height, rgba.data());
+    return frame::writeRgbaPng(path, image.width, image.height, rgba.data());
 }
 
 Expected<std::string> Viewer::saveSnapshot(const std::string& parent) const {
+    auto dir = writeSnapshot(parent);
+    if (dir)
+        logNotice("snapshot saved to " + *dir);
+    else
+        logError("snapshot not saved: " + dir.error().message);
+    return dir;
+}
+
+Expected<std::string> Viewer::writeSnapshot(const std::string& parent) const {
     if (!shown_)
         return Error{"no frame to save yet"};
-    const std::string dir = parent + "/frame-" + std::to_string(shown_->frame->sequence);
-    std::error_code ec;
-    std::filesystem::create_directories(dir, ec);
-    if (ec)
-        return Error{dir + ": cannot create directory: " + ec.message()};
-    if (Status s = savePanels(dir); !s)
-        return s.error();
+    // A new directory every time: two snapshots of one frame (a paused replay) are two snapshots.
+    auto dir = base::createFreshDirectory(parent, "frame-" + std::to_string(shown_->frame->sequence));
+    if (!dir)
+        return dir.error();
+    if (auto written = savePanels(*dir); !written)
+        return written.error();
     // Exactly the points drawn: the shown depth, its colours, the cloud's confidence and near limits.
     const auto points = processing::buildPointCloud(shown_->samples(), settings_.cloud.minConfidence,
                                                     settings_.cloud.nearMeters);
     const auto ply = exporting::encodePly(points, {"depthcloud snapshot of " + instrument_.status().source});
-    if (Status s = base::writeFileAtomically(dir + "/cloud.ply", ply); !s)
+    if (Status s = base::writeFileAtomically(*dir + "/cloud.ply", ply); !s)
         return s.error();
-    logInfo("snapshot: " + dir);
     return dir;
 }
 
+namespace {
+
+// "REC 1:05 | 1950 frames | 212.4 MB": how long, how much, how large so far.
+std::string recordingText(const engine::RecordingStatus& r) {
+    const auto seconds = std::chrono::duration_cast<std::chrono::seconds>(Clock::now() - r.started).count();
+    char text[128];
+    std::snprintf(text, sizeof text, "REC %lld:%02lld | %llu frames | %.1f MB",
+                  static_cast<long long>(seconds / 60), static_cast<long long>(seconds % 60),
+                  static_cast<unsigned long long>(r.frames), static_cast<double>(r.bytesWritten) / 1e6);
+    return text;
+}
+
+} // namespace
+
 StatusLine Viewer::statusLine() {
     const engine::InstrumentStatus s = instrument_.status();
-    StatusLine line{s.source,      s.state,         s.message, s.frames,    uiFrames_.perSecond(),
-                    pointsShown(), cloudPathText(), {},        s.latencyMs, {}};
+    StatusLine line{
+        s.source, s.state,     s.message, s.frames, uiFrames_.perSecond(), pointsShown(), cloudPathText(),
+        {},       s.latencyMs, {},        {}};
     for (const engine::StageSummary& stage : s.stages)
         line.stageMedians.push_back({stage.name, stage.medianMs});
+    if (const engine::RecordingStatus r = instrument_.recording(); r.recording)
+        line.recording = recordingText(r);
     if (shown_ && shown_->frame && shown_->frame->rig)
         line.calibration = frame::describe(*shown_->frame->rig);
     else if (s.unregisteredColour && shown_ && shown_->frame && !shown_->frame->capturedImage.empty())
@@ -324,7 +358,11 @@ StatusLine Viewer::statusLine() {
 void Viewer::measure() {
     const auto now = Clock::now();
     const std::uint64_t version = renderer_.contentVersion();
-    if (measured_ && (version == measuredVersion_ || now - measuredAt_ < kMeasureInterval))
+    // A source that stops delivering (paused, ended, stalled) changes nothing on screen, but its rates fall
+    // to zero within the rate window: they are taken again until they have, so no figure looks live.
+    const bool ratesMoving =
+        measured_ && (measured_->frames.deliveredPerSecond > 0.0 || measured_->frames.shownPerSecond > 0.0);
+    if (measured_ && ((version == measuredVersion_ && !ratesMoving) || now - measuredAt_ < kMeasureInterval))
         return;
     measured_ = statsView();
     measuredVersion_ = version;

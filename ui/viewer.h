@@ -16,6 +16,8 @@
 #include <set>
 #include <string>
 
+struct ImGuiWindow;
+
 namespace dc::ui {
 
 // What a run measured, for summary.json and the benchmarks.
@@ -77,10 +79,12 @@ public:
     void recordUiMilliseconds(double ms) { instrument_.recordStage("ui", ms); }
 
     // Writes cloud.png, depth.png, confidence.png (as rendered, at the depth's resolution) and camera.png
-    // (the camera's image at its full resolution) into `directory`.
-    Status savePanels(const std::string& directory) const;
-    // Writes the panels as PNGs and the points drawn as cloud.ply (camera frame) into a new directory
-    // under `parent` named after the frame; returns that directory.
+    // (the camera's image at its full resolution, where the frame shown has one) into `directory`; returns
+    // the names of the files written.
+    Expected<std::vector<std::string>> savePanels(const std::string& directory) const;
+    // Writes the panels as PNGs and the points drawn as cloud.ply (camera frame) into a directory under
+    // `parent` named after the frame, new each time (frame-N, frame-N-2, …); returns that directory. Says
+    // where it went, or why it failed, in the log (and so on screen).
     Expected<std::string> saveSnapshot(const std::string& parent) const;
     // The cloud path the settings and the GL choose, and that with the reason ("CPU splat (software GL)").
     render::CloudPath cloudPath() const;
@@ -90,6 +94,8 @@ public:
     double lastWaitMs() const { return lastWaitMs_; }
     ViewerSummary summary();
     StatsView statsView();
+    // The figures the status line and the stats panel show now (taken by drawUi at most twice a second).
+    const std::optional<StatsView>& shownFigures() const { return measured_; }
     // The result drawn last (null before the first).
     const processing::ShownFramePtr& shown() const { return shown_; }
     // The demand stated last.
@@ -113,6 +119,12 @@ public:
     const std::vector<LabelBox>& measurementLabels() const { return measurementLabels_; }
     // The matrix the last cloud was drawn with (depth camera frame to clip space).
     const glm::mat4& cloudViewProjection() const { return cloudViewProjection_; }
+    // Help > About names this (the tool's version line).
+    void setAbout(std::string text) { about_ = std::move(text); }
+    // File > Quit was chosen: the window closes as with Ctrl+Q.
+    bool quitRequested() const { return quitRequested_; }
+    // Whether the frame shown carries the depth sensor's infrared image (the Infrared panel has something).
+    bool infraredAvailable() const { return shown_ && shown_->frame && shown_->frame->infrared; }
     // The panel shown large, or empty.
     const std::string& zoomedPanel() const { return zoomed_; }
     void setZoomedPanel(const std::string& title);
@@ -126,6 +138,8 @@ public:
     bool accumulating() const;
 
 private:
+    Status saveCameraImage(const std::string& path) const;
+    Expected<std::string> writeSnapshot(const std::string& parent) const;
     engine::Demand demandOf() const;
     void adopt(processing::ShownFramePtr shown);
     void renderCloud(double timeSeconds);
@@ -134,16 +148,22 @@ private:
     std::uint64_t pointsShown();
     ProbeSource probeSource() const;
     void placePanel(const char* title, float x, float y, float w, float h);
+    void keepInsideWorkArea(const ImGuiWindow* window) const;
+    void followWindowSize();
     void afterPanel(const char* title, const PanelResult& result);
     void drawControls(float width, float height);
     void toggleRecording();
     void drawCloud(float x, float y, float w, float h);
     void drawSidePanels(float x, float w, float h);
     void drawSourcePicker(float x, float y);
-    void drawTimeline(ImVec2 pos, ImVec2 size);
+    void drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, ImVec2 size);
     float drawMenuBar();
-    void applyTimeline(const TimelineActions& actions);
-    void handleReplayKeys();
+    void drawFileMenu();
+    void drawHelpMenu();
+    void drawHelpWindows();
+    void applyTimeline(devices::replay::ReplayControl& replay, const TimelineActions& actions);
+    void startExport();
+    void handleReplayKeys(devices::replay::ReplayControl& replay);
     void onCloudPointer(const CloudPanelResult& r);
     CloudOverlay cloudOverlay() const;
     void measure();
@@ -175,9 +195,15 @@ private:
     std::string restoring_; // the panel going back to its place after a zoom, for one frame
     std::map<std::string, std::pair<ImVec2, ImVec2>> panelPlaces_; // title -> (pos, size) before zooming
     std::set<std::string> layoutResets_; // panels still to go back to their default places
+    ImVec2 layoutSize_;                  // the window's size the docked panels were laid out for
     LogStore logs_;
     LogPanelState logPanel_;
     SourcePanelState sourcePanel_;
+    std::optional<std::string> pendingSource_; // chosen in the frame being drawn, opened at its end
+    std::string about_ = "depthcloud";
+    bool helpShown_ = false;
+    bool aboutShown_ = false;
+    bool quitRequested_ = false;
     TimelinePanelState timelineState_;
     RecordPanelState recordState_;
     std::vector<SourceEntry> liveSources_;

@@ -1,11 +1,16 @@
 #include "ui/viewer.h"
 
+#include "base/files.h"
+#include "base/log.h"
 #include "render/cloud_pick.h"
 
 #include <imgui_internal.h>
 
 #include <algorithm>
+#include <filesystem>
+#include <string_view>
 #include <tuple>
+#include <vector>
 
 namespace dc::ui {
 
@@ -36,6 +41,37 @@ float timelineStripHeight() {
     return ImGui::GetFrameHeight() + 4.0f * ImGui::GetFrameHeightWithSpacing() +
            2.0f * ImGui::GetStyle().WindowPadding.y;
 }
+
+// Popups (a combo's list, a menu), tooltips and toasts go in front of every panel and the timeline strip,
+// in the order they had among themselves; a frame whose order is already so changes nothing.
+void raiseOverlays() {
+    std::vector<ImGuiWindow*> overlays;
+    for (ImGuiWindow* w : GImGui->Windows) {
+        const bool overlay = (w->Flags & (ImGuiWindowFlags_Popup | ImGuiWindowFlags_Tooltip)) != 0 ||
+                             std::string_view(w->Name).starts_with(kToastPrefix);
+        if (overlay && !(w->Flags & ImGuiWindowFlags_ChildWindow))
+            overlays.push_back(w);
+    }
+    for (ImGuiWindow* w : overlays)
+        ImGui::BringWindowToDisplayFront(w);
+}
+
+constexpr const char* kShortcutsTitle = "Shortcuts";
+constexpr const char* kAboutTitle = "About depthcloud";
+constexpr std::pair<const char*, const char*> kShortcuts[] = {
+    {"1 2 3", "lowest confidence drawn: low, medium, high"},
+    {"R", "auto-rotate on or off"},
+    {"V", "reset the view"},
+    {"C T S L", "Controls, Timeline, Stats, Log panels"},
+    {"O F A", "Source, Fog, Aura panels"},
+    {"P", "snapshot: every panel and the cloud as PLY"},
+    {"Z", "undo the last anchor"},
+    {"Space", "play or pause a replay"},
+    {"Left Right", "step a replay one frame"},
+    {"Home End", "first or last frame of a replay"},
+    {"Esc", "close a menu, or a panel shown large"},
+    {"Drag, wheel", "orbit, zoom the cloud; double-click resets it"},
+    {"Ctrl+Q", "quit"}};
 
 PanelImage imageOf(const render::RenderTarget& target) {
     return {target.colorTexture(), target.width(), target.height(), true};
@@ -75,13 +111,46 @@ void Viewer::placePanel(const char* title, float x, float y, float w, float h) {
     }
     const ImGuiCond when = layoutResets_.erase(title) > 0 ? ImGuiCond_Always : ImGuiCond_FirstUseEver;
     ImGui::SetNextWindowPos({workOrigin_.x + x, workOrigin_.y + y}, when);
-    ImGui::SetNextWindowSize({w, h}, when);
+    ImGui::SetNextWindowSize({std::min(w, workSize_.x), std::min(h, workSize_.y)}, when);
+    if (when != ImGuiCond_Always)
+        keepInsideWorkArea(ImGui::FindWindowByName(title));
     // A panel that reaches below the work area (placed before the timeline strip appeared) ends above it.
     const float bottom = workOrigin_.y + workSize_.y;
     const ImGuiWindow* window = ImGui::FindWindowByName(title);
     if (when != ImGuiCond_Always && window && window->Pos.y < bottom - 1.0f &&
         window->Pos.y + window->Size.y > bottom + 0.5f)
         ImGui::SetNextWindowSize({window->Size.x, bottom - window->Pos.y}, ImGuiCond_Always);
+}
+
+// A panel the window shrank away from comes back within reach: one larger than the work area is made to
+// fit it, and one whose title bar is off the window is moved back in. A panel the user moved partly over
+// an edge (or over the timeline strip) stays where it is.
+void Viewer::keepInsideWorkArea(const ImGuiWindow* window) const {
+    if (!window)
+        return;
+    const ImVec2 size{std::min(window->Size.x, workSize_.x), std::min(window->Size.y, workSize_.y)};
+    const float reach = 2.0f * ImGui::GetFrameHeight(); // of a title bar, to grab it
+    const ImGuiViewport* vp = ImGui::GetMainViewport();
+    const float left = vp->Pos.x, top = workOrigin_.y;
+    const float right = left + vp->Size.x, bottom = vp->Pos.y + vp->Size.y;
+    ImVec2 pos = window->Pos;
+    if (pos.x > right - reach || pos.x + size.x < left + reach)
+        pos.x = std::clamp(pos.x, left, right - size.x);
+    if (pos.y > bottom - reach || pos.y < top)
+        pos.y = std::clamp(pos.y, top, bottom - size.y);
+    if (size.x != window->Size.x || size.y != window->Size.y)
+        ImGui::SetNextWindowSize(size, ImGuiCond_Always);
+    if (pos.x != window->Pos.x || pos.y != window->Pos.y)
+        ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
+}
+
+// The panels docked by default (controls, cloud, depth, confidence, camera) follow the window's size: a
+// resized window lays them out again for its new size.
+void Viewer::followWindowSize() {
+    const ImVec2 size = ImGui::GetMainViewport()->Size;
+    if (layoutSize_.x > 0.0f && (size.x != layoutSize_.x || size.y != layoutSize_.y))
+        layoutResets_.insert({kControlsTitle, kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle});
+    layoutSize_ = size;
 }
 
 void Viewer::resetLayout() {
@@ -94,11 +163,68 @@ void Viewer::resetLayout() {
                      kLogTitle,   kSourceTitle, kFogTitle,        kAuraTitle,   kInfraredTitle};
 }
 
-// The menu bar lists every panel (with its shortcut) and the layout reset; returns its height.
+// File: what a person opens and saves, each also a shortcut or a button elsewhere.
+void Viewer::drawFileMenu() {
+    if (!ImGui::BeginMenu("File"))
+        return;
+    if (ImGui::MenuItem("Open...", "O"))
+        settings_.panels.source = true;
+    if (ImGui::BeginMenu("Recent", !settings_.recentSources.empty())) {
+        for (const std::string& spec : settings_.recentSources)
+            if (ImGui::MenuItem(spec.c_str()))
+                pendingSource_ = spec;
+        ImGui::EndMenu();
+    }
+    ImGui::Separator();
+    if (ImGui::MenuItem(instrument_.recording().recording ? "Stop recording" : "Record"))
+        toggleRecording();
+    if (ImGui::MenuItem("Snapshot", "P"))
+        (void)saveSnapshot(kSnapshotDirectory);
+    if (ImGui::MenuItem("Export...", nullptr, false, instrument_.replay() != nullptr))
+        settings_.panels.timeline = true; // the timeline holds the export range, format and folder
+    ImGui::Separator();
+    if (ImGui::MenuItem("Quit", "Ctrl+Q"))
+        quitRequested_ = true;
+    ImGui::EndMenu();
+}
+
+void Viewer::drawHelpMenu() {
+    if (!ImGui::BeginMenu("Help"))
+        return;
+    if (ImGui::MenuItem("Shortcuts"))
+        helpShown_ = true;
+    if (ImGui::MenuItem("About depthcloud"))
+        aboutShown_ = true;
+    ImGui::EndMenu();
+}
+
+void Viewer::drawHelpWindows() {
+    if (helpShown_) {
+        ImGui::SetNextWindowSize({460.0f, 0.0f}, ImGuiCond_FirstUseEver);
+        if (ImGui::Begin(kShortcutsTitle, &helpShown_, ImGuiWindowFlags_AlwaysAutoResize)) {
+            for (const auto& [keys, what] : kShortcuts) {
+                ImGui::TextUnformatted(keys);
+                ImGui::SameLine(ImGui::GetFontSize() * 9.0f);
+                ImGui::TextDisabled("%s", what);
+            }
+        }
+        ImGui::End();
+    }
+    if (aboutShown_) {
+        if (ImGui::Begin(kAboutTitle, &aboutShown_, ImGuiWindowFlags_AlwaysAutoResize)) {
+            ImGui::TextUnformatted(about_.c_str());
+            ImGui::TextDisabled("See what a depth camera measures.");
+        }
+        ImGui::End();
+    }
+}
+
+// The menu bar: File, every panel (with its shortcut) and the layout reset, Help; returns its height.
 float Viewer::drawMenuBar() {
     if (!ImGui::BeginMainMenuBar())
         return 0.0f;
     const float height = ImGui::GetWindowSize().y;
+    drawFileMenu();
     if (ImGui::BeginMenu("View")) {
         PanelVisibility& show = settings_.panels;
         const std::tuple<const char*, const char*, bool*> panels[] = {
@@ -115,12 +241,13 @@ float Viewer::drawMenuBar() {
             {kFogTitle, "F", &show.fog},
             {kAuraTitle, "A", &show.aura}};
         for (const auto& [title, key, shown] : panels)
-            ImGui::MenuItem(title, key, shown);
+            ImGui::MenuItem(title, key, shown, shown != &show.infrared || infraredAvailable());
         ImGui::Separator();
         if (ImGui::MenuItem("Reset layout"))
             resetLayout();
         ImGui::EndMenu();
     }
+    drawHelpMenu();
     ImGui::EndMainMenuBar();
     return height;
 }
@@ -136,8 +263,11 @@ void Viewer::afterPanel(const char* title, const PanelResult& result) {
 
 void Viewer::drawUi() {
     handleShortcuts(settings_);
-    if (!ImGui::GetIO().WantTextInput) {
-        if (!zoomed_.empty() && ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false))
+    const bool escape = ImGui::IsKeyPressed(ImGui::GetKeyIndex(ImGuiKey_Escape), false);
+    if (escape && !GImGui->OpenPopupStack.empty()) {
+        ImGui::ClosePopupToLevel(0, true); // Esc closes an open menu or list before anything else
+    } else if (!ImGui::GetIO().WantTextInput) {
+        if (!zoomed_.empty() && escape)
             setZoomedPanel({});
         if (ImGui::IsKeyPressed('Z', false))
             anchors_.undo();
@@ -145,14 +275,17 @@ void Viewer::drawUi() {
             (void)saveSnapshot(kSnapshotDirectory);
     }
     hoverProbe_.reset();
+    followWindowSize();
     const float menuHeight = drawMenuBar();
     measure();
     const float statusHeight = drawStatusBar(shownStatusLine());
     Layout l = defaultLayout(menuHeight, statusHeight);
     PanelVisibility& show = settings_.panels;
     // The timeline is a strip under the panels, full width: nothing is placed over it, and it stays in
-    // front of a panel the user moved there.
-    const bool timeline = instrument_.replay() && show.timeline;
+    // front of a panel the user moved there. The frame holds the replay it draws, so nothing in the frame can
+    // end it; a source chosen in the frame is opened after it (pendingSource_).
+    const std::shared_ptr<devices::replay::ReplayControl> replay = instrument_.replay();
+    const bool timeline = replay && show.timeline;
     const float stripHeight = timeline ? std::min(timelineStripHeight(), l.size.y * 0.5f) : 0.0f;
     l.size.y -= stripHeight;
     workOrigin_ = l.origin;
@@ -182,22 +315,29 @@ void Viewer::drawUi() {
         placePanel(kAuraTitle, l.leftWidth + 80.0f, 80.0f, 520.0f, 440.0f);
         drawAuraPanel(imageOf(renderer_.auraTexture()), settings_.processing.aura, &show.aura);
     }
-    if (show.infrared && shown_ && shown_->frame && shown_->frame->infrared) {
+    if (show.infrared && infraredAvailable()) {
         placePanel(kInfraredTitle, l.leftWidth + 100.0f, 100.0f, 480.0f, 400.0f);
         afterPanel(kInfraredTitle,
                    drawInfraredPanel(imageOf(renderer_.infraredTexture()), probeSource(), &show.infrared));
     }
     if (timeline)
-        drawTimeline({l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});
-    handleReplayKeys();
+        drawTimeline(*replay, {l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});
+    if (replay)
+        handleReplayKeys(*replay);
     drawToasts(log, statusHeight);
     if (hoverProbe_)
         showProbeTooltip(*hoverProbe_);
+    drawHelpWindows();
+    raiseOverlays();
+    if (auto spec = std::exchange(pendingSource_, std::nullopt))
+        (void)openSource(*spec);
 }
 
 void Viewer::toggleRecording() {
-    if (instrument_.recording().recording) {
-        (void)instrument_.stopRecording();
+    if (const engine::RecordingStatus r = instrument_.recording(); r.recording) {
+        // A finished take is one click away in Recent (the instrument says where it went).
+        if (instrument_.stopRecording())
+            rememberSource(settings_, "replay:" + r.path);
         return;
     }
     devices::recording::RecordingOptions options;
@@ -219,7 +359,8 @@ void Viewer::drawControls(float width, float height) {
                                   shown_ ? shown_->cloud.factor : 1,
                                   pointsShown(),
                                   instrument_.recording(),
-                                  &recordState_};
+                                  &recordState_,
+                                  infraredAvailable()};
     const ControlsResult r = drawControlsPanel(settings_, context, &settings_.panels.controls);
     if (r.snapshot)
         (void)saveSnapshot(kSnapshotDirectory);
@@ -287,27 +428,29 @@ void Viewer::drawSourcePicker(float x, float y) {
         list.recent.push_back({spec, spec});
     list.builtIn = {{"Synthetic desk, 256x192 @ 60 Hz", "synthetic"},
                     {"Synthetic desk, 640x480 @ 30 Hz", "synthetic:640x480@30"},
-                    {"Synthetic desk, moving camera (poses)", "synthetic:motion"}};
-    if (const auto chosen = drawSourcePanel(list, sourcePanel_, &settings_.panels.source))
-        (void)openSource(*chosen);
+                    {"Synthetic desk, moving camera (poses)", "synthetic:motion"},
+                    {"Synthetic two-sensor camera, 848x480 depth + 1280x720 colour", "synthetic:rig=rgbd"}};
+    // Opened once the frame is drawn: the panels after this one still draw the source they started with.
+    if (auto chosen = drawSourcePanel(list, sourcePanel_, &settings_.panels.source))
+        pendingSource_ = std::move(chosen);
 }
 
-void Viewer::drawTimeline(ImVec2 pos, ImVec2 size) {
+void Viewer::drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, ImVec2 size) {
     ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
     ImGui::SetNextWindowSize(size, ImGuiCond_Always);
     const engine::ExportJob* job = instrument_.exportJob();
-    TimelineView view{instrument_.replay()->status(), job && !job->finished(), 0, 0};
+    TimelineView view{replay.status(), job && !job->finished(), 0, 0};
     if (job)
         std::tie(view.exportDone, view.exportTotal) = job->progress();
-    applyTimeline(drawTimelinePanel(view, timelineState_, &settings_.panels.timeline,
+    applyTimeline(replay,
+                  drawTimelinePanel(view, timelineState_, &settings_.panels.timeline,
                                     ImGuiWindowFlags_NoMove | ImGuiWindowFlags_NoResize |
                                         ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoSavedSettings));
     if (ImGuiWindow* strip = ImGui::FindWindowByName(kTimelineTitle))
         ImGui::BringWindowToDisplayFront(strip);
 }
 
-void Viewer::applyTimeline(const TimelineActions& a) {
-    devices::replay::ReplayControl& replay = *instrument_.replay();
+void Viewer::applyTimeline(devices::replay::ReplayControl& replay, const TimelineActions& a) {
     if (a.seekIndex)
         instrument_.seekReplay(*a.seekIndex);
     if (a.step != 0)
@@ -320,23 +463,39 @@ void Viewer::applyTimeline(const TimelineActions& a) {
         replay.setSpeed(*a.speed);
     if (a.cancelExport)
         instrument_.cancelExport();
-    // The range is written as the instrument shows it: smoothed, upsampled, as the settings say.
     if (a.exportRange)
-        (void)instrument_.startExport(static_cast<exporting::ExportFormat>(timelineState_.format),
-                                      timelineState_.outDirectory.data(), timelineState_.rangeStart,
-                                      timelineState_.rangeEnd, demand_);
+        startExport();
+}
+
+// The range is written as the instrument shows it (smoothed, upsampled, as the settings say) into the
+// chosen folder, or where that exists already into the next free numbered one beside it: an export never
+// writes over another.
+void Viewer::startExport() {
+    std::filesystem::path chosen(timelineState_.outDirectory.data());
+    if (!chosen.has_filename())
+        chosen = chosen.parent_path(); // "out/" names the folder "out"
+    const std::filesystem::path parent = chosen.has_parent_path() ? chosen.parent_path() : ".";
+    auto dir = base::createFreshDirectory(parent.string(), chosen.filename().string());
+    if (!dir) {
+        logError("export: " + dir.error().message);
+        return;
+    }
+    if (!instrument_.startExport(static_cast<exporting::ExportFormat>(timelineState_.format), *dir,
+                                 timelineState_.rangeStart, timelineState_.rangeEnd, demand_)) {
+        std::error_code ec;
+        std::filesystem::remove(*dir, ec); // still empty: nothing was started
+    }
 }
 
 // Space plays or pauses, the arrows step a frame, Home and End jump to the ends (as in video players).
-void Viewer::handleReplayKeys() {
-    const auto& replay = instrument_.replay();
-    if (!replay || ImGui::GetIO().WantTextInput)
+void Viewer::handleReplayKeys(devices::replay::ReplayControl& replay) {
+    if (ImGui::GetIO().WantTextInput)
         return;
     const auto pressed = [](ImGuiKey key) {
         return ImGui::IsKeyPressed(ImGui::GetKeyIndex(key), key != ImGuiKey_Space);
     };
     if (pressed(ImGuiKey_Space))
-        replay->status().playing ? replay->pause() : replay->play();
+        replay.status().playing ? replay.pause() : replay.play();
     if (pressed(ImGuiKey_LeftArrow))
         instrument_.stepReplay(-1);
     if (pressed(ImGuiKey_RightArrow))
@@ -344,7 +503,7 @@ void Viewer::handleReplayKeys() {
     if (pressed(ImGuiKey_Home))
         instrument_.seekReplay(0);
     if (pressed(ImGuiKey_End))
-        instrument_.seekReplay(std::max<std::size_t>(replay->status().count, 1) - 1);
+        instrument_.seekReplay(std::max<std::size_t>(replay.status().count, 1) - 1);
 }
 
 // Hovering the cloud reads out the point under the mouse; a click drops an anchor on it. The first click

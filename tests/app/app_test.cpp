@@ -370,6 +370,70 @@ TEST(AppWindow, WhatTheScreenShowsIsTheWholePictureAfterPartialRedraws) {
     EXPECT_GT(contrast(region(shot, 0.25, 0.1, 0.7, 0.7)), 15.0) << "and it is the cloud";
 }
 
+// Resizing on software GL, where the window is drawn in parts into a back buffer nothing swaps: that
+// buffer follows the window's size. Grown by 30 px, shrunk to 1024x600, grown past the first size and
+// shrunk again, the process lives, and what the X server shows at the end is exactly the picture the
+// viewer drew at that size (no offset, no strip of an older frame).
+TEST(AppWindow, AResizedWindowShowsTheWholePictureAtItsNewSize) {
+    TempDir out, home, work;
+    const std::string take = work.str() + "/take.dcrec";
+    ASSERT_NO_FATAL_FAILURE(prepareStillReplay(take, home.str()));
+    const std::string script = work.str() + "/drive.sh";
+    std::ofstream(script)
+        << binary() << " --source replay:" << take << ":paused --out " << out.str() << " &\n"
+        << "app=$!\n"
+        << "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\n"
+        << "sleep 3\n"
+        << "for size in '1310 750' '1024 600' '1400 800' '1100 640'; do\n"
+        << "  xdotool windowsize --sync \"$w\" $size; sleep 1\n"
+        << "  xdotool mousemove --window \"$w\" 500 300; sleep 0.5\n"
+        << "done\n"
+        << "sleep 1\n"
+        << "xwd -silent -id \"$w\" -out " << work.str() << "/screen.xwd\n"
+        << "xdotool key ctrl+q\n"
+        << "wait $app\n";
+    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
+                            " timeout 180 xvfb-run -a -s '-screen 0 1600x900x24' sh " + script);
+    ASSERT_EQ(r.exitCode, 0) << r.output;
+    EXPECT_NE(r.output.find("drawn where it changes"), std::string::npos) << r.output;
+    const cv::Mat screen = readXwd(work.str() + "/screen.xwd");
+    const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    ASSERT_FALSE(screen.empty());
+    ASSERT_FALSE(shot.empty());
+    EXPECT_EQ(shot.cols, 1100);
+    EXPECT_EQ(shot.rows, 640);
+    ASSERT_EQ(screen.size(), shot.size());
+    cv::Mat difference;
+    cv::absdiff(screen, shot, difference);
+    EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0) << "the screen holds the whole picture";
+    EXPECT_GT(contrast(region(shot, 0.3, 0.2, 0.6, 0.6)), 15.0) << "and it is the cloud";
+}
+
+// The window opens at 80 % of a large screen the first time, and where and as large as it was closed after.
+TEST(AppWindow, TheWindowFitsTheScreenAndIsRememberedWithItsPosition) {
+    TempDir first, second, home;
+    const std::string xvfb = "XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1920x1080x24' ";
+    ASSERT_EQ(run(xvfb + binary() + " --frames 5 --out " + first.str()).exitCode, 0);
+    const cv::Mat large = cv::imread(first.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    EXPECT_EQ(large.cols, 1536);
+    EXPECT_EQ(large.rows, 864);
+    {
+        std::ifstream in(home.str() + "/depthcloud/settings.json");
+        nlohmann::json settings = nlohmann::json::parse(in);
+        EXPECT_EQ(settings["window"]["width"], 1536);
+        settings["window"] = {{"x", 40}, {"y", 30}, {"width", 1111}, {"height", 666}, {"maximized", false}};
+        std::ofstream(home.str() + "/depthcloud/settings.json") << settings.dump();
+    }
+    ASSERT_EQ(run(xvfb + binary() + " --frames 5 --out " + second.str()).exitCode, 0);
+    const cv::Mat saved = cv::imread(second.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    EXPECT_EQ(saved.cols, 1111);
+    EXPECT_EQ(saved.rows, 666);
+    std::ifstream in(home.str() + "/depthcloud/settings.json");
+    const nlohmann::json settings = nlohmann::json::parse(in);
+    EXPECT_EQ(settings["window"]["x"], 40);
+    EXPECT_EQ(settings["window"]["y"], 30);
+}
+
 // Real X input through xdotool: a click on the depth panel zooms it over the window, P saves a snapshot,
 // Ctrl+Q quits, and the screenshot written at exit shows the zoomed panel with its full-width legend.
 TEST(AppWindow, ClicksAndKeysGoThroughTheRealWindow) {
@@ -384,7 +448,7 @@ TEST(AppWindow, ClicksAndKeysGoThroughTheRealWindow) {
         << "xdotool mousemove --window \"$w\" 1113 119 click 1\n"
         << "sleep 2\n"
         << "xdotool windowfocus --sync \"$w\" keydown p sleep 0.3 keyup p\n"
-        << "sleep 2\n"
+        << "sleep 7\n" // the toast saying where the snapshot went lies over the legend for 6 s"
         << "xdotool mousemove --window \"$w\" 640 300 key ctrl+q\n"
         << "wait $app\n";
     const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +

@@ -171,6 +171,67 @@ private:
     devices::SyntheticDevice inner_;
 };
 
+// A colour sensor that has not delivered yet: the synthetic camera's frames without their image, under
+// capabilities that promise colour.
+class ColourNotYetDevice final : public devices::Device {
+public:
+    explicit ColourNotYetDevice(const devices::SyntheticConfig& config) : inner_(config) {}
+    std::string description() const override { return "camera whose colour sensor starts late"; }
+    devices::Capabilities capabilities() const override { return inner_.capabilities(); }
+
+protected:
+    Status doOpen() override { return inner_.open(); }
+    Status doStart() override { return inner_.start(); }
+    void doStop() override { (void)inner_.stop(); }
+    void doClose() override { inner_.close(); }
+    devices::CaptureResult doCapture(std::chrono::milliseconds timeout) override {
+        devices::CaptureResult r = inner_.capture(timeout);
+        if (r.frame) {
+            auto depthOnly = std::make_shared<frame::Frame>(*r.frame);
+            depthOnly->capturedImage = {};
+            r.frame = std::move(depthOnly);
+        }
+        return r;
+    }
+
+private:
+    devices::SyntheticDevice inner_;
+};
+
+// The headless run and --out print the names savePanels returns: a frame without the camera's image has
+// no camera.png, and none is named.
+TEST_F(InstrumentTest, SavingThePanelsNamesExactlyTheFilesItWrote) {
+    const std::filesystem::path dir =
+        std::filesystem::temp_directory_path() / ("dc-panels-" + std::to_string(::getpid()));
+    std::filesystem::create_directories(dir);
+    ASSERT_NO_FATAL_FAILURE(start(std::make_unique<ColourNotYetDevice>(smallScene()), "late colour"));
+    ASSERT_TRUE(viewer_->update(0.0, std::chrono::seconds(5)));
+    frame(0.0);
+    ASSERT_TRUE(instrument_->capabilities().color) << "the source promises colour";
+    const auto written = viewer_->savePanels(dir.string());
+    ASSERT_TRUE(written.ok()) << written.error().message;
+    EXPECT_EQ(*written, (std::vector<std::string>{"cloud.png", "depth.png", "confidence.png"}));
+    std::vector<std::string> present;
+    for (const auto& e : std::filesystem::directory_iterator(dir))
+        present.push_back(e.path().filename().string());
+    std::sort(present.begin(), present.end());
+    EXPECT_EQ(present, (std::vector<std::string>{"cloud.png", "confidence.png", "depth.png"}));
+    std::filesystem::remove_all(dir);
+}
+
+// Frames the old source delivered while nothing took their results were its drops, not the next source's:
+// "98 delivered = 46 shown + 440 dropped" after a switch.
+TEST_F(InstrumentTest, AfterASourceSwitchTheFrameCountsAreTheNewSourcesOwn) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(500)); // 120 fps, nothing taken: results replaced
+    ASSERT_GT(instrument_->status().frames.dropped, 0u);
+    ASSERT_TRUE(viewer_->openSource("synthetic:64x48@30").ok());
+    const engine::FrameCounts first = instrument_->status().frames;
+    EXPECT_LE(first.shown + first.dropped, first.delivered);
+    ASSERT_TRUE(frameUntil([&] { return instrument_->status().frames.shown >= 5; }));
+    const engine::FrameCounts later = instrument_->status().frames;
+    EXPECT_LE(later.shown + later.dropped, later.delivered);
+}
+
 TEST_F(InstrumentTest, AColourSensorWithoutCalibrationIsSaidToBeUnregisteredOnTheStatusLine) {
     EXPECT_TRUE(viewer_->statusLine().calibration.empty()) << "one camera: nothing to say";
     ASSERT_NO_FATAL_FAILURE(start(std::make_unique<UnregisteredColourDevice>(smallScene()), "uvc"));
@@ -514,6 +575,30 @@ TEST_F(InstrumentTest, TheSourcePickerSwitchesSourcesAndRefusesBadOnes) {
     nextFrame(0.0);
     EXPECT_EQ(viewer_->summary().depthWidth, 640) << "a bad spec leaves the current source running";
     EXPECT_TRUE(instrument_->status().running);
+}
+
+// Two snapshots of one frame (a paused replay, or P pressed twice) are two snapshots, and each says where
+// it went, on screen.
+TEST_F(InstrumentTest, TwoSnapshotsOfOneFrameGoToTwoFoldersAndEachSaysWhere) {
+    const std::filesystem::path parent =
+        std::filesystem::temp_directory_path() / ("dc-snapshot2-" + std::to_string(::getpid()));
+    const auto first = viewer_->saveSnapshot(parent.string());
+    const auto second = viewer_->saveSnapshot(parent.string());
+    ASSERT_TRUE(first.ok() && second.ok());
+    EXPECT_NE(*first, *second);
+    for (const auto& dir : {*first, *second})
+        EXPECT_TRUE(std::filesystem::exists(std::filesystem::path(dir) / "cloud.ply")) << dir;
+    frame(0.0);
+    std::size_t said = 0;
+    for (const LogEntry& e : viewer_->log().snapshot()) {
+        if (e.level != LogLevel::Notice || e.message.find(parent.string()) == std::string::npos)
+            continue;
+        ++said;
+        const ImGuiWindow* toast = ImGui::FindWindowByName((kToastPrefix + std::to_string(e.id)).c_str());
+        EXPECT_TRUE(toast && toast->Active) << e.message << " is shown as a toast";
+    }
+    EXPECT_EQ(said, 2u);
+    std::filesystem::remove_all(parent);
 }
 
 TEST_F(InstrumentTest, SnapshotWritesEveryPanelAndThePointCloud) {

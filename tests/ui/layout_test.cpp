@@ -6,6 +6,8 @@
 #include "ui_fixture.h"
 
 #include <cmath>
+#include <map>
+#include <utility>
 
 namespace dc::ui::test {
 namespace {
@@ -44,16 +46,47 @@ TEST_F(UiTest, ResetLayoutBringsBackTheDefaultPanelsInTheirPlaces) {
     EXPECT_TRUE(window(kDepthTitle)->Active);
 }
 
+// The window resized from 1280x720 down to 1024x600 and up to 1920x1080: the docked panels are laid out
+// again for each size, wholly inside it, and a floating panel the shrink left outside comes back in reach.
+TEST_F(UiTest, ThePanelsFollowTheWindowFromSmallToLarge) {
+    pressKey('S', 0.0); // the Stats panel floats
+    ImGui::SetWindowPos(kStatsTitle, {1150.0f, 650.0f});
+    frame(0.0);
+    std::map<int, float> cloudWidth;
+    for (const auto& [w, h] : {std::pair{1024, 600}, std::pair{1920, 1080}, std::pair{1280, 720}}) {
+        ASSERT_TRUE(gui_.resize(w, h).ok());
+        frame(0.0);
+        frame(0.0);
+        for (const char* title : {kControlsTitle, kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle}) {
+            const ImGuiWindow* panel = window(title);
+            ASSERT_NE(panel, nullptr);
+            EXPECT_GE(panel->Pos.x, 0.0f) << title << " at " << w << "x" << h;
+            EXPECT_GE(panel->Pos.y, 0.0f) << title << " at " << w << "x" << h;
+            EXPECT_LE(panel->Pos.x + panel->Size.x, w + 0.5f) << title << " at " << w << "x" << h;
+            EXPECT_LE(panel->Pos.y + panel->Size.y, h + 0.5f) << title << " at " << w << "x" << h;
+        }
+        const ImGuiWindow* stats = window(kStatsTitle);
+        EXPECT_LT(stats->Pos.x, w - 20.0f) << "the Stats title bar can be grabbed at " << w << "x" << h;
+        EXPECT_LT(stats->Pos.y, h - 20.0f) << "the Stats title bar can be grabbed at " << w << "x" << h;
+        cloudWidth[w] = window(kCloudTitle)->Size.x;
+    }
+    EXPECT_GT(cloudWidth[1920], cloudWidth[1280] + 200.0f) << "a larger window gives the cloud the room";
+    EXPECT_LT(cloudWidth[1024], cloudWidth[1280]);
+}
+
 TEST_F(UiTest, TheViewMenuListsThePanelsAndResetsTheLayout) {
     ImGui::SetWindowPos(kControlsTitle, {500.0f, 300.0f});
-    // The menu bar's items live under its own ID scope: open "View" by clicking along the bar.
+    // The menu bar's items live under its own ID scope: open "View" (after "File") by clicking along the bar
+    // until the menu that opens is the one with "Reset layout".
     ImGuiWindow* bar = window("##MainMenuBar");
     ASSERT_NE(bar, nullptr);
     ImGuiWindow* menu = nullptr;
-    for (float x = bar->Pos.x + 4.0f; x < bar->Pos.x + 80.0f && !(menu && menu->Active); x += 6.0f) {
-        click({x, bar->Pos.y + bar->Size.y * 0.5f}, 0.0);
+    const auto viewMenuOpen = [&] {
         menu = window("##Menu_00");
-    }
+        return menu && menu->Active && locate("##Menu_00", "Reset layout", 1.0f, 8.0f).has_value();
+    };
+    for (float x = bar->Pos.x + 4.0f; x < bar->Pos.x + 160.0f && !viewMenuOpen(); x += 6.0f)
+        click({x, bar->Pos.y + bar->Size.y * 0.5f}, 0.0);
     ASSERT_NE(menu, nullptr);
     ASSERT_TRUE(menu->Active);
     // Every panel is listed, the timeline among them.

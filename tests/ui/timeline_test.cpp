@@ -1,6 +1,7 @@
 // Headless UI tests of replay: the timeline steps and seeks to exact frames, keys drive it, the record
 // button records, and an export started from the UI writes the same files as `depthcloud export`.
 
+#include "base/log.h"
 #include "devices/source_spec.h"
 #include "ui_fixture.h"
 
@@ -74,6 +75,38 @@ protected:
     fs::path dir_;
     std::string recording_;
 };
+
+// The crash a person met: a replay open, the source picker shown, "synthetic" clicked. The frame that
+// chose it went on to draw the timeline of the replay the switch had just ended.
+TEST_F(TimelineTest, ChoosingAnotherSourceInThePickerWhileTheTimelineIsShownSwitchesAfterTheFrame) {
+    viewer_->settings().panels.source = true;
+    frame(0.0);
+    ASSERT_NE(ImGui::FindWindowByName(kTimelineTitle), nullptr);
+    const auto entry = locate(kSourceTitle, "Synthetic desk, 256x192 @ 60 Hz", 1.0f);
+    ASSERT_TRUE(entry.has_value());
+    click(*entry, 0.0);
+    EXPECT_EQ(instrument_->replay(), nullptr);
+    EXPECT_EQ(instrument_->spec(), "synthetic");
+    ASSERT_TRUE(frameUntil([&] { return viewer_->shown() && viewer_->shown()->depth.width() == 256; }));
+    EXPECT_NE(viewer_->statusLine().source.find("ynthetic"), std::string::npos)
+        << viewer_->statusLine().source;
+    EXPECT_FALSE(ImGui::FindWindowByName(kTimelineTitle)->Active) << "no replay, no timeline";
+}
+
+// A replay that is paused changes nothing on screen, but the rates shown fall to zero instead of keeping
+// the figures of when it played.
+TEST_F(TimelineTest, APausedReplayShowsNoLiveRates) {
+    viewer_->settings().cloud.motion.enabled = false; // a still view: nothing but the figures would change
+    instrument_->replay()->setLoop(true);
+    instrument_->replay()->play();
+    const auto rate = [&] {
+        const auto& figures = viewer_->shownFigures();
+        return figures ? figures->frames.shownPerSecond + figures->frames.deliveredPerSecond : -1.0;
+    };
+    ASSERT_TRUE(frameUntil([&] { return rate() > 0.0; }));
+    instrument_->replay()->pause();
+    EXPECT_TRUE(frameUntil([&] { return rate() == 0.0; }, std::chrono::seconds(10))) << rate();
+}
 
 TEST_F(TimelineTest, SeeksAndStepsShowExactlyTheFrameAskedFor) {
     const std::size_t count = instrument_->replay()->status().count;
@@ -178,6 +211,47 @@ TEST_F(TimelineTest, TheAutomaticRangeFollowsTheReplaySmoothly) {
         EXPECT_NEAR(followed(), expected, 1e-4f) << "frame " << index;
     }
     EXPECT_NEAR(followed(), target(), 0.05f) << "it settles on the replay's range";
+}
+
+// Export range clicked twice with the same folder: the second export goes beside the first, numbered,
+// instead of over it, and each says where it went.
+TEST_F(TimelineTest, ExportingTwiceFromTheTimelineNeverWritesOverTheFirst) {
+    const fs::path before = fs::current_path();
+    fs::current_path(dir_); // the default folder, depthcloud-export, is relative to where the tool runs
+    const auto exportOnce = [&] {
+        const auto button = locate(kTimelineTitle, "Export range", 1.0f, 8.0f);
+        ASSERT_TRUE(button.has_value());
+        click(*button, 0.0);
+        ASSERT_NE(instrument_->exportJob(), nullptr);
+        ASSERT_TRUE(frameUntil([&] { return instrument_->exportJob()->finished(); }));
+    };
+    exportOnce();
+    exportOnce();
+    fs::current_path(before);
+    for (const char* name : {"depthcloud-export", "depthcloud-export-2"})
+        EXPECT_EQ(filesUnder(dir_ / name).size(), instrument_->replay()->status().count) << name;
+    std::size_t said = 0;
+    for (const LogEntry& e : viewer_->log().snapshot())
+        said += e.level == LogLevel::Notice && e.message.find("depthcloud-export") != std::string::npos;
+    EXPECT_EQ(said, 2u);
+}
+
+// The export-format list opens in front of the timeline strip it belongs to, so every format can be chosen.
+TEST_F(TimelineTest, TheFormatListOpensInFrontOfTheTimeline) {
+    const auto combo = locate(kTimelineTitle, "##format", 1.0f, 8.0f);
+    ASSERT_TRUE(combo.has_value());
+    click(*combo, 0.0);
+    frame(0.0);
+    const ImVector<ImGuiWindow*>& order = ImGui::GetCurrentContext()->Windows;
+    int strip = -1, list = -1;
+    for (int i = 0; i < order.Size; ++i) {
+        if (order[i] == ImGui::FindWindowByName(kTimelineTitle))
+            strip = i;
+        if ((order[i]->Flags & ImGuiWindowFlags_Popup) && order[i]->Active)
+            list = i;
+    }
+    ASSERT_GE(list, 0) << "the list is open";
+    EXPECT_GT(list, strip) << "drawn after (in front of) the strip";
 }
 
 TEST_F(TimelineTest, ExportFromTheUiWritesWhatTheCliWrites) {

@@ -195,7 +195,8 @@ check_headless() {
 	# the colour node is the camera's own, and no calibration relates it to depth: it must say so
 	if [ $rc = 0 ] && [ -s /host$out/cloud.png ] && [ -s /host$out/depth.png ] &&
 		grep -q "colours not registered" /tmp/headless.log &&
-		grep -q '"frames": 3' /host$out/summary.json && grep -q '"depthWidth": 640' /host$out/summary.json &&
+		grep -Eq '"frames": ([3-9]|[1-9][0-9]+)([^0-9]|$)' /host$out/summary.json &&
+		grep -q '"depthWidth": 640' /host$out/summary.json &&
 		grep -q '"latencyMs": [0-9]' /host$out/summary.json
 	then result headless-usb PASS; else result headless-usb FAIL; fi
 }
@@ -212,8 +213,10 @@ check_headless_rig() {
 	echo "  headless-rig: exit status $rc"
 	ls -l /host$out 2>&1 | sed 's/^/  headless-rig: /'
 	sed 's/^/  headless-rig summary.json: /' /host$out/summary.json 2>/dev/null
+	# at least the 3 frames asked for: on a busy machine the run goes on until the camera's image arrives
 	if [ $rc = 0 ] && [ -s /host$out/cloud.png ] && [ -s /host$out/camera.png ] &&
-		grep -q '"frames": 3' /host$out/summary.json && ! grep -q "not registered" /tmp/headless-rig.log &&
+		grep -q "wrote .*camera.png" /tmp/headless-rig.log &&
+		grep -Eq '"frames": ([3-9]|[1-9][0-9]+)([^0-9]|$)' /host$out/summary.json && ! grep -q "not registered" /tmp/headless-rig.log &&
 		! grep -q "approximate geometry" /tmp/headless-rig.log
 	then result headless-usb-rig PASS; else result headless-usb-rig FAIL; fi
 }
