@@ -1,5 +1,7 @@
 #include "engine/frame_processor.h"
 
+#include "base/clock.h"
+
 #include <utility>
 
 namespace dc::engine {
@@ -93,8 +95,12 @@ void FrameProcessor::run() {
                         std::exchange(frameReady_, false),
                         arrival_};
         lock.unlock();
+        const double cpuStart = base::threadCpuMs();
         std::optional<processing::ShownFramePtr> result = process(work);
+        const double cpuMs = base::threadCpuMs() - cpuStart;
         lock.lock();
+        if (result && (*result)->newFrame)
+            cpuMs_.add(cpuMs);
         doneGeneration_ = work.generation;
         runs_ = graph_.allRuns();
         if (work.epoch == epoch_) {
@@ -203,6 +209,11 @@ ProcessorCounts FrameProcessor::counts() const {
 base::RollingStats FrameProcessor::latencyMs() const {
     std::lock_guard lock(mutex_);
     return latencyMs_;
+}
+
+base::RollingStats FrameProcessor::cpuMs() const {
+    std::lock_guard lock(mutex_);
+    return cpuMs_;
 }
 
 std::uint64_t FrameProcessor::stageRuns(std::string_view stage) const {

@@ -61,6 +61,8 @@ public:
     ProcessorCounts counts() const;
     // Frame arrival to result ready, milliseconds, for new frames (median and percentiles in the stats).
     base::RollingStats latencyMs() const;
+    // The processor thread's CPU time per new frame made into a result, milliseconds (the last ones).
+    base::RollingStats cpuMs() const;
     std::uint64_t stageRuns(std::string_view stage) const;
 
 private:
@@ -108,6 +110,7 @@ private:
     std::optional<processing::ShownFramePtr> slot_;
     ProcessorCounts counts_;
     base::RollingStats latencyMs_;
+    base::RollingStats cpuMs_;
     std::map<std::string, std::uint64_t, std::less<>> runs_; // a copy of graph_'s, for other threads
     std::thread thread_;
 };

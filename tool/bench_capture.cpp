@@ -1,3 +1,4 @@
+#include "base/clock.h"
 #include "base/files.h"
 #include "base/rolling_stats.h"
 #include "devices/uvc/v4l2/pixel_formats.h"
@@ -11,7 +12,6 @@
 #include <nlohmann/json.hpp>
 
 #include <cstdio>
-#include <ctime>
 #include <memory>
 #include <vector>
 
@@ -20,13 +20,6 @@ namespace dc::tool {
 namespace {
 
 constexpr int kWarmupFrames = 10;
-
-// CPU time of the calling thread: what the capture thread spends, independent of scheduling.
-double threadCpuMs() {
-    timespec t{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) / 1e6;
-}
 
 // A Z16 frame as a sensor sends it: a slanted plane in millimeters with a few holes (0 = no measurement).
 std::vector<std::uint8_t> z16Frame(int w, int h, int frame) {
@@ -82,17 +75,17 @@ int runBenchCapture(const BenchCaptureOptions& o) {
     frame::FramePtr last;
     for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
         // Exactly the capture thread's work per depth+color pair (UvcDevice::takeBuffer, makeFrame).
-        const double t0 = threadCpuMs();
+        const double t0 = base::threadCpuMs();
         frame::Plane<float> meters;
         devices::v4l2::depthToMeters(z16[i % 2], w, h, bpl, 0.001f, meters);
-        const double t1 = threadCpuMs();
+        const double t1 = base::threadCpuMs();
         auto image = devices::v4l2::toCapturedImage(V4L2_PIX_FMT_YUYV, yuyv, w, h, bpl);
-        const double t2 = threadCpuMs();
+        const double t2 = base::threadCpuMs();
         auto frame = std::make_shared<frame::Frame>();
         frame->capturedImage = image ? std::move(*image) : frame::CapturedImage{};
         frame->sceneDepth = frame::DepthData{std::move(meters), {}};
         last = frame;
-        const double t3 = threadCpuMs();
+        const double t3 = base::threadCpuMs();
         if (i < kWarmupFrames)
             continue;
         depthMs.add(t1 - t0);
@@ -103,9 +96,9 @@ int runBenchCapture(const BenchCaptureOptions& o) {
     // Separately, as it runs on the render thread: the confidence estimate such a camera gets.
     processing::ConfidenceEstimatorStage estimator;
     for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
-        const double t0 = threadCpuMs();
+        const double t0 = base::threadCpuMs();
         const frame::FramePtr estimated = estimator.process(last, {});
-        const double t1 = threadCpuMs();
+        const double t1 = base::threadCpuMs();
         checksum += estimated->sceneDepth->confidence
                         .pixels[static_cast<std::size_t>(i) % (static_cast<std::size_t>(w) * h)];
         if (i >= kWarmupFrames)

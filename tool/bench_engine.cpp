@@ -1,5 +1,6 @@
 #include "tool/bench_engine.h"
 
+#include "base/clock.h"
 #include "base/files.h"
 #include "base/log.h"
 #include "devices/frame_list_device.h"
@@ -20,7 +21,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <thread>
 
 namespace dc::tool {
@@ -30,12 +30,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr int kWarmupFrames = 30;
 constexpr int kDistinctFrames = 8;
-
-double threadCpuMs() {
-    timespec ts{};
-    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-    return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
-}
 
 double msSince(Clock::time_point start) {
     return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -111,12 +105,12 @@ Expected<EngineResult> runEngine(const BenchEngineOptions& o, std::vector<frame:
         }
         std::this_thread::sleep_until(due += period);
         const auto wall = Clock::now();
-        const double cpu = threadCpuMs();
+        const double cpu = base::threadCpuMs();
         gui.newFrame(static_cast<float>(1.0 / o.viewerFps));
         viewer.update(i / o.viewerFps);
-        const double updated = threadCpuMs();
+        const double updated = base::threadCpuMs();
         viewer.drawUi();
-        const double glCpu = threadCpuMs() - cpu;
+        const double glCpu = base::threadCpuMs() - cpu;
         const double glWall = msSince(wall);
         gui.render();
         glFinish();
@@ -126,7 +120,7 @@ Expected<EngineResult> runEngine(const BenchEngineOptions& o, std::vector<frame:
             r.updateCpuMs.push_back(updated - cpu);
             r.uiCpuMs.push_back(cpu + glCpu - updated);
             r.glWallMs.push_back(glWall);
-            r.glFrameCpuMs.push_back(threadCpuMs() - cpu);
+            r.glFrameCpuMs.push_back(base::threadCpuMs() - cpu);
         }
     }
     const engine::FrameCounts after = instrument.status().frames;
@@ -158,10 +152,10 @@ InlineResult runInline(const BenchEngineOptions& o, const std::vector<frame::Fra
         f->sequence = static_cast<std::uint64_t>(i);
         f->timestampNs = static_cast<std::int64_t>(i + 1) * 16'666'667;
         const auto wall = Clock::now();
-        const double cpu = threadCpuMs();
+        const double cpu = base::threadCpuMs();
         const processing::ShownFramePtr shown = graph.run(f, demand, 1, true);
         if (i >= kWarmupFrames) {
-            r.cpuMs.push_back(threadCpuMs() - cpu);
+            r.cpuMs.push_back(base::threadCpuMs() - cpu);
             r.wallMs.push_back(msSince(wall));
         }
     }

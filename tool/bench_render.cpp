@@ -5,6 +5,7 @@
 #include "devices/synthetic/synthetic_device.h"
 #include "render/gl_context.h"
 #include "render/orbit_camera.h"
+#include "tool/bench_gl_points.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"
@@ -95,9 +96,9 @@ template <class Draw> base::RollingStats timeFrames(int frames, Draw&& draw) {
     return ms;
 }
 
-// GL_POINTS alone: the shown samples through the cloud shader into a target of the panel's size, the
-// view turning each frame, as the GL_POINTS path would draw them undecimated.
-double bareGlPoints(const processing::ShownFrame& shown, int width, int height, int frames) {
+} // namespace
+
+double bareGlPointsMs(const processing::ShownFrame& shown, int width, int height, int frames) {
     render::PointCloudRenderer renderer;
     render::FrameTextures textures;
     render::RenderTarget target;
@@ -116,6 +117,8 @@ double bareGlPoints(const processing::ShownFrame& shown, int width, int height, 
                       })
         .median();
 }
+
+namespace {
 
 Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const BenchOptions& o,
                              CaseResult& result) {
@@ -182,7 +185,7 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
         result.cloudWidth = renderer.cloudTarget().width();
         result.cloudHeight = renderer.cloudTarget().height();
         result.shownSamples = static_cast<std::size_t>(shown->depth.width()) * shown->depth.height();
-        result.bareGlPointsMs = bareGlPoints(*shown, result.cloudWidth, result.cloudHeight, o.frames);
+        result.bareGlPointsMs = bareGlPointsMs(*shown, result.cloudWidth, result.cloudHeight, o.frames);
     }
     return r;
 }

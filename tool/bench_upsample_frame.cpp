@@ -1,6 +1,7 @@
 // The per-frame figures of `depthcloud bench upsample`: the ARKit case against OpenCV's guided filter, the
 // whole processing chain, and the temporal smoothing.
 
+#include "base/clock.h"
 #include "base/rolling_stats.h"
 #include "devices/synthetic/synthetic_scene.h"
 #include "processing/aura.h"
@@ -12,7 +13,6 @@
 
 #include <chrono>
 #include <cstdio>
-#include <ctime>
 #include <map>
 
 namespace dc::tool::upsample {
@@ -36,14 +36,6 @@ Timed timeMethod(const Method& m, const Problem& p, int runs) {
     frame::Plane<float> out = m.run(p);
     const double mad = processing::depthError(out, p.truth, &p.evaluated).mad * 1000.0;
     return {medianMilliseconds(runs, [&] { out = m.run(p); }), mad};
-}
-
-// CPU time of every thread of the process: on a machine shared with other work, wall time also counts the
-// time our threads waited for a core.
-double processCpuMilliseconds() {
-    timespec t{};
-    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-    return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
 }
 
 double millisecondsSince(Clock::time_point start) {
@@ -149,7 +141,7 @@ nlohmann::json benchChainWith(const BenchUpsampleOptions& options, processing::U
     for (int i = 0; i < warmup + measured; ++i) {
         auto frame = std::make_shared<frame::Frame>(*frames[static_cast<std::size_t>(i) % frames.size()]);
         frame->timestampNs = i * kFrameNs;
-        const double cpuStart = processCpuMilliseconds();
+        const double cpuStart = base::processCpuMs();
         const auto start = Clock::now();
         frame->sceneDepth->depthMeters =
             processing::filterByConfidence(*frame->sceneDepth, frame::Confidence::Medium);
@@ -162,7 +154,7 @@ nlohmann::json benchChainWith(const BenchUpsampleOptions& options, processing::U
         if (i < warmup || points == 0)
             continue;
         total.add(totalMs);
-        cpu.add(processCpuMilliseconds() - cpuStart);
+        cpu.add(base::processCpuMs() - cpuStart);
         parts["confidence filter"].add(filterMs);
         for (const processing::StageTiming& t : pipeline.lastTimings())
             parts[t.name].add(t.milliseconds);

@@ -2,6 +2,7 @@
 
 #include "base/log.h"
 #include "devices/source_spec.h"
+#include "tool/bench_camera.h"
 #include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
 #include "tool/bench_registration.h"
@@ -110,6 +111,8 @@ int main(int argc, char** argv) {
         ->capture_default_str();
     benchRender->add_option("--json", bench.jsonPath, "also write the results as JSON to this file");
     BenchInstrumentOptions benchInstrument;
+    BenchCameraOptions benchCamera;
+    CLI::App* benchCameraCmd = addBenchCameraCommand(*benchCmd, benchCamera);
     BenchEngineOptions benchEngine;
     CLI::App* benchEngineCmd = addBenchEngineCommand(*benchCmd, benchEngine);
     BenchSoakOptions benchSoak;
@@ -140,6 +143,8 @@ int main(int argc, char** argv) {
         return *code;
     if (benchRender->parsed())
         return runBenchRender(bench);
+    if (benchCameraCmd->parsed())
+        return runBenchCamera(benchCamera);
     if (benchEngineCmd->parsed())
         return runBenchEngine(benchEngine);
     if (benchSoakCmd->parsed())

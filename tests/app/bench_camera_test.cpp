@@ -1,0 +1,61 @@
+// `depthcloud bench camera` as a user runs it: the figures it reports add up, and its own count of frames
+// that reached the screen agrees with the instrument's.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+TEST(BenchCamera, EveryDeliveredFrameIsShownDroppedOrInFlightAndBothCountsAgree) {
+    const fs::path json =
+        fs::temp_directory_path() / ("dc-bench-camera-" + std::to_string(::getpid()) + ".json");
+    const std::string command =
+        std::string(DEPTHCLOUD_BINARY) +
+        " bench camera --seconds 2 --case 'ARKit 256x192 + camera 1920x1440' --json " + json.string() +
+        " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::ifstream in(json);
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    fs::remove(json);
+    ASSERT_FALSE(j.is_discarded());
+    ASSERT_EQ(j["cases"].size(), 1u);
+    const nlohmann::json& c = j["cases"][0];
+    const auto n = [&](const char* key) { return c[key].get<long long>(); };
+    // 2 s at 30 fps, give or take the edges of the window.
+    EXPECT_GE(n("delivered"), 50);
+    EXPECT_LE(n("delivered"), 70);
+    // In flight is what is left over, never negative: the sum fails only if a frame is counted twice, and
+    // the bound fails if frames go missing.
+    EXPECT_EQ(n("shown") + n("droppedBeforeProcessing") + n("droppedBeforeDisplay") + n("inFlightAtEnd"),
+              n("delivered"));
+    EXPECT_LE(n("inFlightAtEnd"), 3) << "a frame or two on their way when the window closed";
+    EXPECT_GT(n("shown"), 0);
+    // The instrument counts over the same time, but a frame delivered just before the window opened and
+    // shown inside it is the instrument's and not the bench's: at most a frame or two apart.
+    EXPECT_LE(std::llabs(n("shown") - n("shownByInstrument")), 2);
+    EXPECT_EQ(c["latencyMs"]["samples"].get<long long>(), n("shown")) << "one latency per frame shown";
+    EXPECT_GT(c["latencyMs"]["median"].get<double>(), 0.0);
+    EXPECT_LE(c["latencyMs"]["median"].get<double>(), c["latencyMs"]["p99"].get<double>());
+    EXPECT_GT(c["glThreadCpuMsPerFrameDrawn"]["median"].get<double>(), 0.0);
+    EXPECT_GT(c["bareGlPointsMs"].get<double>(), 0.0);
+    EXPECT_EQ(n("samples"), 256 * 192);
+}
+
+TEST(BenchCamera, AnUnknownCaseIsRefusedWithExitCode2) {
+    const std::string command =
+        std::string(DEPTHCLOUD_BINARY) + " bench camera --case nonsense > /dev/null 2>&1";
+    const int status = std::system(command.c_str());
+    ASSERT_TRUE(WIFEXITED(status));
+    EXPECT_EQ(WEXITSTATUS(status), 2);
+}
+
+} // namespace
