@@ -84,9 +84,9 @@ int runHeadless(const ViewerOptions& options) {
     ui::Viewer viewer(instrument, renderer, settings);
     viewer.resizeCloud(kCloudWidth, kCloudHeight);
     instrument.start();
-    const engine::InstrumentStatus started = instrument.status();
-    if (!started.running)
-        return fail(started.message);
+    // A source that cannot start has said why already (the instrument logs it as an error, naming it).
+    if (!instrument.status().running)
+        return kExitFailure;
 
     const int frames = options.frames.value_or(60);
     int shown = 0;

@@ -14,6 +14,7 @@
 #include "tool/version.h"
 
 #include <CLI/CLI.hpp>
+#include <opencv2/core/utils/logger.hpp>
 
 #include <cstdio>
 #include <cstdlib>
@@ -92,6 +93,9 @@ int runViewer(ViewerOptions o) {
 } // namespace
 
 int main(int argc, char** argv) {
+    // OpenCV's own warnings (an image file it cannot open, once per frame of a replay whose files vanished)
+    // repeat what our messages say once, naming the file and what it was for.
+    cv::utils::logging::setLogLevel(cv::utils::logging::LOG_LEVEL_ERROR);
     CLI::App app{"depthcloud: a live, colored point cloud of what a depth camera measures, with depth and "
                  "confidence panels",
                  "depthcloud"};

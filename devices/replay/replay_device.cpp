@@ -128,17 +128,47 @@ void ReplayDevice::setDemand(const SourceDemand& demand) {
     }
 }
 
+namespace {
+
+// Bad frames in a row are reported one by one up to a few, then once in a summary: a recording whose files
+// vanished mid-replay would otherwise say the same thing for each of its hundreds of frames.
+class SkipReport {
+public:
+    static constexpr std::size_t kEachUpTo = 3;
+
+    void add(std::size_t index, const std::string& problem) {
+        if (skipped_ < kEachUpTo)
+            logWarning("replay: skipping a bad frame: " + problem);
+        else
+            last_ = {index, problem};
+        ++skipped_;
+    }
+    ~SkipReport() {
+        if (skipped_ > kEachUpTo)
+            logWarning("replay: skipped " + std::to_string(skipped_ - kEachUpTo) +
+                       " more bad frames in a row, up to " + "frame " + std::to_string(last_.first) + ": " +
+                       last_.second);
+    }
+
+private:
+    std::size_t skipped_ = 0;
+    std::pair<std::size_t, std::string> last_;
+};
+
+} // namespace
+
 std::optional<std::pair<std::size_t, frame::Frame>> ReplayDevice::decodeFrom(std::size_t index) {
     {
         std::lock_guard lock(control_->mutex_);
         source_->setDecodeColor(control_->wantColor_);
     }
     const std::size_t count = source_->frameCount();
+    SkipReport skips;
     for (std::size_t tried = 0; tried < count; ++tried) {
         auto frame = loadFrame(*source_, index);
         if (frame)
             return std::pair{index, std::move(*frame)};
-        logWarning("replay: skipping a bad frame: " + frame.error().message);
+        skips.add(index, frame.error().message);
         {
             std::lock_guard lock(control_->mutex_);
             ++control_->status_.framesSkipped;

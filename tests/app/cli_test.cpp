@@ -103,6 +103,17 @@ TEST_F(Cli, AFailureWhileRunningExitsWithOne) {
     EXPECT_EQ(lines(r.err), 1u) << r.err;
 }
 
+// A source that cannot start in a headless run says why once, naming the source (the instrument's error
+// and the run's own were both printed).
+TEST_F(Cli, ASourceThatCannotStartIsReportedOnceWithExitOne) {
+    const RunResult r =
+        run("--headless --frames 1 --source ros:/camera/depth:master=http://127.0.0.1:9 --out out");
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("ROS"), std::string::npos) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    EXPECT_FALSE(fs::exists(dir_ / "out" / "summary.json"));
+}
+
 TEST_F(Cli, HelpPrintsConfidenceLevelsByName) {
     const RunResult r = run("--help");
     EXPECT_EQ(r.exitCode, 0);

@@ -1,5 +1,6 @@
 // The replay device: exact seeks and steps, pacing order, loop and end, bad chunks skipped.
 
+#include "base/log.h"
 #include "devices/recording/recording_reader.h"
 #include "devices/replay/importers.h"
 #include "devices/replay/replay_device.h"
@@ -8,7 +9,10 @@
 
 #include <gtest/gtest.h>
 
+#include <mutex>
 #include <random>
+#include <string>
+#include <vector>
 
 namespace dc::devices::replay {
 namespace {
@@ -194,6 +198,52 @@ TEST_F(Replay, BadChunkIsSkippedWithAWarningAndPlaybackContinues) {
     auto f = frameOfGeneration(d, d.control()->seekToIndex(5));
     ASSERT_TRUE(f);
     EXPECT_EQ(f->replay->index, 6u);
+}
+
+// A recording whose frames all went bad from some point on (its file overwritten, its folder deleted during
+// the replay) says so a few times and then once in a summary, not once per frame.
+TEST_F(Replay, ManyBadFramesInARowAreReportedOnceNotOncePerFrame) {
+    auto bytes = test::readBytes(dir_.path("r.dcrec"));
+    std::uint64_t offset = recording::kFileHeaderSize;
+    for (std::size_t chunk = 0; chunk <= kFrames; ++chunk) { // the description chunk, then every frame
+        const auto h =
+            recording::decodeChunkHeader(std::span(bytes).subspan(offset, recording::kChunkHeaderSize));
+        ASSERT_TRUE(h);
+        if (chunk >= 6) // frames 5 to the last
+            bytes[offset + recording::kChunkHeaderSize + 10] ^= 1;
+        offset += recording::kChunkHeaderSize + h->payloadSize;
+    }
+    test::writeBytes(dir_.path("bad.dcrec"), bytes);
+    // This replay's warnings only: a new sink also hears what was logged before it (earlier tests').
+    std::vector<std::string> warnings;
+    std::mutex mutex;
+    const std::string file = dir_.path("bad.dcrec");
+    const std::uint64_t sink = setLogSink([&](LogLevel level, const std::string& message) {
+        const std::lock_guard lock(mutex);
+        if (level == LogLevel::Warning && message.starts_with("replay: skip") &&
+            message.find(file) != std::string::npos)
+            warnings.push_back(message);
+    });
+    auto source = openRecordingSource(dir_.path("bad.dcrec"));
+    ASSERT_TRUE(source);
+    ReplayDevice d(std::move(*source), {.speed = 4.0});
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    // The replay pauses at its end; what it skipped on the way is reported by then.
+    std::size_t frames = 0;
+    const auto deadline = std::chrono::steady_clock::now() + kWait;
+    while (!d.control()->status().atEnd && std::chrono::steady_clock::now() < deadline)
+        frames += d.capture(std::chrono::milliseconds(50)).kind == CaptureResult::Kind::Frame;
+    frames += d.capture(std::chrono::milliseconds(200)).kind == CaptureResult::Kind::Frame;
+    removeLogSink(sink);
+    EXPECT_EQ(frames, 5u);
+    EXPECT_EQ(d.control()->status().framesSkipped, kFrames - 5);
+    const std::lock_guard lock(mutex);
+    ASSERT_EQ(warnings.size(), 4u);
+    EXPECT_NE(warnings.back().find("skipped " + std::to_string(kFrames - 5 - 3) + " more"), std::string::npos)
+        << warnings.back();
+    EXPECT_NE(warnings.back().find("frame " + std::to_string(kFrames - 1)), std::string::npos)
+        << warnings.back();
 }
 
 TEST_F(Replay, RunsThroughASessionLikeALiveCamera) {
