@@ -9,6 +9,16 @@ namespace dc::ui {
 
 namespace {
 
+// Puts the checkbox labelled `label` beside the last item when it fits there whole, else on a line of its
+// own: a label cut at the panel's edge cannot be read.
+void sameLineIfFits(const char* label) {
+    const ImGuiStyle& style = ImGui::GetStyle();
+    const float need = ImGui::GetFrameHeight() + style.ItemInnerSpacing.x + ImGui::CalcTextSize(label).x;
+    const float right = ImGui::GetWindowPos().x + ImGui::GetWindowContentRegionMax().x;
+    if (right - (ImGui::GetItemRectMax().x + style.ItemSpacing.x) >= need)
+        ImGui::SameLine();
+}
+
 bool confidenceSection(CloudSettings& cloud) {
     ImGui::TextUnformatted("Cloud confidence");
     int level = static_cast<int>(cloud.minConfidence);
@@ -76,10 +86,10 @@ bool depthSection(DepthRange& range, DepthView& view) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
             "Follow the 2nd to 98th depth percentile, smoothed over frames; off: the fixed range.");
-    // Beside the range's switch, and its opacity only while it is on: the View group must still fit a
-    // 1280x720 window.
-    ImGui::SameLine();
-    changed |= ImGui::Checkbox("Colour over depth", &view.colourOverlay);
+    // Beside the range's switch where the panel is wide enough, and its opacity only while it is on: the
+    // View group must still fit a 1280x720 window.
+    sameLineIfFits("Colour overlay");
+    changed |= ImGui::Checkbox("Colour overlay", &view.colourOverlay);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Lay the camera's colour, aligned to the depth, over the depth panel; depth the "
                           "colour camera does not see stays uncovered.");

@@ -45,7 +45,10 @@ float drawStatusBar(const StatusLine& s) {
         bool first = true;
         const auto put = [&](const std::string& text, bool disabled, bool alert) {
             const std::string piece = first ? text : "| " + text;
-            if (!first && ImGui::GetCursorPosX() + ImGui::CalcTextSize(piece.c_str()).x > right)
+            // Where the piece would start: beside the last one. A piece that does not fit whole is left out.
+            const float start =
+                ImGui::GetItemRectMax().x - ImGui::GetWindowPos().x + ImGui::GetStyle().ItemSpacing.x;
+            if (!first && start + ImGui::CalcTextSize(piece.c_str()).x > right)
                 return false;
             if (!first)
                 ImGui::SameLine();

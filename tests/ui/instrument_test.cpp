@@ -240,7 +240,7 @@ TEST_F(InstrumentTest, AColourSensorWithoutCalibrationIsSaidToBeUnregisteredOnTh
     EXPECT_EQ(viewer_->statusLine().calibration, devices::kUnregisteredColourMessage);
 }
 
-// The depth panel's "Colour over depth": the camera's colour appears over the depth the colour camera sees,
+// The depth panel's colour overlay ("Colour overlay"): the camera's colour appears over the depth the colour camera sees,
 // and the depth it cannot see (the depth map's margins) stays as the depth panel draws it.
 TEST_F(InstrumentTest, ColourOverDepthCheckboxLaysTheSeenColourOverTheDepthPanel) {
     ASSERT_NO_FATAL_FAILURE(startSmallRig());
@@ -256,7 +256,7 @@ TEST_F(InstrumentTest, ColourOverDepthCheckboxLaysTheSeenColourOverTheDepthPanel
     const auto unseenBefore = screenPixel(*unseen);
     EXPECT_FALSE(viewer_->demand().colourOverDepth);
 
-    const auto toggle = locate(kControlsTitle, "Colour over depth", 1.0f, 8.0f);
+    const auto toggle = locate(kControlsTitle, "Colour overlay", 1.0f, 8.0f);
     ASSERT_TRUE(toggle.has_value()) << "the checkbox is in the View group, reachable without scrolling";
     clickAt(*toggle);
     ASSERT_TRUE(viewer_->settings().depthView.colourOverlay);
