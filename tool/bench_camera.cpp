@@ -4,8 +4,8 @@
 #include "base/files.h"
 #include "base/log.h"
 #include "devices/frame_list_device.h"
-#include "devices/synthetic/synthetic_device.h"
 #include "render/gl_context.h"
+#include "tool/bench_frames.h"
 #include "tool/bench_gl_points.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
@@ -60,15 +60,8 @@ std::vector<CameraCase> cameraCases() {
 // so each frame has an image of its own as a real camera's has (a still synthetic camera shares one image
 // among its frames, and every stage that reads only the image would run once).
 std::vector<frame::FramePtr> makeFrames(devices::SyntheticConfig config) {
-    config.paced = false;
     config.motion = true;
-    devices::SyntheticDevice device(config);
-    std::vector<frame::FramePtr> frames;
-    if (!device.open() || !device.start())
-        return frames;
-    for (int i = 0; i < 8; ++i)
-        frames.push_back(device.capture(std::chrono::seconds(5)).frame);
-    return frames;
+    return syntheticFrames(config, 8);
 }
 
 struct Spread {

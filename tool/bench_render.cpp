@@ -5,6 +5,7 @@
 #include "devices/synthetic/synthetic_device.h"
 #include "render/gl_context.h"
 #include "render/orbit_camera.h"
+#include "tool/bench_frames.h"
 #include "tool/bench_gl_points.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
@@ -73,14 +74,7 @@ std::vector<frame::FramePtr> makeFrames(const BenchCase& c) {
     devices::SyntheticConfig config;
     config.depthWidth = c.depthWidth;
     config.depthHeight = c.depthHeight;
-    config.paced = false;
-    devices::SyntheticDevice device(config);
-    std::vector<frame::FramePtr> frames;
-    if (!device.open() || !device.start())
-        return frames;
-    for (int i = 0; i < 8; ++i)
-        frames.push_back(device.capture(std::chrono::seconds(1)).frame);
-    return frames;
+    return syntheticFrames(config, 8);
 }
 
 // Times `draw` over `frames` calls after a warm-up, each ended by glFinish (llvmpipe draws asynchronously).

@@ -304,6 +304,29 @@ TEST(AppWindow, APausedReplayIsDrawnNoFasterThanTheDisplayRefreshes) {
     EXPECT_LE(uiFps, 60.0 * 31.0 / 30.0) << "one frame per refresh period at most";
 }
 
+// The start of a drive script: the window on `arguments` in the background ($app), found ($w) and given
+// a few seconds to draw.
+std::string windowStarted(const std::string& arguments) {
+    return binary() + " " + arguments + " &\napp=$!\n" +
+           "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\nsleep 3\n";
+}
+
+// The end of a drive script: the window grabbed from the X server into `xwd`, then Ctrl+Q.
+std::string grabbedAndQuit(const std::string& xwd) {
+    return "sleep 1\nxwd -silent -id \"$w\" -out " + xwd + "\nxdotool key ctrl+q\nwait $app\n";
+}
+
+// What the X server shows is, pixel for pixel, the screenshot --out read from the back buffer.
+void expectTheScreenIsTheScreenshot(const std::string& xwd, const cv::Mat& shot) {
+    const cv::Mat screen = readXwd(xwd);
+    ASSERT_FALSE(screen.empty());
+    ASSERT_FALSE(shot.empty());
+    ASSERT_EQ(screen.size(), shot.size());
+    cv::Mat difference;
+    cv::absdiff(screen, shot, difference);
+    EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0) << "the screen holds the whole picture";
+}
+
 // A short recording to replay paused, and settings in `configHome` that turn auto-rotate off: a view in
 // which nothing moves.
 void prepareStillReplay(const std::string& take, const std::string& configHome) {
@@ -343,30 +366,17 @@ TEST(AppWindow, WhatTheScreenShowsIsTheWholePictureAfterPartialRedraws) {
     const std::string take = work.str() + "/take.dcrec";
     ASSERT_NO_FATAL_FAILURE(prepareStillReplay(take, home.str()));
     const std::string script = work.str() + "/drive.sh";
-    std::ofstream(script)
-        << binary() << " --source replay:" << take << ":paused --out " << out.str() << " &\n"
-        << "app=$!\n"
-        << "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\n"
-        << "sleep 3\n"
-        << "for at in '1100 120' '600 300' '640 640' '1100 500' '1100 300'; do\n"
-        << "  xdotool mousemove --window \"$w\" $at; sleep 0.5\n"
-        << "done\n"
-        << "sleep 1\n"
-        << "xwd -silent -id \"$w\" -out " << work.str() << "/screen.xwd\n"
-        << "xdotool key ctrl+q\n"
-        << "wait $app\n";
+    std::ofstream(script) << windowStarted("--source replay:" + take + ":paused --out " + out.str())
+                          << "for at in '1100 120' '600 300' '640 640' '1100 500' '1100 300'; do\n"
+                          << "  xdotool mousemove --window \"$w\" $at; sleep 0.5\n"
+                          << "done\n"
+                          << grabbedAndQuit(work.str() + "/screen.xwd");
     const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
                             " timeout 180 xvfb-run -a -s '-screen 0 1280x800x24' sh " + script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("drawn where it changes"), std::string::npos) << r.output;
-    const cv::Mat screen = readXwd(work.str() + "/screen.xwd");
     const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
-    ASSERT_FALSE(screen.empty());
-    ASSERT_FALSE(shot.empty());
-    ASSERT_EQ(screen.size(), shot.size());
-    cv::Mat difference;
-    cv::absdiff(screen, shot, difference);
-    EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0) << "the screen holds every part drawn";
+    ASSERT_NO_FATAL_FAILURE(expectTheScreenIsTheScreenshot(work.str() + "/screen.xwd", shot));
     EXPECT_GT(contrast(region(shot, 0.25, 0.1, 0.7, 0.7)), 15.0) << "and it is the cloud";
 }
 
@@ -379,33 +389,20 @@ TEST(AppWindow, AResizedWindowShowsTheWholePictureAtItsNewSize) {
     const std::string take = work.str() + "/take.dcrec";
     ASSERT_NO_FATAL_FAILURE(prepareStillReplay(take, home.str()));
     const std::string script = work.str() + "/drive.sh";
-    std::ofstream(script)
-        << binary() << " --source replay:" << take << ":paused --out " << out.str() << " &\n"
-        << "app=$!\n"
-        << "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\n"
-        << "sleep 3\n"
-        << "for size in '1310 750' '1024 600' '1400 800' '1100 640'; do\n"
-        << "  xdotool windowsize --sync \"$w\" $size; sleep 1\n"
-        << "  xdotool mousemove --window \"$w\" 500 300; sleep 0.5\n"
-        << "done\n"
-        << "sleep 1\n"
-        << "xwd -silent -id \"$w\" -out " << work.str() << "/screen.xwd\n"
-        << "xdotool key ctrl+q\n"
-        << "wait $app\n";
+    std::ofstream(script) << windowStarted("--source replay:" + take + ":paused --out " + out.str())
+                          << "for size in '1310 750' '1024 600' '1400 800' '1100 640'; do\n"
+                          << "  xdotool windowsize --sync \"$w\" $size; sleep 1\n"
+                          << "  xdotool mousemove --window \"$w\" 500 300; sleep 0.5\n"
+                          << "done\n"
+                          << grabbedAndQuit(work.str() + "/screen.xwd");
     const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
                             " timeout 180 xvfb-run -a -s '-screen 0 1600x900x24' sh " + script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("drawn where it changes"), std::string::npos) << r.output;
-    const cv::Mat screen = readXwd(work.str() + "/screen.xwd");
     const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
-    ASSERT_FALSE(screen.empty());
-    ASSERT_FALSE(shot.empty());
     EXPECT_EQ(shot.cols, 1100);
     EXPECT_EQ(shot.rows, 640);
-    ASSERT_EQ(screen.size(), shot.size());
-    cv::Mat difference;
-    cv::absdiff(screen, shot, difference);
-    EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0) << "the screen holds the whole picture";
+    ASSERT_NO_FATAL_FAILURE(expectTheScreenIsTheScreenshot(work.str() + "/screen.xwd", shot));
     EXPECT_GT(contrast(region(shot, 0.3, 0.2, 0.6, 0.6)), 15.0) << "and it is the cloud";
 }
 

@@ -146,17 +146,12 @@ TEST_F(InstrumentTest, ATwoSensorSourceNamesItsCalibrationAndHoverSaysWhatTheCol
     EXPECT_TRUE(viewer_->hoverProbe()->seenByColour);
 }
 
-// A live camera whose colour node is a sensor of its own, opened without a two-sensor calibration: the
-// synthetic single camera's frames under such a device's capabilities.
-class UnregisteredColourDevice final : public devices::Device {
+// The synthetic camera behind another device's face: the devices below change what it announces or what
+// its frames carry.
+class WrappedSynthetic : public devices::Device {
 public:
-    explicit UnregisteredColourDevice(const devices::SyntheticConfig& config) : inner_(config) {}
-    std::string description() const override { return "camera with a separate colour node"; }
-    devices::Capabilities capabilities() const override {
-        devices::Capabilities c = inner_.capabilities();
-        c.unregisteredColour = true;
-        return c;
-    }
+    explicit WrappedSynthetic(const devices::SyntheticConfig& config) : inner_(config) {}
+    devices::Capabilities capabilities() const override { return inner_.capabilities(); }
 
 protected:
     Status doOpen() override { return inner_.open(); }
@@ -167,23 +162,30 @@ protected:
         return inner_.capture(timeout);
     }
 
-private:
     devices::SyntheticDevice inner_;
+};
+
+// A live camera whose colour node is a sensor of its own, opened without a two-sensor calibration: the
+// synthetic single camera's frames under such a device's capabilities.
+class UnregisteredColourDevice final : public WrappedSynthetic {
+public:
+    using WrappedSynthetic::WrappedSynthetic;
+    std::string description() const override { return "camera with a separate colour node"; }
+    devices::Capabilities capabilities() const override {
+        devices::Capabilities c = inner_.capabilities();
+        c.unregisteredColour = true;
+        return c;
+    }
 };
 
 // A colour sensor that has not delivered yet: the synthetic camera's frames without their image, under
 // capabilities that promise colour.
-class ColourNotYetDevice final : public devices::Device {
+class ColourNotYetDevice final : public WrappedSynthetic {
 public:
-    explicit ColourNotYetDevice(const devices::SyntheticConfig& config) : inner_(config) {}
+    using WrappedSynthetic::WrappedSynthetic;
     std::string description() const override { return "camera whose colour sensor starts late"; }
-    devices::Capabilities capabilities() const override { return inner_.capabilities(); }
 
 protected:
-    Status doOpen() override { return inner_.open(); }
-    Status doStart() override { return inner_.start(); }
-    void doStop() override { (void)inner_.stop(); }
-    void doClose() override { inner_.close(); }
     devices::CaptureResult doCapture(std::chrono::milliseconds timeout) override {
         devices::CaptureResult r = inner_.capture(timeout);
         if (r.frame) {
@@ -193,9 +195,6 @@ protected:
         }
         return r;
     }
-
-private:
-    devices::SyntheticDevice inner_;
 };
 
 // The headless run and --out print the names savePanels returns: a frame without the camera's image has
@@ -240,8 +239,8 @@ TEST_F(InstrumentTest, AColourSensorWithoutCalibrationIsSaidToBeUnregisteredOnTh
     EXPECT_EQ(viewer_->statusLine().calibration, devices::kUnregisteredColourMessage);
 }
 
-// The depth panel's colour overlay ("Colour overlay"): the camera's colour appears over the depth the colour camera sees,
-// and the depth it cannot see (the depth map's margins) stays as the depth panel draws it.
+// The depth panel's colour overlay ("Colour overlay"): the camera's colour appears over the depth the colour
+// camera sees, and the depth it cannot see (the depth map's margins) stays as the depth panel draws it.
 TEST_F(InstrumentTest, ColourOverDepthCheckboxLaysTheSeenColourOverTheDepthPanel) {
     ASSERT_NO_FATAL_FAILURE(startSmallRig());
     viewer_->settings().depthRange.automatic = false; // fixed colours: only the overlay changes the panel
