@@ -74,6 +74,26 @@ TEST_F(UiTest, ThePanelsFollowTheWindowFromSmallToLarge) {
     EXPECT_LT(cloudWidth[1024], cloudWidth[1280]);
 }
 
+// File is the first menu: Esc closes it as it closes any open menu, and its Quit asks the window to close.
+TEST_F(UiTest, TheFileMenuClosesWithEscapeAndQuits) {
+    ImGuiWindow* bar = window("##MainMenuBar");
+    ASSERT_NE(bar, nullptr);
+    const ImVec2 file{bar->Pos.x + 12.0f, bar->Pos.y + bar->Size.y * 0.5f};
+    click(file, 0.0);
+    ImGuiWindow* menu = window("##Menu_00");
+    ASSERT_TRUE(menu && menu->Active);
+    ASSERT_TRUE(locate("##Menu_00", "Quit", 1.0f, 8.0f).has_value()) << "the File menu is open";
+    pressKey(256 /* GLFW_KEY_ESCAPE */, 0.0);
+    frame(0.0);
+    EXPECT_FALSE(menu->Active) << "Esc closed it";
+    click(file, 0.0);
+    const auto quit = locate("##Menu_00", "Quit", 1.0f, 8.0f);
+    ASSERT_TRUE(quit.has_value());
+    EXPECT_FALSE(viewer_->quitRequested());
+    click(*quit, 0.0);
+    EXPECT_TRUE(viewer_->quitRequested());
+}
+
 TEST_F(UiTest, TheViewMenuListsThePanelsAndResetsTheLayout) {
     ImGui::SetWindowPos(kControlsTitle, {500.0f, 300.0f});
     // The menu bar's items live under its own ID scope: open "View" (after "File") by clicking along the bar
