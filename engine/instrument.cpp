@@ -133,8 +133,10 @@ void Instrument::drainEvents() {
 }
 
 FrameCounts Instrument::countFrames() {
-    const devices::SessionStats session = session_->stats();
+    // The processor's counts first: every frame they count was delivered before the session's count is
+    // read, so shown + dropped never exceeds delivered, however the threads interleave.
     const ProcessorCounts processor = processor_->counts();
+    const devices::SessionStats session = session_->stats();
     FrameCounts c{session.framesCaptured, shown_,
                   session.framesDropped + processor.framesUnshown + processor.framesSkipped, 0.0, 0.0};
     const auto now = Clock::now();
