@@ -13,7 +13,11 @@ namespace dc::engine {
 struct Demand {
     bool cloud = true;       // the point-cloud panel is visible
     bool pointColors = true; // its points take the camera's colour (rather than a depth or confidence map)
-    bool depthImage = true;  // the depth panel, or the camera panel's depth overlay
+    // The cloud's GL path colours camera-coloured points itself, from the camera image and the rig of
+    // ShownFrame::frame: no colour per point is made for it here, unless the rig is one a shader cannot
+    // register (processing::shaderRegistrable).
+    bool shaderPointColors = false;
+    bool depthImage = true;      // the depth panel, or the camera panel's depth overlay
     bool confidencePanel = true; // the confidence panel
     int cameraPanelWidth = 0;    // pixels the camera panel is shown at; 0 = hidden
     // The camera panel's depth overlay is shown: a two-sensor frame's depth is aligned to the colour image
@@ -47,8 +51,11 @@ struct Demand {
         return confidencePanel || minConfidence != frame::Confidence::Low ||
                (fog && processing.fog.confidenceOverlay);
     }
-    // One colour per shown depth sample: camera-coloured points and accumulation.
+    // Camera colours on points: the cloud's or accumulation's.
     bool needsPointColors() const { return (cloud && pointColors) || accumulate; }
+    // One colour for every shown depth sample, not only the drawn ones: accumulation and the depth panel's
+    // colour overlay read them.
+    bool needsSampleColors() const { return accumulate || colourOverDepth; }
     // The camera image, for any product above or as the guide of upsampling.
     bool needsCameraImage() const {
         return needsPointColors() || cameraPanelWidth > 0 || colourOverDepth || fog || aura ||

@@ -57,6 +57,7 @@ void ProcessingGraph::reset() {
     decoded_.clear();
     depth_.clear();
     pointColors_.clear();
+    cloudColours_.clear();
     colourOverlay_.clear();
     cameraImage_.clear();
     effectsImage_.clear();
@@ -112,11 +113,12 @@ processing::ShownFramePtr ProcessingGraph::run(const frame::FramePtr& captured, 
     shown->frame = frame;
     if (demand.needsDepth())
         shown->depth = shownDepth(frame, demand);
-    addImages(*shown, *frame, demand);
+    addCameraImage(*shown, *frame, demand);
     addInfrared(*shown, frame, demand);
     addEffects(*shown, *frame, demand);
     addDepthOverCamera(*shown, *frame, demand);
     addDepthProducts(*shown, demand);
+    addPointColours(*shown, *frame, demand);
     timings_ = nullptr;
     return shown;
 }
@@ -143,10 +145,9 @@ processing::ShownDepth ProcessingGraph::shownDepth(const frame::FramePtr& frame,
     return shown;
 }
 
-// The images that come from the camera alone: the points' colours and the camera panel's picture.
-void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Frame& frame,
-                                const Demand& demand) {
-    addPointColours(shown, frame, demand);
+// The camera panel's picture, at the size it is shown.
+void ProcessingGraph::addCameraImage(processing::ShownFrame& shown, const frame::Frame& frame,
+                                     const Demand& demand) {
     const frame::CapturedImage& image = frame.capturedImage;
     if (demand.cameraPanelWidth > 0 && !image.empty()) {
         const int w = cameraPanelImageWidth(image.width, demand.cameraPanelWidth);
@@ -157,27 +158,44 @@ void ProcessingGraph::addImages(processing::ShownFrame& shown, const frame::Fram
     }
 }
 
-// One colour per shown depth sample serves the camera-coloured points and the depth panel's colour
-// overlay alike; each reader gets it only when it is shown.
+// Accumulation and the depth panel's colour overlay read a colour for every shown sample; the cloud reads
+// colours only for the samples it draws (after decimation), and none when its shader colours them.
 void ProcessingGraph::addPointColours(processing::ShownFrame& shown, const frame::Frame& frame,
                                       const Demand& demand) {
+    if (!shown.depth.data)
+        return;
     const frame::CapturedImage& image = frame.capturedImage;
     const bool overlay = demand.colourOverDepth && !image.empty();
-    if ((!demand.needsPointColors() && !overlay) || !shown.depth.data)
-        return;
-    const int w = shown.depth.width(), h = shown.depth.height();
-    const ColoursKey key{ImageKey{image.bytes, w, h}, frame.rig ? shown.depth.data : nullptr};
-    const processing::PointColours& colours = cached(pointColors_, key, kPointColorsStage, [&] {
-        return processing::framePointColours(frame, shown.depth.data->depthMeters, colourTable_);
-    });
-    if (demand.needsPointColors()) {
+    const bool shaded = demand.shaderPointColors && (!frame.rig || processing::isSingleCamera(*frame.rig) ||
+                                                     processing::shaderRegistrable(*frame.rig));
+    const bool cloudColours = demand.cloud && demand.pointColors && !shaded && shown.cloud.depth.data;
+    const bool whole = shown.cloud.factor <= 1;
+    if (demand.accumulate || overlay || (cloudColours && whole)) {
+        const int w = shown.depth.width(), h = shown.depth.height();
+        const ColoursKey key{ImageKey{image.bytes, w, h}, frame.rig ? shown.depth.data : nullptr};
+        const processing::PointColours& colours = cached(pointColors_, key, kPointColorsStage, [&] {
+            return processing::framePointColours(frame, shown.depth.data->depthMeters, colourTable_);
+        });
         shown.pointColors = colours.colors;
         shown.pointSeen = colours.seen;
+        if (overlay)
+            shown.colourOverDepth = cached(colourOverlay_, colours.colors, kColourOverlayStage, [&] {
+                return std::make_shared<const processing::RgbaImage>(processing::seenColourOverlay(colours));
+            });
     }
-    if (overlay)
-        shown.colourOverDepth = cached(colourOverlay_, colours.colors, kColourOverlayStage, [&] {
-            return std::make_shared<const processing::RgbaImage>(processing::seenColourOverlay(colours));
-        });
+    if (!cloudColours)
+        return;
+    if (whole) {
+        shown.cloud.colors = shown.pointColors;
+        return;
+    }
+    const processing::ShownDepth& cloud = shown.cloud.depth;
+    const ColoursKey key{ImageKey{image.bytes, cloud.width(), cloud.height()},
+                         frame.rig ? cloud.data : nullptr};
+    shown.cloud.colors = cached(cloudColours_, key, kPointColorsStage, [&] {
+        return processing::framePointColours(frame, cloud.data->depthMeters, cloud.intrinsics, colourTable_)
+            .colors;
+    });
 }
 
 // The camera panel's depth overlay of a two-sensor frame, at the size fog and aura align the depth to:
@@ -280,18 +298,16 @@ processing::ShownCloud ProcessingGraph::shownCloud(const processing::ShownFrame&
                                                   : processing::footprintFactor(depth.width(), depth.height(),
                                                                                 demand.cloudPanelPixels);
     if (factor <= 1 || !demand.cloud)
-        return {depth, shown.pointColors, 1};
-    return cached(
-        cloud_, DecimationKey{depth.data, shown.pointColors, factor, demand.minConfidence, demand.nearMeters},
-        kDecimationStage, [&] {
-            processing::DecimatedDepth d =
-                processing::decimateNearest(*depth.data, depth.intrinsics, shown.pointColors.get(), factor,
-                                            demand.minConfidence, demand.nearMeters);
-            processing::ShownDepth cloud = depth;
-            cloud.data = std::move(d.data);
-            cloud.intrinsics = d.intrinsics;
-            return processing::ShownCloud{cloud, std::move(d.colors), factor};
-        });
+        return {depth, nullptr, 1};
+    return cached(cloud_, DecimationKey{depth.data, factor, demand.minConfidence, demand.nearMeters},
+                  kDecimationStage, [&] {
+                      processing::DecimatedDepth d = processing::decimateNearest(
+                          *depth.data, depth.intrinsics, factor, demand.minConfidence, demand.nearMeters);
+                      processing::ShownDepth cloud = depth;
+                      cloud.data = std::move(d.data);
+                      cloud.intrinsics = d.intrinsics;
+                      return processing::ShownCloud{cloud, nullptr, factor};
+                  });
 }
 
 } // namespace dc::engine

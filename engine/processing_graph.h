@@ -108,7 +108,6 @@ private:
 
     struct DecimationKey {
         std::shared_ptr<const frame::DepthData> depth;
-        std::shared_ptr<const processing::RgbImage> colors;
         int factor = 1;
         frame::Confidence minConfidence = frame::Confidence::Low;
         float nearMeters = 0.0f;
@@ -119,7 +118,7 @@ private:
     const Value& cached(Memo<Key, Value>& memo, const Key& key, std::string_view stage, Make&& make);
     frame::FramePtr decodedFrame(const frame::FramePtr& captured, const Demand& demand);
     processing::ShownDepth shownDepth(const frame::FramePtr& frame, const Demand& demand);
-    void addImages(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
+    void addCameraImage(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addPointColours(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addDepthOverCamera(processing::ShownFrame& shown, const frame::Frame& frame, const Demand& demand);
     void addInfrared(processing::ShownFrame& shown, const frame::FramePtr& frame, const Demand& demand);
@@ -135,6 +134,7 @@ private:
     Memo<frame::FramePtr, frame::FramePtr> decoded_;
     Memo<DepthKey, processing::ShownDepth> depth_;
     Memo<ColoursKey, processing::PointColours> pointColors_;
+    Memo<ColoursKey, std::shared_ptr<const processing::RgbImage>> cloudColours_; // of decimated samples
     Memo<std::shared_ptr<const processing::RgbImage>, std::shared_ptr<const processing::RgbaImage>>
         colourOverlay_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;

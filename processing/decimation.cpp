@@ -25,25 +25,17 @@ int footprintFactor(int width, int height, std::size_t maxPoints) {
     return factor;
 }
 
-DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
-                               const RgbImage* colors, int factor, frame::Confidence minLevel,
-                               float nearMeters) {
+DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intrinsics& intrinsics, int factor,
+                               frame::Confidence minLevel, float nearMeters) {
     const int width = depth.depthMeters.width;
     const int height = depth.depthMeters.height;
     const int outWidth = cells(width, factor);
     const int outHeight = cells(height, factor);
     const bool hasConfidence = !depth.confidence.empty();
-    const bool hasColors = colors && colors->width == width && colors->height == height;
     auto out = std::make_shared<frame::DepthData>();
     out->depthMeters = frame::Plane<float>(outWidth, outHeight, 0.0f);
     out->confidence = frame::Plane<std::uint8_t>(outWidth, outHeight, 0);
     out->confidenceEstimated = depth.confidenceEstimated;
-    auto outColors = hasColors ? std::make_shared<RgbImage>() : nullptr;
-    if (outColors) {
-        outColors->width = outWidth;
-        outColors->height = outHeight;
-        outColors->pixels.assign(static_cast<std::size_t>(outWidth) * outHeight * 3, 128);
-    }
     constexpr auto kHigh = static_cast<std::uint8_t>(frame::Confidence::High);
     parallelRanges(outHeight, 8, [&](int begin, int end) {
         for (int cy = begin; cy < end; ++cy)
@@ -65,9 +57,6 @@ DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intri
                 const std::size_t o = static_cast<std::size_t>(cy) * outWidth + cx;
                 out->depthMeters.pixels[o] = nearest;
                 out->confidence.pixels[o] = hasConfidence ? depth.confidence.pixels[kept] : kHigh;
-                if (outColors)
-                    for (int k = 0; k < 3; ++k)
-                        outColors->pixels[o * 3 + k] = colors->pixels[kept * 3 + k];
             }
     });
     frame::Intrinsics k = intrinsics;
@@ -79,7 +68,7 @@ DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intri
     k.cy = (k.cy - (f - 1.0) / 2.0) / f;
     k.width = outWidth;
     k.height = outHeight;
-    return {std::move(out), k, std::move(outColors)};
+    return {std::move(out), k};
 }
 
 } // namespace dc::processing

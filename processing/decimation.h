@@ -1,7 +1,6 @@
 #pragma once
 
 #include "frame/frame.h"
-#include "processing/camera_image.h"
 
 #include <cstddef>
 #include <memory>
@@ -12,11 +11,10 @@ namespace dc::processing {
 // the map becomes one sample, the nearest of the cell's samples that the cloud would draw (so a cell
 // keeps the surface in front, as a depth test would, and never loses a point to a culled neighbour).
 // Placed at the cell's centre: the intrinsics are the map's divided by the factor, as RealSense's
-// decimation filter does.
+// decimation filter does. Colours are made afterwards for the kept samples alone, where they are drawn.
 struct DecimatedDepth {
     std::shared_ptr<const frame::DepthData> data; // confidence of the kept sample; 0 depth: none kept
     frame::Intrinsics intrinsics;
-    std::shared_ptr<const RgbImage> colors; // the kept sample's colour; null when none were given
 };
 
 // The smallest factor at which a width x height map has at most `maxPoints` cells (1 when it already has,
@@ -24,9 +22,8 @@ struct DecimatedDepth {
 int footprintFactor(int width, int height, std::size_t maxPoints);
 
 // Decimates `depth` by `factor` (>= 2) keeping the nearest drawable sample of each cell (keepSample with
-// minLevel and nearMeters); `colors`, when given, has one colour per sample of `depth`.
-DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
-                               const RgbImage* colors, int factor, frame::Confidence minLevel,
-                               float nearMeters);
+// minLevel and nearMeters).
+DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intrinsics& intrinsics, int factor,
+                               frame::Confidence minLevel, float nearMeters);
 
 } // namespace dc::processing

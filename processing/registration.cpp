@@ -14,13 +14,6 @@ namespace dc::processing {
 
 namespace {
 
-// Two samples of one surface that cover the same colour pixel differ in depth by the surface's slope
-// over a depth pixel, plus sensor noise (about 2 cm at 4 m for the noisiest sensors we read): within this
-// much they are the same surface, and the farther one is not hidden.
-float sameSurfaceMeters(float colourZ) {
-    return 0.01f + 0.02f * colourZ;
-}
-
 // The colour-sensor position of every depth sample, and half the side of the square it covers in the
 // colour image (see FloatTarget); z <= 0 where it lands nowhere near the colour image.
 struct Projected {
@@ -30,17 +23,6 @@ struct Projected {
 bool insideImage(const Projected& p, int width, int height) {
     return p.x >= -0.5f && p.y >= -0.5f && p.x < width - 0.5f && p.y < height - 0.5f;
 }
-
-// Where depth samples may land: the colour camera, how far outside its image a sample still counts (it
-// covers border pixels), and the ideal normalised radius (squared) beyond which the lens polynomial no
-// longer describes the image: evaluated far outside the field of view it folds back and would put a point
-// from behind the camera's shoulder into the picture.
-struct ColourTarget {
-    frame::CameraModel camera;
-    double marginPixels = 0.0;
-    double maxRadius2 = std::numeric_limits<double>::infinity();
-    double pixelsPerDepthPixel = 1.0;
-};
 
 // The largest ideal radius the image's corners and edge midpoints come from, a fifth more.
 double lensRadius2(const frame::CameraModel& camera) {
@@ -61,7 +43,7 @@ double lensRadius2(const frame::CameraModel& camera) {
 struct FloatTarget {
     float fx, fy, cx, cy;
     std::array<float, 5> k;         // the lens coefficients
-    float maxRadius2;               // see ColourTarget
+    float maxRadius2;               // see ColourProjection
     float left, top, right, bottom; // where a sample still lands: the image and its margin
     // Half the side, in colour pixels, of the square a sample covers, is this times z / zc (at least half
     // a pixel): a depth pixel at depth z spans z / fDepth meters, which the colour camera at distance zc
@@ -71,20 +53,20 @@ struct FloatTarget {
     float halfPerDepthOverColourZ;
     std::array<float, 3> t; // the translation, meters
 
-    FloatTarget(const ColourTarget& target, const frame::RigidTransform& toColour)
-        : fx(static_cast<float>(target.camera.intrinsics.fx)),
-          fy(static_cast<float>(target.camera.intrinsics.fy)),
-          cx(static_cast<float>(target.camera.intrinsics.cx)),
-          cy(static_cast<float>(target.camera.intrinsics.cy)), k{},
+    explicit FloatTarget(const ColourProjection& target)
+        : fx(static_cast<float>(target.colourCamera.intrinsics.fx)),
+          fy(static_cast<float>(target.colourCamera.intrinsics.fy)),
+          cx(static_cast<float>(target.colourCamera.intrinsics.cx)),
+          cy(static_cast<float>(target.colourCamera.intrinsics.cy)), k{},
           maxRadius2(static_cast<float>(target.maxRadius2)),
           left(static_cast<float>(-0.5 - target.marginPixels)), top(left),
-          right(static_cast<float>(target.camera.intrinsics.width - 0.5 + target.marginPixels)),
-          bottom(static_cast<float>(target.camera.intrinsics.height - 0.5 + target.marginPixels)),
-          halfPerDepthOverColourZ(static_cast<float>(0.6 * target.pixelsPerDepthPixel)), t{} {
+          right(static_cast<float>(target.colourCamera.intrinsics.width - 0.5 + target.marginPixels)),
+          bottom(static_cast<float>(target.colourCamera.intrinsics.height - 0.5 + target.marginPixels)),
+          halfPerDepthOverColourZ(static_cast<float>(target.halfPerDepthOverColourZ)), t{} {
         for (std::size_t i = 0; i < 5; ++i)
-            k[i] = static_cast<float>(target.camera.lens.coefficients[i]);
+            k[i] = static_cast<float>(target.colourCamera.lens.coefficients[i]);
         for (std::size_t i = 0; i < 3; ++i)
-            t[i] = static_cast<float>(toColour.translationMeters[i]);
+            t[i] = static_cast<float>(target.depthToColour.translationMeters[i]);
     }
 };
 
@@ -178,13 +160,12 @@ void projectRow(const float* depth, const RowRays& rays, int width, const FloatT
     }
 }
 
-ProjectedDepth projectAll(const frame::Plane<float>& depth, const frame::CameraModel& depthCamera,
-                          const ColourTarget& target, const frame::RigidTransform& toColour) {
+ProjectedDepth projectAll(const frame::Plane<float>& depth, const ColourProjection& target) {
     ProjectedDepth out{std::vector<Projected>(depth.pixels.size()),
                        std::vector<std::pair<int, int>>(static_cast<std::size_t>(depth.height),
                                                         {std::numeric_limits<int>::max(), -1})};
-    const FloatTarget floatTarget(target, toColour);
-    const frame::Lens& lens = target.camera.lens;
+    const FloatTarget floatTarget(target);
+    const frame::Lens& lens = target.colourCamera.lens;
     const auto row = lens.model == frame::LensModel::None ? projectRow<frame::LensModel::None>
                      : lens.model == frame::LensModel::BrownConrady
                          ? projectRow<frame::LensModel::BrownConrady>
@@ -192,7 +173,7 @@ ProjectedDepth projectAll(const frame::Plane<float>& depth, const frame::CameraM
     parallelRanges(depth.height, 16, [&](int rowBegin, int rowEnd) {
         RowRays rays;
         for (int v = rowBegin; v < rowEnd; ++v) {
-            rays.fill(depthCamera, toColour, v, depth.width);
+            rays.fill(target.depthCamera, target.depthToColour, v, depth.width);
             const std::size_t first = static_cast<std::size_t>(v) * static_cast<std::size_t>(depth.width);
             Projected* points = &out.points[first];
             row(&depth.pixels[first], rays, depth.width, floatTarget, lens, points);
@@ -260,6 +241,26 @@ bool proportional(const frame::Intrinsics& a, const frame::Intrinsics& b) {
 
 } // namespace
 
+ColourProjection colourProjection(const frame::RigCalibration& rig, const frame::Intrinsics& depthIntrinsics,
+                                  int colourWidth, int colourHeight) {
+    ColourProjection p;
+    p.depthCamera = {depthIntrinsics, rig.depth.lens};
+    p.colourCamera = {rig.colour.intrinsics.scaledTo(colourWidth, colourHeight), rig.colour.lens};
+    p.depthToColour = rig.depthToColour;
+    const double pixelsPerDepthPixel = std::max(p.colourCamera.intrinsics.fx / depthIntrinsics.fx,
+                                                p.colourCamera.intrinsics.fy / depthIntrinsics.fy);
+    // Samples just outside the image still cover its border pixels: twice a footprint is ample.
+    p.marginPixels = 2.0 * pixelsPerDepthPixel + 1.0;
+    p.maxRadius2 = lensRadius2(p.colourCamera);
+    p.halfPerDepthOverColourZ = 0.6 * pixelsPerDepthPixel;
+    return p;
+}
+
+bool shaderRegistrable(const frame::RigCalibration& rig) {
+    return rig.depth.lens.model == frame::LensModel::None &&
+           rig.colour.lens.model != frame::LensModel::InverseBrownConrady;
+}
+
 namespace {
 
 // The depth samples in the colour sensor's image, and the z-buffer they make there.
@@ -268,20 +269,18 @@ struct ColourView {
     std::unique_ptr<float[]> zbuffer; // the colour image's size
 };
 
-ColourView viewFromColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig, int colourWidth,
-                          int colourHeight) {
-    const frame::CameraModel depthCamera{rig.depth.intrinsics.scaledTo(depth.width, depth.height),
-                                         rig.depth.lens};
-    const frame::CameraModel colourCamera{rig.colour.intrinsics.scaledTo(colourWidth, colourHeight),
-                                          rig.colour.lens};
-    const double pixelsPerDepthPixel = std::max(colourCamera.intrinsics.fx / depthCamera.intrinsics.fx,
-                                                colourCamera.intrinsics.fy / depthCamera.intrinsics.fy);
-    // Samples just outside the image still cover its border pixels: twice a footprint is ample.
-    const ColourTarget target{colourCamera, 2.0 * pixelsPerDepthPixel + 1.0, lensRadius2(colourCamera),
-                              pixelsPerDepthPixel};
-    ProjectedDepth projected = projectAll(depth, depthCamera, target, rig.depthToColour);
+ColourView viewFromColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
+                          const frame::Intrinsics& depthIntrinsics, int colourWidth, int colourHeight) {
+    const ColourProjection target = colourProjection(rig, depthIntrinsics, colourWidth, colourHeight);
+    ProjectedDepth projected = projectAll(depth, target);
     std::unique_ptr<float[]> zbuffer = nearestDepth(projected, depth.width, colourWidth, colourHeight);
     return {std::move(projected.points), std::move(zbuffer)};
+}
+
+ColourView viewFromColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig, int colourWidth,
+                          int colourHeight) {
+    return viewFromColour(depth, rig, rig.depth.intrinsics.scaledTo(depth.width, depth.height), colourWidth,
+                          colourHeight);
 }
 
 bool registrable(const frame::Plane<float>& depth, const frame::RigCalibration& rig, int colourWidth,
@@ -346,6 +345,14 @@ bool isSingleCamera(const frame::RigCalibration& rig) {
 
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
                                CameraColourTable& table) {
+    if (!frame.rig)
+        return framePointColours(frame, depth, {}, table);
+    return framePointColours(frame, depth, frame.rig->depth.intrinsics.scaledTo(depth.width, depth.height),
+                             table);
+}
+
+PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
+                               const frame::Intrinsics& depthIntrinsics, CameraColourTable& table) {
     const frame::CapturedImage& image = frame.capturedImage;
     if (!frame.rig || isSingleCamera(*frame.rig))
         return {std::make_shared<const RgbImage>(pointColors(image, depth.width, depth.height, table)),
@@ -355,7 +362,7 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
     auto seen = std::make_shared<frame::Plane<std::uint8_t>>(depth.width, depth.height);
     if (!table.use(image) || !registrable(depth, *frame.rig, image.width, image.height))
         return {std::move(colours), std::move(seen)};
-    const ColourView view = viewFromColour(depth, *frame.rig, image.width, image.height);
+    const ColourView view = viewFromColour(depth, *frame.rig, depthIntrinsics, image.width, image.height);
     const auto store = [&pixels = colours->pixels](std::size_t i, std::uint32_t rgba) {
         pixels[i * 3] = static_cast<std::uint8_t>(rgba);
         pixels[i * 3 + 1] = static_cast<std::uint8_t>(rgba >> 8);

@@ -38,6 +38,37 @@ Registration registerDepth(const frame::Plane<float>& depth, const frame::RigCal
 frame::Plane<float> alignDepthToColour(const frame::Plane<float>& depth, const frame::RigCalibration& rig,
                                        int colourWidth, int colourHeight);
 
+// Where the samples of a depth map land in a colour image of colourWidth x colourHeight, as registerDepth
+// places them: both cameras at the maps' sizes, how far outside the image a sample still counts (it covers
+// border pixels), the ideal normalised radius (squared) beyond which the colour lens polynomial no longer
+// describes the image (evaluated far outside the field of view it folds back and would put a point from
+// behind the camera's shoulder into the picture), and the half side of the square a sample covers in the
+// colour image, which is this factor times z / zc (depth along each sensor's axis), at least half a pixel.
+struct ColourProjection {
+    frame::CameraModel depthCamera;
+    frame::CameraModel colourCamera;
+    frame::RigidTransform depthToColour;
+    double marginPixels = 0.0;
+    double maxRadius2 = 0.0;
+    double halfPerDepthOverColourZ = 0.0;
+};
+ColourProjection colourProjection(const frame::RigCalibration& rig, const frame::Intrinsics& depthIntrinsics,
+                                  int colourWidth, int colourHeight);
+
+// Two samples of one surface that cover the same colour pixel differ in depth by the surface's slope over a
+// depth pixel, plus sensor noise (about 2 cm at 4 m for the noisiest sensors we read): within this much they
+// are the same surface, and the farther one is not hidden.
+inline constexpr float kSameSurfaceMeters = 0.01f;
+inline constexpr float kSameSurfacePerMeter = 0.02f;
+inline float sameSurfaceMeters(float colourZ) {
+    return kSameSurfaceMeters + kSameSurfacePerMeter * colourZ;
+}
+
+// Whether a shader can register this rig point by point in closed form: a pinhole depth camera (so the
+// cloud's own unprojection is the registration's) and a colour lens applied forward. Others are registered
+// on the CPU.
+bool shaderRegistrable(const frame::RigCalibration& rig);
+
 // A rig that is really one camera: no rotation or translation between the sensors, the same lens, and
 // depth intrinsics that are the colour intrinsics scaled. Colouring then takes the single-camera path.
 bool isSingleCamera(const frame::RigCalibration& rig);
@@ -56,6 +87,10 @@ struct PointColours {
 // rig (bit for bit today's colours), else each point coloured where registerDepth() puts it.
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
                                CameraColourTable& table);
+// The same for a depth map whose intrinsics are given (a decimated map's cells sit at their centres, which
+// scaling the rig's intrinsics to its size would not give).
+PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
+                               const frame::Intrinsics& depthIntrinsics, CameraColourTable& table);
 
 // The depth panel's colour overlay: each depth sample's colour, opaque where the colour camera sees it and
 // fully transparent (alpha 0, black) where it does not. The point colours' gray stands for "unseen" in the

@@ -31,6 +31,8 @@ struct ShownDepth {
 // ShownFrame::depth and ::pointColors when nothing is decimated.
 struct ShownCloud {
     ShownDepth depth;
+    // The camera's colour of each drawn sample, where it is drawn; null when the points are not coloured
+    // by the camera or the GL path's shader colours them (engine::Demand::shaderPointColors).
     std::shared_ptr<const RgbImage> colors;
     int factor = 1;
 };
@@ -46,9 +48,11 @@ struct DepthRangeMeters {
 // did not ask for (an image no panel shows is null). Immutable once published; each product is shared, so
 // a product that did not change between two results is the same object and need not be uploaded again.
 struct ShownFrame {
-    frame::FramePtr frame;                       // the capture: sequence, timestamp, pose, replay position
-    ShownDepth depth;                            // data null when the frame has no depth
-    std::shared_ptr<const RgbImage> pointColors; // one per shown depth sample, when points take the camera's
+    frame::FramePtr frame; // the capture: sequence, timestamp, pose, replay position
+    ShownDepth depth;      // data null when the frame has no depth
+    // One colour per shown depth sample, made only for a reader of every sample (accumulation, the depth
+    // panel's colour overlay) or for a cloud that draws every sample with colours made on the CPU.
+    std::shared_ptr<const RgbImage> pointColors;
     // With a two-sensor camera, which of those points the colour camera sees (1) and which it cannot
     // (outside its view or hidden: they are gray); null when it sees them all.
     std::shared_ptr<const frame::Plane<std::uint8_t>> pointSeen;

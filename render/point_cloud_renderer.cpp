@@ -23,6 +23,7 @@ uniform float pointSizePixels;
 uniform int coloring; // render::PointColoring
 uniform float minMeters;
 uniform float inverseRangeMeters;
+uniform bool shaderColours; // camera colours made here (CameraColours) rather than read from colorMap
 
 out vec3 pointColor;
 
@@ -40,7 +41,8 @@ void main() {
     }
     vec2 xy = (vec2(pixel) - depthIntrinsics.zw) * z / depthIntrinsics.xy;
     gl_Position = viewProjection * vec4(xy, z, 1.0);
-    pointColor = coloring == 0 ? texelFetch(colorMap, pixel, 0).rgb
+    pointColor = coloring == 0 ? (shaderColours ? cameraPointColor(pixel, size, vec3(xy, z))
+                                                : texelFetch(colorMap, pixel, 0).rgb)
                : coloring == 1 ? colormapColor((z - minMeters) * inverseRangeMeters)
                                : confidenceColor(confidence);
 }
@@ -109,7 +111,8 @@ const char* toString(PointColoring coloring) {
 Status PointCloudRenderer::init() {
     for (int c = 0; c < kColormapCount; ++c) {
         const std::string vertexShader = std::string("#version 330 core\n") + kFrameTexturesGlsl +
-                                         colormapGlsl(static_cast<Colormap>(c)) + kVertexMain;
+                                         kCameraColoursGlsl + colormapGlsl(static_cast<Colormap>(c)) +
+                                         kVertexMain;
         Expected<gl::Program> program = gl::Program::link(vertexShader, kPointColorFragmentShader);
         if (!program)
             return Error{"point cloud shaders: " + program.error().message};
@@ -117,10 +120,12 @@ Status PointCloudRenderer::init() {
         cloud.program = std::move(program).value();
         const gl::Program& p = cloud.program;
         FrameTextures::connectSamplers(p);
+        CameraColours::connectSamplers(p);
         cloud.uniforms = {p.uniformLocation("viewProjection"),  p.uniformLocation("depthIntrinsics"),
                           p.uniformLocation("minConfidence"),   p.uniformLocation("nearMeters"),
                           p.uniformLocation("pointSizePixels"), p.uniformLocation("coloring"),
-                          p.uniformLocation("minMeters"),       p.uniformLocation("inverseRangeMeters")};
+                          p.uniformLocation("minMeters"),       p.uniformLocation("inverseRangeMeters"),
+                          p.uniformLocation("shaderColours")};
     }
     Expected<gl::Program> splat = gl::Program::link(kSplatVertexShader, kSplatFragmentShader);
     if (!splat)
@@ -142,7 +147,7 @@ Status PointCloudRenderer::init() {
 }
 
 void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textures,
-                                const CloudParams& params) {
+                                const CloudParams& params, const CameraColours* camera) {
     lastPointCount_ = 0;
     if (target.empty())
         return;
@@ -154,6 +159,12 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
         glEnable(GL_PROGRAM_POINT_SIZE);
         glUseProgram(cloud.program.id());
         setUniforms(cloud.uniforms, textures, params);
+        const bool shaded = camera && params.coloring == PointColoring::Camera;
+        glUniform1i(cloud.uniforms.shaderColours, shaded ? 1 : 0);
+        if (shaded) {
+            camera->setUniforms(cloud.program, textures);
+            camera->bind();
+        }
         textures.bind();
         glBindVertexArray(emptyVertexArray_.id());
         const GLsizei count = textures.depthWidth() * textures.depthHeight();

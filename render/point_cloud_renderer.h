@@ -3,6 +3,7 @@
 #include "base/expected.h"
 #include "frame/frame.h"
 #include "render/accumulated_points.h"
+#include "render/camera_colours.h"
 #include "render/cloud_splat.h"
 #include "render/colormap.h"
 #include "render/frame_textures.h"
@@ -59,8 +60,11 @@ public:
     // Compiles the shaders; needs a current context.
     Status init();
     // Clears `target` to the background and draws the cloud; draws nothing without depth or with invalid
-    // intrinsics. Leaves framebuffer 0 bound.
-    void render(RenderTarget& target, const FrameTextures& textures, const CloudParams& params);
+    // intrinsics. Camera-coloured points take their colours from `camera` when given (its nearest-depth
+    // pass already drawn for these textures), else from the textures' colour plane. Leaves framebuffer 0
+    // bound.
+    void render(RenderTarget& target, const FrameTextures& textures, const CloudParams& params,
+                const CameraColours* camera = nullptr);
     // Shows a cloud splatted on the CPU (its size must be the target's): its finished picture uploaded
     // as the target's colour, or, when it left keys for a pass, clears `target`, draws them and the
     // anchors depth-tested among its points and leaves framebuffer 0 bound.
@@ -78,6 +82,7 @@ private:
         GLint coloring = -1;
         GLint minMeters = -1;
         GLint inverseRangeMeters = -1;
+        GLint shaderColours = -1;
     };
     // A cloud program per colormap (colormapGlsl says why), with its uniforms.
     struct CloudProgram {

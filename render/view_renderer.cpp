@@ -24,6 +24,8 @@ Status ViewRenderer::init() {
         return s;
     if (Status s = accumulated_.init(); !s)
         return s;
+    if (Status s = cameraColours_.init(); !s)
+        return s;
     const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
     glRenderer_ = name ? name : "";
     // An instrument shows the sensor's own samples, not blends of neighbours; the cloud is drawn 1:1.
@@ -50,6 +52,7 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     depthOverCamera_ = shown.depthOverCamera;
     pointColors_ = shown.pointColors;
     cloud_ = shown.cloud;
+    frame_ = shown.frame;
     uploadOnce(shown.cameraImage, cameraUploaded_, [this](const processing::RgbImage& image) {
         camera_.uploadRgb(image.width, image.height, image.pixels.data());
     });
@@ -143,9 +146,11 @@ void ViewRenderer::setCloudPath(CloudPath path) {
 
 void ViewRenderer::renderCloud(CloudParams params, bool accumulated) {
     params.accumulated = accumulated ? &accumulated_ : nullptr;
+    const bool shaded = shaderColours(params, accumulated);
     CloudDrawing drawing{params,
                          accumulated ? nullptr : cloud_.depth.data,
                          accumulated ? nullptr : cloud_.colors,
+                         shaded ? frame_->capturedImage.bytes : nullptr,
                          accumulated ? accumulated_.version() : 0,
                          path_,
                          cloudTarget_.width(),
@@ -165,12 +170,19 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
         glFinish();
     const bool camera = params.coloring == PointColoring::Camera;
     if (path_ == CloudPath::Points) {
+        const bool shaded = shaderColours(params, accumulated);
         // Undecimated, the cloud's samples are the panels' own: one set of textures serves both.
         UploadedDepth& uploaded = cloud_.factor > 1 ? cloudDepth_ : panelDepth_;
-        const FrameTextures& textures = accumulated || !cloud_.depth.data
-                                            ? panelDepth_.textures
-                                            : texturesFor(uploaded, cloud_.depth, cloud_.colors, camera);
-        cloudRenderer_.render(cloudTarget_, textures, params);
+        const FrameTextures& textures =
+            accumulated || !cloud_.depth.data
+                ? panelDepth_.textures
+                : texturesFor(uploaded, cloud_.depth, cloud_.colors, camera && !shaded);
+        if (shaded) {
+            cameraColours_.uploadImage(frame_->capturedImage);
+            cameraColours_.setRig(frame_->rig);
+            cameraColours_.renderNearest(textures);
+        }
+        cloudRenderer_.render(cloudTarget_, textures, params, shaded ? &cameraColours_ : nullptr);
         return;
     }
     const int width = cloudTarget_.width();
@@ -183,6 +195,11 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
     else
         splatter_.splatWorld({}, 0, params, width, height);
     cloudRenderer_.renderSplat(cloudTarget_, splatter_, params);
+}
+
+bool ViewRenderer::shaderColours(const CloudParams& params, bool accumulated) const {
+    return path_ == CloudPath::Points && params.coloring == PointColoring::Camera && !accumulated && frame_ &&
+           cloud_.depth.data && !cloud_.colors;
 }
 
 void ViewRenderer::resizeCloud(int width, int height) {

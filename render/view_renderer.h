@@ -4,6 +4,7 @@
 #include "processing/accumulation_worker.h"
 #include "processing/shown_frame.h"
 #include "render/accumulated_points.h"
+#include "render/camera_colours.h"
 #include "render/cloud_splat.h"
 #include "render/colormap.h"
 #include "render/frame_textures.h"
@@ -89,6 +90,8 @@ public:
     }
     // Points the last cloud drawing processed (after decimation; accumulated points in accumulate mode).
     std::size_t cloudPoints() const { return cloudRenderer_.lastPointCount(); }
+    // The GPU's camera colours: their uploads and visibility passes, for tests that count work.
+    const CameraColours& cameraColours() const { return cameraColours_; }
 
 private:
     // A FrameTextures and the products it holds, so a product is uploaded once.
@@ -103,6 +106,7 @@ private:
         CloudParams params;
         std::shared_ptr<const frame::DepthData> depth;
         std::shared_ptr<const processing::RgbImage> colors;
+        std::shared_ptr<const std::vector<std::uint8_t>> cameraBytes; // the image the shader colours from
         std::uint64_t accumulatedVersion = 0;
         CloudPath path = CloudPath::Points;
         int width = 0;
@@ -119,6 +123,9 @@ private:
                                      const std::shared_ptr<const processing::RgbImage>& colors,
                                      bool withColors);
     void drawCloud(const CloudParams& params, bool accumulated);
+    // Whether the points' camera colours are made by the shader: GL points coloured by the camera with no
+    // colours from the engine (engine::Demand::shaderPointColors).
+    bool shaderColours(const CloudParams& params, bool accumulated) const;
     void drawDataPanels(const PanelParams& params);
     void drawDepthOverCamera(const PanelParams& params);
 
@@ -129,7 +136,9 @@ private:
     processing::ShownDepth depth_;
     std::shared_ptr<const processing::RgbImage> pointColors_;
     processing::ShownCloud cloud_;
+    frame::FramePtr frame_; // the shown frame: its camera image and rig, for the shader's colours
     PointCloudRenderer cloudRenderer_;
+    CameraColours cameraColours_;
     CloudSplatter splatter_;
     CloudPath path_ = CloudPath::Points;
     std::string glRenderer_;

@@ -10,6 +10,7 @@
 #include "processing/camera_image.h"
 #include "processing/depth_statistics.h"
 #include "processing/point_cloud.h"
+#include "processing/registration.h"
 
 #include <algorithm>
 #include <cmath>
@@ -60,6 +61,7 @@ engine::Demand Viewer::demandOf() const {
     engine::Demand d;
     d.cloud = show.cloud;
     d.pointColors = cloud.coloring == render::PointColoring::Camera;
+    d.shaderPointColors = cloudPath() == render::CloudPath::Points;
     d.depthImage = show.depth || (show.camera && settings_.camera.depthOverlay);
     d.confidencePanel = show.confidence;
     d.cameraPanelWidth = show.camera ? cameraShownWidth_ : 0;
@@ -316,9 +318,17 @@ Expected<std::string> Viewer::writeSnapshot(const std::string& parent) const {
         return dir.error();
     if (auto written = savePanels(*dir); !written)
         return written.error();
-    // Exactly the points drawn: the shown depth, its colours, the cloud's confidence and near limits.
-    const auto points = processing::buildPointCloud(shown_->samples(), settings_.cloud.minConfidence,
-                                                    settings_.cloud.nearMeters);
+    // Exactly the points drawn: the shown depth, its colours, the cloud's confidence and near limits. Colours
+    // a shader made for the screen are made once more here, on the CPU.
+    processing::CloudSamples samples = shown_->samples();
+    std::shared_ptr<const processing::RgbImage> colours;
+    if (!samples.colors && samples.depth && settings_.cloud.coloring == render::PointColoring::Camera) {
+        processing::CameraColourTable table;
+        colours = processing::framePointColours(*shown_->frame, samples.depth->depthMeters, table).colors;
+        samples.colors = colours.get();
+    }
+    const auto points =
+        processing::buildPointCloud(samples, settings_.cloud.minConfidence, settings_.cloud.nearMeters);
     const auto ply = exporting::encodePly(points, {"depthcloud snapshot of " + instrument_.status().source});
     if (Status s = base::writeFileAtomically(*dir + "/cloud.ply", ply); !s)
         return s.error();

@@ -104,7 +104,7 @@ TEST(EngineStressTest, DemandsSeeksAndFramesAtOnceKeepEveryResultConsistent) {
         EXPECT_EQ(r.fog != nullptr, a.demand.fog);
         EXPECT_EQ(r.aura != nullptr, a.demand.aura);
         EXPECT_EQ(r.cameraImage != nullptr, a.demand.cameraPanelWidth > 0);
-        EXPECT_EQ(r.pointColors != nullptr, a.demand.needsPointColors());
+        EXPECT_EQ(r.cloud.colors != nullptr, a.demand.cloud && a.demand.pointColors);
     };
 
     // The clock starts once frames flow.

@@ -351,7 +351,7 @@ TEST(ProcessingGraphRig, ColourOverDepthIsTheRegisteredColourAndTransparentWhere
     demand.colourOverDepth = true;
     const processing::ShownFramePtr shown = graph.run(frame, demand, 2, false);
     ASSERT_TRUE(shown->colourOverDepth && shown->depth.data);
-    EXPECT_FALSE(shown->pointColors) << "the points do not take the camera's colour";
+    EXPECT_FALSE(shown->cloud.colors) << "the points do not take the camera's colour";
     EXPECT_EQ(graph.runs(kColourOverlayStage), 1u);
     processing::CameraColourTable table;
     const processing::PointColours expected =
@@ -418,6 +418,51 @@ TEST(ProcessingGraphRig, FogOfASingleCameraFrameUsesTheShownDepthAndAlignsNothin
     const processing::RgbImage camera = processing::cameraRgbImage(frame->capturedImage, w, h);
     EXPECT_EQ(shown->fog->pixels,
               processing::renderFog(camera, shown->depth.data.get(), demand.processing.fog).pixels);
+}
+
+// Points the GL path's shader colours get no colour from the CPU: nothing converts the camera image per
+// sample, for one camera or for a rig the shader registers; the shader reads the raw image of the frame.
+TEST(ProcessingGraphShaderColours, NoColourIsMadeForPointsTheShaderColours) {
+    for (const frame::FramePtr& frame : {syntheticFrames(1).front(), smallRigFrame()}) {
+        ASSERT_TRUE(frame);
+        ProcessingGraph graph;
+        Demand demand = cloudOnly();
+        demand.pointColors = true;
+        demand.shaderPointColors = true;
+        const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
+        ASSERT_TRUE(shown->cloud.depth.data);
+        EXPECT_FALSE(shown->cloud.colors);
+        EXPECT_FALSE(shown->pointColors);
+        EXPECT_EQ(graph.runs(kPointColorsStage), 0u);
+        EXPECT_EQ(graph.runs(kCameraImageStage), 0u) << "no camera panel, no camera conversion";
+        EXPECT_TRUE(shown->frame->capturedImage.raw() && !shown->frame->capturedImage.empty());
+
+        demand.shaderPointColors = false; // the splat path
+        const processing::ShownFramePtr cpu = graph.run(frame, demand, 2, false);
+        EXPECT_TRUE(cpu->cloud.colors);
+        EXPECT_EQ(graph.runs(kPointColorsStage), 1u);
+    }
+}
+
+// A decimated cloud's colours are made for the samples it draws alone, where they are drawn (each cell's
+// kept sample at the cell's centre), and none for the samples it leaves out.
+TEST(ProcessingGraphShaderColours, ADecimatedCloudIsColouredOnlyWhereItsPointsAre) {
+    const frame::FramePtr frame = smallRigFrame();
+    ASSERT_TRUE(frame && frame->rig);
+    ProcessingGraph graph;
+    Demand demand = cloudOnly();
+    demand.pointColors = true;
+    demand.cloudDecimation = 2;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
+    const processing::ShownDepth& cloud = shown->cloud.depth;
+    ASSERT_TRUE(cloud.data && shown->cloud.colors);
+    EXPECT_EQ(cloud.width(), 106);
+    EXPECT_FALSE(shown->pointColors) << "no colour for samples the cloud does not draw";
+    processing::CameraColourTable table;
+    const auto expected =
+        processing::framePointColours(*frame, cloud.data->depthMeters, cloud.intrinsics, table).colors;
+    EXPECT_EQ(shown->cloud.colors->pixels, expected->pixels);
+    EXPECT_EQ(graph.runs(kPointColorsStage), 1u);
 }
 
 } // namespace

@@ -1,5 +1,5 @@
-// Decimation keeps, of each cell, the nearest sample the cloud would draw, with its own colour and
-// confidence, and places it where the cell's centre unprojects.
+// Decimation keeps, of each cell, the nearest sample the cloud would draw, with its own confidence, and
+// places it where the cell's centre unprojects.
 
 #include "processing/decimation.h"
 
@@ -22,32 +22,26 @@ TEST(Decimation, KeepsTheNearestDrawableSampleOfEachCell) {
     for (int y = 0; y < 2; ++y)
         for (int x = 2; x < 4; ++x)
             depth.confidence.at(x, y) = 1;
-    RgbImage colors{4, 2, std::vector<std::uint8_t>(4 * 2 * 3, 0)};
-    for (std::size_t i = 0; i < 8; ++i)
-        colors.pixels[i * 3] = static_cast<std::uint8_t>(10 * i); // red = 10 x sample index
     const frame::Intrinsics k{100.0, 100.0, 1.5, 0.5, 4, 2};
 
-    const DecimatedDepth d = decimateNearest(depth, k, &colors, 2, frame::Confidence::High, 0.1f);
+    const DecimatedDepth d = decimateNearest(depth, k, 2, frame::Confidence::High, 0.1f);
     ASSERT_EQ(d.data->depthMeters.width, 2);
     ASSERT_EQ(d.data->depthMeters.height, 1);
     EXPECT_EQ(d.data->depthMeters.at(0, 0), 0.8f);
     EXPECT_EQ(d.data->confidence.at(0, 0), 2);
-    EXPECT_EQ(d.colors->pixels[0], 50) << "the colour of sample (1, 1)";
     EXPECT_EQ(d.data->depthMeters.at(1, 0), 0.0f) << "no drawable sample: no point";
 
-    const DecimatedDepth all = decimateNearest(depth, k, &colors, 2, frame::Confidence::Low, 0.1f);
+    const DecimatedDepth all = decimateNearest(depth, k, 2, frame::Confidence::Low, 0.1f);
     EXPECT_EQ(all.data->depthMeters.at(0, 0), 0.5f);
     EXPECT_EQ(all.data->confidence.at(0, 0), 0);
     EXPECT_EQ(all.data->depthMeters.at(1, 0), 2.0f);
-    EXPECT_EQ(all.colors->pixels[0], 0);
 }
 
 TEST(Decimation, CellsUnprojectThroughTheirCentres) {
     frame::DepthData depth{frame::Plane<float>(640, 480, 1.0f), {}};
     const frame::Intrinsics k{500.0, 510.0, 319.5, 239.5, 640, 480};
     for (int factor : {2, 3, 4}) {
-        const DecimatedDepth d = decimateNearest(depth, k, nullptr, factor, frame::Confidence::Low, 0.0f);
-        EXPECT_EQ(d.colors, nullptr);
+        const DecimatedDepth d = decimateNearest(depth, k, factor, frame::Confidence::Low, 0.0f);
         // Cell (7, 5) covers samples [7f, 8f) x [5f, 6f): its centre is sample 7f + (f - 1) / 2.
         const double u = 7 * factor + (factor - 1) / 2.0;
         const double v = 5 * factor + (factor - 1) / 2.0;

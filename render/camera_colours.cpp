@@ -1,0 +1,320 @@
+#include "render/camera_colours.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+namespace dc::render {
+
+namespace {
+
+constexpr int kFormatNone = 0, kFormatNv12 = 1, kFormatYuyv = 2, kFormatRgb = 3;
+
+// Draws every sample with depth as a square of its footprint into the colour camera's view, at the depth
+// along the colour camera's axis (kNearestFarMeters is depth 1): the depth buffer then holds the nearest
+// surface over each colour pixel, as registerDepth's z-buffer does.
+constexpr const char* kNearestVertexMain = R"glsl(
+uniform vec4 depthIntrinsics; // fx, fy, cx, cy in depth-map pixels
+
+void main() {
+    ivec2 size = textureSize(depthMap, 0);
+    ivec2 pixel = ivec2(gl_VertexID % size.x, gl_VertexID / size.x);
+    float z = texelFetch(depthMap, pixel, 0).r;
+    vec3 c = validDepth(z)
+                 ? toColourImage(vec3((vec2(pixel) - depthIntrinsics.zw) * z / depthIntrinsics.xy, z))
+                 : vec3(0.0);
+    gl_PointSize = 1.0;
+    if (!(c.z > 0.0) || c.z >= kNearestFarMeters) {
+        gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // clipped
+        return;
+    }
+    gl_PointSize = 2.0 * clamp(halfPerDepthOverColourZ * z / c.z, 0.5, 16384.0);
+    // Pixel centres of the colour image sit at integers, GL's at half integers; the view has a margin
+    // on every side so that samples just outside the image still cover its border pixels.
+    vec2 window = c.xy + 0.5 + float(nearestMargin);
+    gl_Position = vec4(window / vec2(cameraSize + 2 * nearestMargin) * 2.0 - 1.0,
+                       c.z / kNearestFarMeters * 2.0 - 1.0, 1.0);
+}
+)glsl";
+
+constexpr const char* kDepthOnlyFragmentShader = R"glsl(#version 330 core
+void main() {
+}
+)glsl";
+
+bool usableImage(const frame::CapturedImage& image) {
+    return !image.empty() && image.raw() && image.width > 0 && image.height > 0 &&
+           image.bytes->size() >= frame::CapturedImage::byteSize(image.format, image.width, image.height);
+}
+
+float finiteOrMax(double v) {
+    return std::isfinite(v) ? static_cast<float>(v) : std::numeric_limits<float>::max();
+}
+
+} // namespace
+
+const char* const kCameraColoursGlsl = R"glsl(
+uniform sampler2D cameraLuma;
+uniform sampler2D cameraChroma;
+uniform sampler2D colourNearest; // the nearest depth over each colour pixel, / kNearestFarMeters
+uniform int cameraFormat;        // 0 none, 1 NV12, 2 YUYV, 3 RGB
+uniform ivec2 cameraSize;
+uniform bool registered;         // a two-sensor rig: project into the colour camera, test visibility
+uniform mat3 depthToColourRotation;
+uniform vec3 depthToColourTranslation;
+uniform vec4 colourIntrinsics;   // fx, fy, cx, cy at the camera image's size
+uniform float colourLens[5];     // k1 k2 p1 p2 k3 (Brown-Conrady, forward); all 0 for a pinhole
+uniform float colourMaxRadius2;
+uniform float colourMarginPixels;
+uniform float halfPerDepthOverColourZ;
+uniform int nearestMargin;
+
+const float kNearestFarMeters = 1024.0;
+const float kUnseenGray = 128.0 / 255.0; // processing::kUnseenGray, frame::pixelRgb's mid-gray in bytes
+
+// frame::ycbcrToRgb: full-range BT.601, the Depth Cloud sample's matrix.
+vec3 ycbcrToRgb(vec3 c) {
+    float cb = c.y - 0.5;
+    float cr = c.z - 0.5;
+    return vec3(c.x + 1.402 * cr, c.x - 0.3441 * cb - 0.7141 * cr, c.x + 1.772 * cb);
+}
+
+vec3 cameraRgb(ivec2 p) {
+    p = clamp(p, ivec2(0), cameraSize - 1);
+    if (cameraFormat == 1)
+        return ycbcrToRgb(vec3(texelFetch(cameraLuma, p, 0).r, texelFetch(cameraChroma, p / 2, 0).rg));
+    if (cameraFormat == 2) {
+        vec4 pair = texelFetch(cameraLuma, ivec2(p.x / 2, p.y), 0);
+        return ycbcrToRgb(vec3((p.x & 1) == 0 ? pair.r : pair.b, pair.g, pair.a));
+    }
+    if (cameraFormat == 3)
+        return texelFetch(cameraLuma, p, 0).rgb;
+    return vec3(kUnseenGray);
+}
+
+// Where point p of the depth camera's frame lands in the colour image, as processing::registerDepth
+// projects it: (x, y) in pixels with centres at integers, z the depth along the colour camera's axis;
+// z = 0 where it lands nowhere near the image.
+vec3 toColourImage(vec3 p) {
+    vec3 q = depthToColourRotation * p + depthToColourTranslation;
+    float inverseZ = 1.0 / q.z;
+    float x = q.x * inverseZ;
+    float y = q.y * inverseZ;
+    float r2 = x * x + y * y;
+    float radial = 1.0 + r2 * (colourLens[0] + r2 * (colourLens[1] + r2 * colourLens[4]));
+    float xd = x * radial + 2.0 * colourLens[2] * x * y + colourLens[3] * (r2 + 2.0 * x * x);
+    float yd = y * radial + colourLens[2] * (r2 + 2.0 * y * y) + 2.0 * colourLens[3] * x * y;
+    vec2 pixel = colourIntrinsics.xy * vec2(xd, yd) + colourIntrinsics.zw;
+    vec2 low = vec2(-0.5 - colourMarginPixels);
+    vec2 high = vec2(cameraSize) - 0.5 + colourMarginPixels;
+    bool lands = q.z > 0.0 && r2 <= colourMaxRadius2 && all(greaterThanEqual(pixel, low)) &&
+                 all(lessThan(pixel, high));
+    return lands ? vec3(pixel, q.z) : vec3(0.0);
+}
+
+vec3 cameraPointColor(ivec2 pixel, ivec2 mapSize, vec3 point) {
+    if (cameraFormat == 0)
+        return vec3(kUnseenGray);
+    if (!registered) // processing::cameraPixelOf, in integers
+        return cameraRgb((2 * pixel + 1) * cameraSize / (2 * mapSize));
+    vec3 c = toColourImage(point);
+    if (!(c.z > 0.0) || any(lessThan(c.xy, vec2(-0.5))) || any(greaterThanEqual(c.xy, vec2(cameraSize) - 0.5)))
+        return vec3(kUnseenGray);
+    ivec2 at = min(ivec2(c.xy + 0.5), cameraSize - 1);
+    float nearest = texelFetch(colourNearest, at + nearestMargin, 0).r * kNearestFarMeters;
+    // processing::sameSurfaceMeters
+    if (c.z > nearest + 0.01 + 0.02 * c.z)
+        return vec3(kUnseenGray);
+    return cameraRgb(at);
+}
+)glsl";
+
+Status CameraColours::init() {
+    const std::string vertexShader =
+        std::string("#version 330 core\n") + kFrameTexturesGlsl + kCameraColoursGlsl + kNearestVertexMain;
+    Expected<gl::Program> program = gl::Program::link(vertexShader, kDepthOnlyFragmentShader);
+    if (!program)
+        return Error{"camera colour visibility shaders: " + program.error().message};
+    nearestProgram_ = std::move(program).value();
+    FrameTextures::connectSamplers(nearestProgram_);
+    connectSamplers(nearestProgram_);
+    glUseProgram(0);
+    nearestFramebuffer_ = gl::Framebuffer::create();
+    emptyVertexArray_ = gl::VertexArray::create();
+    return Status::success();
+}
+
+void CameraColours::connectSamplers(const gl::Program& program) {
+    glUseProgram(program.id());
+    glUniform1i(program.uniformLocation("cameraLuma"), kLumaUnit);
+    glUniform1i(program.uniformLocation("cameraChroma"), kChromaUnit);
+    glUniform1i(program.uniformLocation("colourNearest"), kNearestUnit);
+}
+
+void CameraColours::uploadPlane(Plane& plane, GLint internalFormat, GLenum format, int width, int height,
+                                const void* pixels) {
+    if (!plane.texture) {
+        plane.texture = gl::Texture::create();
+        glBindTexture(GL_TEXTURE_2D, plane.texture.id());
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    } else {
+        glBindTexture(GL_TEXTURE_2D, plane.texture.id());
+    }
+    // A new internal format (a camera switching from NV12 to RGB) needs new storage as a new size does.
+    GLint current = 0;
+    glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &current);
+    if (width == plane.width && height == plane.height && current == internalFormat) {
+        glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format, GL_UNSIGNED_BYTE, pixels);
+        return;
+    }
+    glTexImage2D(GL_TEXTURE_2D, 0, internalFormat, width, height, 0, format, GL_UNSIGNED_BYTE, pixels);
+    plane.width = width;
+    plane.height = height;
+}
+
+void CameraColours::uploadImage(const frame::CapturedImage& image) {
+    if (image.bytes == uploadedBytes_ && image.bytes)
+        return;
+    uploadedBytes_ = image.bytes;
+    format_ = kFormatNone;
+    if (!usableImage(image))
+        return;
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    const int w = image.width, h = image.height, pairs = (w + 1) / 2;
+    const std::uint8_t* bytes = image.bytes->data();
+    switch (image.format) {
+    case frame::PixelFormat::Nv12:
+        uploadPlane(luma_, GL_R8, GL_RED, w, h, bytes);
+        uploadPlane(chroma_, GL_RG8, GL_RG, pairs, (h + 1) / 2, bytes + static_cast<std::size_t>(w) * h);
+        format_ = kFormatNv12;
+        break;
+    case frame::PixelFormat::Yuyv:
+        uploadPlane(luma_, GL_RGBA8, GL_RGBA, pairs, h, bytes);
+        format_ = kFormatYuyv;
+        break;
+    case frame::PixelFormat::Rgb24:
+        uploadPlane(luma_, GL_RGB8, GL_RGB, w, h, bytes);
+        format_ = kFormatRgb;
+        break;
+    case frame::PixelFormat::Jpeg: // decoded by the engine before it reaches here
+        return;
+    }
+    width_ = w;
+    height_ = h;
+    ++uploads_;
+}
+
+void CameraColours::setRig(std::shared_ptr<const frame::RigCalibration> rig) {
+    if (rig && processing::isSingleCamera(*rig))
+        rig.reset();
+    if (rig != rig_)
+        projection_.reset();
+    rig_ = std::move(rig);
+}
+
+const processing::ColourProjection&
+CameraColours::projection(const frame::Intrinsics& depthIntrinsics) const {
+    if (!projection_ || !(projection_->first == depthIntrinsics) ||
+        projection_->second.colourCamera.intrinsics.width != width_ ||
+        projection_->second.colourCamera.intrinsics.height != height_)
+        projection_.emplace(depthIntrinsics,
+                            processing::colourProjection(*rig_, depthIntrinsics, width_, height_));
+    return projection_->second;
+}
+
+int CameraColours::marginPixels(const frame::Intrinsics& depthIntrinsics) const {
+    return static_cast<int>(std::ceil(projection(depthIntrinsics).marginPixels));
+}
+
+void CameraColours::renderNearest(const FrameTextures& textures) {
+    if (!rig_ || format_ == kFormatNone || !textures.hasDepth() || !textures.depthIntrinsics().valid())
+        return;
+    const int margin = marginPixels(textures.depthIntrinsics());
+    const int width = width_ + 2 * margin, height = height_ + 2 * margin;
+    if (nearest_.width != width || nearest_.height != height) {
+        if (!nearest_.texture) {
+            nearest_.texture = gl::Texture::create();
+            glBindTexture(GL_TEXTURE_2D, nearest_.texture.id());
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+        }
+        glBindTexture(GL_TEXTURE_2D, nearest_.texture.id());
+        glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
+                     nullptr);
+        nearest_.width = width;
+        nearest_.height = height;
+        glBindFramebuffer(GL_FRAMEBUFFER, nearestFramebuffer_.id());
+        glFramebufferTexture2D(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_TEXTURE_2D, nearest_.texture.id(), 0);
+        glDrawBuffer(GL_NONE);
+        glReadBuffer(GL_NONE);
+    }
+    glBindFramebuffer(GL_FRAMEBUFFER, nearestFramebuffer_.id());
+    glViewport(0, 0, width, height);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glClearDepth(1.0);
+    glClear(GL_DEPTH_BUFFER_BIT);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    glUseProgram(nearestProgram_.id());
+    const frame::Intrinsics& k = textures.depthIntrinsics();
+    glUniform4f(nearestProgram_.uniformLocation("depthIntrinsics"), static_cast<float>(k.fx),
+                static_cast<float>(k.fy), static_cast<float>(k.cx), static_cast<float>(k.cy));
+    setUniforms(nearestProgram_, textures);
+    textures.bind();
+    bind();
+    glBindVertexArray(emptyVertexArray_.id());
+    glDrawArrays(GL_POINTS, 0, textures.depthWidth() * textures.depthHeight());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    ++nearestPasses_;
+}
+
+void CameraColours::bind() const {
+    const std::pair<GLint, GLuint> bindings[] = {{kLumaUnit, luma_.texture.id()},
+                                                 {kChromaUnit, chroma_.texture.id()},
+                                                 {kNearestUnit, nearest_.texture.id()}};
+    for (const auto& [unit, texture] : bindings) {
+        glActiveTexture(GL_TEXTURE0 + unit);
+        glBindTexture(GL_TEXTURE_2D, texture);
+    }
+    glActiveTexture(GL_TEXTURE0);
+}
+
+void CameraColours::setUniforms(const gl::Program& program, const FrameTextures& textures) const {
+    glUniform1i(program.uniformLocation("cameraFormat"), format_);
+    glUniform2i(program.uniformLocation("cameraSize"), std::max(width_, 1), std::max(height_, 1));
+    const bool registered = rig_ && format_ != kFormatNone && textures.depthIntrinsics().valid();
+    glUniform1i(program.uniformLocation("registered"), registered ? 1 : 0);
+    if (!registered)
+        return;
+    const processing::ColourProjection& p = projection(textures.depthIntrinsics());
+    GLfloat rotation[9];
+    std::transform(p.depthToColour.rotation.begin(), p.depthToColour.rotation.end(), rotation,
+                   [](double v) { return static_cast<GLfloat>(v); });
+    glUniformMatrix3fv(program.uniformLocation("depthToColourRotation"), 1, GL_TRUE, rotation); // row-major
+    const auto& t = p.depthToColour.translationMeters;
+    glUniform3f(program.uniformLocation("depthToColourTranslation"), static_cast<float>(t[0]),
+                static_cast<float>(t[1]), static_cast<float>(t[2]));
+    const frame::Intrinsics& c = p.colourCamera.intrinsics;
+    glUniform4f(program.uniformLocation("colourIntrinsics"), static_cast<float>(c.fx),
+                static_cast<float>(c.fy), static_cast<float>(c.cx), static_cast<float>(c.cy));
+    GLfloat lens[5];
+    std::transform(p.colourCamera.lens.coefficients.begin(), p.colourCamera.lens.coefficients.end(), lens,
+                   [&](double v) {
+                       return p.colourCamera.lens.model == frame::LensModel::None ? 0.0f
+                                                                                  : static_cast<GLfloat>(v);
+                   });
+    glUniform1fv(program.uniformLocation("colourLens"), 5, lens);
+    glUniform1f(program.uniformLocation("colourMaxRadius2"), finiteOrMax(p.maxRadius2));
+    glUniform1f(program.uniformLocation("colourMarginPixels"), static_cast<float>(p.marginPixels));
+    glUniform1f(program.uniformLocation("halfPerDepthOverColourZ"),
+                static_cast<float>(p.halfPerDepthOverColourZ));
+    glUniform1i(program.uniformLocation("nearestMargin"), marginPixels(textures.depthIntrinsics()));
+}
+
+} // namespace dc::render
