@@ -392,6 +392,29 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
     return {std::move(colours), std::move(seen)};
 }
 
+bool sampleSeenByColour(const frame::Frame& frame, const frame::Plane<float>& depth,
+                        const frame::Intrinsics& depthIntrinsics, int u, int v) {
+    if (!frame.rig || isSingleCamera(*frame.rig))
+        return true;
+    const frame::CapturedImage& image = frame.capturedImage;
+    if (image.empty() || !registrable(depth, *frame.rig, image.width, image.height) || u < 0 || v < 0 ||
+        u >= depth.width || v >= depth.height)
+        return false;
+    const ProjectedDepth projected =
+        projectAll(depth, colourProjection(*frame.rig, depthIntrinsics, image.width, image.height));
+    const Projected& p = projected.points[static_cast<std::size_t>(v) * depth.width + u];
+    if (!(p.z > 0.0f) || !insideImage(p, image.width, image.height))
+        return false;
+    const int x = std::min(static_cast<int>(p.x + 0.5f), image.width - 1);
+    const int y = std::min(static_cast<int>(p.y + 0.5f), image.height - 1);
+    float nearest = std::numeric_limits<float>::infinity();
+    for (const Projected& q : projected.points)
+        if (q.z > 0.0f && ceilOf(q.x - q.half) <= x && x <= floorOf(q.x + q.half) &&
+            ceilOf(q.y - q.half) <= y && y <= floorOf(q.y + q.half))
+            nearest = std::min(nearest, q.z);
+    return !(p.z > nearest + sameSurfaceMeters(p.z));
+}
+
 RgbaImage seenColourOverlay(const PointColours& colours) {
     const RgbImage& rgb = *colours.colors;
     const std::size_t n = static_cast<std::size_t>(rgb.width) * static_cast<std::size_t>(rgb.height);

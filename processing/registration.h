@@ -92,6 +92,12 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
                                const frame::Intrinsics& depthIntrinsics, CameraColourTable& table);
 
+// Whether the colour camera sees sample (u, v) of `depth`, exactly as framePointColours decides it, for one
+// sample (the hover readout of a cloud whose colours the GPU made): one projection of every sample, no
+// colours. True for one camera.
+bool sampleSeenByColour(const frame::Frame& frame, const frame::Plane<float>& depth,
+                        const frame::Intrinsics& depthIntrinsics, int u, int v);
+
 // The depth panel's colour overlay: each depth sample's colour, opaque where the colour camera sees it and
 // fully transparent (alpha 0, black) where it does not. The point colours' gray stands for "unseen" in the
 // cloud; over the depth panel it would read as a colour the camera saw.

@@ -1,6 +1,7 @@
 #include "ui/probe.h"
 
 #include "processing/point_cloud.h"
+#include "processing/registration.h"
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +23,9 @@ std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
     const frame::Plane<std::uint8_t>* seen = source.colourSeen;
     if (seen && seen->width == depth.depthMeters.width && seen->height == depth.depthMeters.height)
         probe.seenByColour = probe.depthMeters <= 0.0f || seen->at(u, v) != 0;
+    else if (source.frame && probe.depthMeters > 0.0f)
+        probe.seenByColour =
+            processing::sampleSeenByColour(*source.frame, depth.depthMeters, source.intrinsics, u, v);
     if (probe.depthMeters > 0.0f && source.intrinsics.valid())
         probe.point = processing::unproject(u, v, probe.depthMeters, source.intrinsics);
     return probe;

@@ -25,7 +25,10 @@ struct Probe {
 struct ProbeSource {
     const frame::DepthData* depth = nullptr;
     frame::Intrinsics intrinsics;
-    const frame::Plane<std::uint8_t>* colourSeen = nullptr; // the depth's size; null: every point seen
+    const frame::Plane<std::uint8_t>* colourSeen = nullptr; // the depth's size
+    // Without colourSeen, the frame whose rig decides it for the probed sample alone (the GPU coloured the
+    // points, so no mask was made); null as well: every point seen.
+    const frame::Frame* frame = nullptr;
 
     bool empty() const { return depth == nullptr || depth->depthMeters.empty(); }
 };

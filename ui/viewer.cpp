@@ -233,7 +233,7 @@ void Viewer::updateLegend() {
 ProbeSource Viewer::probeSource() const {
     if (!shown_ || !shown_->depth.data)
         return {};
-    return {shown_->depth.data.get(), shown_->depth.intrinsics, shown_->pointSeen.get()};
+    return {shown_->depth.data.get(), shown_->depth.intrinsics, shown_->pointSeen.get(), shown_->frame.get()};
 }
 
 Status Viewer::openSource(const std::string& spec) {

@@ -1,5 +1,9 @@
 #include "ui/probe.h"
 
+#include "devices/synthetic/synthetic_device.h"
+#include "processing/registration.h"
+#include "tests/small_rig.h"
+
 #include <gtest/gtest.h>
 
 namespace dc::ui {
@@ -20,6 +24,28 @@ TEST(Probe, APointTheColourCameraCannotSeeIsReadOutAsNotSeen) {
     const ProbeSource oneCamera{&depth, {100.0, 100.0, 2.0, 1.0, 4, 2}, nullptr};
     EXPECT_TRUE(probeAt(oneCamera, 0, 0)->seenByColour);
     EXPECT_STREQ(kNotSeenByColour, "not seen by the colour camera");
+}
+
+// Points the GPU coloured come with no seen mask: the probe asks the frame's rig about the one sample.
+TEST(Probe, WithoutAMaskTheRigDecidesForTheProbedSample) {
+    devices::SyntheticDevice device(dc::test::smallRigConfig());
+    ASSERT_TRUE(device.open());
+    const frame::FramePtr frame = device.makeFrame(0, 0.0);
+    const frame::DepthData& depth = *frame->sceneDepth;
+    const ProbeSource source{&depth, frame->depthIntrinsics(), nullptr, frame.get()};
+    int seen = 0, unseen = 0;
+    for (int u = 0; u < depth.depthMeters.width; u += 7) {
+        const std::optional<Probe> probe = probeAt(source, u, 60);
+        ASSERT_TRUE(probe);
+        if (probe->depthMeters <= 0.0f)
+            continue;
+        EXPECT_EQ(probe->seenByColour,
+                  processing::sampleSeenByColour(*frame, depth.depthMeters, frame->depthIntrinsics(), u, 60));
+        (probe->seenByColour ? seen : unseen) += 1;
+    }
+    // The colour camera sees about the middle half of the depth camera's wider view.
+    EXPECT_GT(seen, 5);
+    EXPECT_GT(unseen, 5);
 }
 
 } // namespace

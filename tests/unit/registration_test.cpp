@@ -165,6 +165,24 @@ TEST(Registration, WallHiddenByAForegroundObjectIsFlaggedUnseenAndNeverTakesItsC
     EXPECT_GT(compared, 10000);
 }
 
+// The hover readout of a cloud coloured on the GPU asks about one sample: the answer is the seen mask's,
+// hidden wall and square alike.
+TEST(Registration, OneSamplesVisibilityIsTheSeenMasks) {
+    const OccludedWall scene;
+    CameraColourTable table;
+    const frame::Plane<float>& depth = scene.frame.sceneDepth->depthMeters;
+    const PointColours colours = framePointColours(scene.frame, depth, table);
+    int hidden = 0;
+    for (int v = 0; v < depth.height; v += 3)
+        for (int u = 0; u < depth.width; u += 2) {
+            const bool seen = colours.seen->at(u, v) != 0;
+            hidden += !seen;
+            ASSERT_EQ(sampleSeenByColour(scene.frame, depth, scene.frame.depthIntrinsics(), u, v), seen)
+                << u << "," << v;
+        }
+    EXPECT_GT(hidden, 50);
+}
+
 // A strong barrel lens folds points from far outside its view back into the picture (k1 = -0.5: an ideal
 // radius of 1.25 images at 0.27, well inside). Those points are not seen, whatever the polynomial says.
 TEST(Registration, PointsFarOutsideTheColourLensesViewAreNotFoldedBackIntoTheImage) {
