@@ -54,8 +54,7 @@ void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, in
         for (auto& splats : bands)
             splats.clear();
     }
-    const int size = std::max(1, static_cast<int>(std::lround(params.pointSizePixels)));
-    const float offset = 0.5f * static_cast<float>(size) + 0.5f;
+    const int pointSize = std::max(1, static_cast<int>(std::lround(params.pointSizePixels)));
     const int bandRows = std::max(1, (height_ + kBands - 1) / kBands);
     std::atomic<std::size_t> projected{0};
     processing::parallelRanges(kPieces, 1, [&](int first, int last) {
@@ -63,18 +62,23 @@ void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, in
             auto& bands = splats_[static_cast<std::size_t>(piece)];
             std::size_t count = 0;
             // Window coordinates as GL computes them; the point covers the pixels whose centres fall in
-            // the size x size square around it.
-            const auto emit = [&](const glm::vec4& clip, std::uint32_t rgb) {
+            // the size x size square around it, at least pointSize wide and as wide as `fill` (the sample's
+            // footprint, pixels, when gaps are filled) rounded up.
+            const auto emit = [&](const glm::vec4& clip, std::uint32_t rgb, float fill) {
                 ++count;
                 if (!(clip.w > 0.0f) || std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w ||
                     std::abs(clip.z) > clip.w)
                     return;
                 const float inverseW = 1.0f / clip.w;
+                const int size = std::max(
+                    pointSize, static_cast<int>(std::min(std::ceil(fill * inverseW), kMaxFillPixels)));
+                const float offset = 0.5f * static_cast<float>(size) + 0.5f;
                 const float xw = (clip.x * inverseW * 0.5f + 0.5f) * static_cast<float>(width_);
                 const float yw = (clip.y * inverseW * 0.5f + 0.5f) * static_cast<float>(height_);
                 const float zw = clip.z * inverseW * 0.5f + 0.5f;
-                const Splat splat{static_cast<std::int32_t>(std::ceil(xw - offset)),
-                                  static_cast<std::int32_t>(std::ceil(yw - offset)),
+                const Splat splat{static_cast<std::int16_t>(std::ceil(xw - offset)),
+                                  static_cast<std::int16_t>(std::ceil(yw - offset)),
+                                  static_cast<std::uint16_t>(size),
                                   std::uint64_t{std::bit_cast<std::uint32_t>(zw)} << 32 | rgb};
                 const int firstBand = std::clamp(splat.y / bandRows, 0, kBands - 1);
                 const int lastBand = std::clamp((splat.y + size - 1) / bandRows, 0, kBands - 1);
@@ -88,14 +92,14 @@ void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, in
     pointCount_ = projected;
     processing::parallelRanges(kBands, 1, [&](int first, int last) {
         for (int band = first; band < last; ++band) {
-            write(band, bandRows, size);
+            write(band, bandRows);
             if (picture)
                 paint(band, bandRows, background); // while the band's keys are still in this core's cache
         }
     });
 }
 
-void CloudSplatter::write(int band, int bandRows, int size) {
+void CloudSplatter::write(int band, int bandRows) {
     const int top = std::min(height_, band * bandRows);
     const int bottom = std::min(height_, (band + 1) * bandRows);
     std::uint64_t* keys = keys_.data();
@@ -103,9 +107,9 @@ void CloudSplatter::write(int band, int bandRows, int size) {
               kEmpty);
     for (const auto& pieces : splats_)
         for (const Splat& s : pieces[static_cast<std::size_t>(band)]) {
-            const int x0 = std::max(s.x, 0);
-            const int x1 = std::min(s.x + size, width_);
-            for (int y = std::max(s.y, top); y < std::min(s.y + size, bottom); ++y) {
+            const int x0 = std::max<int>(s.x, 0);
+            const int x1 = std::min(s.x + s.size, width_);
+            for (int y = std::max<int>(s.y, top); y < std::min(s.y + s.size, bottom); ++y) {
                 std::uint64_t* row = keys + static_cast<std::size_t>(y) * width_;
                 for (int x = x0; x < x1; ++x)
                     row[x] = std::min(row[x], s.key);
@@ -136,6 +140,7 @@ void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Int
     const float rangeMin = params.rangeMinMeters;
     const float inverseRange = 1.0f / std::max(params.rangeMaxMeters - params.rangeMinMeters, 1e-6f);
     const glm::mat4& m = params.viewProjection;
+    const float footprint = footprintPixelsPerDepth(params, k, width, height);
     std::vector<glm::vec4> columns(static_cast<std::size_t>(w));
     for (int u = 0; u < w; ++u)
         columns[static_cast<std::size_t>(u)] = static_cast<float>((u - k.cx) / k.fx) * m[0];
@@ -163,7 +168,8 @@ void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Int
                 const float z = depth.depthMeters.pixels[i];
                 const std::uint8_t level = hasConfidence ? depth.confidence.pixels[i] : 2;
                 if (processing::keepSample(z, level, params.minConfidence, params.nearMeters))
-                    emit(z * (columns[static_cast<std::size_t>(u)] + row) + m[3], colorOf(i, z, level));
+                    emit(z * (columns[static_cast<std::size_t>(u)] + row) + m[3], colorOf(i, z, level),
+                         z * footprint);
             }
         }
     });
@@ -179,7 +185,7 @@ void CloudSplatter::splatWorld(const std::vector<processing::WorldPoint>& points
         const std::size_t end = std::min(count, static_cast<std::size_t>(lastRow) * kPerRow);
         for (std::size_t i = static_cast<std::size_t>(firstRow) * kPerRow; i < end; ++i) {
             const processing::WorldPoint& p = points[i];
-            emit(m * glm::vec4(p.x, p.y, p.z, 1.0f), p.rgba & 0xffffffu);
+            emit(m * glm::vec4(p.x, p.y, p.z, 1.0f), p.rgba & 0xffffffu, 0.0f);
         }
     });
 }

@@ -57,15 +57,16 @@ public:
 
     // One splat before it is written: its first covered pixel and its key.
     struct Splat {
-        std::int32_t x = 0;
-        std::int32_t y = 0;
+        std::int16_t x = 0; // a splat lies within the clip volume, and images are narrower than 32k
+        std::int16_t y = 0;
+        std::uint16_t size = 1; // pixels on a side
         std::uint64_t key = kEmpty;
     };
 
 private:
     template <class Project>
     void run(int sourceRows, const CloudParams& params, int width, int height, Project&& project);
-    void write(int band, int bands, int pointSize);
+    void write(int band, int bands);
     void paint(int band, int bandRows, std::uint32_t background);
 
     std::vector<std::uint64_t> keys_;

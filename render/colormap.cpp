@@ -116,8 +116,8 @@ std::string colormapGlsl(Colormap colormap) {
     const ColormapStops& stops = colormapStops(colormap);
     for (std::size_t i = 0; i < stops.size(); ++i) {
         // Nine significant digits: the float each stop is on the CPU, exactly.
-        std::snprintf(stop, sizeof stop, "%svec3(%.9g, %.9g, %.9g)", i == 0 ? "" : ", ", stops[i][0], stops[i][1],
-                      stops[i][2]);
+        std::snprintf(stop, sizeof stop, "%svec3(%.9g, %.9g, %.9g)", i == 0 ? "" : ", ", stops[i][0],
+                      stops[i][1], stops[i][2]);
         glsl += stop;
     }
     return glsl + R"glsl();

@@ -15,11 +15,13 @@ namespace dc::render {
 namespace {
 
 constexpr const char* kVertexMain = R"glsl(
+const float kMaxFillPixels = 32.0; // render::kMaxFillPixels
 uniform mat4 viewProjection;
 uniform vec4 depthIntrinsics; // fx, fy, cx, cy in depth-map pixels
 uniform uint minConfidence;
 uniform float nearMeters;
 uniform float pointSizePixels;
+uniform float footprintPixels; // render::footprintPixelsPerDepth
 uniform int coloring; // render::PointColoring
 uniform float minMeters;
 uniform float inverseRangeMeters;
@@ -32,15 +34,16 @@ void main() {
     ivec2 pixel = ivec2(gl_VertexID % size.x, gl_VertexID / size.x);
     float z = texelFetch(depthMap, pixel, 0).r;
     uint confidence = texelFetch(confidenceMap, pixel, 0).r;
-    gl_PointSize = pointSizePixels;
     pointColor = vec3(0.0);
     if (!validDepth(z) || z < nearMeters || confidence < minConfidence) {
         // Outside the clip volume, so the point is clipped before rasterisation.
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0);
+        gl_PointSize = 1.0;
         return;
     }
     vec2 xy = (vec2(pixel) - depthIntrinsics.zw) * z / depthIntrinsics.xy;
     gl_Position = viewProjection * vec4(xy, z, 1.0);
+    gl_PointSize = max(pointSizePixels, min(ceil(z * footprintPixels / gl_Position.w), kMaxFillPixels));
     pointColor = coloring == 0 ? (shaderColours ? cameraPointColor(pixel, size, vec3(xy, z))
                                                 : texelFetch(colorMap, pixel, 0).rgb)
                : coloring == 1 ? colormapColor((z - minMeters) * inverseRangeMeters)
@@ -96,6 +99,19 @@ void main() {
 
 } // namespace
 
+// A rigid view keeps lengths, so the projection's scale along each screen axis is the length of the
+// combined matrix's row for it: a sample z / f meters wide at clip w covers that times z / (f w)
+// half-screens.
+float footprintPixelsPerDepth(const CloudParams& params, const frame::Intrinsics& k, int width, int height) {
+    if (!params.fillGaps || !k.valid())
+        return 0.0f;
+    const glm::mat4& m = params.viewProjection;
+    const float rowX = glm::length(glm::vec3(m[0][0], m[1][0], m[2][0]));
+    const float rowY = glm::length(glm::vec3(m[0][1], m[1][1], m[2][1]));
+    return std::max(rowX * 0.5f * static_cast<float>(width) / static_cast<float>(k.fx),
+                    rowY * 0.5f * static_cast<float>(height) / static_cast<float>(k.fy));
+}
+
 const char* toString(PointColoring coloring) {
     switch (coloring) {
     case PointColoring::Camera:
@@ -121,11 +137,11 @@ Status PointCloudRenderer::init() {
         const gl::Program& p = cloud.program;
         FrameTextures::connectSamplers(p);
         CameraColours::connectSamplers(p);
-        cloud.uniforms = {p.uniformLocation("viewProjection"),  p.uniformLocation("depthIntrinsics"),
-                          p.uniformLocation("minConfidence"),   p.uniformLocation("nearMeters"),
-                          p.uniformLocation("pointSizePixels"), p.uniformLocation("coloring"),
-                          p.uniformLocation("minMeters"),       p.uniformLocation("inverseRangeMeters"),
-                          p.uniformLocation("shaderColours")};
+        cloud.uniforms = {p.uniformLocation("viewProjection"),     p.uniformLocation("depthIntrinsics"),
+                          p.uniformLocation("minConfidence"),      p.uniformLocation("nearMeters"),
+                          p.uniformLocation("pointSizePixels"),    p.uniformLocation("footprintPixels"),
+                          p.uniformLocation("coloring"),           p.uniformLocation("minMeters"),
+                          p.uniformLocation("inverseRangeMeters"), p.uniformLocation("shaderColours")};
     }
     Expected<gl::Program> splat = gl::Program::link(kSplatVertexShader, kSplatFragmentShader);
     if (!splat)
@@ -158,7 +174,7 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
                cloud.program && textures.hasDepth() && textures.depthIntrinsics().valid()) {
         glEnable(GL_PROGRAM_POINT_SIZE);
         glUseProgram(cloud.program.id());
-        setUniforms(cloud.uniforms, textures, params);
+        setUniforms(cloud.uniforms, textures, params, target);
         const bool shaded = camera && params.coloring == PointColoring::Camera;
         glUniform1i(cloud.uniforms.shaderColours, shaded ? 1 : 0);
         if (shaded) {
@@ -227,7 +243,7 @@ void PointCloudRenderer::drawAnchors(const CloudParams& params) const {
 }
 
 void PointCloudRenderer::setUniforms(const Uniforms& u, const FrameTextures& textures,
-                                     const CloudParams& params) const {
+                                     const CloudParams& params, const RenderTarget& target) const {
     const frame::Intrinsics& k = textures.depthIntrinsics();
     glUniformMatrix4fv(u.viewProjection, 1, GL_FALSE, glm::value_ptr(params.viewProjection));
     glUniform4f(u.depthIntrinsics, static_cast<float>(k.fx), static_cast<float>(k.fy),
@@ -235,6 +251,7 @@ void PointCloudRenderer::setUniforms(const Uniforms& u, const FrameTextures& tex
     glUniform1ui(u.minConfidence, static_cast<GLuint>(params.minConfidence));
     glUniform1f(u.nearMeters, params.nearMeters);
     glUniform1f(u.pointSizePixels, params.pointSizePixels);
+    glUniform1f(u.footprintPixels, footprintPixelsPerDepth(params, k, target.width(), target.height()));
     glUniform1i(u.coloring, static_cast<GLint>(params.coloring));
     glUniform1f(u.minMeters, params.rangeMinMeters);
     glUniform1f(u.inverseRangeMeters, 1.0f / std::max(params.rangeMaxMeters - params.rangeMinMeters, 1e-6f));

@@ -33,6 +33,9 @@ struct CloudParams {
     // Samples closer than this are not drawn, like the sample's fragment shader does below 1 m.
     float nearMeters = 0.1f;
     float pointSizePixels = 2.0f;
+    // Points at least as wide as their sample's footprint on screen (a depth pixel at depth z spans z / f
+    // meters), so a surface seen from near the depth camera shows no background between its samples.
+    bool fillGaps = false;
     PointColoring coloring = PointColoring::Camera;
     Colormap colormap = Colormap::Jet; // PointColoring::Depth, over [rangeMinMeters, rangeMaxMeters]
     float rangeMinMeters = 0.0f;
@@ -50,6 +53,13 @@ struct CloudParams {
 };
 
 inline constexpr std::size_t kMaxDrawnAnchors = 32;
+// The widest a point grows to fill gaps: beyond it the view is so close that a sample is a blob anyway.
+inline constexpr float kMaxFillPixels = 32.0f;
+
+// With params.fillGaps, the footprint in pixels of a sample of a map with intrinsics `k`, per meter of its
+// depth over its distance from the viewer (clip w): a point at depth z and clip w spans z / w times this. 0
+// without fillGaps.
+float footprintPixelsPerDepth(const CloudParams& params, const frame::Intrinsics& k, int width, int height);
 
 // Draws one point per depth sample, placed by unprojecting it through the depth intrinsics and coloured
 // as CloudParams says (by default the camera's colour, the Depth Cloud sample's pointCloudVertexShader). All
@@ -79,6 +89,7 @@ private:
         GLint minConfidence = -1;
         GLint nearMeters = -1;
         GLint pointSizePixels = -1;
+        GLint footprintPixels = -1;
         GLint coloring = -1;
         GLint minMeters = -1;
         GLint inverseRangeMeters = -1;
@@ -90,8 +101,8 @@ private:
         Uniforms uniforms;
     };
 
-    void setUniforms(const Uniforms& uniforms, const FrameTextures& textures,
-                     const CloudParams& params) const;
+    void setUniforms(const Uniforms& uniforms, const FrameTextures& textures, const CloudParams& params,
+                     const RenderTarget& target) const;
     void drawAnchors(const CloudParams& params) const;
 
     std::array<CloudProgram, kColormapCount> programs_;

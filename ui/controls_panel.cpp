@@ -65,6 +65,10 @@ bool drawingSection(CloudSettings& cloud, const ControlsContext& context) {
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("Each cell of NxN depth samples becomes its nearest point.\n"
                           "'fit panel' keeps at most one point per pixel of the cloud panel.");
+    changed |= ImGui::Checkbox("Fill gaps", &cloud.fillGaps);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Points at least as wide as their sample on screen: no background between the\n"
+                          "samples of a surface. Off: each sample is a point of the chosen size.");
     return changed;
 }
 

@@ -198,6 +198,7 @@ std::string settingsToJson(const Settings& s) {
                    {"maximized", s.window.maximized}};
     j["cloud"] = {{"minConfidence", static_cast<int>(c.minConfidence)},
                   {"pointSizePixels", c.pointSizePixels},
+                  {"fillGaps", c.fillGaps},
                   {"nearMeters", c.nearMeters},
                   {"coloring", static_cast<int>(c.coloring)},
                   {"path", static_cast<int>(c.path)},
@@ -260,6 +261,7 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     read(c, "minConfidence", level);
     s.cloud.minConfidence = static_cast<frame::Confidence>(std::clamp(level, 0, 2));
     read(c, "pointSizePixels", s.cloud.pointSizePixels);
+    read(c, "fillGaps", s.cloud.fillGaps);
     read(c, "nearMeters", s.cloud.nearMeters);
     int coloring = static_cast<int>(s.cloud.coloring);
     read(c, "coloring", coloring);

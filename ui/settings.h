@@ -34,6 +34,7 @@ inline constexpr int kMaxDecimation = 8;
 struct CloudSettings {
     frame::Confidence minConfidence = frame::Confidence::Low; // points below are not drawn
     float pointSizePixels = 2.0f;
+    bool fillGaps = true;    // points grow to their sample's footprint (render::CloudParams::fillGaps)
     float nearMeters = 0.1f; // points nearer than this are not drawn (the sample drops the nearest too)
     render::PointColoring coloring = render::PointColoring::Camera;
     CloudPathChoice path = CloudPathChoice::Automatic;

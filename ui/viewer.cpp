@@ -166,6 +166,7 @@ render::CloudParams Viewer::cloudParams(double timeSeconds) const {
     params.minConfidence = cloud.minConfidence;
     params.nearMeters = cloud.nearMeters;
     params.pointSizePixels = cloud.pointSizePixels;
+    params.fillGaps = cloud.fillGaps;
     params.coloring = cloud.coloring;
     params.colormap = legend_.colormap;
     params.rangeMinMeters = legend_.minMeters;

@@ -96,6 +96,38 @@ TEST_P(CloudSplatTest, SplatAndGlPointsAgree) {
     EXPECT_GE(agreeing, coveredBoth * 99 / 100) << agreeing << " of " << coveredBoth << " pixels agree";
 }
 
+// Seen from the depth camera, samples land about two pixels apart here: points of the chosen size leave
+// the background between them unless they grow to their footprint, which both paths do alike.
+TEST_P(CloudSplatTest, FillingGapsLeavesNoBackgroundInsideASurfaceOnEitherPath) {
+    frame_ = devices::SyntheticDevice{devices::SyntheticConfig{.noise = false}}.makeFrame(0, 0.0);
+    uploadFrame(textures_, *frame_);
+    const frame::Intrinsics k = frame_->depthIntrinsics();
+    colors_ = processing::pointColors(frame_->capturedImage, k.width, k.height);
+    params_.viewProjection = cloudViewProjection({}, 1.2f, verticalFovRadians(k), float(kWidth) / kHeight);
+    const auto holes = [](const std::vector<std::uint8_t>& rgba) {
+        int background = 0;
+        for (int y = kHeight / 4; y < 3 * kHeight / 4; ++y)
+            for (int x = kWidth / 4; x < 3 * kWidth / 4; ++x)
+                background += !covered(rgba, x, y);
+        return background;
+    };
+    if (GetParam() < 2.0f) {
+        EXPECT_GT(holes(drawPoints()), kWidth * kHeight / 40) << "without filling, the samples stand apart";
+        EXPECT_GT(holes(drawSplat()), kWidth * kHeight / 40);
+    }
+    params_.fillGaps = true;
+    const std::vector<std::uint8_t> points = drawPoints();
+    const std::vector<std::uint8_t> splat = drawSplat();
+    ASSERT_TRUE(noGlError());
+    EXPECT_EQ(holes(points), 0);
+    EXPECT_EQ(holes(splat), 0);
+    int differing = 0;
+    for (int y = kHeight / 4; y < 3 * kHeight / 4; ++y)
+        for (int x = kWidth / 4; x < 3 * kWidth / 4; ++x)
+            differing += !near(pixelAt(points, kWidth, x, y), pixelAt(splat, kWidth, x, y), 6);
+    EXPECT_LT(differing, kWidth * kHeight / 400) << "where a footprint rounds up on one path only";
+}
+
 // Without anchors the splat finishes the picture on the CPU; with one the keys go through a GL pass. An
 // anchor far outside the view adds nothing to the image, so both ways must give the same pixels.
 TEST_P(CloudSplatTest, TheFinishedPictureIsTheImageTheKeysPassDraws) {

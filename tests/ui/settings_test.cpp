@@ -14,6 +14,7 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     s.panels.controls = false;
     s.cloud.minConfidence = frame::Confidence::High;
     s.cloud.pointSizePixels = 4.5f;
+    s.cloud.fillGaps = false;
     s.cloud.nearMeters = 0.3f;
     s.cloud.motion.enabled = false;
     s.cloud.motion.speed = 2.0f;
@@ -41,6 +42,7 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     EXPECT_TRUE(r.panels.cloud);
     EXPECT_EQ(r.cloud.minConfidence, frame::Confidence::High);
     EXPECT_FLOAT_EQ(r.cloud.pointSizePixels, 4.5f);
+    EXPECT_FALSE(r.cloud.fillGaps);
     EXPECT_FLOAT_EQ(r.cloud.nearMeters, 0.3f);
     EXPECT_FALSE(r.cloud.motion.enabled);
     EXPECT_FLOAT_EQ(r.cloud.motion.speed, 2.0f);
