@@ -11,7 +11,7 @@ packages=(
     libgtest-dev libgmock-dev libbenchmark-dev
     libcli11-dev nlohmann-json3-dev
     libzstd-dev libxxhash-dev libturbojpeg0-dev libudev-dev clang libclang-rt-14-dev
-    xvfb xauth xdotool x11-apps python3-open3d
+    xvfb xauth xdotool x11-apps openbox wmctrl python3-open3d
     qemu-system-x86 busybox-static cpio kmod v4l-utils xz-utils patch
     librosbag-storage-dev libsensor-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
     python3-rosbag python3-roslz4 python3-sensor-msgs python3-geometry-msgs python3-std-msgs
