@@ -215,11 +215,15 @@ void ProcessingGraph::addInfrared(processing::ShownFrame& shown, const frame::Fr
                                   const Demand& demand) {
     if (!demand.infraredPanel || !frame->infrared || frame->infrared->empty())
         return;
-    shown.infraredImage = cached(infraredImage_, frame, kInfraredImageStage, [&] {
+    const StretchedInfrared& stretched = cached(infraredImage_, frame, kInfraredImageStage, [&] {
         const frame::Plane<std::uint16_t>& infrared = *frame->infrared;
-        return std::make_shared<const processing::RgbImage>(
-            processing::infraredRgbImage(infrared, processing::infraredContrastRange(infrared)));
+        const processing::IntensityRange range = processing::infraredContrastRange(infrared);
+        return StretchedInfrared{
+            std::make_shared<const processing::RgbImage>(processing::infraredRgbImage(infrared, range)),
+            range};
     });
+    shown.infraredImage = stretched.image;
+    shown.infraredRange = stretched.range;
 }
 
 // Fog and aura share one conversion of the camera image to their size, and the depth they are made from.

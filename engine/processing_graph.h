@@ -140,7 +140,11 @@ private:
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> cameraImage_;
     Memo<ImageKey, std::shared_ptr<const processing::RgbImage>> effectsImage_;
     Memo<AlignedKey, std::shared_ptr<const frame::DepthData>> alignedDepth_;
-    Memo<frame::FramePtr, std::shared_ptr<const processing::RgbImage>> infraredImage_;
+    struct StretchedInfrared {
+        std::shared_ptr<const processing::RgbImage> image;
+        processing::IntensityRange range;
+    };
+    Memo<frame::FramePtr, StretchedInfrared> infraredImage_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> fog_;
     Memo<EffectKey, std::shared_ptr<const processing::RgbaImage>> aura_;
     Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;

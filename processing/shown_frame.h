@@ -2,6 +2,7 @@
 
 #include "frame/frame.h"
 #include "processing/camera_image.h"
+#include "processing/infrared_image.h"
 #include "processing/pipeline.h"
 #include "processing/point_cloud.h"
 
@@ -66,6 +67,7 @@ struct ShownFrame {
     std::shared_ptr<const RgbaImage> colourOverDepth;
     // The infrared panel: the frame's infrared contrast-stretched to gray, at its own size.
     std::shared_ptr<const RgbImage> infraredImage;
+    IntensityRange infraredRange; // the raw intensities infraredImage stretches to black..white
     std::shared_ptr<const RgbaImage> fog;
     std::shared_ptr<const RgbaImage> aura;
     std::optional<DepthRangeMeters> automaticRange; // when the colormap follows the data

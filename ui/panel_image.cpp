@@ -51,7 +51,8 @@ void drawOverlay(const PanelImage& overlay, const ImageRect& shown, float opacit
         return;
     const ImU32 tint = ImGui::GetColorU32(ImVec4(1.0f, 1.0f, 1.0f, opacity));
     ImGui::GetWindowDrawList()->AddImage(textureOf(overlay), shown.min, shown.max,
-                                         uvOf(overlay, shown.visibleMin), uvOf(overlay, shown.visibleMax), tint);
+                                         uvOf(overlay, shown.visibleMin), uvOf(overlay, shown.visibleMax),
+                                         tint);
 }
 
 std::optional<ImVec2> imageFractionUnderMouse(const ImageRect& shown) {

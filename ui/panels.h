@@ -2,6 +2,7 @@
 
 #include "devices/replay/replay_device.h"
 #include "engine/instrument.h"
+#include "processing/infrared_image.h"
 #include "processing/pipeline.h"
 #include "render/render_target.h"
 #include "ui/file_picker.h"
@@ -112,7 +113,9 @@ PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool es
                                 const ProbeSource& probe, bool* open);
 
 // The depth sensor's infrared image in gray, contrast-stretched (the engine's 1st-99th percentile).
-PanelResult drawInfraredPanel(const PanelImage& image, const ProbeSource& probe, bool* open);
+// The infrared image with the stretch it was drawn with (raw intensities to black..white) as a legend.
+PanelResult drawInfraredPanel(const PanelImage& image, const processing::IntensityRange& range,
+                              const ProbeSource& probe, bool* open);
 
 struct CameraPanelResult {
     PanelResult panel;

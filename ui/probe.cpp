@@ -15,7 +15,10 @@ std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
     const frame::DepthData& depth = *source.depth;
     if (u < 0 || v < 0 || u >= depth.depthMeters.width || v >= depth.depthMeters.height)
         return std::nullopt;
-    Probe probe{u, v, depth.depthMeters.at(u, v), std::nullopt, {}};
+    Probe probe;
+    probe.u = u;
+    probe.v = v;
+    probe.depthMeters = depth.depthMeters.at(u, v);
     if (!std::isfinite(probe.depthMeters) || probe.depthMeters < 0.0f)
         probe.depthMeters = 0.0f;
     if (!depth.confidence.empty())
@@ -26,6 +29,9 @@ std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
     else if (source.frame && probe.depthMeters > 0.0f)
         probe.seenByColour =
             processing::sampleSeenByColour(*source.frame, depth.depthMeters, source.intrinsics, u, v);
+    if (const frame::Plane<std::uint16_t>* ir = source.infrared; ir && !ir->empty())
+        probe.infrared =
+            ir->at(u * ir->width / depth.depthMeters.width, v * ir->height / depth.depthMeters.height);
     if (probe.depthMeters > 0.0f && source.intrinsics.valid())
         probe.point = processing::unproject(u, v, probe.depthMeters, source.intrinsics);
     return probe;
@@ -72,6 +78,8 @@ void showProbeTooltip(const Probe& p) {
         ImGui::Text("point %.3f, %.3f, %.3f m", p.point[0], p.point[1], p.point[2]);
     if (!p.seenByColour)
         ImGui::TextUnformatted(kNotSeenByColour);
+    if (p.infrared)
+        ImGui::Text("infrared %u (raw)", static_cast<unsigned>(*p.infrared));
     ImGui::EndTooltip();
 }
 

@@ -19,6 +19,9 @@ struct Probe {
     // False where a two-sensor camera's colour sensor cannot see the point (outside its view or hidden
     // behind a nearer surface), so its gray is no colour the camera measured.
     bool seenByColour = true;
+    // The raw infrared intensity at the sample (the infrared image scaled to the depth map where their
+    // sizes differ); none without an infrared image.
+    std::optional<std::uint16_t> infrared;
 };
 
 // The depth the panels show, with the intrinsics that place it.
@@ -29,6 +32,7 @@ struct ProbeSource {
     // Without colourSeen, the frame whose rig decides it for the probed sample alone (the GPU coloured the
     // points, so no mask was made); null as well: every point seen.
     const frame::Frame* frame = nullptr;
+    const frame::Plane<std::uint16_t>* infrared = nullptr; // the frame's infrared image, when it has one
 
     bool empty() const { return depth == nullptr || depth->depthMeters.empty(); }
 };

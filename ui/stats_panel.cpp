@@ -30,7 +30,8 @@ void drawStatsPanel(const StatsView& s, bool* open) {
         return;
     }
     const engine::FrameCounts& f = s.frames;
-    ImGui::Text("device %.1f fps, shown %.1f fps, UI %.1f fps", f.deliveredPerSecond, f.shownPerSecond, s.uiFps);
+    ImGui::Text("device %.1f fps, shown %.1f fps, UI %.1f fps", f.deliveredPerSecond, f.shownPerSecond,
+                s.uiFps);
     ImGui::Text("frames: %llu delivered = %llu shown + %llu dropped (+ in flight)",
                 static_cast<unsigned long long>(f.delivered), static_cast<unsigned long long>(f.shown),
                 static_cast<unsigned long long>(f.dropped));

@@ -234,7 +234,9 @@ void Viewer::updateLegend() {
 ProbeSource Viewer::probeSource() const {
     if (!shown_ || !shown_->depth.data)
         return {};
-    return {shown_->depth.data.get(), shown_->depth.intrinsics, shown_->pointSeen.get(), shown_->frame.get()};
+    const auto& infrared = shown_->frame->infrared;
+    return {shown_->depth.data.get(), shown_->depth.intrinsics, shown_->pointSeen.get(), shown_->frame.get(),
+            infrared ? &*infrared : nullptr};
 }
 
 Status Viewer::openSource(const std::string& spec) {

@@ -93,6 +93,8 @@ public:
     // How long the last update() waited for the engine's result (benchmarks take it off the frame time).
     double lastWaitMs() const { return lastWaitMs_; }
     ViewerSummary summary();
+    // What the hover readout reads: the shown depth, its seen mask or the frame's rig, the infrared.
+    ProbeSource probeSource() const;
     StatsView statsView();
     // The figures the status line and the stats panel show now (taken by drawUi at most twice a second).
     const std::optional<StatsView>& shownFigures() const { return measured_; }
@@ -146,7 +148,6 @@ private:
     void updateLegend();
     render::CloudParams cloudParams(double timeSeconds) const;
     std::uint64_t pointsShown();
-    ProbeSource probeSource() const;
     void placePanel(const char* title, float x, float y, float w, float h);
     void keepInsideWorkArea(const ImGuiWindow* window) const;
     void followWindowSize();

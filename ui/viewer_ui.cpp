@@ -318,7 +318,9 @@ void Viewer::drawUi() {
     if (show.infrared && infraredAvailable()) {
         placePanel(kInfraredTitle, l.leftWidth + 100.0f, 100.0f, 480.0f, 400.0f);
         afterPanel(kInfraredTitle,
-                   drawInfraredPanel(imageOf(renderer_.infraredTexture()), probeSource(), &show.infrared));
+                   drawInfraredPanel(imageOf(renderer_.infraredTexture()),
+                                     shown_ ? shown_->infraredRange : processing::IntensityRange{},
+                                     probeSource(), &show.infrared));
     }
     if (timeline)
         drawTimeline(*replay, {l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});

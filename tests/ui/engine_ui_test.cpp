@@ -410,6 +410,14 @@ TEST_F(EngineUiTest, TheInfraredPanelsImageIsMadeOnlyWhileThePanelIsShown) {
     EXPECT_EQ(renderer_.infraredTexture().height(), 24);
     EXPECT_NE(ImGui::FindWindowByName(kInfraredTitle), nullptr) << "the panel is drawn";
     EXPECT_GT(processor.stageRuns(engine::kInfraredImageStage), 0u);
+    EXPECT_EQ(shown().infraredRange, processing::infraredContrastRange(infrared)) << "the legend's stretch";
+    // The readout gives the raw intensity under the mouse; the infrared is a quarter of the depth's size.
+    const frame::DepthData& depth = *shown().depth.data;
+    const int u = depth.depthMeters.width * 3 / 4, v = depth.depthMeters.height / 2;
+    const std::optional<Probe> probe = probeAt(viewer_->probeSource(), u, v);
+    ASSERT_TRUE(probe && probe->infrared);
+    EXPECT_EQ(*probe->infrared,
+              infrared.at(u * 32 / depth.depthMeters.width, v * 24 / depth.depthMeters.height));
 
     viewer_->settings().panels.infrared = false;
     ASSERT_TRUE(frameUntil([&] { return viewer_->shown()->infraredImage == nullptr; }))
