@@ -8,9 +8,12 @@
 #endif
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <limits>
+#include <string_view>
 
 namespace dc::devices::replay {
 
@@ -113,13 +116,31 @@ frame::Pose poseFromQuaternion(const double t[3], const double q[4]) {
     return pose;
 }
 
+namespace {
+
+// A ROS bag by its content (every bag starts "#ROSBAG V2.0"), else by its extension in any case: a name
+// written by another system (X.BAG) opens as what it is, and a file that only ends in .bag still gets the
+// bag reader's own message.
+bool isRosBag(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    char magic[8] = {};
+    if (in.read(magic, sizeof magic) && std::string_view(magic, sizeof magic) == "#ROSBAG ")
+        return true;
+    std::string extension = p.extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    return extension == ".bag";
+}
+
+} // namespace
+
 Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path,
                                                          const ReplayOpenOptions& options) {
     const std::filesystem::path p(path);
     Expected<std::unique_ptr<ReplaySource>> source = Error{""};
     if (!pathExists(p))
         return Error{path + " does not exist"};
-    if (!isDirectory(p) && p.extension() == ".bag")
+    if (!isDirectory(p) && isRosBag(p))
         source = openBag(path, options);
     else if (!isDirectory(p))
         source = openRecordingSource(path);

@@ -271,6 +271,17 @@ TEST_F(BagReplay, TopicsOptionPicksTheDepthTopicAndRefusesWhatIsNotOne) {
     fails("/nowhere", "has no topic /nowhere");
 }
 
+// A bag is known by its content: named by another system (X.BAG) or with no extension at all, it replays.
+TEST_F(BagReplay, ABagOpensWhateverItsNameSays) {
+    for (const char* name : {"TAKE.BAG", "take-without-extension"}) {
+        const std::string renamed = dir_->path(name);
+        fs::copy_file(bag("realsense_rgb8.bag"), renamed, fs::copy_options::overwrite_existing);
+        auto s = replay::openReplaySource(renamed);
+        ASSERT_TRUE(s) << name << ": " << s.error().message;
+        EXPECT_EQ((*s)->frameCount(), kFrames) << name;
+    }
+}
+
 TEST_F(BagReplay, BrokenBagsGiveOneClearErrorAndNeverACrash) {
     auto fails = [&](const std::string& path, const std::string& needle) {
         auto s = replay::openReplaySource(path);
