@@ -1,5 +1,7 @@
 #include "devices/ros/ros_master.h"
 
+#include "base/unique_fd.h"
+
 #include <cerrno>
 #include <charconv>
 #include <cstdlib>
@@ -15,22 +17,6 @@ namespace dc::devices::ros {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-
-// A socket closed on every path out of the probe.
-class Socket {
-public:
-    explicit Socket(int fd) : fd_(fd) {}
-    ~Socket() {
-        if (fd_ >= 0)
-            ::close(fd_);
-    }
-    Socket(const Socket&) = delete;
-    Socket& operator=(const Socket&) = delete;
-    int get() const { return fd_; }
-
-private:
-    int fd_;
-};
 
 // Waits for `events` on `fd` until `deadline`: 0 when ready, else an errno value (ETIMEDOUT at the deadline).
 int waitFor(int fd, short events, Clock::time_point deadline) {
@@ -48,7 +34,7 @@ int waitFor(int fd, short events, Clock::time_point deadline) {
 }
 
 // 0 when connected before `deadline`, else an errno value.
-int connectBefore(const Socket& socket, const addrinfo& address, Clock::time_point deadline) {
+int connectBefore(const base::UniqueFd& socket, const addrinfo& address, Clock::time_point deadline) {
     if (socket.get() < 0)
         return errno;
     if (::connect(socket.get(), address.ai_addr, address.ai_addrlen) == 0)
@@ -75,7 +61,7 @@ std::string getPidRequest(const MasterUri& master) {
 
 // Something that accepts connections is not yet a master (a proxy, another server): it must answer an
 // XML-RPC call with HTTP 200 before the deadline.
-Status askForPid(const Socket& socket, const MasterUri& master, Clock::time_point deadline) {
+Status askForPid(const base::UniqueFd& socket, const MasterUri& master, Clock::time_point deadline) {
     const std::string request = getPidRequest(master);
     if (::send(socket.get(), request.data(), request.size(), MSG_NOSIGNAL) !=
         static_cast<ssize_t>(request.size()))
@@ -141,7 +127,7 @@ Status probeMaster(const MasterUri& master, std::chrono::milliseconds timeout) {
         return Error{"ROS master " + master.uri + " is not reachable: " + ::gai_strerror(r)};
     Status status = Error{"ROS master " + master.uri + " is not reachable: no address"};
     for (const addrinfo* a = found; a != nullptr && !status; a = a->ai_next) {
-        const Socket socket(
+        const base::UniqueFd socket(
             ::socket(a->ai_family, a->ai_socktype | SOCK_NONBLOCK | SOCK_CLOEXEC, a->ai_protocol));
         if (const int error = connectBefore(socket, *a, deadline); error != 0)
             status = Error{"ROS master " + master.uri + " is not reachable: " + std::strerror(error)};
