@@ -48,6 +48,10 @@ render::OrbitView combine(const render::OrbitView& manual, const render::OrbitVi
 Viewer::Viewer(engine::Instrument& instrument, render::ViewRenderer& renderer, Settings settings)
     : instrument_(instrument), renderer_(renderer), settings_(std::move(settings)) {
     sanitize(settings_);
+    // Panels are opaque: a panel over the cloud (stats, log, fog, aura, infrared) must not let the points
+    // behind it show through and read as part of its picture.
+    if (ImGui::GetCurrentContext())
+        ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
     renderer_.resizeCloud(kDefaultCloudWidth, kDefaultCloudHeight);
     // Before the source starts, so that not even its first frame carries what nobody shows.
     demand_ = demandOf();

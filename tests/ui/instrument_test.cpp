@@ -423,6 +423,12 @@ TEST_F(InstrumentTest, AClickWhereTheMouseJumpedWithinTheFrameDropsAnAnchorAndDo
     EXPECT_EQ(viewer_->settings().cloud.orbit.pitchRadians, 0.0f);
 }
 
+// Stats, log, fog, aura and infrared float over the cloud: opaque, so no point shows through them.
+TEST_F(InstrumentTest, PanelsOverTheCloudAreOpaque) {
+    frame(0.0);
+    EXPECT_EQ(ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w, 1.0f);
+}
+
 TEST_F(InstrumentTest, AnchorsAreDrawnAsCubesInTheCloud) {
     viewer_->settings().cloud.pointSizePixels = 1.0f;
     frame(0.0);
