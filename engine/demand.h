@@ -16,7 +16,7 @@ struct Demand {
     // The cloud's GL path colours camera-coloured points itself, from the camera image and the rig of
     // ShownFrame::frame: no colour per point is made for it here, unless the rig is one a shader cannot
     // register (processing::shaderRegistrable).
-    bool shaderPointColors = false;
+    bool gpuCameraColours = false;
     bool depthImage = true;      // the depth panel, or the camera panel's depth overlay
     bool confidencePanel = true; // the confidence panel
     int cameraPanelWidth = 0;    // pixels the camera panel is shown at; 0 = hidden

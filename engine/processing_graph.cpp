@@ -15,8 +15,6 @@ namespace dc::engine {
 
 namespace {
 
-constexpr int kCameraWidthStep = 64;
-
 processing::Needs needsOf(const Demand& d) {
     // The pipeline's stages ask only whether any depth is shown and whether confidence is read
     // (Stage::wanted). Which panels show the depth is left out, so that it is also left out of the depth
@@ -40,11 +38,6 @@ processing::ProcessingSettings depthSettings(const processing::ProcessingSetting
 }
 
 } // namespace
-
-int cameraPanelImageWidth(int imageWidth, int shownWidth) {
-    const int stepped = (shownWidth + kCameraWidthStep - 1) / kCameraWidthStep * kCameraWidthStep;
-    return std::clamp(stepped, 1, std::max(imageWidth, 1));
-}
 
 bool ProcessingGraph::DepthKey::operator==(const DepthKey& o) const {
     return frame == o.frame && settings == o.settings && needs == o.needs;
@@ -145,13 +138,12 @@ processing::ShownDepth ProcessingGraph::shownDepth(const frame::FramePtr& frame,
     return shown;
 }
 
-// The camera panel's picture, at the size it is shown.
+// The camera panel's picture, at the size it is shown, unless the GL path converts the image itself.
 void ProcessingGraph::addCameraImage(processing::ShownFrame& shown, const frame::Frame& frame,
                                      const Demand& demand) {
     const frame::CapturedImage& image = frame.capturedImage;
-    if (demand.cameraPanelWidth > 0 && !image.empty()) {
-        const int w = cameraPanelImageWidth(image.width, demand.cameraPanelWidth);
-        const int h = std::max(1, image.height * w / std::max(image.width, 1));
+    if (demand.cameraPanelWidth > 0 && !image.empty() && !demand.gpuCameraColours) {
+        const auto [w, h] = processing::cameraPanelImageSize(image, demand.cameraPanelWidth);
         shown.cameraImage = cached(cameraImage_, ImageKey{image.bytes, w, h}, kCameraImageStage, [&] {
             return std::make_shared<const processing::RgbImage>(processing::cameraRgbImage(image, w, h));
         });
@@ -166,8 +158,8 @@ void ProcessingGraph::addPointColours(processing::ShownFrame& shown, const frame
         return;
     const frame::CapturedImage& image = frame.capturedImage;
     const bool overlay = demand.colourOverDepth && !image.empty();
-    const bool shaded = demand.shaderPointColors && (!frame.rig || processing::isSingleCamera(*frame.rig) ||
-                                                     processing::shaderRegistrable(*frame.rig));
+    const bool shaded = demand.gpuCameraColours && (!frame.rig || processing::isSingleCamera(*frame.rig) ||
+                                                    processing::shaderRegistrable(*frame.rig));
     const bool cloudColours = demand.cloud && demand.pointColors && !shaded && shown.cloud.depth.data;
     const bool whole = shown.cloud.factor <= 1;
     if (demand.accumulate || overlay || (cloudColours && whole)) {

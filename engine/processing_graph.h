@@ -30,10 +30,6 @@ inline constexpr std::string_view kDepthRangeStage = "depth range";
 inline constexpr std::string_view kPointCountStage = "point count";
 inline constexpr std::string_view kDecimationStage = "decimation";
 
-// The camera panel's image is made at the size it is shown, in steps (so resizing the panel does not
-// redo it every frame), never above the image's own size.
-int cameraPanelImageWidth(int imageWidth, int shownWidth);
-
 // Turns one frame and one demand into the ShownFrame the GL thread draws, running only the stages the
 // demand needs and, of those, only the ones whose inputs changed since the last run (each stage remembers
 // the inputs of its last result): a colormap change redoes nothing here, an upsampling change redoes

@@ -4,6 +4,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include <algorithm>
+
 namespace dc::processing {
 
 namespace {
@@ -169,6 +171,13 @@ ColorView cameraRgbView(const frame::CapturedImage& image, int width, int height
         break;
     }
     return {};
+}
+
+std::array<int, 2> cameraPanelImageSize(const frame::CapturedImage& image, int shownWidth) {
+    constexpr int kWidthStep = 64;
+    const int stepped = (shownWidth + kWidthStep - 1) / kWidthStep * kWidthStep;
+    const int width = std::clamp(stepped, 1, std::max(image.width, 1));
+    return {width, std::max(1, image.height * width / std::max(image.width, 1))};
 }
 
 RgbImage cameraRgbImage(const frame::CapturedImage& image, int width, int height) {

@@ -65,6 +65,10 @@ struct RgbScratch {
 // cost milliseconds). The view points into `scratch`.
 ColorView cameraRgbView(const frame::CapturedImage& image, int width, int height, RgbScratch& scratch);
 
+// The size the camera panel's image is made at: the width it is shown at, in steps (so resizing the panel
+// does not redo it every frame), never above the image's own width; the height keeps the image's aspect.
+std::array<int, 2> cameraPanelImageSize(const frame::CapturedImage& image, int shownWidth);
+
 // cameraRgb as an RgbImage (empty when cameraRgb is).
 RgbImage cameraRgbImage(const frame::CapturedImage& image, int width, int height);
 

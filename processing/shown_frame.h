@@ -33,7 +33,7 @@ struct ShownDepth {
 struct ShownCloud {
     ShownDepth depth;
     // The camera's colour of each drawn sample, where it is drawn; null when the points are not coloured
-    // by the camera or the GL path's shader colours them (engine::Demand::shaderPointColors).
+    // by the camera or the GL path's shader colours them (engine::Demand::gpuCameraColours).
     std::shared_ptr<const RgbImage> colors;
     int factor = 1;
 };

@@ -43,6 +43,50 @@ void main() {
 }
 )glsl";
 
+constexpr const char* kFullScreenVertexShader = R"glsl(#version 330 core
+void main() {
+    vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));
+    gl_Position = vec4(corner, 0.0, 1.0);
+}
+)glsl";
+
+// Each output pixel averages the image pixels it covers, weighted by the area they share (a box filter,
+// exact at any scale), in YCbCr (or RGB), then converts: the conversion is linear, so this is the average
+// of the converted pixels up to the clamp.
+constexpr const char* kImageFragmentMain = R"glsl(
+uniform ivec2 outputSize;
+out vec4 fragColor;
+
+vec3 cameraValue(ivec2 p) {
+    if (cameraFormat == 1)
+        return vec3(texelFetch(cameraLuma, p, 0).r, texelFetch(cameraChroma, p / 2, 0).rg);
+    if (cameraFormat == 2) {
+        vec4 pair = texelFetch(cameraLuma, ivec2(p.x / 2, p.y), 0);
+        return vec3((p.x & 1) == 0 ? pair.r : pair.b, pair.g, pair.a);
+    }
+    return texelFetch(cameraLuma, p, 0).rgb;
+}
+
+void main() {
+    ivec2 o = ivec2(int(gl_FragCoord.x), outputSize.y - 1 - int(gl_FragCoord.y));
+    vec2 scale = vec2(cameraSize) / vec2(outputSize);
+    vec2 low = vec2(o) * scale;
+    vec2 high = vec2(o + 1) * scale;
+    vec3 sum = vec3(0.0);
+    float total = 0.0;
+    for (int y = int(floor(low.y)); y < int(ceil(high.y)); ++y) {
+        float wy = min(high.y, float(y + 1)) - max(low.y, float(y));
+        for (int x = int(floor(low.x)); x < int(ceil(high.x)); ++x) {
+            float w = wy * (min(high.x, float(x + 1)) - max(low.x, float(x)));
+            sum += w * cameraValue(ivec2(x, y));
+            total += w;
+        }
+    }
+    vec3 value = sum / total;
+    fragColor = vec4(clamp(cameraFormat == 3 ? value : ycbcrToRgb(value), 0.0, 1.0), 1.0);
+}
+)glsl";
+
 bool usableImage(const frame::CapturedImage& image) {
     return !image.empty() && image.raw() && image.width > 0 && image.height > 0 &&
            image.bytes->size() >= frame::CapturedImage::byteSize(image.format, image.width, image.height);
@@ -139,6 +183,14 @@ Status CameraColours::init() {
     nearestProgram_ = std::move(program).value();
     FrameTextures::connectSamplers(nearestProgram_);
     connectSamplers(nearestProgram_);
+    glUseProgram(0);
+    Expected<gl::Program> image =
+        gl::Program::link(kFullScreenVertexShader,
+                          std::string("#version 330 core\n") + kCameraColoursGlsl + kImageFragmentMain);
+    if (!image)
+        return Error{"camera image shaders: " + image.error().message};
+    imageProgram_ = std::move(image).value();
+    connectSamplers(imageProgram_);
     glUseProgram(0);
     nearestFramebuffer_ = gl::Framebuffer::create();
     emptyVertexArray_ = gl::VertexArray::create();
@@ -272,6 +324,24 @@ void CameraColours::renderNearest(const FrameTextures& textures) {
     glDrawArrays(GL_POINTS, 0, textures.depthWidth() * textures.depthHeight());
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     ++nearestPasses_;
+}
+
+void CameraColours::renderImage(RenderTarget& target, int width, int height) {
+    if (format_ == kFormatNone || width <= 0 || height <= 0 || !target.resize(width, height))
+        return;
+    target.bind();
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(imageProgram_.id());
+    glUniform1i(imageProgram_.uniformLocation("cameraFormat"), format_);
+    glUniform2i(imageProgram_.uniformLocation("cameraSize"), width_, height_);
+    glUniform2i(imageProgram_.uniformLocation("outputSize"), width, height);
+    bind();
+    glBindVertexArray(emptyVertexArray_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    ++imagePasses_;
 }
 
 void CameraColours::bind() const {

@@ -6,6 +6,7 @@
 #include "processing/registration.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"
+#include "render/render_target.h"
 
 #include <cstdint>
 #include <memory>
@@ -39,6 +40,9 @@ public:
     // With a rig, draws the samples of `textures` into the colour camera's view (the nearest depth per
     // colour pixel). Changes the bound framebuffer and viewport.
     void renderNearest(const FrameTextures& textures);
+    // The camera panel's picture: the uploaded image in RGB at width x height, each pixel the area average of
+    // the image pixels it covers (as processing::cameraRgbImage resizes), top row at the target's top.
+    void renderImage(RenderTarget& target, int width, int height);
     // Binds the planes and the nearest-depth map to their units.
     void bind() const;
     // Sets a point program's uniforms (kCameraColoursGlsl) for the samples of `textures`; the program must
@@ -51,6 +55,9 @@ public:
     // Plane uploads and visibility passes so far: tests count work.
     std::uint64_t uploads() const { return uploads_; }
     std::uint64_t nearestPasses() const { return nearestPasses_; }
+    std::uint64_t imagePasses() const { return imagePasses_; }
+    // Whether an image is uploaded (and what renderImage draws is a picture).
+    bool hasImage() const { return format_ != 0; }
 
 private:
     struct Plane {
@@ -72,11 +79,13 @@ private:
     std::shared_ptr<const frame::RigCalibration> rig_;
     mutable std::optional<std::pair<frame::Intrinsics, processing::ColourProjection>> projection_;
     gl::Program nearestProgram_;
+    gl::Program imageProgram_;
     gl::Framebuffer nearestFramebuffer_;
     Plane nearest_; // GL_DEPTH_COMPONENT32F, the camera image's size plus a margin on every side
     gl::VertexArray emptyVertexArray_;
     std::uint64_t uploads_ = 0;
     std::uint64_t nearestPasses_ = 0;
+    std::uint64_t imagePasses_ = 0;
 };
 
 // GLSL for a point vertex shader that includes kFrameTexturesGlsl first:

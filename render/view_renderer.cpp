@@ -53,6 +53,7 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     pointColors_ = shown.pointColors;
     cloud_ = shown.cloud;
     frame_ = shown.frame;
+    cameraFromEngine_ = shown.cameraImage != nullptr;
     uploadOnce(shown.cameraImage, cameraUploaded_, [this](const processing::RgbImage& image) {
         camera_.uploadRgb(image.width, image.height, image.pixels.data());
     });
@@ -137,6 +138,22 @@ void ViewRenderer::drawDepthOverCamera(const PanelParams& params) {
                         DepthHoles::Transparent);
     overlayDrawnWith_ = params;
     ++overlayRenders_;
+}
+
+void ViewRenderer::renderCameraImage(int shownWidth) {
+    if (cameraFromEngine_ || !frame_ || frame_->capturedImage.empty() || shownWidth <= 0)
+        return;
+    const frame::CapturedImage& image = frame_->capturedImage;
+    const auto [width, height] = processing::cameraPanelImageSize(image, shownWidth);
+    const CameraDrawing drawing{image.bytes, width, height};
+    if (cameraDrawn_ == drawing)
+        return;
+    cameraColours_.uploadImage(image);
+    if (!cameraColours_.hasImage())
+        return;
+    cameraColours_.renderImage(cameraTarget_, width, height);
+    cameraDrawn_ = drawing;
+    ++cameraRenders_;
 }
 
 void ViewRenderer::setCloudPath(CloudPath path) {

@@ -56,6 +56,13 @@ public:
     // Draws the depth and confidence panels at the depth map's size, and the depth over the camera at the
     // aligned depth's size, where their data or `params` changed.
     void renderPanels(const PanelParams& params);
+    // The camera panel's picture made on the GPU from the image's planes, at the size the panel shows it
+    // (processing::cameraPanelImageSize of `shownWidth`), when the engine made none for this frame
+    // (engine::Demand::gpuCameraColours); drawn again only when the image or the size changes.
+    void renderCameraImage(int shownWidth);
+    // Whether the camera panel shows cameraTarget() (made here) rather than cameraTexture() (the engine's).
+    bool cameraFromGpu() const { return !cameraFromEngine_ && cameraDrawn_.has_value(); }
+    const RenderTarget& cameraTarget() const { return cameraTarget_; }
     // Draws the cloud into cloudTarget() (params.accumulated is filled in by accumulate mode), unless
     // nothing it shows changed since the last time: the same samples, parameters, size and path.
     void renderCloud(CloudParams params, bool accumulated);
@@ -86,7 +93,7 @@ public:
     // Moves whenever a texture the panels show gets new contents: a window whose ImGui frame is the same
     // and this the same shows the same picture (ui::FrameDamage).
     std::uint64_t contentVersion() const {
-        return uploads_ + panelRenders_ + overlayRenders_ + cloudRenders_ + cloudResizes_;
+        return uploads_ + panelRenders_ + overlayRenders_ + cloudRenders_ + cloudResizes_ + cameraRenders_;
     }
     // Points the last cloud drawing processed (after decimation; accumulated points in accumulate mode).
     std::size_t cloudPoints() const { return cloudRenderer_.lastPointCount(); }
@@ -124,7 +131,7 @@ private:
                                      bool withColors);
     void drawCloud(const CloudParams& params, bool accumulated);
     // Whether the points' camera colours are made by the shader: GL points coloured by the camera with no
-    // colours from the engine (engine::Demand::shaderPointColors).
+    // colours from the engine (engine::Demand::gpuCameraColours).
     bool shaderColours(const CloudParams& params, bool accumulated) const;
     void drawDataPanels(const PanelParams& params);
     void drawDepthOverCamera(const PanelParams& params);
@@ -149,6 +156,16 @@ private:
     RenderTarget depthTarget_{Sampling::Nearest, DepthBuffer::Without};
     RenderTarget confidenceTarget_{Sampling::Nearest, DepthBuffer::Without};
     RenderTarget depthOverCameraTarget_{Sampling::Nearest, DepthBuffer::Without};
+    RenderTarget cameraTarget_{Sampling::Linear, DepthBuffer::Without};
+    // The image and size cameraTarget_ holds; whether this frame's camera panel came from the engine.
+    struct CameraDrawing {
+        std::shared_ptr<const std::vector<std::uint8_t>> bytes;
+        int width = 0;
+        int height = 0;
+        bool operator==(const CameraDrawing&) const = default;
+    };
+    std::optional<CameraDrawing> cameraDrawn_;
+    bool cameraFromEngine_ = false;
     RgbaTexture camera_;
     RgbaTexture infrared_;
     RgbaTexture fog_;
@@ -166,6 +183,7 @@ private:
     std::uint64_t overlayRenders_ = 0;
     std::uint64_t cloudResizes_ = 0;
     std::uint64_t cloudRenders_ = 0;
+    std::uint64_t cameraRenders_ = 0;
 };
 
 } // namespace dc::render

@@ -65,7 +65,7 @@ engine::Demand Viewer::demandOf() const {
     engine::Demand d;
     d.cloud = show.cloud;
     d.pointColors = cloud.coloring == render::PointColoring::Camera;
-    d.shaderPointColors = cloudPath() == render::CloudPath::Points;
+    d.gpuCameraColours = cloudPath() == render::CloudPath::Points;
     d.depthImage = show.depth || (show.camera && settings_.camera.depthOverlay);
     d.confidencePanel = show.confidence;
     d.cameraPanelWidth = show.camera ? cameraShownWidth_ : 0;
@@ -119,6 +119,8 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     const bool aligned = shown_ && shown_->depthOverCamera;
     renderer_.renderPanels({show.depth || (depthOverCamera && !aligned), show.confidence, depthOverCamera,
                             legend_.minMeters, legend_.maxMeters, legend_.colormap});
+    if (show.camera)
+        renderer_.renderCameraImage(cameraShownWidth_);
     // A stage's time is what its work costs: a frame where it had nothing to redraw is not a sample.
     if (renderer_.contentVersion() != version)
         instrument_.recordStage("panels", millisecondsSince(start));

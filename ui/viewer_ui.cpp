@@ -416,7 +416,9 @@ void Viewer::drawSidePanels(float x, float w, float h) {
                                      ? imageOf(renderer_.depthOverCameraTarget())
                                      : imageOf(renderer_.depthTarget());
         const CameraPanelResult r =
-            drawCameraPanel(imageOf(renderer_.cameraTexture()), depth, settings_.camera, probe, &show.camera);
+            drawCameraPanel(renderer_.cameraFromGpu() ? imageOf(renderer_.cameraTarget())
+                                                      : imageOf(renderer_.cameraTexture()),
+                            depth, settings_.camera, probe, &show.camera);
         afterPanel(kCameraTitle, r.panel);
         if (r.shownWidth > 0)
             cameraShownWidth_ = r.shownWidth;

@@ -152,7 +152,7 @@ TEST_F(ProcessingGraphTest, TheCameraPanelIsRemadeOnlyWhenItsShownSizeCrossesASt
     EXPECT_EQ(runOn(0, d), Runs{});
     d.cameraPanelWidth = 100;
     EXPECT_EQ(runOn(0, d), (Runs{{std::string(kCameraImageStage), 1}}));
-    EXPECT_EQ(last_->cameraImage->width, cameraPanelImageWidth(320, 100));
+    EXPECT_EQ(last_->cameraImage->width, processing::cameraPanelImageSize(frames_[0]->capturedImage, 100)[0]);
 }
 
 TEST_F(ProcessingGraphTest, AStageWhoseOutputNobodyReadsNeverRuns) {
@@ -420,27 +420,31 @@ TEST(ProcessingGraphRig, FogOfASingleCameraFrameUsesTheShownDepthAndAlignsNothin
               processing::renderFog(camera, shown->depth.data.get(), demand.processing.fog).pixels);
 }
 
-// Points the GL path's shader colours get no colour from the CPU: nothing converts the camera image per
-// sample, for one camera or for a rig the shader registers; the shader reads the raw image of the frame.
+// Points the GL path's shader colours get no colour from the CPU, and its camera panel no picture: nothing
+// converts the camera image, for one camera or for a rig the shader registers; the GL thread reads the raw
+// image of the frame.
 TEST(ProcessingGraphShaderColours, NoColourIsMadeForPointsTheShaderColours) {
     for (const frame::FramePtr& frame : {syntheticFrames(1).front(), smallRigFrame()}) {
         ASSERT_TRUE(frame);
         ProcessingGraph graph;
         Demand demand = cloudOnly();
         demand.pointColors = true;
-        demand.shaderPointColors = true;
+        demand.gpuCameraColours = true;
+        demand.cameraPanelWidth = 320;
         const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
         ASSERT_TRUE(shown->cloud.depth.data);
         EXPECT_FALSE(shown->cloud.colors);
         EXPECT_FALSE(shown->pointColors);
+        EXPECT_FALSE(shown->cameraImage) << "the GL path draws the camera panel from the planes too";
         EXPECT_EQ(graph.runs(kPointColorsStage), 0u);
-        EXPECT_EQ(graph.runs(kCameraImageStage), 0u) << "no camera panel, no camera conversion";
+        EXPECT_EQ(graph.runs(kCameraImageStage), 0u) << "no camera conversion on the CPU";
         EXPECT_TRUE(shown->frame->capturedImage.raw() && !shown->frame->capturedImage.empty());
 
-        demand.shaderPointColors = false; // the splat path
+        demand.gpuCameraColours = false; // the splat path
         const processing::ShownFramePtr cpu = graph.run(frame, demand, 2, false);
-        EXPECT_TRUE(cpu->cloud.colors);
+        EXPECT_TRUE(cpu->cloud.colors && cpu->cameraImage);
         EXPECT_EQ(graph.runs(kPointColorsStage), 1u);
+        EXPECT_EQ(graph.runs(kCameraImageStage), 1u);
     }
 }
 

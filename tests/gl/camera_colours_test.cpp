@@ -6,6 +6,7 @@
 #include "gl_test_support.h"
 
 #include "devices/synthetic/synthetic_device.h"
+#include "processing/camera_image.h"
 #include "processing/decimation.h"
 #include "processing/registration.h"
 #include "processing/shown_frame.h"
@@ -14,7 +15,10 @@
 #include "render/point_cloud_renderer.h"
 #include "render/render_target.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdlib>
+#include <string>
 
 namespace dc::render::test {
 namespace {
@@ -178,6 +182,72 @@ TEST_F(CameraColoursTest, TheSplatPathShowsTheShadersColours) {
     camera_.renderNearest(textures_);
     renderer_.render(target_, textures_, params, &camera_);
     EXPECT_TRUE(sameUpToRounding(compare(splat, target_.readRgba()), 848 * 480 * 8 / 10));
+}
+
+// Image pixels area-averaged into a width x height picture, each converted exactly by frame::pixelRgb (the
+// sample's matrix), clamped and rounded as the GPU stores it: the reference of the camera panel.
+std::vector<Rgba> areaAverage(const frame::CapturedImage& image, int width, int height) {
+    std::vector<Rgba> out;
+    const double sx = static_cast<double>(image.width) / width,
+                 sy = static_cast<double>(image.height) / height;
+    for (int oy = 0; oy < height; ++oy)
+        for (int ox = 0; ox < width; ++ox) {
+            double r = 0, g = 0, b = 0, total = 0;
+            for (int y = static_cast<int>(oy * sy); y < std::ceil((oy + 1) * sy); ++y)
+                for (int x = static_cast<int>(ox * sx); x < std::ceil((ox + 1) * sx); ++x) {
+                    const double w = (std::min((ox + 1) * sx, x + 1.0) - std::max(ox * sx, double(x))) *
+                                     (std::min((oy + 1) * sy, y + 1.0) - std::max(oy * sy, double(y)));
+                    const frame::Rgb c = frame::pixelRgb(image, x, y);
+                    r += w * c.r, g += w * c.g, b += w * c.b, total += w;
+                }
+            out.push_back(toRgba(frame::Rgb{float(r / total), float(g / total), float(b / total)}));
+        }
+    return out;
+}
+
+// How many pixels of a picture (RGBA, top row first) are within `levels` of the reference on every channel.
+std::size_t within(const std::vector<std::uint8_t>& rgba, const std::vector<std::uint8_t>& rgb, int levels) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < rgb.size() / 3; ++i) {
+        bool close = true;
+        for (std::size_t c = 0; c < 3; ++c)
+            close &= std::abs(rgba[i * 4 + c] - rgb[i * 3 + c]) <= levels;
+        n += close;
+    }
+    return n;
+}
+
+// The camera panel's picture from the shader: each pixel the area average of the image pixels it covers,
+// converted with the sample's matrix, at half the image's size and at a panel's stepped size, from each
+// image format. At half size the CPU's panel (OpenCV's area resize rounded to bytes, and its YCrCb matrix
+// 0.2 levels off the sample's) is within two levels of it; at other scales OpenCV halves first and resizes
+// the rest, which is no longer the area average at edges (up to 8 levels at 0.2 % of a 384-wide panel).
+TEST_F(CameraColoursTest, TheCameraPanelFromTheShaderIsTheAreaAverageOfTheImage) {
+    const frame::FramePtr nv12 = rigFrame(); // a 1280x720 colour image through a lens
+    const frame::CapturedImage& image = nv12->capturedImage;
+    const ColorFunction colour = [&](int x, int y) { return frame::pixelRgb(image, x, y); };
+    RenderTarget target(Sampling::Nearest, DepthBuffer::Without);
+    for (const frame::CapturedImage& shown : {image, yuyvImage(image.width, image.height, colour),
+                                              rgb24Image(image.width, image.height, colour)}) {
+        camera_.uploadImage(shown);
+        for (const auto& [w, h] : {std::pair{640, 360}, std::pair{384, 216}}) {
+            camera_.renderImage(target, w, h);
+            const std::vector<std::uint8_t> gpu = target.readRgba();
+            std::vector<std::uint8_t> reference;
+            for (const Rgba& c : areaAverage(shown, w, h))
+                reference.insert(reference.end(), {c.r, c.g, c.b});
+            const auto n = static_cast<double>(w * h);
+            const std::string where = std::string(frame::toString(shown.format)) + " at " + std::to_string(w);
+            EXPECT_GE(static_cast<double>(within(gpu, reference, 1)), 0.999 * n) << where;
+            const processing::RgbImage cpu = processing::cameraRgbImage(shown, w, h);
+            if (w * 2 == shown.width) { // OpenCV's halving is an exact box; other scales go in two steps
+                EXPECT_GE(static_cast<double>(within(gpu, cpu.pixels, 2)), 0.999 * n)
+                    << where << ", the CPU's";
+            }
+        }
+    }
+    EXPECT_EQ(camera_.imagePasses(), 6u);
+    EXPECT_TRUE(noGlError());
 }
 
 } // namespace

@@ -9,6 +9,8 @@
 #include "processing/camera_image.h"
 #include "processing/confidence_filter.h"
 #include "processing/infrared_image.h"
+#include "processing/point_cloud.h"
+#include "processing/registration.h"
 #include "tests/test_data.h"
 #include "ui_fixture.h"
 
@@ -300,6 +302,44 @@ TEST_F(EngineUiTest, WithSmoothingOrUpsamplingTheSnapshotHoldsExactlyThePointsDr
             ASSERT_EQ(ply[i].confidence, drawn[i].confidence) << i;
         }
     }
+}
+
+// On the GL points path the GPU makes the camera's colours: the engine converts no camera image, the camera
+// panel shows the picture drawn from the planes at the panel's size, and the snapshot PLY still carries the
+// camera colours of the points, made for it on the CPU.
+TEST_F(EngineUiTest, OnTheGlPointsPathTheCameraIsConvertedOnlyOnTheGpu) {
+    viewer_->settings().cloud.motion.enabled = false;
+    viewer_->settings().cloud.path = CloudPathChoice::Points;
+    viewer_->settings().panels.camera = true;
+    ASSERT_TRUE(frameUntil([&] { return renderer_.cameraFromGpu() && !shown().cameraImage; }));
+    // Counted from here: the frames before the switch were drawn on the splat path.
+    const engine::FrameProcessor& processor = instrument_->processor();
+    const std::uint64_t colourRuns = processor.stageRuns(engine::kPointColorsStage);
+    const std::uint64_t conversions = processor.stageRuns(engine::kCameraImageStage);
+    for (int i = 0; i < 3; ++i)
+        nextFrame(0.0);
+    EXPECT_EQ(processor.stageRuns(engine::kPointColorsStage), colourRuns) << "no point colour on the CPU";
+    EXPECT_EQ(processor.stageRuns(engine::kCameraImageStage), conversions)
+        << "no camera conversion on the CPU";
+    EXPECT_GT(renderer_.cameraColours().imagePasses(), 0u);
+    const frame::CapturedImage& image = shown().frame->capturedImage;
+    const auto [w, h] = processing::cameraPanelImageSize(image, viewer_->demand().cameraPanelWidth);
+    EXPECT_EQ(renderer_.cameraTarget().width(), w);
+    EXPECT_EQ(renderer_.cameraTarget().height(), h);
+
+    const auto dir = viewer_->saveSnapshot((dir_ / "gpu").string());
+    ASSERT_TRUE(dir.ok()) << dir.error().message;
+    const std::vector<PlyPoint> ply = readPly(fs::path(*dir) / "cloud.ply");
+    processing::CameraColourTable table;
+    const processing::ShownDepth& depth = shown().depth;
+    const auto colours = processing::framePointColours(*shown().frame, depth.data->depthMeters, table).colors;
+    const auto expected = processing::buildPointCloud({depth.data.get(), depth.intrinsics, colours.get()},
+                                                      viewer_->settings().cloud.minConfidence,
+                                                      viewer_->settings().cloud.nearMeters);
+    ASSERT_EQ(ply.size(), expected.size());
+    ASSERT_FALSE(ply.empty());
+    for (std::size_t i = 0; i < ply.size(); i += 97)
+        ASSERT_TRUE(ply[i].r == expected[i].r && ply[i].g == expected[i].g && ply[i].b == expected[i].b) << i;
 }
 
 TEST_F(EngineUiTest, AccumulationAddsTheSamePointsTheSnapshotHolds) {
