@@ -43,13 +43,6 @@ void main() {
 }
 )glsl";
 
-constexpr const char* kFullScreenVertexShader = R"glsl(#version 330 core
-void main() {
-    vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));
-    gl_Position = vec4(corner, 0.0, 1.0);
-}
-)glsl";
-
 // Each output pixel averages the image pixels it covers, weighted by the area they share (a box filter,
 // exact at any scale), in YCbCr (or RGB), then converts: the conversion is linear, so this is the average
 // of the converted pixels up to the clamp.
@@ -185,7 +178,7 @@ Status CameraColours::init() {
     connectSamplers(nearestProgram_);
     glUseProgram(0);
     Expected<gl::Program> image =
-        gl::Program::link(kFullScreenVertexShader,
+        gl::Program::link(gl::kFullscreenVertexShader,
                           std::string("#version 330 core\n") + kCameraColoursGlsl + kImageFragmentMain);
     if (!image)
         return Error{"camera image shaders: " + image.error().message};
@@ -345,14 +338,9 @@ void CameraColours::renderImage(RenderTarget& target, int width, int height) {
 }
 
 void CameraColours::bind() const {
-    const std::pair<GLint, GLuint> bindings[] = {{kLumaUnit, luma_.texture.id()},
-                                                 {kChromaUnit, chroma_.texture.id()},
-                                                 {kNearestUnit, nearest_.texture.id()}};
-    for (const auto& [unit, texture] : bindings) {
-        glActiveTexture(GL_TEXTURE0 + unit);
-        glBindTexture(GL_TEXTURE_2D, texture);
-    }
-    glActiveTexture(GL_TEXTURE0);
+    gl::bindTextureUnits({{kLumaUnit, luma_.texture.id()},
+                          {kChromaUnit, chroma_.texture.id()},
+                          {kNearestUnit, nearest_.texture.id()}});
 }
 
 void CameraColours::setUniforms(const gl::Program& program, const FrameTextures& textures) const {

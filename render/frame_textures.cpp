@@ -92,14 +92,9 @@ void FrameTextures::uploadPlane(PlaneTexture& plane, const detail::PlaneFormat& 
 }
 
 void FrameTextures::bind() const {
-    const std::pair<GLint, GLuint> bindings[] = {{kDepthUnit, depth_.texture.id()},
-                                                 {kConfidenceUnit, confidence_.texture.id()},
-                                                 {kColorUnit, color_.texture.id()}};
-    for (const auto& [unit, texture] : bindings) {
-        glActiveTexture(GL_TEXTURE0 + unit);
-        glBindTexture(GL_TEXTURE_2D, texture);
-    }
-    glActiveTexture(GL_TEXTURE0);
+    gl::bindTextureUnits({{kDepthUnit, depth_.texture.id()},
+                          {kConfidenceUnit, confidence_.texture.id()},
+                          {kColorUnit, color_.texture.id()}});
 }
 
 void FrameTextures::connectSamplers(const gl::Program& program) {

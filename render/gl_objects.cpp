@@ -126,4 +126,12 @@ GLint Program::uniformLocation(const char* name) const {
     return glGetUniformLocation(id(), name);
 }
 
+void bindTextureUnits(std::initializer_list<std::pair<GLint, GLuint>> unitsAndTextures) {
+    for (const auto& [unit, texture] : unitsAndTextures) {
+        glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));
+        glBindTexture(GL_TEXTURE_2D, texture);
+    }
+    glActiveTexture(GL_TEXTURE0);
+}
+
 } // namespace dc::render::gl

@@ -4,6 +4,7 @@
 
 #include <epoxy/gl.h>
 
+#include <initializer_list>
 #include <string_view>
 #include <utility>
 
@@ -97,5 +98,17 @@ public:
     // -1 when the program has no active uniform of that name; glUniform* ignores -1.
     GLint uniformLocation(const char* name) const;
 };
+
+// Binds each texture to its unit (a 2D texture per unit) and leaves unit 0 active.
+void bindTextureUnits(std::initializer_list<std::pair<GLint, GLuint>> unitsAndTextures);
+
+// A vertex shader for three vertices without attributes: corners (-1, -1), (3, -1), (-1, 3), one triangle
+// that covers the viewport with no diagonal seam. Passes that shade every pixel of a target draw it.
+inline constexpr const char* kFullscreenVertexShader = R"glsl(#version 330 core
+void main() {
+    vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));
+    gl_Position = vec4(corner, 0.0, 1.0);
+}
+)glsl";
 
 } // namespace dc::render::gl

@@ -13,14 +13,6 @@ namespace dc::render {
 
 namespace {
 
-constexpr const char* kFullscreenVertexShader = R"glsl(#version 330 core
-void main() {
-    // Corners (-1, -1), (3, -1), (-1, 3): one triangle covers the viewport, with no diagonal seam.
-    vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));
-    gl_Position = vec4(corner, 0.0, 1.0);
-}
-)glsl";
-
 // Maps the fragment to the image, top row first: GL's window origin is bottom-left, while row 0 of the
 // data (and of RenderTarget::readRgba()) is the top of the image.
 constexpr const char* kPanelCommon = R"glsl(
@@ -61,7 +53,7 @@ constexpr float kMinRangeMeters = 1e-6f;
 Expected<gl::Program> linkPanel(const char* name, const char* main, Colormap colormap = Colormap::Jet) {
     const std::string fragment = std::string("#version 330 core\n") + kFrameTexturesGlsl +
                                  colormapGlsl(colormap) + kPanelCommon + main;
-    Expected<gl::Program> program = gl::Program::link(kFullscreenVertexShader, fragment);
+    Expected<gl::Program> program = gl::Program::link(gl::kFullscreenVertexShader, fragment);
     if (!program)
         return Error{std::string(name) + " panel shaders: " + program.error().message};
     FrameTextures::connectSamplers(*program);

@@ -90,13 +90,6 @@ void main() {
 }
 )glsl";
 
-constexpr const char* kSplatVertexShader = R"glsl(#version 330 core
-void main() {
-    vec2 corner = vec2(float((gl_VertexID & 1) * 4 - 1), float((gl_VertexID >> 1) * 4 - 1));
-    gl_Position = vec4(corner, 0.0, 1.0);
-}
-)glsl";
-
 } // namespace
 
 // A rigid view keeps lengths, so the projection's scale along each screen axis is the length of the
@@ -143,7 +136,7 @@ Status PointCloudRenderer::init() {
                           p.uniformLocation("coloring"),           p.uniformLocation("minMeters"),
                           p.uniformLocation("inverseRangeMeters"), p.uniformLocation("shaderColours")};
     }
-    Expected<gl::Program> splat = gl::Program::link(kSplatVertexShader, kSplatFragmentShader);
+    Expected<gl::Program> splat = gl::Program::link(gl::kFullscreenVertexShader, kSplatFragmentShader);
     if (!splat)
         return Error{"splat shaders: " + splat.error().message};
     splatProgram_ = std::move(splat).value();

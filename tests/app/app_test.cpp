@@ -435,24 +435,28 @@ TEST(AppWindow, TheWindowFitsTheScreenAndIsRememberedWithItsPosition) {
 // shows the whole picture at the work area's size; restored, grown by 30 px and shrunk back, it shows the
 // whole picture at its own size again, and a click on the depth panel lands on it (the panel opens over the
 // window).
-std::string underOpenbox(const std::string& script) {
-    return "openbox --sm-disable > /dev/null 2>&1 &\nwm=$!\nsleep 1\n" + script + "kill $wm\n";
+// Plays `steps` (lines of a drive script, after the window is found as $w) on a still paused replay, under
+// openbox in a 1600x900 Xvfb; grabs the window into work/screen.xwd and quits; the screenshot --out wrote.
+cv::Mat driveUnderOpenbox(const TempDir& out, const TempDir& home, const TempDir& work,
+                          const std::string& steps) {
+    const std::string take = work.str() + "/take.dcrec";
+    prepareStillReplay(take, home.str());
+    const std::string script = work.str() + "/drive.sh";
+    std::ofstream(script) << "openbox --sm-disable > /dev/null 2>&1 &\nwm=$!\nsleep 1\n"
+                          << windowStarted("--source replay:" + take + ":paused --out " + out.str()) << steps
+                          << grabbedAndQuit(work.str() + "/screen.xwd") << "kill $wm\n";
+    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
+                            " timeout 180 xvfb-run -a -s '-screen 0 1600x900x24' sh " + script);
+    EXPECT_EQ(r.exitCode, 0) << r.output;
+    return cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
 }
 
 TEST(AppWindowManager, MaximisedTheWindowShowsTheWholePictureAtTheWorkAreasSize) {
     TempDir out, home, work;
-    const std::string take = work.str() + "/take.dcrec";
-    ASSERT_NO_FATAL_FAILURE(prepareStillReplay(take, home.str()));
-    const std::string script = work.str() + "/drive.sh";
-    std::ofstream(script) << underOpenbox(
-        windowStarted("--source replay:" + take + ":paused --out " + out.str()) +
-        "wmctrl -i -r \"$w\" -b add,maximized_vert,maximized_horz\nsleep 2\n"
-        "xdotool mousemove --window \"$w\" 500 300\n" +
-        grabbedAndQuit(work.str() + "/screen.xwd"));
-    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
-                            " timeout 180 xvfb-run -a -s '-screen 0 1600x900x24' sh " + script);
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    const cv::Mat shot =
+        driveUnderOpenbox(out, home, work,
+                          "wmctrl -i -r \"$w\" -b add,maximized_vert,maximized_horz\nsleep 2\n"
+                          "xdotool mousemove --window \"$w\" 500 300\n");
     ASSERT_FALSE(shot.empty());
     EXPECT_GE(shot.cols, 1590) << "the work area's width, less the frame's border";
     EXPECT_GE(shot.rows, 840) << "the work area's height, less the title bar";
@@ -463,22 +467,14 @@ TEST(AppWindowManager, MaximisedTheWindowShowsTheWholePictureAtTheWorkAreasSize)
 
 TEST(AppWindowManager, RestoredGrownAndShrunkTheWindowShowsTheWholePictureAndClicksLand) {
     TempDir out, home, work;
-    const std::string take = work.str() + "/take.dcrec";
-    ASSERT_NO_FATAL_FAILURE(prepareStillReplay(take, home.str()));
-    const std::string script = work.str() + "/drive.sh";
-    std::ofstream(script) << underOpenbox(
-        windowStarted("--source replay:" + take + ":paused --out " + out.str()) +
-        "wmctrl -i -r \"$w\" -b add,maximized_vert,maximized_horz\nsleep 2\n"
-        "wmctrl -i -r \"$w\" -b remove,maximized_vert,maximized_horz\nsleep 2\n"
-        "xdotool windowsize --sync \"$w\" 1310 750\nsleep 1\n"
-        "xdotool windowsize --sync \"$w\" 1280 720\nsleep 2\n"
-        "xdotool mousemove --window \"$w\" 1113 119 click 1\nsleep 2\n"
-        "xdotool mousemove --window \"$w\" 640 300\n" +
-        grabbedAndQuit(work.str() + "/screen.xwd"));
-    const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
-                            " timeout 180 xvfb-run -a -s '-screen 0 1600x900x24' sh " + script);
-    ASSERT_EQ(r.exitCode, 0) << r.output;
-    const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
+    const cv::Mat shot =
+        driveUnderOpenbox(out, home, work,
+                          "wmctrl -i -r \"$w\" -b add,maximized_vert,maximized_horz\nsleep 2\n"
+                          "wmctrl -i -r \"$w\" -b remove,maximized_vert,maximized_horz\nsleep 2\n"
+                          "xdotool windowsize --sync \"$w\" 1310 750\nsleep 1\n"
+                          "xdotool windowsize --sync \"$w\" 1280 720\nsleep 2\n"
+                          "xdotool mousemove --window \"$w\" 1113 119 click 1\nsleep 2\n"
+                          "xdotool mousemove --window \"$w\" 640 300\n");
     ASSERT_FALSE(shot.empty());
     EXPECT_EQ(shot.cols, 1280);
     EXPECT_EQ(shot.rows, 720);
