@@ -199,14 +199,7 @@ void CameraColours::connectSamplers(const gl::Program& program) {
 
 void CameraColours::uploadPlane(Plane& plane, GLint internalFormat, GLenum format, int width, int height,
                                 const void* pixels) {
-    if (!plane.texture) {
-        plane.texture = gl::Texture::create();
-        glBindTexture(GL_TEXTURE_2D, plane.texture.id());
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-    } else {
-        glBindTexture(GL_TEXTURE_2D, plane.texture.id());
-    }
+    gl::bindNearestTexture(plane.texture);
     // A new internal format (a camera switching from NV12 to RGB) needs new storage as a new size does.
     GLint current = 0;
     glGetTexLevelParameteriv(GL_TEXTURE_2D, 0, GL_TEXTURE_INTERNAL_FORMAT, &current);
@@ -279,13 +272,7 @@ void CameraColours::renderNearest(const FrameTextures& textures) {
     const int margin = marginPixels(textures.depthIntrinsics());
     const int width = width_ + 2 * margin, height = height_ + 2 * margin;
     if (nearest_.width != width || nearest_.height != height) {
-        if (!nearest_.texture) {
-            nearest_.texture = gl::Texture::create();
-            glBindTexture(GL_TEXTURE_2D, nearest_.texture.id());
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-            glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        }
-        glBindTexture(GL_TEXTURE_2D, nearest_.texture.id());
+        gl::bindNearestTexture(nearest_.texture);
         glTexImage2D(GL_TEXTURE_2D, 0, GL_DEPTH_COMPONENT32F, width, height, 0, GL_DEPTH_COMPONENT, GL_FLOAT,
                      nullptr);
         nearest_.width = width;

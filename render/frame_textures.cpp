@@ -14,9 +14,8 @@ namespace {
 
 using detail::PlaneFormat;
 
-// Every plane is read with texelFetch, which ignores filtering, but a texture must still be complete to be
-// read at all: integer formats are incomplete with linear filtering, and so is any texture left with the
-// default minification filter, which expects mipmaps. Hence GL_NEAREST throughout.
+// Every plane is read with texelFetch; integer formats are incomplete with linear filtering, so they are
+// created through gl::bindNearestTexture like the rest.
 constexpr PlaneFormat kDepthFormat{GL_R32F, GL_RED, GL_FLOAT};
 constexpr PlaneFormat kConfidenceFormat{GL_R8UI, GL_RED_INTEGER, GL_UNSIGNED_BYTE};
 constexpr PlaneFormat kColorFormat{GL_RGB8, GL_RGB, GL_UNSIGNED_BYTE};
@@ -71,16 +70,7 @@ void FrameTextures::uploadColors(const processing::RgbImage* colors) {
 
 void FrameTextures::uploadPlane(PlaneTexture& plane, const detail::PlaneFormat& format, int width, int height,
                                 const void* pixels) {
-    if (!plane.texture) {
-        plane.texture = gl::Texture::create();
-        glBindTexture(GL_TEXTURE_2D, plane.texture.id());
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
-    } else {
-        glBindTexture(GL_TEXTURE_2D, plane.texture.id());
-    }
+    gl::bindNearestTexture(plane.texture);
     if (width == plane.width && height == plane.height) {
         glTexSubImage2D(GL_TEXTURE_2D, 0, 0, 0, width, height, format.format, format.type, pixels);
         return;

@@ -126,6 +126,19 @@ GLint Program::uniformLocation(const char* name) const {
     return glGetUniformLocation(id(), name);
 }
 
+void bindNearestTexture(Texture& texture) {
+    if (texture) {
+        glBindTexture(GL_TEXTURE_2D, texture.id());
+        return;
+    }
+    texture = Texture::create();
+    glBindTexture(GL_TEXTURE_2D, texture.id());
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+    glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+}
+
 void bindTextureUnits(std::initializer_list<std::pair<GLint, GLuint>> unitsAndTextures) {
     for (const auto& [unit, texture] : unitsAndTextures) {
         glActiveTexture(GL_TEXTURE0 + static_cast<GLenum>(unit));

@@ -99,6 +99,11 @@ public:
     GLint uniformLocation(const char* name) const;
 };
 
+// Binds `texture` as GL_TEXTURE_2D, creating it first when it is empty, with nearest filtering and edges
+// clamped: a texture read with texelFetch ignores filtering but must still be complete, which the default
+// minification filter (expecting mipmaps) would leave it not.
+void bindNearestTexture(Texture& texture);
+
 // Binds each texture to its unit (a 2D texture per unit) and leaves unit 0 active.
 void bindTextureUnits(std::initializer_list<std::pair<GLint, GLuint>> unitsAndTextures);
 
