@@ -81,6 +81,7 @@ void Instrument::switchSource(std::unique_ptr<devices::Device> device, std::stri
     stages_.clear();
     latencyMs_ = base::RollingStats();
     shown_ = 0;
+    handedOut_.reset();
     countHistory_.clear();
     lastShownTimestampNs_ = ~0ull;
     startSession();
@@ -97,7 +98,14 @@ std::uint64_t Instrument::setDemand(const Demand& demand) {
 
 std::optional<processing::ShownFramePtr> Instrument::update() {
     drainEvents();
-    return processor_->take();
+    return handOut(processor_->take());
+}
+
+std::optional<processing::ShownFramePtr>
+Instrument::handOut(std::optional<processing::ShownFramePtr> result) {
+    if (result)
+        handedOut_ = *result;
+    return result;
 }
 
 std::optional<processing::ShownFramePtr> Instrument::waitForResult(std::chrono::milliseconds timeout,
@@ -105,15 +113,15 @@ std::optional<processing::ShownFramePtr> Instrument::waitForResult(std::chrono::
     drainEvents();
     const std::uint64_t generation = demandGeneration_;
     const std::uint64_t last = lastShownTimestampNs_;
-    return processor_->waitFor(timeout, [&](const processing::ShownFrame& shown) {
+    return handOut(processor_->waitFor(timeout, [&](const processing::ShownFrame& shown) {
         const bool answers = shown.demandGeneration >= generation;
         const bool unseen = static_cast<std::uint64_t>(shown.frame->timestampNs) != last;
         return answers && (!newFrame || (shown.newFrame && unseen));
-    });
+    }));
 }
 
 void Instrument::presented(const processing::ShownFrame& shown) {
-    if (!shown.newFrame)
+    if (!shown.newFrame || &shown != handedOut_.get())
         return;
     ++shown_;
     lastShownTimestampNs_ = static_cast<std::uint64_t>(shown.frame->timestampNs);

@@ -119,6 +119,7 @@ private:
     void startSession();
     void drainEvents();
     FrameCounts countFrames();
+    std::optional<processing::ShownFramePtr> handOut(std::optional<processing::ShownFramePtr> result);
     void adoptReplay(devices::Device& device);
 
     std::string spec_;
@@ -134,6 +135,9 @@ private:
     std::uint64_t demandGeneration_ = 0;
     std::uint64_t lastShownTimestampNs_ = ~0ull;
     std::uint64_t shown_ = 0;
+    // The last result handed to the UI in this session: only it can be shown as this session's frame (the
+    // UI may still hold, and present, a result of the source it switched away from).
+    processing::ShownFramePtr handedOut_;
     base::RollingStats latencyMs_;
     struct CountSample {
         std::chrono::steady_clock::time_point at;

@@ -12,9 +12,13 @@
 
 #include <epoxy/gl.h>
 
+#include <array>
 #include <cfloat>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
+#include <cstring>
+#include <execinfo.h>
 #include <filesystem>
 #include <fstream>
 #include <random>
@@ -27,6 +31,35 @@ namespace dc::ui::test {
 namespace {
 
 namespace fs = std::filesystem;
+
+// The last actions played, for a crash's report: a signal handler can only read what is already written.
+std::array<std::array<char, 256>, 16> gLastActions{};
+std::size_t gActionsPlayed = 0;
+
+void noteAction(const std::string& text) {
+    std::array<char, 256>& slot = gLastActions[gActionsPlayed++ % gLastActions.size()];
+    std::snprintf(slot.data(), slot.size(), "%s", text.c_str());
+}
+
+void writeError(const char* text) {
+    (void)!::write(STDERR_FILENO, text, std::strlen(text));
+}
+
+// A crash names the actions that led to it and where it happened (offsets into the test binary, for
+// addr2line), then ends the process as the signal would have.
+void reportCrash(int signal) {
+    writeError("monkey: crashed; the last actions, oldest first:\n");
+    const std::size_t n = std::min(gActionsPlayed, gLastActions.size());
+    for (std::size_t i = gActionsPlayed - n; i < gActionsPlayed; ++i) {
+        writeError("  ");
+        writeError(gLastActions[i % gLastActions.size()].data());
+        writeError("\n");
+    }
+    void* frames[64];
+    ::backtrace_symbols_fd(frames, ::backtrace(frames, 64), STDERR_FILENO);
+    std::signal(signal, SIG_DFL);
+    std::raise(signal);
+}
 
 constexpr int kGlfwKeyEscape = 256, kGlfwKeyRight = 262, kGlfwKeyLeft = 263, kGlfwKeyHome = 268,
               kGlfwKeyEnd = 269, kGlfwKeySpace = 32;
@@ -49,6 +82,7 @@ protected:
         ASSERT_TRUE(instrument_->stopRecording().ok());
         fs::copy_file(take, work_ / "inputs" / "vanishing.dcrec");
         std::ofstream(work_ / "inputs" / "notes.txt") << "not a capture\n";
+        const fs::path tum = makeTumSequence(work_ / "inputs" / "tum");
         sources_ = {"synthetic",
                     "synthetic:64x48@30",
                     "synthetic:motion",
@@ -57,12 +91,13 @@ protected:
                     "replay:" + take + ":loop:speed=4",
                     "replay:" + take + ":paused",
                     "replay:" + (work_ / "inputs" / "vanishing.dcrec").string(),
+                    "replay:" + tum.string(),
                     "replay:" + dc::test::dataPath("tum_frame"),
                     "replay:" + (work_ / "inputs" / "missing.dcrec").string(),
                     "synthetic:12x",
                     "nonsense:0"};
-        paths_ = {take, (work_ / "inputs" / "notes.txt").string(), dc::test::dataPath("tum_frame"),
-                  (work_ / "inputs").string()};
+        paths_ = {take, (work_ / "inputs" / "notes.txt").string(), tum.string(),
+                  dc::test::dataPath("tum_frame"), (work_ / "inputs").string()};
     }
 
     void TearDown() override {
@@ -73,6 +108,18 @@ protected:
         fs::remove_all(work_);
     }
 
+    // A TUM RGB-D sequence of three frames, each the shared data's one real frame pair.
+    static fs::path makeTumSequence(const fs::path& dir) {
+        fs::create_directories(dir);
+        const std::string data = dc::test::dataPath("tum_frame");
+        std::ofstream rgb(dir / "rgb.txt"), depth(dir / "depth.txt");
+        for (int i = 0; i < 3; ++i) {
+            rgb << 1.0 + i / 30.0 << ' ' << data << "/TUM_color.png\n";
+            depth << 1.0 + i / 30.0 << ' ' << data << "/TUM_depth.png\n";
+        }
+        return dir;
+    }
+
     // Plays `seed`'s actions until `actions` are done or `limit` passes; returns how many were played.
     std::uint64_t play(std::uint64_t seed, std::uint64_t actions, std::chrono::seconds limit) {
         std::printf("monkey: seed %llu\n", static_cast<unsigned long long>(seed));
@@ -80,10 +127,14 @@ protected:
         SCOPED_TRACE("monkey seed " + std::to_string(seed) + " (DC_MONKEY_SEED=" + std::to_string(seed) +
                      " plays it again)");
         std::mt19937_64 random(seed);
+        for (const int signal : {SIGSEGV, SIGBUS, SIGABRT, SIGFPE})
+            std::signal(signal, reportCrash);
         const auto deadline = std::chrono::steady_clock::now() + limit;
         std::uint64_t played = 0;
         for (; played < actions && std::chrono::steady_clock::now() < deadline; ++played) {
+            noteAction("seed " + std::to_string(seed) + ", action " + std::to_string(played) + " starts");
             const std::string action = act(random);
+            noteAction("seed " + std::to_string(seed) + ", action " + std::to_string(played) + ": " + action);
             SCOPED_TRACE("action " + std::to_string(played) + ": " + action);
             frame(0.0);
             checkInvariants();
