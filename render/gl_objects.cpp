@@ -27,6 +27,9 @@ void deleteFramebuffer(GLuint id) {
 void deleteRenderbuffer(GLuint id) {
     glDeleteRenderbuffers(1, &id);
 }
+void deleteQuery(GLuint id) {
+    glDeleteQueries(1, &id);
+}
 
 } // namespace detail
 
@@ -82,6 +85,10 @@ Framebuffer Framebuffer::create() {
 }
 Renderbuffer Renderbuffer::create() {
     return generate<Renderbuffer>(glGenRenderbuffers);
+}
+
+Query Query::create() {
+    return generate<Query>(glGenQueries);
 }
 
 Expected<Shader> Shader::compile(GLenum stage, std::string_view source) {

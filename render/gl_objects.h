@@ -23,6 +23,7 @@ void deleteShader(GLuint id);
 void deleteProgram(GLuint id);
 void deleteFramebuffer(GLuint id);
 void deleteRenderbuffer(GLuint id);
+void deleteQuery(GLuint id);
 
 // One owned name. GL uses 0 as "no object" for every kind, so 0 is the empty state.
 template <void (*Delete)(GLuint)> class UniqueName {
@@ -81,6 +82,13 @@ class Renderbuffer : public detail::UniqueName<detail::deleteRenderbuffer> {
 public:
     using UniqueName::UniqueName;
     static Renderbuffer create();
+};
+
+// A query object, e.g. GL_TIME_ELAPSED: the GPU's own time for the commands between begin and end.
+class Query : public detail::UniqueName<detail::deleteQuery> {
+public:
+    using UniqueName::UniqueName;
+    static Query create();
 };
 
 class Shader : public detail::UniqueName<detail::deleteShader> {

@@ -106,7 +106,9 @@ void ViewRenderer::renderPanels(const PanelParams& params) {
     // that redrew them before that drawing had finished (the panel read back unchanged after a colormap
     // change in two test runs of three; a glFlush did not help): the passes start once it has. By now
     // that is the previous frame's composite alone, and a redraw happens only when what it shows changes.
-    glFinish();
+    // A GPU orders its passes itself: waiting there would only stall the GL thread.
+    if (softwareGl())
+        glFinish();
     if (panels)
         drawDataPanels(params);
     if (overlay)

@@ -205,7 +205,7 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
         r.samples = static_cast<std::size_t>(shown->depth.width()) * shown->depth.height();
         r.cloudWidth = renderer.cloudTarget().width();
         r.cloudHeight = renderer.cloudTarget().height();
-        r.bareGlPointsMs = bareGlPointsMs(*shown, r.cloudWidth, r.cloudHeight, kBareFrames);
+        r.bareGlPointsMs = bareGlPoints(*shown, r.cloudWidth, r.cloudHeight, kBareFrames).wall;
     }
     return r;
 }

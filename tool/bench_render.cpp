@@ -4,6 +4,7 @@
 #include "devices/frame_list_device.h"
 #include "devices/synthetic/synthetic_device.h"
 #include "render/gl_context.h"
+#include "render/gl_objects.h"
 #include "render/orbit_camera.h"
 #include "tool/bench_frames.h"
 #include "tool/bench_gl_points.h"
@@ -17,6 +18,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <string>
 #include <thread>
 
 namespace dc::tool {
@@ -38,19 +40,21 @@ struct BenchCase {
 // composited as the window composites on software GL: where the picture changed (ui::FrameDamage).
 struct PathResult {
     render::CloudPath path = render::CloudPath::Points;
-    double medianMs = 0, p90Ms = 0;
+    std::string variant;            // empty: the default view; else what the --breakdown run left out
+    double medianMs = 0, p90Ms = 0; // wall, to glFinish
+    double cpuMs = 0, gpuMs = 0;    // the GL thread's CPU submitting a frame, the GPU's time for it
     std::uint64_t points = 0;
     int decimation = 1;
     std::vector<engine::StageSummary> stages;
 };
 
 struct CaseResult {
-    BenchCase c;
+    BenchCase c{};
     std::vector<PathResult> paths;
-    double floorMs = 0;        // an ImGui frame compositing the panels, nothing new drawn
-    double stillMs = 0;        // a frame of the same still view as the window runs it: kept, not drawn
-    int stillDrawn = 0;        // of those timed, drawn all the same (0 when the check keeps every one)
-    double bareGlPointsMs = 0; // GL_POINTS of every shown sample into the cloud panel's size, nothing else
+    double stillMs = 0; // a frame of the same still view as the window runs it: kept, not drawn
+    int stillDrawn = 0; // of those timed, drawn all the same (0 when the check keeps every one)
+    GlFrameMs floor;    // an ImGui frame compositing the panels, nothing new drawn
+    GlFrameMs bare;     // GL_POINTS of every shown sample into the cloud panel's size, nothing else
     std::size_t shownSamples = 0;
     int cloudWidth = 0, cloudHeight = 0;
 };
@@ -77,27 +81,51 @@ std::vector<frame::FramePtr> makeFrames(const BenchCase& c) {
     return syntheticFrames(config, 8);
 }
 
-// Times `draw` over `frames` calls after a warm-up, each ended by glFinish (llvmpipe draws asynchronously).
-template <class Draw> base::RollingStats timeFrames(int frames, Draw&& draw) {
-    base::RollingStats ms(static_cast<std::size_t>(frames));
+// Each frame's times over `frames` calls after a warm-up: before(i) runs untimed (the wait for the engine's
+// next result is the other thread's, not this one's), draw(i) is timed and ended by glFinish (llvmpipe
+// draws asynchronously).
+struct FrameTimes {
+    base::RollingStats wall, cpu, gpu;
+    GlFrameMs medians() const { return {wall.median(), cpu.median(), gpu.median()}; }
+};
+
+template <class Before, class Draw> FrameTimes timeFrames(int frames, Before&& before, Draw&& draw) {
+    const auto n = static_cast<std::size_t>(frames);
+    FrameTimes t{base::RollingStats(n), base::RollingStats(n), base::RollingStats(n)};
+    const render::gl::Query query = render::gl::Query::create();
     for (int i = 0; i < kWarmupFrames + frames; ++i) {
+        before(i);
         const auto start = Clock::now();
-        const double excluded = draw(i);
+        const double cpuStart = base::threadCpuMs();
+        glBeginQuery(GL_TIME_ELAPSED, query.id());
+        draw(i);
+        glEndQuery(GL_TIME_ELAPSED);
+        const double cpuMs = base::threadCpuMs() - cpuStart;
         glFinish();
-        if (i >= kWarmupFrames)
-            ms.add(msSince(start) - excluded);
+        GLuint64 gpuNs = 0;
+        glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &gpuNs);
+        if (i < kWarmupFrames)
+            continue;
+        t.wall.add(msSince(start));
+        t.cpu.add(cpuMs);
+        t.gpu.add(static_cast<double>(gpuNs) * 1e-6);
     }
-    return ms;
+    return t;
+}
+
+template <class Draw> FrameTimes timeFrames(int frames, Draw&& draw) {
+    return timeFrames(
+        frames, [](int) {}, std::forward<Draw>(draw));
 }
 
 } // namespace
 
-double bareGlPointsMs(const processing::ShownFrame& shown, int width, int height, int frames) {
+GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int height, int frames) {
     render::PointCloudRenderer renderer;
     render::FrameTextures textures;
     render::RenderTarget target;
     if (!renderer.init() || !target.resize(width, height) || !shown.depth.data)
-        return 0.0;
+        return {};
     textures.uploadDepth(shown.depth);
     textures.uploadColors(shown.pointColors.get());
     render::CloudParams params;
@@ -107,15 +135,28 @@ double bareGlPointsMs(const processing::ShownFrame& shown, int width, int height
                           params.viewProjection = render::cloudViewProjection(
                               {0.01f * i, 0.1f, 1.0f, {}}, 1.2f, fov, float(width) / float(height));
                           renderer.render(target, textures, params);
-                          return 0.0;
                       })
-        .median();
+        .medians();
 }
 
 namespace {
 
+// A --breakdown run: the GL points frame again with one part of the default view left out, so that the
+// difference is what that part costs.
+struct Variant {
+    const char* name;
+    void (*change)(ui::Settings&);
+};
+constexpr Variant kBreakdown[] = {
+    {"without fill gaps", [](ui::Settings& s) { s.cloud.fillGaps = false; }},
+    {"without the 2D panels",
+     [](ui::Settings& s) { s.panels.depth = s.panels.confidence = s.panels.camera = false; }},
+    {"without the controls", [](ui::Settings& s) { s.panels.controls = false; }},
+    {"every sample (no decimation)", [](ui::Settings& s) { s.cloud.decimation = 1; }},
+};
+
 Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const BenchOptions& o,
-                             CaseResult& result) {
+                             CaseResult& result, const Variant* variant = nullptr) {
     auto frames = makeFrames(c);
     if (frames.empty())
         return Error{"cannot make synthetic frames"};
@@ -134,37 +175,42 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
         path == render::CloudPath::Splat ? ui::CloudPathChoice::Splat : ui::CloudPathChoice::Points;
     settings.cloud.motion.enabled = true;
     settings.processing.upsampling = c.upsampling;
+    if (variant)
+        variant->change(settings);
     engine::Instrument instrument(std::move(device), "synthetic frames");
     ui::Viewer viewer(instrument, renderer, settings);
     instrument.start();
     // The GL thread's time: the wait for the engine's next result is the other thread's, not this one's.
-    const base::RollingStats ms = timeFrames(o.frames, [&](int i) {
-        gui.newFrame(1.0f / 60.0f);
-        viewer.update(i / 60.0, std::chrono::milliseconds(500));
-        viewer.drawUi();
-        gui.renderIfChanged(renderer.contentVersion());
-        return viewer.lastWaitMs();
-    });
+    const FrameTimes ms = timeFrames(
+        o.frames, [&](int) { viewer.awaitFrame(std::chrono::milliseconds(500)); },
+        [&](int i) {
+            gui.newFrame(1.0f / 60.0f);
+            viewer.update(i / 60.0);
+            viewer.drawUi();
+            gui.renderIfChanged(renderer.contentVersion());
+        });
     const processing::ShownFramePtr shown = viewer.shown();
     PathResult r{path,
-                 ms.median(),
-                 percentile(ms, 0.9),
+                 variant ? variant->name : "",
+                 ms.wall.median(),
+                 percentile(ms.wall, 0.9),
+                 ms.cpu.median(),
+                 ms.gpu.median(),
                  viewer.summary().pointsDrawn,
                  shown ? shown->cloud.factor : 1,
                  viewer.summary().stages};
-    if (path == render::CloudPath::Points && shown) {
+    if (path == render::CloudPath::Points && shown && !variant) {
         // The floor: the same window composited again with nothing new to draw and the source idle, as
         // when a replay is paused (a source that delivers once in 1000 s; its one frame is processed before
         // timing starts).
         instrument.switchSource(std::make_unique<devices::FrameListDevice>(std::vector{last}, 0.001, "idle"),
                                 "idle");
         std::this_thread::sleep_for(std::chrono::milliseconds(300));
-        result.floorMs = timeFrames(o.frames, [&](int) {
-                             gui.newFrame(1.0f / 60.0f);
-                             viewer.drawUi();
-                             gui.render();
-                             return 0.0;
-                         }).median();
+        result.floor = timeFrames(o.frames, [&](int) {
+                           gui.newFrame(1.0f / 60.0f);
+                           viewer.drawUi();
+                           gui.render();
+                       }).medians();
         // The same still view as the window runs it: the viewer's update and the ImGui frame, and the
         // composite only if the picture changed (it does not: nothing moves).
         viewer.settings().cloud.motion.enabled = false;
@@ -174,33 +220,44 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
                              viewer.drawUi();
                              result.stillDrawn +=
                                  gui.renderIfChanged(renderer.contentVersion()) && i >= kWarmupFrames;
-                             return 0.0;
-                         }).median();
+                         }).wall.median();
         result.cloudWidth = renderer.cloudTarget().width();
         result.cloudHeight = renderer.cloudTarget().height();
         result.shownSamples = static_cast<std::size_t>(shown->depth.width()) * shown->depth.height();
-        result.bareGlPointsMs = bareGlPointsMs(*shown, result.cloudWidth, result.cloudHeight, o.frames);
+        result.bare = bareGlPoints(*shown, result.cloudWidth, result.cloudHeight, o.frames);
     }
     return r;
+}
+
+std::string glFrameText(const GlFrameMs& t) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.2f ms (GL thread's CPU %.2f, GPU %.2f)", t.wall, t.cpu, t.gpu);
+    return text;
 }
 
 void printResult(const CaseResult& r, const BenchOptions& o) {
     std::printf("%s (%zu samples) in a %dx%d window (cloud panel %dx%d), every panel shown, %d frames:\n",
                 r.c.name, r.shownSamples, o.width, o.height, r.cloudWidth, r.cloudHeight, o.frames);
-    std::printf("  floor (composite, nothing new) %.2f ms | bare GL_POINTS of every sample %.2f ms\n",
-                r.floorMs, r.bareGlPointsMs);
+    std::printf("  floor (composite, nothing new) %s\n  bare GL_POINTS of every sample %s\n",
+                glFrameText(r.floor).c_str(), glFrameText(r.bare).c_str());
     std::printf("  still view (paused, nothing moves, kept: drawn %d of %d) %.3f ms\n", r.stillDrawn,
                 o.frames, r.stillMs);
     for (const PathResult& p : r.paths) {
         std::printf(
-            "  %-10s frame median %.2f ms (p90 %.2f) = %.0f fps, %.2fx bare GL_POINTS; %llu points at "
-            "%dx decimation\n   ",
-            render::toString(p.path), p.medianMs, p.p90Ms, 1000.0 / p.medianMs, p.medianMs / r.bareGlPointsMs,
-            static_cast<unsigned long long>(p.points), p.decimation);
+            "  %-10s frame median %s, p90 %.2f ms = %.0f fps; %.2fx bare GL_POINTS (GPU %.2fx); %llu "
+            "points at %dx decimation\n   ",
+            (std::string(render::toString(p.path)) + (p.variant.empty() ? "" : ", " + p.variant)).c_str(),
+            glFrameText({p.medianMs, p.cpuMs, p.gpuMs}).c_str(), p.p90Ms, 1000.0 / p.medianMs,
+            p.medianMs / r.bare.wall, p.gpuMs / r.bare.gpu, static_cast<unsigned long long>(p.points),
+            p.decimation);
         for (const auto& s : p.stages)
             std::printf(" %s %.2f", s.name.c_str(), s.medianMs);
         std::printf("\n");
     }
+}
+
+nlohmann::json toJson(const GlFrameMs& t) {
+    return {{"wallMs", t.wall}, {"glThreadCpuMs", t.cpu}, {"gpuMs", t.gpu}};
 }
 
 nlohmann::json toJson(const CaseResult& r) {
@@ -210,9 +267,13 @@ nlohmann::json toJson(const CaseResult& r) {
         for (const auto& s : p.stages)
             stages[s.name] = s.medianMs;
         paths.push_back({{"path", render::toString(p.path)},
+                         {"variant", p.variant},
                          {"frameMedianMs", p.medianMs},
                          {"frameP90Ms", p.p90Ms},
-                         {"vsBareGlPoints", p.medianMs / r.bareGlPointsMs},
+                         {"frameGlThreadCpuMs", p.cpuMs},
+                         {"frameGpuMs", p.gpuMs},
+                         {"vsBareGlPoints", p.medianMs / r.bare.wall},
+                         {"gpuVsBareGlPoints", p.gpuMs / r.bare.gpu},
                          {"points", p.points},
                          {"decimation", p.decimation},
                          {"stageMedianMs", stages}});
@@ -220,10 +281,12 @@ nlohmann::json toJson(const CaseResult& r) {
     return {{"case", r.c.name},
             {"samples", r.shownSamples},
             {"cloudPanel", {r.cloudWidth, r.cloudHeight}},
-            {"floorMs", r.floorMs},
+            {"floorMs", r.floor.wall},
+            {"floor", toJson(r.floor)},
             {"stillViewMs", r.stillMs},
             {"stillViewFramesDrawn", r.stillDrawn},
-            {"bareGlPointsMs", r.bareGlPointsMs},
+            {"bareGlPointsMs", r.bare.wall},
+            {"bareGlPoints", toJson(r.bare)},
             {"paths", paths}};
 }
 
@@ -239,12 +302,24 @@ int runBenchRender(const BenchOptions& options) {
     std::printf("bench render on %s, frames arriving at %.0f fps\n", context->rendererName().c_str(),
                 options.sourceFps);
     nlohmann::json results = nlohmann::json::array();
-    for (const BenchCase& c : {BenchCase{"256x192", 256, 192, false}, BenchCase{"640x480", 640, 480, false},
-                               BenchCase{"960x720", 960, 720, false}, BenchCase{"1280x720", 1280, 720, false},
-                               BenchCase{"256x192 upsampled", 256, 192, true}}) {
-        CaseResult result{c, {}};
+    for (const BenchCase& c :
+         {BenchCase{"256x192", 256, 192, false}, BenchCase{"640x480", 640, 480, false},
+          BenchCase{"960x720", 960, 720, false}, BenchCase{"1280x720", 1280, 720, false},
+          BenchCase{"256x192 upsampled", 256, 192, true}, BenchCase{"1920x1440", 1920, 1440, false}}) {
+        CaseResult result;
+        result.c = c;
         for (const render::CloudPath path : {render::CloudPath::Points, render::CloudPath::Splat}) {
             auto r = runPath(c, path, options, result);
+            if (!r) {
+                std::fprintf(stderr, "depthcloud: error: %s\n", r.error().message.c_str());
+                return kExitFailure;
+            }
+            result.paths.push_back(std::move(*r));
+        }
+        for (const Variant& v : kBreakdown) {
+            if (!options.breakdown)
+                break;
+            auto r = runPath(c, render::CloudPath::Points, options, result, &v);
             if (!r) {
                 std::fprintf(stderr, "depthcloud: error: %s\n", r.error().message.c_str());
                 return kExitFailure;

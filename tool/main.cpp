@@ -114,6 +114,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1.0, 1000.0))
         ->capture_default_str();
     benchRender->add_option("--json", bench.jsonPath, "also write the results as JSON to this file");
+    benchRender->add_flag("--breakdown", bench.breakdown,
+                          "also time the GL points frame without each part of the default view (fill gaps, "
+                          "the 2D panels, the controls, decimation)");
     BenchInstrumentOptions benchInstrument;
     BenchCameraOptions benchCamera;
     CLI::App* benchCameraCmd = addBenchCameraCommand(*benchCmd, benchCamera);

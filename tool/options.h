@@ -27,6 +27,7 @@ struct BenchOptions {
     int height = 720;
     double sourceFps = 30.0; // the rate the bench's frames arrive at: a depth camera's, not a flood
     std::string jsonPath;    // also write the results as JSON here
+    bool breakdown = false;  // also time the GL points frame without each part of the default view
 };
 
 int runHeadless(const ViewerOptions& options);

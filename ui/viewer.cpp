@@ -96,11 +96,11 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     const bool changed = !(demand == demand_);
     demand_ = demand;
     demandGeneration_ = instrument_.setDemand(demand);
-    std::optional<processing::ShownFramePtr> next;
+    std::optional<processing::ShownFramePtr> next = std::exchange(awaited_, std::nullopt);
     const auto waitStart = Clock::now();
-    if (wait.count() > 0)
+    if (!next && wait.count() > 0)
         next = instrument_.waitForResult(wait, true);
-    else if (changed && shown_)
+    else if (!next && changed && shown_)
         next = instrument_.waitForResult(redoWait_, false);
     lastWaitMs_ = millisecondsSince(waitStart);
     timeSeconds += lastWaitMs_ * 1e-3; // the view moves on to when the frame is drawn, not when it waited
@@ -131,6 +131,11 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     if (renderer_.contentVersion() != version)
         instrument_.recordStage("cloud", millisecondsSince(start));
     return fresh;
+}
+
+bool Viewer::awaitFrame(std::chrono::milliseconds timeout) {
+    awaited_ = instrument_.waitForResult(timeout, true);
+    return awaited_.has_value();
 }
 
 void Viewer::adopt(processing::ShownFramePtr shown) {

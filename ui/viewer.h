@@ -92,6 +92,9 @@ public:
     StatusLine statusLine();
     // How long the last update() waited for the engine's result (benchmarks take it off the frame time).
     double lastWaitMs() const { return lastWaitMs_; }
+    // Waits up to `timeout` for the engine's next new frame and keeps it for the next update(), so that a
+    // benchmark can time that update (on the CPU and on the GPU) without the wait; false if none came.
+    bool awaitFrame(std::chrono::milliseconds timeout);
     ViewerSummary summary();
     // What the hover readout reads: the shown depth, its seen mask or the frame's rig, the infrared.
     ProbeSource probeSource() const;
@@ -178,7 +181,8 @@ private:
     std::chrono::milliseconds redoWait_ = kRedoWait;
     processing::ShownFramePtr shown_;
     double lastWaitMs_ = 0.0;
-    bool presentedShown_ = true; // presented() already counted shown_
+    std::optional<processing::ShownFramePtr> awaited_; // taken by awaitFrame, adopted by the next update
+    bool presentedShown_ = true;                       // presented() already counted shown_
     int cameraShownWidth_ = kDefaultCameraWidth;
     float pivotDepthMeters_ = 1.0f;
     bool pivotSet_ = false;
