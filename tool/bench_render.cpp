@@ -151,6 +151,9 @@ constexpr Variant kBreakdown[] = {
     {"without fill gaps", [](ui::Settings& s) { s.cloud.fillGaps = false; }},
     {"without the 2D panels",
      [](ui::Settings& s) { s.panels.depth = s.panels.confidence = s.panels.camera = false; }},
+    {"without the depth panel", [](ui::Settings& s) { s.panels.depth = false; }},
+    {"without the confidence panel", [](ui::Settings& s) { s.panels.confidence = false; }},
+    {"without the camera panel", [](ui::Settings& s) { s.panels.camera = false; }},
     {"without the controls", [](ui::Settings& s) { s.panels.controls = false; }},
     {"every sample (no decimation)", [](ui::Settings& s) { s.cloud.decimation = 1; }},
 };

@@ -116,7 +116,7 @@ int main(int argc, char** argv) {
     benchRender->add_option("--json", bench.jsonPath, "also write the results as JSON to this file");
     benchRender->add_flag("--breakdown", bench.breakdown,
                           "also time the GL points frame without each part of the default view (fill gaps, "
-                          "the 2D panels, the controls, decimation)");
+                          "the 2D panels together and one by one, the controls, decimation)");
     BenchInstrumentOptions benchInstrument;
     BenchCameraOptions benchCamera;
     CLI::App* benchCameraCmd = addBenchCameraCommand(*benchCmd, benchCamera);

@@ -144,13 +144,42 @@ void Viewer::keepInsideWorkArea(const ImGuiWindow* window) const {
         ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
 }
 
-// The panels docked by default (controls, cloud, depth, confidence, camera) follow the window's size: a
-// resized window lays them out again for its new size.
-void Viewer::followWindowSize() {
+// Every panel but the source picker has a place in the layout: the controls on the left, the cloud in the
+// middle with the stats and the log in a strip under it, the image panels in a column on the right.
+constexpr const char* kDockedTitles[] = {kControlsTitle, kCloudTitle,    kDepthTitle, kConfidenceTitle,
+                                         kCameraTitle,   kInfraredTitle, kFogTitle,   kAuraTitle,
+                                         kStatsTitle,    kLogTitle};
+
+// The docked panels follow the window's size and each other: a resized window, or a panel shown or hidden,
+// lays them all out again.
+void Viewer::followLayout() {
     const ImVec2 size = ImGui::GetMainViewport()->Size;
-    if (layoutSize_.x > 0.0f && (size.x != layoutSize_.x || size.y != layoutSize_.y))
-        layoutResets_.insert({kControlsTitle, kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle});
+    std::vector<const char*> shown = rightColumn();
+    const PanelVisibility& show = settings_.panels;
+    for (const auto& [title, on] :
+         {std::pair{kControlsTitle, show.controls}, std::pair{kCloudTitle, show.cloud},
+          std::pair{kStatsTitle, show.stats}, std::pair{kLogTitle, show.log}})
+        if (on)
+            shown.push_back(title);
+    const bool laidOut = layoutSize_.x > 0.0f;
+    if (laidOut && (size.x != layoutSize_.x || size.y != layoutSize_.y || shown != dockedShown_))
+        layoutResets_.insert(std::begin(kDockedTitles), std::end(kDockedTitles));
     layoutSize_ = size;
+    dockedShown_ = std::move(shown);
+}
+
+// The right column's panels shown, top to bottom; they share its height.
+std::vector<const char*> Viewer::rightColumn() const {
+    const PanelVisibility& show = settings_.panels;
+    std::vector<const char*> titles;
+    for (const auto& [title, on] :
+         {std::pair{kDepthTitle, show.depth}, std::pair{kConfidenceTitle, show.confidence},
+          std::pair{kCameraTitle, show.camera},
+          std::pair{kInfraredTitle, show.infrared && infraredAvailable()}, std::pair{kFogTitle, show.fog},
+          std::pair{kAuraTitle, show.aura}})
+        if (on)
+            titles.push_back(title);
+    return titles;
 }
 
 void Viewer::resetLayout() {
@@ -275,7 +304,7 @@ void Viewer::drawUi() {
             (void)saveSnapshot(kSnapshotDirectory);
     }
     hoverProbe_.reset();
-    followWindowSize();
+    followLayout();
     const float menuHeight = drawMenuBar();
     measure();
     const float statusHeight = drawStatusBar(shownStatusLine());
@@ -293,40 +322,19 @@ void Viewer::drawUi() {
 
     if (show.controls)
         drawControls(l.leftWidth, l.size.y);
+    const float cloudWidth = l.size.x - l.leftWidth - l.rightWidth;
+    const float strip = show.stats || show.log ? std::clamp(l.size.y * 0.3f, 160.0f, 320.0f) : 0.0f;
     if (show.cloud)
-        drawCloud(l.leftWidth, 0, l.size.x - l.leftWidth - l.rightWidth, l.size.y);
-    drawSidePanels(l.size.x - l.rightWidth, l.rightWidth, l.size.y / 3.0f);
-    if (show.stats) {
-        placePanel(kStatsTitle, l.leftWidth + 16.0f, 16.0f, 460.0f, 300.0f);
-        drawStatsPanel(*measured_, &show.stats);
-    }
-    const std::vector<LogEntry> log = logs_.snapshot();
-    if (show.log) {
-        placePanel(kLogTitle, l.leftWidth + 16.0f, l.size.y - 260.0f, 640.0f, 240.0f);
-        drawLogPanel(log, logPanel_, &show.log);
-    }
+        drawCloud(l.leftWidth, 0, cloudWidth, l.size.y - strip);
+    drawSidePanels(l.size.x - l.rightWidth, l.rightWidth, l.size.y);
+    drawBottomStrip(l.leftWidth, l.size.y - strip, cloudWidth, strip);
     if (show.source)
         drawSourcePicker(l.leftWidth + 40.0f, 40.0f);
-    if (show.fog) {
-        placePanel(kFogTitle, l.leftWidth + 60.0f, 60.0f, 520.0f, 440.0f);
-        drawFogPanel(imageOf(renderer_.fogTexture()), settings_.processing.fog, &show.fog);
-    }
-    if (show.aura) {
-        placePanel(kAuraTitle, l.leftWidth + 80.0f, 80.0f, 520.0f, 440.0f);
-        drawAuraPanel(imageOf(renderer_.auraTexture()), settings_.processing.aura, &show.aura);
-    }
-    if (show.infrared && infraredAvailable()) {
-        placePanel(kInfraredTitle, l.leftWidth + 100.0f, 100.0f, 480.0f, 400.0f);
-        afterPanel(kInfraredTitle,
-                   drawInfraredPanel(imageOf(renderer_.infraredTexture()),
-                                     shown_ ? shown_->infraredRange : processing::IntensityRange{},
-                                     probeSource(), &show.infrared));
-    }
     if (timeline)
         drawTimeline(*replay, {l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});
     if (replay)
         handleReplayKeys(*replay);
-    drawToasts(log, statusHeight);
+    drawToasts(logs_.snapshot(), statusHeight);
     if (hoverProbe_)
         showProbeTooltip(*hoverProbe_);
     drawHelpWindows();
@@ -392,11 +400,18 @@ void Viewer::drawCloud(float x, float y, float w, float h) {
     onCloudPointer(r);
 }
 
-void Viewer::drawSidePanels(float x, float w, float h) {
+// The right column, `height` tall, shared by the image panels shown.
+void Viewer::drawSidePanels(float x, float w, float height) {
+    const std::vector<const char*> column = rightColumn();
+    const float h = height / static_cast<float>(std::max<std::size_t>(column.size(), 1));
+    const auto place = [&](const char* title) {
+        const auto slot = std::find(column.begin(), column.end(), title) - column.begin();
+        placePanel(title, x, static_cast<float>(slot) * h, w, h);
+    };
     PanelVisibility& show = settings_.panels;
     const ProbeSource probe = probeSource();
     if (show.depth) {
-        placePanel(kDepthTitle, x, 0, w, h);
+        place(kDepthTitle);
         const DepthView& view = settings_.depthView;
         const bool overlay = view.colourOverlay && shown_ && shown_->colourOverDepth;
         const PanelImage colour = overlay ? imageOf(renderer_.colourOverDepthTexture()) : PanelImage{};
@@ -404,14 +419,14 @@ void Viewer::drawSidePanels(float x, float w, float h) {
                                                {colour, view.overlayOpacity}, legend_, probe, &show.depth));
     }
     if (show.confidence) {
-        placePanel(kConfidenceTitle, x, h, w, h);
+        place(kConfidenceTitle);
         const bool estimated = !probe.empty() && probe.depth->confidenceEstimated;
         const bool available = instrument_.capabilities().confidence || estimated;
         afterPanel(kConfidenceTitle, drawConfidencePanel(imageOf(renderer_.confidenceTarget()), available,
                                                          estimated, probe, &show.confidence));
     }
     if (show.camera) {
-        placePanel(kCameraTitle, x, 2.0f * h, w, h);
+        place(kCameraTitle);
         const PanelImage depth = shown_ && shown_->depthOverCamera
                                      ? imageOf(renderer_.depthOverCameraTarget())
                                      : imageOf(renderer_.depthTarget());
@@ -422,6 +437,35 @@ void Viewer::drawSidePanels(float x, float w, float h) {
         afterPanel(kCameraTitle, r.panel);
         if (r.shownWidth > 0)
             cameraShownWidth_ = r.shownWidth;
+    }
+    if (show.infrared && infraredAvailable()) {
+        place(kInfraredTitle);
+        const processing::IntensityRange range =
+            shown_ ? shown_->infraredRange : processing::IntensityRange{};
+        afterPanel(kInfraredTitle,
+                   drawInfraredPanel(imageOf(renderer_.infraredTexture()), range, probe, &show.infrared));
+    }
+    if (show.fog) {
+        place(kFogTitle);
+        drawFogPanel(imageOf(renderer_.fogTexture()), settings_.processing.fog, &show.fog);
+    }
+    if (show.aura) {
+        place(kAuraTitle);
+        drawAuraPanel(imageOf(renderer_.auraTexture()), settings_.processing.aura, &show.aura);
+    }
+}
+
+// The strip under the cloud: the stats and the log side by side, or one of them across it.
+void Viewer::drawBottomStrip(float x, float y, float w, float h) {
+    PanelVisibility& show = settings_.panels;
+    const float half = show.stats && show.log ? w / 2.0f : w;
+    if (show.stats) {
+        placePanel(kStatsTitle, x, y, half, h);
+        drawStatsPanel(*measured_, &show.stats);
+    }
+    if (show.log) {
+        placePanel(kLogTitle, x + w - half, y, half, h);
+        drawLogPanel(logs_.snapshot(), logPanel_, &show.log);
     }
 }
 

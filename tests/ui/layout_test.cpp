@@ -5,6 +5,7 @@
 #include "tests/test_data.h"
 #include "ui_fixture.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <utility>
@@ -32,7 +33,7 @@ TEST_F(UiTest, ResetLayoutBringsBackTheDefaultPanelsInTheirPlaces) {
     ASSERT_NE(controls, nullptr);
     const ImVec2 home = controls->Pos;
     ImGui::SetWindowPos(kControlsTitle, {home.x + 20.0f, home.y + 40.0f});
-    viewer_->settings().panels.depth = false;
+    viewer_->settings().panels.source = true; // floats: showing it lays out nothing again
     frame(0.0);
     ASSERT_NE(controls->Pos.x, home.x);
     const auto reset = locate(kControlsTitle, "Reset layout");
@@ -41,16 +42,53 @@ TEST_F(UiTest, ResetLayoutBringsBackTheDefaultPanelsInTheirPlaces) {
     frame(0.0);
     EXPECT_EQ(controls->Pos.x, home.x);
     EXPECT_EQ(controls->Pos.y, home.y);
-    EXPECT_TRUE(viewer_->settings().panels.depth);
+    EXPECT_FALSE(viewer_->settings().panels.source);
     ASSERT_NE(window(kDepthTitle), nullptr);
     EXPECT_TRUE(window(kDepthTitle)->Active);
+}
+
+// The panels a person opens take a place beside the cloud, not over it: the stats and the log in a strip
+// under it, the effect panels in the right column; no two overlap, all inside the window; hiding them
+// gives the cloud its room back.
+TEST_F(UiTest, OpenedPanelsAreDockedBesideTheCloudNotOverIt) {
+    const float fullCloudHeight = window(kCloudTitle)->Size.y;
+    PanelVisibility& show = viewer_->settings().panels;
+    show.stats = show.log = show.fog = show.aura = true;
+    frame(0.0);
+    frame(0.0);
+    const char* docked[] = {kControlsTitle, kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle,
+                            kFogTitle,      kAuraTitle,  kStatsTitle, kLogTitle};
+    const ImVec2 display = gui_.io().DisplaySize;
+    for (const char* a : docked) {
+        const ImGuiWindow* p = window(a);
+        ASSERT_TRUE(p && p->Active) << a;
+        EXPECT_GE(p->Pos.x, 0.0f) << a;
+        EXPECT_LE(p->Pos.x + p->Size.x, display.x + 0.5f) << a;
+        EXPECT_LE(p->Pos.y + p->Size.y, display.y + 0.5f) << a;
+        for (const char* b : docked) {
+            const ImGuiWindow* q = window(b);
+            if (p == q)
+                continue;
+            const float overlapX =
+                std::min(p->Pos.x + p->Size.x, q->Pos.x + q->Size.x) - std::max(p->Pos.x, q->Pos.x);
+            const float overlapY =
+                std::min(p->Pos.y + p->Size.y, q->Pos.y + q->Size.y) - std::max(p->Pos.y, q->Pos.y);
+            EXPECT_FALSE(overlapX > 1.0f && overlapY > 1.0f) << a << " overlaps " << b;
+        }
+    }
+    EXPECT_LT(window(kCloudTitle)->Size.y, fullCloudHeight - 100.0f) << "the strip is under the cloud";
+    show.stats = show.log = show.fog = show.aura = false;
+    frame(0.0);
+    frame(0.0);
+    EXPECT_EQ(window(kCloudTitle)->Size.y, fullCloudHeight);
 }
 
 // The window resized from 1280x720 down to 1024x600 and up to 1920x1080: the docked panels are laid out
 // again for each size, wholly inside it, and a floating panel the shrink left outside comes back in reach.
 TEST_F(UiTest, ThePanelsFollowTheWindowFromSmallToLarge) {
-    pressKey('S', 0.0); // the Stats panel floats
-    ImGui::SetWindowPos(kStatsTitle, {1150.0f, 650.0f});
+    pressKey('O', 0.0); // the Source panel floats
+    frame(0.0);
+    ImGui::SetWindowPos(kSourceTitle, {1150.0f, 650.0f});
     frame(0.0);
     std::map<int, float> cloudWidth;
     for (const auto& [w, h] : {std::pair{1024, 600}, std::pair{1920, 1080}, std::pair{1280, 720}}) {
@@ -65,9 +103,9 @@ TEST_F(UiTest, ThePanelsFollowTheWindowFromSmallToLarge) {
             EXPECT_LE(panel->Pos.x + panel->Size.x, w + 0.5f) << title << " at " << w << "x" << h;
             EXPECT_LE(panel->Pos.y + panel->Size.y, h + 0.5f) << title << " at " << w << "x" << h;
         }
-        const ImGuiWindow* stats = window(kStatsTitle);
-        EXPECT_LT(stats->Pos.x, w - 20.0f) << "the Stats title bar can be grabbed at " << w << "x" << h;
-        EXPECT_LT(stats->Pos.y, h - 20.0f) << "the Stats title bar can be grabbed at " << w << "x" << h;
+        const ImGuiWindow* source = window(kSourceTitle);
+        EXPECT_LT(source->Pos.x, w - 20.0f) << "the Source title bar can be grabbed at " << w << "x" << h;
+        EXPECT_LT(source->Pos.y, h - 20.0f) << "the Source title bar can be grabbed at " << w << "x" << h;
         cloudWidth[w] = window(kCloudTitle)->Size.x;
     }
     EXPECT_GT(cloudWidth[1920], cloudWidth[1280] + 200.0f) << "a larger window gives the cloud the room";
