@@ -1,5 +1,7 @@
 #include "ui/file_picker.h"
 
+#include "devices/replay/replay_source.h"
+
 #include <imgui.h>
 
 #include <algorithm>
@@ -15,17 +17,6 @@ namespace {
 bool pathExists(const fs::path& p) {
     std::error_code ec;
     return fs::exists(p, ec);
-}
-
-bool isFolder(const fs::path& p) {
-    std::error_code ec;
-    return fs::is_directory(p, ec);
-}
-
-std::string lowercase(std::string text) {
-    std::transform(text.begin(), text.end(), text.begin(),
-                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return text;
 }
 
 bool listedAsFolder(PathKind kind) {
@@ -212,14 +203,20 @@ std::optional<std::size_t> drawEntries(FilePickerState& state, bool scrollToSele
 } // namespace
 
 PathKind classifyPath(const fs::path& path) {
-    if (isFolder(path)) {
-        if (pathExists(path / "rgb.txt") || pathExists(path / "depth.txt"))
-            return PathKind::TumDirectory;
-        return isFolder(path / "depth") ? PathKind::StrayDirectory : PathKind::Folder;
-    }
-    const std::string extension = lowercase(path.extension().string());
-    if (pathExists(path) && (extension == ".dcrec" || extension == ".bag"))
+    switch (devices::replay::classifyCapture(path)) {
+    case devices::replay::CaptureKind::DcRecording:
+    case devices::replay::CaptureKind::RosBag:
         return PathKind::Recording;
+    case devices::replay::CaptureKind::StrayCapture:
+        return PathKind::StrayDirectory;
+    case devices::replay::CaptureKind::TumSequence:
+        return PathKind::TumDirectory;
+    case devices::replay::CaptureKind::Folder:
+        return PathKind::Folder;
+    case devices::replay::CaptureKind::OtherFile:
+    case devices::replay::CaptureKind::Missing:
+        break;
+    }
     return PathKind::Other;
 }
 

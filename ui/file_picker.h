@@ -14,15 +14,15 @@ inline constexpr const char* kFilePickerTitle = "Open a recording";
 
 // What a path is to the replay: something it opens, a folder to look into, or neither.
 enum class PathKind {
-    Recording,      // a file named .dcrec (depthcloud) or .bag (RealSense, ROS)
+    Recording,      // a depthcloud recording or a ROS bag (devices::replay::classifyCapture)
     StrayDirectory, // a Stray Scanner capture: depth/ beside rgb.mp4
     TumDirectory,   // a TUM RGB-D sequence: rgb.txt and depth.txt
     Folder,         // any other directory
     Other,          // any other file
 };
 
-// Looks at names only (a folder's entries for Stray and TUM), as the replay's opener tells formats apart;
-// whether the contents are sound is the opener's to say.
+// The replay's own answer (devices::replay::classifyCapture), in the picker's terms; whether the contents
+// are sound is the opener's to say.
 PathKind classifyPath(const std::filesystem::path& path);
 bool isSource(PathKind kind);
 

@@ -1,6 +1,7 @@
 #include "devices/replay/replay_source.h"
 
 #include "base/log.h"
+#include "devices/recording/format.h"
 #include "devices/replay/importers.h"
 
 #ifdef DC_HAVE_ROS
@@ -8,6 +9,7 @@
 #endif
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -118,40 +120,66 @@ frame::Pose poseFromQuaternion(const double t[3], const double q[4]) {
 
 namespace {
 
-// A ROS bag by its content (every bag starts "#ROSBAG V2.0"), else by its extension in any case: a name
-// written by another system (X.BAG) opens as what it is, and a file that only ends in .bag still gets the
-// bag reader's own message.
-bool isRosBag(const std::filesystem::path& p) {
-    std::ifstream in(p, std::ios::binary);
-    char magic[8] = {};
-    if (in.read(magic, sizeof magic) && std::string_view(magic, sizeof magic) == "#ROSBAG ")
-        return true;
+std::string lowercaseExtension(const std::filesystem::path& p) {
     std::string extension = p.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
                    [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-    return extension == ".bag";
+    return extension;
+}
+
+CaptureKind classifyFile(const std::filesystem::path& p) {
+    std::ifstream in(p, std::ios::binary);
+    std::array<char, 8> head{};
+    if (in.read(head.data(), head.size())) {
+        if (std::string_view(head.data(), head.size()) == "#ROSBAG ")
+            return CaptureKind::RosBag;
+        if (std::equal(head.begin(), head.end(), recording::kFileMagic.begin(),
+                       [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }))
+            return CaptureKind::DcRecording;
+    }
+    // A file that only carries the name still goes to its reader, which says what is wrong with it.
+    const std::string extension = lowercaseExtension(p);
+    if (extension == ".bag")
+        return CaptureKind::RosBag;
+    return extension == ".dcrec" ? CaptureKind::DcRecording : CaptureKind::OtherFile;
 }
 
 } // namespace
 
+CaptureKind classifyCapture(const std::filesystem::path& path) {
+    if (!pathExists(path))
+        return CaptureKind::Missing;
+    if (!isDirectory(path))
+        return classifyFile(path);
+    if (pathExists(path / "rgb.txt") || pathExists(path / "depth.txt"))
+        return CaptureKind::TumSequence;
+    return isDirectory(path / "depth") ? CaptureKind::StrayCapture : CaptureKind::Folder;
+}
+
 Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path,
                                                          const ReplayOpenOptions& options) {
-    const std::filesystem::path p(path);
     Expected<std::unique_ptr<ReplaySource>> source = Error{""};
-    if (!pathExists(p))
+    switch (classifyCapture(path)) {
+    case CaptureKind::Missing:
         return Error{path + " does not exist"};
-    if (!isDirectory(p) && isRosBag(p))
+    case CaptureKind::RosBag:
         source = openBag(path, options);
-    else if (!isDirectory(p))
+        break;
+    case CaptureKind::DcRecording:
+    case CaptureKind::OtherFile: // the recording reader names what the file lacks
         source = openRecordingSource(path);
-    else if (pathExists(p / "rgb.txt") || pathExists(p / "depth.txt"))
+        break;
+    case CaptureKind::TumSequence:
         source = openTumSource(path);
-    else if (isDirectory(p / "depth"))
+        break;
+    case CaptureKind::StrayCapture:
         source = openStraySource(path);
-    else
+        break;
+    case CaptureKind::Folder:
         return Error{path +
                      ": not a recording, a Stray Scanner directory (depth/, rgb.mp4, camera_matrix.csv, "
                      "odometry.csv) or a TUM RGB-D directory (rgb.txt, depth.txt)"};
+    }
     if (!source)
         return source;
     if ((*source)->frameCount() == 0)

@@ -6,6 +6,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <filesystem>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,20 @@ struct ReplayOpenOptions {
     std::string depthTopic{};
     std::string colorTopic{};
 };
+
+// What a path holds, for the replay: a file by its first bytes where they say (a depthcloud recording's
+// magic, a ROS bag's "#ROSBAG "), else by its extension in any case (TAKE.DCREC, x.Bag); a folder by its
+// entries. The file picker, a path dropped on the window and replay: all ask this one question.
+enum class CaptureKind {
+    DcRecording,  // a depthcloud recording
+    RosBag,       // a ROS 1 bag (RealSense, ROS)
+    StrayCapture, // a Stray Scanner capture: depth/ beside rgb.mp4
+    TumSequence,  // a TUM RGB-D sequence: rgb.txt and depth.txt
+    Folder,       // any other directory
+    OtherFile,    // any other file
+    Missing,      // nothing there
+};
+CaptureKind classifyCapture(const std::filesystem::path& path);
 
 // Opens PATH as whatever it is: a depthcloud recording (a file), a ROS bag (a .bag file), a Stray Scanner
 // directory (depth/, rgb.mp4, camera_matrix.csv, odometry.csv) or a TUM RGB-D directory (rgb.txt, depth.txt).

@@ -1,8 +1,10 @@
 // Importers: the real ARKit capture in Stray layout, a TUM RGB-D frame, calibration override, and every
 // broken capture directory the issue lists.
 
+#include "devices/recording/format.h"
 #include "devices/recording/frame_codec.h"
 #include "devices/replay/importers.h"
+#include "devices/replay/replay_source.h"
 #include "devices/replay/stray_format.h"
 #include "devices/replay/tum_format.h"
 #include "exporting/export.h"
@@ -19,6 +21,7 @@
 #include <fstream>
 #include <limits>
 #include <random>
+#include <unistd.h>
 #include <vector>
 
 namespace dc::devices::replay {
@@ -420,6 +423,39 @@ TEST(ReplaySource, SanitizeZeroesNanInfiniteAndNegativeDepthAndCountsThem) {
             EXPECT_EQ(depth.pixels[i], good ? samples[i] : 0.0f) << "sample " << i << " of " << n;
         }
     }
+}
+
+// One answer for every way a capture is opened: by the first bytes where a file has them, else by the
+// extension in any case; folders by their entries.
+TEST(CaptureKind, ACaptureIsKnownByItsContentOrItsExtensionInAnyCase) {
+    const fs::path dir = fs::temp_directory_path() / ("dc-capture-kind-" + std::to_string(::getpid()));
+    fs::remove_all(dir);
+    fs::create_directories(dir / "stray" / "depth");
+    fs::create_directories(dir / "tum");
+    fs::create_directories(dir / "empty");
+    const auto write = [&](const char* name, const std::string& bytes) {
+        std::ofstream(dir / name, std::ios::binary) << bytes;
+        return dir / name;
+    };
+    const std::string recordingMagic(recording::kFileMagic.begin(), recording::kFileMagic.end());
+    std::ofstream(dir / "tum" / "rgb.txt") << "# none\n";
+    EXPECT_EQ(classifyCapture(write("X.BAG", "not yet a bag")), CaptureKind::RosBag);
+    EXPECT_EQ(classifyCapture(write("x.Bag", "not yet a bag")), CaptureKind::RosBag);
+    EXPECT_EQ(classifyCapture(write("take-without-a-name", "#ROSBAG V2.0\n")), CaptureKind::RosBag);
+    EXPECT_EQ(classifyCapture(write("TAKE.DCREC", "short")), CaptureKind::DcRecording);
+    EXPECT_EQ(classifyCapture(write("take.Dcrec", "short")), CaptureKind::DcRecording);
+    EXPECT_EQ(classifyCapture(write("renamed.bin", recordingMagic + "rest")), CaptureKind::DcRecording);
+    EXPECT_EQ(classifyCapture(write("notes.txt", "a note, longer than eight bytes")), CaptureKind::OtherFile);
+    EXPECT_EQ(classifyCapture(dir / "stray"), CaptureKind::StrayCapture);
+    EXPECT_EQ(classifyCapture(dir / "tum"), CaptureKind::TumSequence);
+    EXPECT_EQ(classifyCapture(dir / "empty"), CaptureKind::Folder);
+    EXPECT_EQ(classifyCapture(dir / "missing.dcrec"), CaptureKind::Missing);
+    // replay: opens by the same answer: an upper-case recording is read as a recording (its reader names
+    // the bad magic), not refused by its name.
+    const auto opened = openReplaySource((dir / "TAKE.DCREC").string());
+    ASSERT_FALSE(opened);
+    EXPECT_NE(opened.error().message.find("TAKE.DCREC"), std::string::npos) << opened.error().message;
+    fs::remove_all(dir);
 }
 
 } // namespace

@@ -77,6 +77,18 @@ TEST_F(FilePickerTest, ListsFoldersFirstAndOnlySourcesByDefault) {
     EXPECT_EQ(names(), (std::vector<std::string>{"captures", "desk_stray", "office_tum", "lonely.txt"}));
 }
 
+// A recording named by another system (upper case) is listed, and opened, as the recording it is.
+TEST_F(FilePickerTest, ARecordingInUpperCaseIsListedAsARecording) {
+    touch(root_ / "captures" / "TAKE2.DCREC");
+    touch(root_ / "captures" / "X.BAG");
+    state_.directory = (root_ / "captures").string();
+    frame();
+    EXPECT_EQ(names(), (std::vector<std::string>{"TAKE2.DCREC", "X.BAG", "take.dcrec"}));
+    EXPECT_EQ(classifyPath(root_ / "captures" / "X.BAG"), PathKind::Recording);
+    EXPECT_EQ(sourceSpecForPath((root_ / "captures" / "TAKE2.DCREC").string()).value(),
+              "replay:" + (root_ / "captures" / "TAKE2.DCREC").string());
+}
+
 TEST_F(FilePickerTest, TheKeyboardEntersAFolderPicksARecordingAndBackspaceGoesUp) {
     selectWithKeys("office_tum");
     selectWithKeys("captures");
