@@ -5,7 +5,7 @@ set -euo pipefail
 
 packages=(
     build-essential cmake pkg-config git
-    libglfw3-dev libglm-dev libimgui-dev libepoxy-dev
+    libglfw3-dev libx11-dev libglm-dev libimgui-dev libepoxy-dev
     libegl-dev libgl-dev libgl1-mesa-dri libegl-mesa0 libglx-mesa0
     libopencv-dev libopencv-contrib-dev libusb-1.0-0-dev libv4l-dev
     libgtest-dev libgmock-dev libbenchmark-dev

@@ -263,8 +263,9 @@ void composite(GLFWwindow* window) {
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
 }
 
-// The finished ImGui frame into the back buffer where it changed, each part copied to the window.
-void presentParts(const PartialPresenter& presenter, const std::vector<ui::DamageRect>& rects) {
+// The finished ImGui frame into the back buffer where it changed, each part copied to the window. False
+// where the X server refused a copy (the window changed size since the back buffer did).
+bool presentParts(const PartialPresenter& presenter, const std::vector<ui::DamageRect>& rects) {
     ImDrawData& data = *ImGui::GetDrawData();
     const int height = static_cast<int>(data.DisplaySize.y * data.FramebufferScale.y);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
@@ -272,21 +273,29 @@ void presentParts(const PartialPresenter& presenter, const std::vector<ui::Damag
     ui::drawDamaged(data, rects, [height](const ui::DamageRect& r) {
         render::clearColorWithin(ui::pixelRectOf(r, height), kBackground[0], kBackground[1], kBackground[2]);
     });
+    bool shown = true;
     for (const ui::DamageRect& r : rects)
-        presenter.copy(ui::pixelRectOf(r, height));
+        shown = presenter.copy(ui::pixelRectOf(r, height)) && shown;
+    return shown;
 }
 
+// What drawChanged did: whether it drew, and whether the window may show less than it drew (a copy refused).
+struct Drawn {
+    bool drawn = false;
+    bool incomplete = false;
+};
+
 // Draws the frame where it changed: in parts for a presenter, whole for a swap. The last frame is drawn
-// whole for a swap even if unchanged, since the screenshot reads the back buffer. Returns whether it drew.
-bool drawChanged(GLFWwindow* window, const std::optional<PartialPresenter>& parts,
-                 const std::vector<ui::DamageRect>& changed, bool last) {
+// whole for a swap even if unchanged, since the screenshot reads the back buffer.
+Drawn drawChanged(GLFWwindow* window, const std::optional<PartialPresenter>& parts,
+                  const std::vector<ui::DamageRect>& changed, bool last) {
     if (parts && !changed.empty())
-        presentParts(*parts, changed);
-    else if (!parts && (!changed.empty() || last))
+        return {true, !presentParts(*parts, changed)};
+    if (!parts && (!changed.empty() || last)) {
         composite(window);
-    else
-        return false;
-    return true;
+        return {true, false};
+    }
+    return {};
 }
 
 std::pair<int, int> sizeOf(GLFWwindow* window) {
@@ -298,14 +307,16 @@ std::pair<int, int> sizeOf(GLFWwindow* window) {
 // Whether the window's framebuffer changed size since `size` (which it updates): the next frame is drawn
 // whole. Software GL gives the back buffer the window's new size only at a swap (Mesa revalidates the
 // drawable there), so where nothing else swaps this swaps once first: a copy from a back buffer of the old
-// size would leave the picture offset, or ask the X server for pixels outside its image and end the run.
-bool followSize(GLFWwindow* window, std::pair<int, int>& size, bool partsPresented) {
+// size would leave the picture offset, or ask the X server for pixels outside its image. `stale` (a copy
+// was refused) asks for the same without a size GLFW has seen change: the resize is on its way.
+bool followSize(GLFWwindow* window, std::pair<int, int>& size, const std::optional<PartialPresenter>& parts,
+                bool stale) {
     const std::pair<int, int> now = sizeOf(window);
-    if (now == size)
+    if (now == size && !stale)
         return false;
     size = now;
-    if (partsPresented)
-        glfwSwapBuffers(window);
+    if (parts && !parts->resizeBackBuffer())
+        logWarning("window: the X server refused a swap while the window changed size; drawn whole again");
     return true;
 }
 
@@ -410,6 +421,7 @@ int runGui(const ViewerOptions& options) {
         Clock::time_point frameStart = start;
         ui::FrameDamage damage;
         std::pair<int, int> framebufferSize = sizeOf(window.get());
+        bool incomplete = false; // a part of the last frame did not reach the window
         // Software GL draws only what changed, into a back buffer that nothing swaps; a GPU draws whole
         // frames, synchronised with the display by the swap.
         const std::optional<PartialPresenter> parts =
@@ -425,7 +437,7 @@ int runGui(const ViewerOptions& options) {
             frameStart = now + std::chrono::duration_cast<Clock::duration>(
                                    std::chrono::duration<double, std::milli>(viewer.lastWaitMs()));
             glfwPollEvents(); // after the wait: the frame acts on the freshest input
-            if (followSize(window.get(), framebufferSize, parts.has_value()))
+            if (followSize(window.get(), framebufferSize, parts, std::exchange(incomplete, false)))
                 damage.forget();
             const auto uiStart = Clock::now();
             const std::vector<ui::DamageRect> changed = uiFrame(viewer, input, damage);
@@ -436,7 +448,8 @@ int runGui(const ViewerOptions& options) {
             // Closing the window ends the run like the last of --frames: --out still gets its files.
             const bool last =
                 glfwWindowShouldClose(window.get()) || (options.frames && frame + 1 >= *options.frames);
-            const bool drawn = drawChanged(window.get(), parts, changed, last);
+            const auto [drawn, refused] = drawChanged(window.get(), parts, changed, last);
+            incomplete = refused;
             if (drawn)
                 viewer.recordUiMilliseconds(
                     std::chrono::duration<double, std::milli>(Clock::now() - uiStart).count());
