@@ -314,6 +314,14 @@ Status writeOutputs(const BenchUpsampleOptions& options, const nlohmann::json& r
 
 int runBenchUpsample(const BenchUpsampleOptions& options) {
     setLogQuiet(true);
+    if (upsample::peerMethods().empty()) {
+        std::fprintf(
+            stderr,
+            "depthcloud: error: bench upsample needs its peers, OpenCV contrib's filters, from %s beside "
+            "the binary, which this installation lacks (a build from the source tree makes it)\n",
+            upsample::kPeersModule);
+        return kExitFailure;
+    }
     std::printf("bench upsample: %d timed runs per case (median), %d threads\n", options.runs,
                 cv::getNumThreads());
     printReproduce(options);

@@ -36,7 +36,11 @@ struct Method {
     std::function<frame::Plane<float>(const Problem&)> run;
 };
 
-// nearest, bilinear, bicubic (Keys a = -0.5), OpenCV guided / joint bilateral / fast global smoother, ours.
+// The module that holds the OpenCV contrib peers, beside the depthcloud binary.
+inline constexpr const char* kPeersModule = "depthcloud-upsample-peers.so";
+// OpenCV guided / joint bilateral / fast global smoother, from kPeersModule; empty where it is not there.
+const std::vector<Method>& peerMethods();
+// nearest, bilinear, bicubic (Keys a = -0.5), the peers (where present), ours.
 std::vector<Method> allMethods();
 // The method of that name (one of allMethods()).
 const Method& methodNamed(const std::string& name);

@@ -7,10 +7,12 @@
 #include "processing/quality.h"
 #include "processing/upsampling_stage.h"
 #include "tool/bench_upsample.h"
+#include "tool/bench_upsample_inputs.h"
 
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
-#include <opencv2/ximgproc.hpp>
+
+#include <dlfcn.h>
 
 #include <algorithm>
 #include <array>
@@ -26,56 +28,6 @@ namespace dc::tool::upsample {
 namespace {
 
 using frame::Plane;
-
-cv::Mat asMat(const Plane<float>& p) {
-    return {p.height, p.width, CV_32F, const_cast<float*>(p.pixels.data())};
-}
-
-Plane<float> toPlane(const cv::Mat& m) {
-    Plane<float> p(m.cols, m.rows);
-    m.convertTo(cv::Mat(p.height, p.width, CV_32F, p.pixels.data()), CV_32F);
-    return p;
-}
-
-cv::Size outputSize(const Problem& p) {
-    return {p.truth.width, p.truth.height};
-}
-
-// What an OpenCV user would feed its filters: the depth scaled bilinearly (holes averaged in) and the
-// guide at the output size, into matrices kept from one call to the next as a loop over frames keeps them.
-const cv::Mat& bilinearDepth(const Problem& p) {
-    thread_local cv::Mat out;
-    cv::resize(asMat(p.low.depthMeters), out, outputSize(p), 0, 0, cv::INTER_LINEAR);
-    return out;
-}
-
-const cv::Mat& guideAtOutput(const cv::Mat& guide, cv::Size size) {
-    if (guide.size() == size)
-        return guide;
-    thread_local cv::Mat out;
-    cv::resize(guide, out, size, 0, 0, cv::INTER_AREA);
-    return out;
-}
-
-const cv::Mat& unitFloat(const cv::Mat& image8) {
-    thread_local cv::Mat out;
-    image8.convertTo(out, CV_32F, 1.0 / 255.0);
-    return out;
-}
-
-// Parameters follow the upsampling factor f with one rule per method for every scene and factor: the best
-// rule (by mean MAD over the Middlebury scenes at x2..x16) of a small sweep done while writing this bench.
-int radiusFor(double factor, double base, double perFactor) {
-    return std::max(1, static_cast<int>(std::lround(base + perFactor * factor)));
-}
-
-// A parameter tuned per factor (x2, x4, x8, x16 on the four public Middlebury scenes), interpolated
-// log-linearly in between and held beyond.
-double perFactor(double factor, const std::array<double, 4>& values) {
-    const double t = std::clamp(std::log2(factor) - 1.0, 0.0, 3.0);
-    const int i = std::min(static_cast<int>(t), 2);
-    return std::exp(std::log(values[i]) + (t - i) * (std::log(values[i + 1]) - std::log(values[i])));
-}
 
 Plane<float> ours(const Problem& p, int subsample, bool fitWeighted) {
     processing::GuidedFilterParams params;
@@ -115,28 +67,22 @@ Plane<float> oursQualityWholeLevels(const Problem& p) {
     return out;
 }
 
-Plane<float> opencvGuided(const Problem& p) {
-    thread_local cv::Mat out;
-    cv::ximgproc::guidedFilter(unitFloat(guideAtOutput(p.guideColor, outputSize(p))), bilinearDepth(p), out,
-                               radiusFor(p.factor, 0.0, 1.0), 1e-2);
-    return toPlane(out);
-}
-
-Plane<float> opencvJointBilateral(const Problem& p) {
-    const double sigmaSpace = std::min(p.factor, 3.0); // its cost grows with sigmaSpace^2
-    thread_local cv::Mat out;
-    cv::ximgproc::jointBilateralFilter(unitFloat(guideAtOutput(p.guideColor, outputSize(p))),
-                                       bilinearDepth(p), out, 2 * static_cast<int>(1.5 * sigmaSpace) + 1, 0.1,
-                                       sigmaSpace);
-    return toPlane(out);
-}
-
-// lambda and sigma_color the best of lambda 30..3000 x sigma 2..16 by mean MAD / RCG's at each factor.
-Plane<float> opencvFastGlobalSmoother(const Problem& p) {
-    thread_local cv::Mat out;
-    cv::ximgproc::fastGlobalSmootherFilter(guideAtOutput(p.guideColor, outputSize(p)), bilinearDepth(p), out,
-                                           perFactor(p.factor, {100.0, 100.0, 300.0, 300.0}), 4.0);
-    return toPlane(out);
+// The OpenCV contrib peers, from the module built beside this binary (none where it is missing or cannot be
+// loaded: an installed depthcloud ships without it). Loaded once and kept loaded for the process.
+std::vector<Method> loadPeers() {
+    std::error_code error;
+    const std::filesystem::path self = std::filesystem::read_symlink("/proc/self/exe", error);
+    if (error)
+        return {};
+    void* module = ::dlopen((self.parent_path() / kPeersModule).c_str(), RTLD_NOW | RTLD_LOCAL);
+    if (!module)
+        return {};
+    using Entry = void (*)(std::vector<Method>&);
+    const auto entry = reinterpret_cast<Entry>(::dlsym(module, "dcUpsamplePeers"));
+    std::vector<Method> peers;
+    if (entry)
+        entry(peers);
+    return peers;
 }
 
 Plane<float> resizedWith(const Problem& p, int interpolation) {
@@ -201,15 +147,17 @@ Plane<float> bicubic(const Plane<float>& low, int width, int height) {
     return out;
 }
 
+const std::vector<Method>& peerMethods() {
+    static const std::vector<Method> peers = loadPeers();
+    return peers;
+}
+
 std::vector<Method> allMethods() {
-    return {
+    std::vector<Method> methods = {
         {"nearest", [](const Problem& p) { return resizedWith(p, cv::INTER_NEAREST); }},
         {"bilinear", [](const Problem& p) { return resizedWith(p, cv::INTER_LINEAR); }},
         {"bicubic",
          [](const Problem& p) { return bicubic(p.low.depthMeters, p.truth.width, p.truth.height); }},
-        {"opencv guided", opencvGuided},
-        {"opencv joint bilateral", opencvJointBilateral},
-        {"opencv fast global smoother", opencvFastGlobalSmoother},
         {"ours He GF", [](const Problem& p) { return ours(p, 1, false); }},
         {"ours full", [](const Problem& p) { return ours(p, 1, true); }},
         {"ours fast s=2", [](const Problem& p) { return ours(p, 2, true); }},
@@ -220,6 +168,9 @@ std::vector<Method> allMethods() {
          [](const Problem& p) { return oursGlobal(p, processing::UpsamplingMethod::Quality); }},
         {"ours quality, whole levels", oursQualityWholeLevels},
     };
+    const std::vector<Method>& peers = peerMethods();
+    methods.insert(methods.begin() + 3, peers.begin(), peers.end());
+    return methods;
 }
 
 const Method& methodNamed(const std::string& name) {

@@ -53,9 +53,9 @@ struct Output {
     std::string text;
 };
 
-Output runBinary(const std::string& arguments) {
+Output runBinary(const std::string& arguments, const std::string& binary = DEPTHCLOUD_BINARY) {
     Output out;
-    FILE* pipe = ::popen((std::string(DEPTHCLOUD_BINARY) + " " + arguments + " 2>&1").c_str(), "r");
+    FILE* pipe = ::popen((binary + " " + arguments + " 2>&1").c_str(), "r");
     if (!pipe)
         return out;
     char buffer[4096];
@@ -116,6 +116,30 @@ TEST(BenchUpsample, WritesTableJsonAndChartOnTinyInputs) {
 TEST(BenchUpsample, RejectsTooFewRunsAndAMissingDataDirectory) {
     EXPECT_EQ(runBinary("bench upsample --runs 3").exitCode, 2);
     EXPECT_EQ(runBinary("bench upsample --data /nonexistent/depthcloud").exitCode, 2);
+}
+
+// The peers live in a module beside the binary, which an installed depthcloud lacks: the binary itself does
+// not link OpenCV's contrib filters, and the bench without its peers says so instead of measuring ours alone.
+TEST(BenchUpsample, ThePeersAreAModuleOfTheirOwnAndTheBenchRefusesToRunWithoutThem) {
+    Output linked;
+    FILE* pipe = ::popen(("ldd " + std::string(DEPTHCLOUD_BINARY)).c_str(), "r");
+    ASSERT_NE(pipe, nullptr);
+    char buffer[4096];
+    for (std::size_t n; (n = std::fread(buffer, 1, sizeof buffer, pipe)) > 0;)
+        linked.text.append(buffer, n);
+    ASSERT_EQ(::pclose(pipe), 0);
+    EXPECT_NE(linked.text.find("libopencv_core"), std::string::npos) << linked.text;
+    EXPECT_EQ(linked.text.find("libopencv_ximgproc"), std::string::npos) << linked.text;
+
+    const fs::path alone =
+        fs::temp_directory_path() / ("depthcloud-without-peers-" + std::to_string(::getpid()));
+    fs::create_directories(alone);
+    fs::copy_file(DEPTHCLOUD_BINARY, alone / "depthcloud");
+    const Output out = runBinary("bench upsample --quick", (alone / "depthcloud").string());
+    EXPECT_EQ(out.exitCode, 1) << out.text;
+    EXPECT_NE(out.text.find("depthcloud-upsample-peers.so"), std::string::npos) << out.text;
+    EXPECT_EQ(out.text.find("ours"), std::string::npos) << "no table of ours alone";
+    fs::remove_all(alone);
 }
 
 } // namespace
