@@ -1,5 +1,7 @@
 #include "ui/settings.h"
 
+#include "ui/settings_fields.h"
+
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
@@ -14,82 +16,6 @@ using nlohmann::json;
 
 float finiteOr(float v, float fallback) {
     return std::isfinite(v) ? v : fallback;
-}
-
-template <class T> void read(const json& j, const char* key, T& out) {
-    const auto it = j.find(key);
-    if (it == j.end())
-        return;
-    try {
-        out = it->get<T>();
-    } catch (const json::exception&) {
-        // A mistyped value keeps its default: the rest of the file is still worth restoring.
-    }
-}
-
-json processingToJson(const processing::ProcessingSettings& p) {
-    const auto& sm = p.smoothingParams;
-    const auto& up = p.upsamplingParams;
-    return {{"smoothing", p.smoothing},
-            {"upsampling", p.upsampling},
-            {"depthSource", static_cast<int>(p.depthSource)},
-            {"alpha", sm.alpha},
-            {"jumpMeters", sm.jumpMeters},
-            {"holeFrames", sm.holeFrames},
-            {"method", static_cast<int>(up.method)},
-            {"subsample", up.subsample},
-            {"outputSize", static_cast<int>(up.size)},
-            {"radiusPixels", up.radiusPixels},
-            {"epsilon", up.epsilon},
-            {"fitWeighted", up.fitWeighted},
-            {"depthNoiseMeters", up.depthNoiseMeters},
-            {"smoothness", up.smoothness},
-            {"fogMaxMeters", p.fog.fogMaxMeters},
-            {"fogBlurSigmaPixels", p.fog.blurSigmaPixels},
-            {"fogColor", p.fog.color},
-            {"fogConfidenceOverlay", p.fog.confidenceOverlay},
-            {"auraMatte", static_cast<int>(p.aura.matte)},
-            {"auraNearMeters", p.aura.nearMeters},
-            {"auraFarMeters", p.aura.farMeters},
-            {"auraRegionDepthMeters", p.aura.regionDepthMeters},
-            {"auraSeparationMeters", p.aura.separationMeters},
-            {"auraRingPixels", p.aura.ringPixels}};
-}
-
-template <class E> void readEnum(const json& j, const char* key, E& out, int count) {
-    int v = static_cast<int>(out);
-    read(j, key, v);
-    if (v >= 0 && v < count)
-        out = static_cast<E>(v);
-}
-
-void processingFromJson(const json& j, processing::ProcessingSettings& p) {
-    auto& sm = p.smoothingParams;
-    auto& up = p.upsamplingParams;
-    read(j, "smoothing", p.smoothing);
-    read(j, "upsampling", p.upsampling);
-    readEnum(j, "depthSource", p.depthSource, 2);
-    read(j, "alpha", sm.alpha);
-    read(j, "jumpMeters", sm.jumpMeters);
-    read(j, "holeFrames", sm.holeFrames);
-    readEnum(j, "method", up.method, 4);
-    read(j, "subsample", up.subsample);
-    readEnum(j, "outputSize", up.size, 2);
-    read(j, "radiusPixels", up.radiusPixels);
-    read(j, "epsilon", up.epsilon);
-    read(j, "fitWeighted", up.fitWeighted);
-    read(j, "depthNoiseMeters", up.depthNoiseMeters);
-    read(j, "smoothness", up.smoothness);
-    read(j, "fogMaxMeters", p.fog.fogMaxMeters);
-    read(j, "fogBlurSigmaPixels", p.fog.blurSigmaPixels);
-    read(j, "fogColor", p.fog.color);
-    read(j, "fogConfidenceOverlay", p.fog.confidenceOverlay);
-    readEnum(j, "auraMatte", p.aura.matte, 2);
-    read(j, "auraNearMeters", p.aura.nearMeters);
-    read(j, "auraFarMeters", p.aura.farMeters);
-    read(j, "auraRegionDepthMeters", p.aura.regionDepthMeters);
-    read(j, "auraSeparationMeters", p.aura.separationMeters);
-    read(j, "auraRingPixels", p.aura.ringPixels);
 }
 
 // Keeps the processing parameters where the stages are defined and stable.
@@ -184,50 +110,9 @@ void rememberSource(Settings& settings, const std::string& source) {
 }
 
 std::string settingsToJson(const Settings& s) {
-    const auto& c = s.cloud;
-    json j;
-    j["panels"] = {
-        {"cloud", s.panels.cloud},       {"depth", s.panels.depth},       {"confidence", s.panels.confidence},
-        {"camera", s.panels.camera},     {"controls", s.panels.controls}, {"stats", s.panels.stats},
-        {"log", s.panels.log},           {"infrared", s.panels.infrared}, {"source", s.panels.source},
-        {"timeline", s.panels.timeline}, {"fog", s.panels.fog},           {"aura", s.panels.aura}};
-    j["window"] = {{"x", s.window.x},
-                   {"y", s.window.y},
-                   {"width", s.window.width},
-                   {"height", s.window.height},
-                   {"maximized", s.window.maximized}};
-    j["cloud"] = {{"minConfidence", static_cast<int>(c.minConfidence)},
-                  {"pointSizePixels", c.pointSizePixels},
-                  {"fillGaps", c.fillGaps},
-                  {"nearMeters", c.nearMeters},
-                  {"coloring", static_cast<int>(c.coloring)},
-                  {"path", static_cast<int>(c.path)},
-                  {"decimation", c.decimation},
-                  {"autoRotate", c.motion.enabled},
-                  {"rotationSpeed", c.motion.speed},
-                  {"scaleMovement", c.motion.scaleMovement},
-                  {"yawRadians", c.orbit.yawRadians},
-                  {"pitchRadians", c.orbit.pitchRadians},
-                  {"zoom", c.orbit.zoom},
-                  {"panX", c.orbit.panMeters.x},
-                  {"panY", c.orbit.panMeters.y}};
-    j["depthRange"] = {{"minMeters", s.depthRange.minMeters},
-                       {"maxMeters", s.depthRange.maxMeters},
-                       {"automatic", s.depthRange.automatic},
-                       {"colormap", static_cast<int>(s.depthRange.colormap)}};
-    j["camera"] = {{"fill", s.camera.fill},
-                   {"depthOverlay", s.camera.depthOverlay},
-                   {"overlayOpacity", s.camera.overlayOpacity}};
-    j["depthPanel"] = {{"colourOverlay", s.depthView.colourOverlay},
-                       {"overlayOpacity", s.depthView.overlayOpacity}};
-    j["accumulate"] = {{"enabled", s.accumulate.enabled},
-                       {"budgetThousands", s.accumulate.budgetThousands},
-                       {"voxelMillimeters", s.accumulate.voxelMillimeters}};
-    j["record"] = {{"directory", s.record.directory},
-                   {"jpegColor", s.record.jpegColor},
-                   {"jpegQuality", s.record.jpegQuality}};
-    j["recentSources"] = s.recentSources;
-    j["processing"] = processingToJson(s.processing);
+    json j = json::object();
+    for (const SettingField& f : settingFields())
+        (f.section.empty() ? j : j[f.section])[f.key] = f.write(s);
     return j.dump(2) + "\n";
 }
 
@@ -237,71 +122,14 @@ Expected<Settings> settingsFromJson(const std::string& text) {
         return Error{"settings are not a JSON object"};
     Settings s;
     const json none = json::object();
-    const json& p = j.contains("panels") ? j["panels"] : none;
-    read(p, "cloud", s.panels.cloud);
-    read(p, "depth", s.panels.depth);
-    read(p, "confidence", s.panels.confidence);
-    read(p, "camera", s.panels.camera);
-    read(p, "controls", s.panels.controls);
-    read(p, "stats", s.panels.stats);
-    read(p, "log", s.panels.log);
-    read(p, "source", s.panels.source);
-    read(p, "timeline", s.panels.timeline);
-    read(p, "fog", s.panels.fog);
-    read(p, "aura", s.panels.aura);
-    read(p, "infrared", s.panels.infrared);
-    const json& w = j.contains("window") ? j["window"] : none;
-    read(w, "x", s.window.x);
-    read(w, "y", s.window.y);
-    read(w, "width", s.window.width);
-    read(w, "height", s.window.height);
-    read(w, "maximized", s.window.maximized);
-    const json& c = j.contains("cloud") ? j["cloud"] : none;
-    int level = static_cast<int>(s.cloud.minConfidence);
-    read(c, "minConfidence", level);
-    s.cloud.minConfidence = static_cast<frame::Confidence>(std::clamp(level, 0, 2));
-    read(c, "pointSizePixels", s.cloud.pointSizePixels);
-    read(c, "fillGaps", s.cloud.fillGaps);
-    read(c, "nearMeters", s.cloud.nearMeters);
-    int coloring = static_cast<int>(s.cloud.coloring);
-    read(c, "coloring", coloring);
-    s.cloud.coloring = static_cast<render::PointColoring>(coloring); // sanitize() checks the range
-    int path = static_cast<int>(s.cloud.path);
-    read(c, "path", path);
-    s.cloud.path = static_cast<CloudPathChoice>(path);
-    read(c, "decimation", s.cloud.decimation);
-    read(c, "autoRotate", s.cloud.motion.enabled);
-    read(c, "rotationSpeed", s.cloud.motion.speed);
-    read(c, "scaleMovement", s.cloud.motion.scaleMovement);
-    read(c, "yawRadians", s.cloud.orbit.yawRadians);
-    read(c, "pitchRadians", s.cloud.orbit.pitchRadians);
-    read(c, "zoom", s.cloud.orbit.zoom);
-    read(c, "panX", s.cloud.orbit.panMeters.x);
-    read(c, "panY", s.cloud.orbit.panMeters.y);
-    const json& r = j.contains("depthRange") ? j["depthRange"] : none;
-    read(r, "minMeters", s.depthRange.minMeters);
-    read(r, "maxMeters", s.depthRange.maxMeters);
-    read(r, "automatic", s.depthRange.automatic);
-    int colormap = static_cast<int>(s.depthRange.colormap);
-    read(r, "colormap", colormap);
-    s.depthRange.colormap = static_cast<render::Colormap>(colormap);
-    const json& cam = j.contains("camera") ? j["camera"] : none;
-    read(cam, "fill", s.camera.fill);
-    read(cam, "depthOverlay", s.camera.depthOverlay);
-    read(cam, "overlayOpacity", s.camera.overlayOpacity);
-    const json& dp = j.contains("depthPanel") ? j["depthPanel"] : none;
-    read(dp, "colourOverlay", s.depthView.colourOverlay);
-    read(dp, "overlayOpacity", s.depthView.overlayOpacity);
-    const json& acc = j.contains("accumulate") ? j["accumulate"] : none;
-    read(acc, "enabled", s.accumulate.enabled);
-    read(acc, "budgetThousands", s.accumulate.budgetThousands);
-    read(acc, "voxelMillimeters", s.accumulate.voxelMillimeters);
-    const json& rec = j.contains("record") ? j["record"] : none;
-    read(rec, "directory", s.record.directory);
-    read(rec, "jpegColor", s.record.jpegColor);
-    read(rec, "jpegQuality", s.record.jpegQuality);
-    read(j, "recentSources", s.recentSources);
-    processingFromJson(j.contains("processing") ? j["processing"] : none, s.processing);
+    for (const SettingField& f : settingFields()) {
+        const auto section = f.section.empty() ? j.end() : j.find(f.section);
+        const json& holder = f.section.empty() ? j : section == j.end() ? none : *section;
+        if (!holder.is_object())
+            continue;
+        if (const auto value = holder.find(f.key); value != holder.end())
+            f.read(*value, s);
+    }
     sanitize(s);
     return s;
 }

@@ -1,4 +1,5 @@
 #include "ui/settings.h"
+#include "ui/settings_fields.h"
 
 #include <gtest/gtest.h>
 
@@ -66,6 +67,37 @@ TEST(Settings, RoundTripKeepsEveryChangedValue) {
     EXPECT_FLOAT_EQ(r.processing.fog.blurSigmaPixels, 9.5f);
     EXPECT_FLOAT_EQ(r.processing.aura.separationMeters, 0.12f);
     EXPECT_EQ(r.recentSources, (std::vector<std::string>{"replay:/data/a.dcrec", "synthetic:640x480@30"}));
+}
+
+// Each saved field, set alone to its example (a valid value other than its default), comes back from the
+// file as it went in, and is the only one that differs from the defaults: every field added to the table
+// is covered, and no entry reads or writes another's member. The base is the defaults with a window once
+// saved (a window never saved, width 0, is forgotten whole).
+TEST(Settings, EveryFieldOfTheTableRoundTripsAlone) {
+    Settings base;
+    base.window = {0, 0, 800, 600, false};
+    const std::string defaults = settingsToJson(base);
+    ASSERT_GT(settingFields().size(), 60u);
+    for (const SettingField& f : settingFields()) {
+        SCOPED_TRACE(f.section + "." + f.key);
+        Settings s = base;
+        ASSERT_NE(f.write(s), f.example) << "the example is the default";
+        f.read(f.example, s);
+        ASSERT_EQ(f.write(s), f.example) << "the example is not a value the field holds";
+        const auto back = settingsFromJson(settingsToJson(s));
+        ASSERT_TRUE(back.ok());
+        EXPECT_EQ(f.write(*back), f.example);
+        for (const SettingField& other : settingFields()) {
+            if (&other != &f) {
+                EXPECT_EQ(other.write(*back), other.write(base)) << other.section << "." << other.key;
+            }
+        }
+    }
+    const nlohmann::json written = nlohmann::json::parse(defaults);
+    std::size_t leaves = 0;
+    for (const auto& [key, value] : written.items())
+        leaves += value.is_object() ? value.size() : 1;
+    EXPECT_EQ(leaves, settingFields().size()) << "the file holds exactly the table's fields";
 }
 
 TEST(Settings, RecentSourcesAreNewestFirstWithoutDuplicatesAndBounded) {

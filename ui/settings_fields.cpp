@@ -1,0 +1,155 @@
+#include "ui/settings_fields.h"
+
+#include <algorithm>
+#include <type_traits>
+
+namespace dc::ui {
+
+namespace {
+
+using nlohmann::json;
+
+// What an enumerator out of range becomes: an ordinal (a confidence level) takes the nearest valid one,
+// a category keeps the field's value.
+enum class OutOfRange { Keep, Clamp };
+
+// The entry of the member `access` reaches (a lambda taking a Settings, const or not, and returning a
+// reference to the member). Enumerations are stored as their integer, checked against `enumerators`.
+template <class Access>
+SettingField field(const char* section, const char* key, Access access, json example, int enumerators = 0,
+                   OutOfRange outOfRange = OutOfRange::Keep) {
+    using T = std::remove_cvref_t<decltype(access(std::declval<Settings&>()))>;
+    SettingField f{section, key, nullptr, nullptr, std::move(example)};
+    f.write = [access](const Settings& s) -> json {
+        if constexpr (std::is_enum_v<T>)
+            return static_cast<int>(access(s));
+        else
+            return access(s);
+    };
+    f.read = [access, enumerators, outOfRange](const json& j, Settings& s) {
+        try {
+            if constexpr (std::is_enum_v<T>) {
+                int v = j.get<int>();
+                if (outOfRange == OutOfRange::Clamp)
+                    v = std::clamp(v, 0, enumerators - 1);
+                if (v >= 0 && v < enumerators)
+                    access(s) = static_cast<T>(v);
+            } else {
+                access(s) = j.get<T>();
+            }
+        } catch (const json::exception&) {
+            // A mistyped value keeps its default: the rest of the file is still worth restoring.
+        }
+    };
+    return f;
+}
+
+#define DC_FIELD(member)                                                                                     \
+    [](auto& s) -> auto& {                                                                                   \
+        return s.member;                                                                                     \
+    }
+
+std::vector<SettingField> panelFields() {
+    return {
+        field("panels", "cloud", DC_FIELD(panels.cloud), false),
+        field("panels", "depth", DC_FIELD(panels.depth), false),
+        field("panels", "confidence", DC_FIELD(panels.confidence), false),
+        field("panels", "camera", DC_FIELD(panels.camera), false),
+        field("panels", "controls", DC_FIELD(panels.controls), false),
+        field("panels", "stats", DC_FIELD(panels.stats), true),
+        field("panels", "log", DC_FIELD(panels.log), true),
+        field("panels", "infrared", DC_FIELD(panels.infrared), true),
+        field("panels", "source", DC_FIELD(panels.source), true),
+        field("panels", "timeline", DC_FIELD(panels.timeline), false),
+        field("panels", "fog", DC_FIELD(panels.fog), true),
+        field("panels", "aura", DC_FIELD(panels.aura), true),
+        field("window", "x", DC_FIELD(window.x), 40),
+        field("window", "y", DC_FIELD(window.y), 30),
+        field("window", "width", DC_FIELD(window.width), 1111),
+        field("window", "height", DC_FIELD(window.height), 666),
+        field("window", "maximized", DC_FIELD(window.maximized), true),
+    };
+}
+
+std::vector<SettingField> cloudFields() {
+    return {
+        field("cloud", "minConfidence", DC_FIELD(cloud.minConfidence), 2, 3, OutOfRange::Clamp),
+        field("cloud", "pointSizePixels", DC_FIELD(cloud.pointSizePixels), 4.5),
+        field("cloud", "fillGaps", DC_FIELD(cloud.fillGaps), false),
+        field("cloud", "nearMeters", DC_FIELD(cloud.nearMeters), 0.25),
+        field("cloud", "coloring", DC_FIELD(cloud.coloring), 2, render::kPointColoringCount),
+        field("cloud", "path", DC_FIELD(cloud.path), 2, static_cast<int>(CloudPathChoice::Splat) + 1),
+        field("cloud", "decimation", DC_FIELD(cloud.decimation), 3),
+        field("cloud", "autoRotate", DC_FIELD(cloud.motion.enabled), false),
+        field("cloud", "rotationSpeed", DC_FIELD(cloud.motion.speed), 2.0),
+        field("cloud", "scaleMovement", DC_FIELD(cloud.motion.scaleMovement), 0.25),
+        field("cloud", "yawRadians", DC_FIELD(cloud.orbit.yawRadians), 0.75),
+        field("cloud", "pitchRadians", DC_FIELD(cloud.orbit.pitchRadians), -0.25),
+        field("cloud", "zoom", DC_FIELD(cloud.orbit.zoom), 1.75),
+        field("cloud", "panX", DC_FIELD(cloud.orbit.panMeters.x), 0.125),
+        field("cloud", "panY", DC_FIELD(cloud.orbit.panMeters.y), -0.0625),
+        field("depthRange", "minMeters", DC_FIELD(depthRange.minMeters), 0.5),
+        field("depthRange", "maxMeters", DC_FIELD(depthRange.maxMeters), 4.0),
+        field("depthRange", "automatic", DC_FIELD(depthRange.automatic), false),
+        field("depthRange", "colormap", DC_FIELD(depthRange.colormap), 1, render::kColormapCount),
+        field("camera", "fill", DC_FIELD(camera.fill), true),
+        field("camera", "depthOverlay", DC_FIELD(camera.depthOverlay), true),
+        field("camera", "overlayOpacity", DC_FIELD(camera.overlayOpacity), 0.25),
+        field("depthPanel", "colourOverlay", DC_FIELD(depthView.colourOverlay), true),
+        field("depthPanel", "overlayOpacity", DC_FIELD(depthView.overlayOpacity), 0.75),
+        field("accumulate", "enabled", DC_FIELD(accumulate.enabled), true),
+        field("accumulate", "budgetThousands", DC_FIELD(accumulate.budgetThousands), 2000),
+        field("accumulate", "voxelMillimeters", DC_FIELD(accumulate.voxelMillimeters), 2.5),
+        field("record", "directory", DC_FIELD(record.directory), "/tmp/takes"),
+        field("record", "jpegColor", DC_FIELD(record.jpegColor), false),
+        field("record", "jpegQuality", DC_FIELD(record.jpegQuality), 75),
+        field("", "recentSources", DC_FIELD(recentSources),
+              json::array({"replay:/data/a.dcrec", "synthetic"})),
+    };
+}
+
+std::vector<SettingField> processingFields() {
+    return {
+        field("processing", "smoothing", DC_FIELD(processing.smoothing), true),
+        field("processing", "upsampling", DC_FIELD(processing.upsampling), true),
+        field("processing", "depthSource", DC_FIELD(processing.depthSource), 0, 2),
+        field("processing", "alpha", DC_FIELD(processing.smoothingParams.alpha), 0.75),
+        field("processing", "jumpMeters", DC_FIELD(processing.smoothingParams.jumpMeters), 0.25),
+        field("processing", "holeFrames", DC_FIELD(processing.smoothingParams.holeFrames), 7),
+        field("processing", "method", DC_FIELD(processing.upsamplingParams.method), 3, 4),
+        field("processing", "subsample", DC_FIELD(processing.upsamplingParams.subsample), 8),
+        field("processing", "outputSize", DC_FIELD(processing.upsamplingParams.size), 1, 2),
+        field("processing", "radiusPixels", DC_FIELD(processing.upsamplingParams.radiusPixels), 12),
+        field("processing", "epsilon", DC_FIELD(processing.upsamplingParams.epsilon), 0.0625),
+        field("processing", "fitWeighted", DC_FIELD(processing.upsamplingParams.fitWeighted), false),
+        field("processing", "depthNoiseMeters", DC_FIELD(processing.upsamplingParams.depthNoiseMeters),
+              0.125),
+        field("processing", "smoothness", DC_FIELD(processing.upsamplingParams.smoothness), 4.0),
+        field("processing", "fogMaxMeters", DC_FIELD(processing.fog.fogMaxMeters), 6.5),
+        field("processing", "fogBlurSigmaPixels", DC_FIELD(processing.fog.blurSigmaPixels), 9.5),
+        field("processing", "fogColor", DC_FIELD(processing.fog.color), json::array({0.25, 0.5, 0.75})),
+        field("processing", "fogConfidenceOverlay", DC_FIELD(processing.fog.confidenceOverlay), true),
+        field("processing", "auraMatte", DC_FIELD(processing.aura.matte), 1, 2),
+        field("processing", "auraNearMeters", DC_FIELD(processing.aura.nearMeters), 0.5),
+        field("processing", "auraFarMeters", DC_FIELD(processing.aura.farMeters), 5.5),
+        field("processing", "auraRegionDepthMeters", DC_FIELD(processing.aura.regionDepthMeters), 0.375),
+        field("processing", "auraSeparationMeters", DC_FIELD(processing.aura.separationMeters), 0.125),
+        field("processing", "auraRingPixels", DC_FIELD(processing.aura.ringPixels), 9),
+    };
+}
+
+#undef DC_FIELD
+
+} // namespace
+
+const std::vector<SettingField>& settingFields() {
+    static const std::vector<SettingField> fields = [] {
+        std::vector<SettingField> all = panelFields();
+        for (auto part : {cloudFields(), processingFields()})
+            all.insert(all.end(), part.begin(), part.end());
+        return all;
+    }();
+    return fields;
+}
+
+} // namespace dc::ui
