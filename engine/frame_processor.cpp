@@ -1,6 +1,8 @@
 #include "engine/frame_processor.h"
 
+#include "base/barrier.h"
 #include "base/clock.h"
+#include "base/log.h"
 
 #include <utility>
 
@@ -14,8 +16,12 @@ bool decodedBeforeSeek(const frame::Frame& frame, std::uint64_t awaitedSeek) {
 
 } // namespace
 
-FrameProcessor::FrameProcessor(StageStats& stages, processing::AccumulationWorker& accumulation)
-    : stages_(stages), accumulation_(accumulation), thread_([this] { run(); }) {}
+FrameProcessor::FrameProcessor(StageStats& stages, processing::AccumulationWorker& accumulation,
+                               ProcessingGraph::StageFault fault)
+    : stages_(stages), accumulation_(accumulation) {
+    graph_.setStageFault(std::move(fault));
+    thread_ = std::thread([this] { run(); });
+}
 
 FrameProcessor::~FrameProcessor() {
     setSession(nullptr);
@@ -96,7 +102,7 @@ void FrameProcessor::run() {
                         arrival_};
         lock.unlock();
         const double cpuStart = base::threadCpuMs();
-        std::optional<processing::ShownFramePtr> result = process(work);
+        std::optional<processing::ShownFramePtr> result = processGuarded(work);
         const double cpuMs = base::threadCpuMs() - cpuStart;
         lock.lock();
         if (result && (*result)->newFrame)
@@ -105,10 +111,27 @@ void FrameProcessor::run() {
         runs_ = graph_.allRuns();
         if (work.epoch == epoch_) {
             counts_.framesSkipped = skipped_;
+            counts_.failures = failed_;
             if (result)
                 publish(std::move(*result), work);
         }
     }
+}
+
+std::optional<processing::ShownFramePtr> FrameProcessor::processGuarded(const Work& work) {
+    std::optional<processing::ShownFramePtr> result;
+    const Status done = base::guarded("processing failed", [&] { result = process(work); });
+    if (done)
+        return result;
+    // What a stage left half made is not trusted: temporal state and remembered results start over.
+    graph_.reset();
+    ++failed_;
+    // Logged when it first happens and when it changes, not for every frame of a failure that lasts.
+    if (done.error().message != lastFailure_) {
+        lastFailure_ = done.error().message;
+        logError(lastFailure_ + " (the frame is skipped; later frames are processed)");
+    }
+    return std::nullopt;
 }
 
 std::optional<processing::ShownFramePtr> FrameProcessor::process(const Work& work) {
@@ -122,6 +145,8 @@ std::optional<processing::ShownFramePtr> FrameProcessor::process(const Work& wor
     if (work.epoch != countedEpoch_) {
         countedEpoch_ = work.epoch;
         skipped_ = 0;
+        failed_ = 0;
+        lastFailure_.clear();
     }
     if (work.frameSignal && work.session) {
         std::optional<frame::FramePtr> next = work.session->takeLatest();

@@ -27,6 +27,7 @@ struct ProcessorCounts {
     std::uint64_t framesSkipped =
         0; // taken from the source but not new: decoded before a seek, or re-delivered
     std::uint64_t resultsTaken = 0;
+    std::uint64_t failures = 0; // frames or redos whose processing threw: logged, skipped, and gone on from
 };
 
 // The frame processor: its own thread takes the newest frame from the session (latest wins: it never
@@ -37,7 +38,9 @@ class FrameProcessor {
 public:
     using Clock = std::chrono::steady_clock;
 
-    FrameProcessor(StageStats& stages, processing::AccumulationWorker& accumulation);
+    // `fault` is ProcessingGraph's fault-injection seam, for tests.
+    FrameProcessor(StageStats& stages, processing::AccumulationWorker& accumulation,
+                   ProcessingGraph::StageFault fault = {});
     ~FrameProcessor();
     FrameProcessor(const FrameProcessor&) = delete;
     FrameProcessor& operator=(const FrameProcessor&) = delete;
@@ -80,6 +83,8 @@ private:
     void run();
     bool hasWork() const; // with mutex_ held
     std::optional<processing::ShownFramePtr> process(const Work& work);
+    // process() inside an exception barrier: a stage that throws costs that result, not the thread.
+    std::optional<processing::ShownFramePtr> processGuarded(const Work& work);
     void accumulate(const processing::ShownFrame& shown, const Demand& demand, bool fresh);
     void publish(processing::ShownFramePtr result, const Work& work); // with mutex_ held
     void onFrame();
@@ -91,6 +96,8 @@ private:
     std::uint64_t lastGeneration_ = 0; // processor thread only: the demand of the last result
     std::uint64_t skipped_ = 0;        // processor thread only; copied to counts_ under mutex_
     std::uint64_t countedEpoch_ = 0;   // processor thread only: the session skipped_ counts for
+    std::uint64_t failed_ = 0;         // processor thread only; copied to counts_ under mutex_
+    std::string lastFailure_;          // processor thread only: the last failure logged
     // Processor thread only: the budget and voxel size accumulation last added with; none while it is off.
     std::optional<std::pair<std::size_t, float>> accumulatedWith_;
 

@@ -10,6 +10,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <stdexcept>
 
 namespace dc::engine {
 
@@ -74,7 +75,14 @@ const Value& ProcessingGraph::cached(Memo<Key, Value>& memo, const Key& key, std
     if (memo.key && *memo.key == key)
         return memo.value;
     const auto start = std::chrono::steady_clock::now();
-    memo.value = make();
+    try {
+        if (fault_)
+            fault_(stage);
+        memo.value = make();
+    } catch (const std::exception& e) {
+        // Named by its stage, so that the log says which one failed.
+        throw std::runtime_error(std::string(stage) + ": " + e.what());
+    }
     memo.key = key;
     const std::chrono::duration<double, std::milli> took = std::chrono::steady_clock::now() - start;
     timings_->push_back({std::string(stage), took.count()});

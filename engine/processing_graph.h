@@ -8,6 +8,7 @@
 #include "processing/shown_frame.h"
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -45,6 +46,10 @@ public:
                                   std::uint64_t generation, bool newFrame);
     // Drops temporal state and every remembered result (a seek, a new source).
     void reset();
+    // The fault-injection seam: called with a stage's name just before the stage runs; a test throws from
+    // it to see a failing stage handled. None by default.
+    using StageFault = std::function<void(std::string_view stage)>;
+    void setStageFault(StageFault fault) { fault_ = std::move(fault); }
     // How many times `stage` has run: tests count work, not time.
     std::uint64_t runs(std::string_view stage) const;
     const std::map<std::string, std::uint64_t, std::less<>>& allRuns() const { return runs_; }
@@ -146,6 +151,7 @@ private:
     Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;
     Memo<DecimationKey, processing::ShownCloud> cloud_;
     Memo<CountKey, std::size_t> count_;
+    StageFault fault_;
     std::map<std::string, std::uint64_t, std::less<>> runs_;
     std::vector<processing::StageTiming>* timings_ = nullptr; // of the result being made
 };

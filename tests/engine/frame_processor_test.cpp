@@ -2,11 +2,18 @@
 // frame is accounted for, a demand change redoes the current frame while the source is silent, and a seek
 // drops what was decoded before it.
 
+#include "base/log.h"
 #include "engine/frame_processor.h"
 #include "engine/instrument.h"
 #include "engine_test_support.h"
 
 #include <gtest/gtest.h>
+
+#include <atomic>
+#include <mutex>
+#include <stdexcept>
+#include <string>
+#include <vector>
 
 namespace dc::engine::test {
 namespace {
@@ -195,6 +202,56 @@ TEST_F(FrameProcessorTest, TheSameCaptureDeliveredAgainIsShownButNotCountedAsNew
     const ProcessorCounts c = processor_.counts();
     EXPECT_EQ(c.framesProcessed, 1u);
     EXPECT_EQ(c.framesSkipped, 1u);
+}
+
+// A stage that throws (OpenCV does, on input it refuses) costs that frame's result, not the processor
+// thread or the process: the failure is counted and logged once, naming the stage, and the frames after
+// it are processed as before. The seam throws from the point count stage of the second frame only.
+TEST(FrameProcessorFaultTest, AStageThatThrowsCostsOneFrameAndIsLoggedNamingTheStage) {
+    std::vector<std::string> errors;
+    std::mutex logged;
+    const std::uint64_t sink = setLogSink([&](LogLevel level, const std::string& message) {
+        if (level == LogLevel::Error) {
+            std::lock_guard lock(logged);
+            errors.push_back(message);
+        }
+    });
+    std::atomic<int> pointCounts = 0;
+    StageStats stages;
+    processing::AccumulationWorker accumulation;
+    FrameProcessor processor(stages, accumulation, [&](std::string_view stage) {
+        if (stage == kPointCountStage && ++pointCounts == 2)
+            throw std::runtime_error("injected failure");
+    });
+    auto device = std::make_unique<ScriptedDevice>(0.0);
+    ScriptedDevice& source = *device;
+    auto session = std::make_shared<devices::Session>(std::move(device));
+    ASSERT_TRUE(session->start().ok());
+    processor.setSession(session);
+    processor.setDemand(cloudAndPanels());
+    const std::vector<frame::FramePtr> frames = syntheticFrames(3);
+    for (const frame::FramePtr& f : frames) {
+        source.push(f);
+        ASSERT_TRUE(waitUntil([&] {
+            const ProcessorCounts c = processor.counts();
+            return c.framesProcessed + c.failures == f->sequence + 1;
+        })) << "frame "
+            << f->sequence;
+        if (f->sequence != 1) {
+            const auto r =
+                processor.waitFor(10s, [&](const processing::ShownFrame& s) { return s.frame == f; });
+            ASSERT_TRUE(r) << "frame " << f->sequence << " is processed";
+            EXPECT_GT((*r)->pointCount, 0u);
+        }
+    }
+    const ProcessorCounts c = processor.counts();
+    EXPECT_EQ(c.failures, 1u);
+    EXPECT_EQ(c.framesProcessed, 2u);
+    processor.setSession(nullptr);
+    removeLogSink(sink);
+    std::lock_guard lock(logged);
+    ASSERT_EQ(errors.size(), 1u);
+    EXPECT_NE(errors[0].find("point count: injected failure"), std::string::npos) << errors[0];
 }
 
 // The instrument's frame counts add up for a paced source and a consumer slower than it: every delivered
