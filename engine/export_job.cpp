@@ -1,5 +1,6 @@
 #include "engine/export_job.h"
 
+#include "base/barrier.h"
 #include "base/log.h"
 #include "devices/replay/replay_spec.h"
 #include "engine/processing_graph.h"
@@ -37,11 +38,16 @@ Expected<std::unique_ptr<ExportJob>> ExportJob::start(const std::string& replayS
     ExportJob* self = job.get();
     // The thread owns the source; errors and cancellation come back as values, never as exceptions.
     job->thread_ = std::thread([self, options, src = std::move(*source)]() mutable {
-        auto r = exporting::exportFrames(*src, options, [self](std::size_t done, std::size_t total) {
-            self->done_ = done;
-            self->total_ = total;
-            return !self->cancelled_.load();
+        Expected<exporting::ExportResult> r = Error{"export did not run"};
+        const Status ran = base::guarded("export failed", [&] {
+            r = exporting::exportFrames(*src, options, [self](std::size_t done, std::size_t total) {
+                self->done_ = done;
+                self->total_ = total;
+                return !self->cancelled_.load();
+            });
         });
+        if (!ran)
+            r = ran.error();
         if (r)
             logNotice("exported " + std::to_string(r->framesWritten) + " frames to " + options.outDirectory);
         else

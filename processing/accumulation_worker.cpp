@@ -1,5 +1,8 @@
 #include "processing/accumulation_worker.h"
 
+#include "base/barrier.h"
+#include "base/log.h"
+
 #include <chrono>
 
 namespace dc::processing {
@@ -63,7 +66,9 @@ void AccumulationWorker::run() {
             generation = generation_;
             busy_ = true;
         }
-        add(request, generation);
+        // A failed frame is left out of the world cloud; the worker goes on with the next.
+        if (Status s = base::guarded("accumulation failed", [&] { add(request, generation); }); !s)
+            logError(s.error().message);
         {
             std::lock_guard lock(mutex_);
             busy_ = false;

@@ -1,5 +1,6 @@
 #include "devices/recording/recorder.h"
 
+#include "base/barrier.h"
 #include "base/log.h"
 
 #include <algorithm>
@@ -75,7 +76,10 @@ void Recorder::encodeLoop(EncodeOptions options) {
         pending_.pop_front();
         lock.unlock();
         const auto begin = std::chrono::steady_clock::now();
-        Encoded result{frame->timestampNs, encoder.encode(*frame)};
+        Encoded result{frame->timestampNs, Error{"not encoded"}};
+        if (Status ran = base::guarded("encoding failed", [&] { result.payload = encoder.encode(*frame); });
+            !ran)
+            result.payload = ran.error();
         frame.reset();
         const double seconds = secondsSince(begin);
         lock.lock();
@@ -104,10 +108,15 @@ void Recorder::writeLoop() {
         }
         lock.unlock();
         const auto begin = std::chrono::steady_clock::now();
-        const Status s = item.payload
-                             ? writer_.appendEncoded(*item.payload, item.timestampNs)
-                             : Status(Error{path_ + ": frame " + std::to_string(writer_.framesWritten()) +
-                                            ": " + item.payload.error().message});
+        Status s = Error{path_ + ": frame " + std::to_string(writer_.framesWritten()) + ": " +
+                         (item.payload ? "" : item.payload.error().message)};
+        if (item.payload) {
+            const Status ran = base::guarded(path_ + ": writing failed", [&] {
+                s = writer_.appendEncoded(*item.payload, item.timestampNs);
+            });
+            if (!ran)
+                s = ran;
+        }
         const double seconds = secondsSince(begin);
         lock.lock();
         stats_.writeSeconds += seconds;

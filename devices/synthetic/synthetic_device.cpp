@@ -1,5 +1,7 @@
 #include "devices/synthetic/synthetic_device.h"
+#include "base/barrier.h"
 #include "base/clock.h"
+#include "base/log.h"
 
 #include <algorithm>
 #include <condition_variable>
@@ -19,7 +21,10 @@ public:
         : device_(device), nextToRender_(first), nextToTake_(first),
           ahead_(static_cast<std::size_t>(threads) + 1) {
         for (int i = 0; i < threads; ++i)
-            threads_.emplace_back([this] { work(); });
+            threads_.emplace_back([this] {
+                if (Status s = base::guarded("synthetic rendering stopped", [this] { work(); }); !s)
+                    logError(s.error().message);
+            });
     }
     ~RenderAhead() {
         {

@@ -1,5 +1,6 @@
 #include "devices/uvc/live_device_watcher.h"
 
+#include "base/barrier.h"
 #include "base/log.h"
 
 #include <algorithm>
@@ -49,7 +50,10 @@ LiveDeviceWatcher::LiveDeviceWatcher(std::chrono::milliseconds fallbackPollInter
         logInfo("camera list: no device events (" + source.error().message + "); re-listing every " +
                 std::to_string(pollInterval_.count()) + " ms");
     }
-    thread_ = std::thread([this] { run(); });
+    thread_ = std::thread([this] {
+        if (Status s = base::guarded("the camera watcher stopped", [this] { run(); }); !s)
+            logError(s.error().message);
+    });
 }
 
 LiveDeviceWatcher::~LiveDeviceWatcher() {

@@ -1,5 +1,7 @@
 #include "devices/uvc/usb/hotplug_monitor.h"
 
+#include "base/barrier.h"
+#include "base/log.h"
 #include "devices/uvc/usb/libusb_device_info.h"
 #include "devices/uvc/usb/libusb_handles.h"
 
@@ -104,7 +106,10 @@ Status HotplugMonitor::start() {
     }
     impl_->registered = true;
     impl_->stopRequested = false;
-    impl_->thread = std::thread([impl = impl_.get()] { impl->run(); });
+    impl_->thread = std::thread([impl = impl_.get()] {
+        if (Status s = base::guarded("the USB hotplug monitor stopped", [impl] { impl->run(); }); !s)
+            logError(s.error().message);
+    });
     return {};
 }
 
