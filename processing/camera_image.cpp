@@ -15,20 +15,6 @@ bool wellFormed(const frame::CapturedImage& image) {
            image.bytes->size() >= frame::CapturedImage::byteSize(image.format, image.width, image.height);
 }
 
-// Packed Y + interleaved CbCr at the output size to packed RGB. OpenCV's YCrCb conversion is full-range
-// BT.601 with coefficients (1.403, 0.714, 0.344, 1.773) that match the sample's (1.402, 0.7141, 0.3441,
-// 1.772, frame::ycbcrToRgb) to 0.2 levels, and it is vectorised: ten times faster than a call per pixel.
-std::vector<std::uint8_t> ycbcrToRgb24(const cv::Mat& luma, const cv::Mat& chroma) {
-    cv::Mat ycrcb(luma.size(), CV_8UC3);
-    const cv::Mat sources[] = {luma, chroma};
-    const int fromTo[] = {0, 0, 1, 2, 2, 1}; // Y -> 0, Cb -> 2, Cr -> 1
-    cv::mixChannels(sources, 2, &ycrcb, 1, fromTo, 3);
-    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(luma.cols) * luma.rows * 3);
-    cv::Mat out(luma.size(), CV_8UC3, rgb.data());
-    cv::cvtColor(ycrcb, out, cv::COLOR_YCrCb2RGB);
-    return rgb;
-}
-
 std::size_t yuyvRowBytes(int width) {
     return 4 * static_cast<std::size_t>((width + 1) / 2);
 }
@@ -78,7 +64,10 @@ ColorView viewOf(const cv::Mat& rgb) {
     return {rgb.ptr<std::uint8_t>(0), rgb.cols, rgb.rows, static_cast<std::ptrdiff_t>(rgb.step[0])};
 }
 
-// Y and interleaved CbCr planes, both at the output size, to packed RGB in scratch.rgb (as ycbcrToRgb24).
+// Y and interleaved CbCr planes, both at the output size, to packed RGB in scratch.rgb. OpenCV's YCrCb
+// conversion is full-range BT.601 with coefficients (1.403, 0.714, 0.344, 1.773) that match the sample's
+// (1.402, 0.7141, 0.3441, 1.772, frame::ycbcrToRgb) to 0.2 levels, and it is vectorised: ten times faster
+// than a call per pixel.
 ColorView ycbcrToRgbInto(const cv::Mat& luma, const cv::Mat& chroma, RgbScratch& scratch) {
     const auto bytes = static_cast<std::size_t>(luma.cols) * luma.rows * 3;
     scratch.ycrcb.resize(bytes);
@@ -119,34 +108,6 @@ GrayView lumaView(const frame::CapturedImage& image, std::vector<std::uint8_t>& 
     return {};
 }
 
-std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width, int height) {
-    if (!wellFormed(image) || width <= 0 || height <= 0)
-        return {};
-    const cv::Size size(width, height);
-    auto* bytes = const_cast<std::uint8_t*>(image.bytes->data()); // cv::Mat wants non-const; only read
-    switch (image.format) {
-    case frame::PixelFormat::Nv12: {
-        const cv::Mat luma(image.height, image.width, CV_8U, bytes);
-        const cv::Mat chroma((image.height + 1) / 2, (image.width + 1) / 2, CV_8UC2,
-                             bytes + static_cast<std::size_t>(image.width) * image.height);
-        return ycbcrToRgb24(resized(luma, size), resized(chroma, size));
-    }
-    case frame::PixelFormat::Yuyv: {
-        cv::Mat luma, chroma;
-        splitYuyv(image, luma, chroma);
-        return ycbcrToRgb24(resized(luma, size), resized(chroma, size));
-    }
-    case frame::PixelFormat::Rgb24: {
-        const cv::Mat rgb = resized(cv::Mat(image.height, image.width, CV_8UC3, bytes), size);
-        const std::uint8_t* data = rgb.ptr<std::uint8_t>(0);
-        return {data, data + static_cast<std::size_t>(width) * height * 3};
-    }
-    case frame::PixelFormat::Jpeg:
-        break;
-    }
-    return {};
-}
-
 ColorView cameraRgbView(const frame::CapturedImage& image, int width, int height, RgbScratch& scratch) {
     if (!wellFormed(image) || width <= 0 || height <= 0)
         return {};
@@ -178,6 +139,18 @@ std::array<int, 2> cameraPanelImageSize(const frame::CapturedImage& image, int s
     const int stepped = (shownWidth + kWidthStep - 1) / kWidthStep * kWidthStep;
     const int width = std::clamp(stepped, 1, std::max(image.width, 1));
     return {width, std::max(1, image.height * width / std::max(image.width, 1))};
+}
+
+std::vector<std::uint8_t> cameraRgb(const frame::CapturedImage& image, int width, int height) {
+    RgbScratch scratch;
+    const ColorView view = cameraRgbView(image, width, height, scratch);
+    if (view.empty())
+        return {};
+    const auto row = static_cast<std::size_t>(width) * 3;
+    std::vector<std::uint8_t> rgb(row * height);
+    for (int y = 0; y < height; ++y)
+        std::copy_n(view.pixels + y * view.stride, row, rgb.data() + y * row);
+    return rgb;
 }
 
 RgbImage cameraRgbImage(const frame::CapturedImage& image, int width, int height) {

@@ -99,23 +99,27 @@ void RenderTarget::blitInto(PixelRect destination, PixelRect clip) const {
         glDisable(GL_SCISSOR_TEST);
 }
 
-std::vector<std::uint8_t> RenderTarget::readRgba() const {
-    if (empty())
+std::vector<std::uint8_t> readFramebufferRgba(GLuint framebuffer, int width, int height) {
+    if (width <= 0 || height <= 0)
         return {};
-    const auto rowBytes = static_cast<std::size_t>(width_) * 4;
-    std::vector<std::uint8_t> bottomUp(rowBytes * height_);
-    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer_.id());
+    const auto rowBytes = static_cast<std::size_t>(width) * 4;
+    std::vector<std::uint8_t> bottomUp(rowBytes * height);
+    glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer);
     glPixelStorei(GL_PACK_ALIGNMENT, 1); // rows of any width are packed without padding
-    glReadPixels(0, 0, width_, height_, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
+    glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, bottomUp.data());
     glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
 
     // GL's window origin is the bottom-left corner; images and PNG files start with the top row.
     std::vector<std::uint8_t> topDown(bottomUp.size());
-    for (int row = 0; row < height_; ++row) {
-        const auto source = bottomUp.begin() + static_cast<std::ptrdiff_t>(rowBytes * (height_ - 1 - row));
+    for (int row = 0; row < height; ++row) {
+        const auto source = bottomUp.begin() + static_cast<std::ptrdiff_t>(rowBytes * (height - 1 - row));
         std::copy_n(source, rowBytes, topDown.begin() + static_cast<std::ptrdiff_t>(rowBytes * row));
     }
     return topDown;
+}
+
+std::vector<std::uint8_t> RenderTarget::readRgba() const {
+    return empty() ? std::vector<std::uint8_t>{} : readFramebufferRgba(framebuffer_.id(), width_, height_);
 }
 
 Status RenderTarget::savePng(const std::string& path) const {

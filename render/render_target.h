@@ -25,6 +25,10 @@ void clearColorWithin(PixelRect rect, float r, float g, float b);
 // composite does not, and each frame's clear would write it for nothing.
 enum class DepthBuffer { With, Without };
 
+// The RGBA8 pixels of `framebuffer` (0: the window's back buffer), width x height from the origin, top
+// row first as images and PNG files have them; empty for an empty size.
+std::vector<std::uint8_t> readFramebufferRgba(GLuint framebuffer, int width, int height);
+
 // An offscreen framebuffer: an RGBA8 color texture (what the UI shows) and, unless left out, a depth
 // renderbuffer. Holds no GL object until the first resize(), so it can be built before a context.
 //

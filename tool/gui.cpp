@@ -224,15 +224,11 @@ ui::Settings loadSettings(const std::string& path, bool reset) {
 Status saveScreenshot(GLFWwindow* window, const std::string& path) {
     int w = 0, h = 0;
     glfwGetFramebufferSize(window, &w, &h);
-    std::vector<std::uint8_t> pixels(static_cast<std::size_t>(w) * h * 4);
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glPixelStorei(GL_PACK_ALIGNMENT, 1);
-    glReadPixels(0, 0, w, h, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
-    std::vector<std::uint8_t> flipped(pixels.size());
-    const std::size_t row = static_cast<std::size_t>(w) * 4;
-    for (int y = 0; y < h; ++y)
-        std::copy_n(pixels.data() + static_cast<std::size_t>(h - 1 - y) * row, row, flipped.data() + y * row);
-    return frame::writeRgbaPng(path, w, h, flipped.data());
+    // Framebuffer 0 is the window's back buffer.
+    const std::vector<std::uint8_t> rgba = render::readFramebufferRgba(0, w, h);
+    if (rgba.empty())
+        return Error{"cannot save " + path + ": the window has no size"};
+    return frame::writeRgbaPng(path, w, h, rgba.data());
 }
 
 // The time between two of the display's refreshes (60 Hz where the display does not say).
