@@ -39,13 +39,27 @@ void Instrument::adoptReplay(devices::Device& device) {
     replay_ = replay ? replay->control() : nullptr;
 }
 
+std::string SourceState::text() const {
+    switch (note) {
+    case Note::None:
+        break;
+    case Note::EndOfStream:
+        return "end of stream";
+    case Note::Paused:
+        return "paused";
+    case Note::Ended:
+        return "ended";
+    }
+    return devices::toString(device);
+}
+
 void Instrument::start() {
     startSession();
 }
 
 void Instrument::startSession() {
     message_.clear();
-    state_ = "closed";
+    state_ = {};
     // Before the capture thread starts, so that not even the first frame decodes what nobody shows.
     session_->setDemand({demand_.needsCameraImage()});
     if (Status s = session_->start(); !s) {
@@ -132,9 +146,8 @@ void Instrument::presented(const processing::ShownFrame& shown) {
 
 void Instrument::drainEvents() {
     for (const devices::SessionEvent& e : session_->drainEvents()) {
-        state_ = devices::toString(e.state);
-        if (e.kind == devices::SessionEvent::Kind::EndOfStream)
-            state_ = "end of stream";
+        state_ = {e.state, e.kind == devices::SessionEvent::Kind::EndOfStream ? SourceState::Note::EndOfStream
+                                                                              : SourceState::Note::None};
         if (!e.message.empty())
             message_ = e.message;
     }
@@ -168,9 +181,9 @@ InstrumentStatus Instrument::status() {
     if (replay_ && running_) {
         const devices::replay::ReplayStatus r = replay_->status();
         if (r.atEnd && !r.loop)
-            s.state = "ended";
+            s.state.note = SourceState::Note::Ended;
         else if (!r.playing)
-            s.state = "paused";
+            s.state.note = SourceState::Note::Paused;
     }
     if (latencyMs_.count() > 0)
         s.latencyMs = latencyMs_.median();

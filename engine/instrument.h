@@ -30,10 +30,26 @@ struct FrameCounts {
     double shownPerSecond = 0.0;
 };
 
+// Where the source stands: the device's state, and what it says beyond that.
+struct SourceState {
+    enum class Note {
+        None,
+        EndOfStream, // the source said it has no more frames
+        Paused,      // a replay, paused
+        Ended,       // a replay at its end, not looping
+    };
+    devices::DeviceState device = devices::DeviceState::Closed;
+    Note note = Note::None;
+
+    bool operator==(const SourceState&) const = default;
+    // "streaming", "paused", "stalled", "end of stream", … as the status line says it.
+    std::string text() const;
+};
+
 // What the status line and the stats panel say about the source and the engine.
 struct InstrumentStatus {
-    std::string source;  // the device's description
-    std::string state;   // "streaming", "paused", "ended", "stalled", …
+    std::string source; // the device's description
+    SourceState state;
     std::string message; // why the source is not running, or its last warning
     bool running = false;
     FrameCounts frames;
@@ -125,7 +141,7 @@ private:
     std::string spec_;
     std::shared_ptr<devices::Session> session_;
     std::shared_ptr<devices::replay::ReplayControl> replay_;
-    std::string state_ = "closed";
+    SourceState state_;
     std::string message_;
     bool running_ = false;
     StageStats stages_;

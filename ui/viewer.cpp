@@ -366,8 +366,8 @@ std::string recordingText(const engine::RecordingStatus& r) {
 StatusLine Viewer::statusLine() {
     const engine::InstrumentStatus s = instrument_.status();
     StatusLine line{
-        s.source, s.state,     s.message, s.frames, uiFrames_.perSecond(), pointsShown(), cloudPathText(),
-        {},       s.latencyMs, {},        {}};
+        s.source, s.state.text(), s.message, s.frames, uiFrames_.perSecond(), pointsShown(), cloudPathText(),
+        {},       s.latencyMs,    {},        {}};
     for (const engine::StageSummary& stage : s.stages)
         line.stageMedians.push_back({stage.name, stage.medianMs});
     if (const engine::RecordingStatus r = instrument_.recording(); r.recording)

@@ -589,9 +589,9 @@ std::string Viewer::cloudMessage() {
     const engine::InstrumentStatus s = instrument_.status();
     if (!s.running)
         return s.message;
-    if (s.state == devices::toString(devices::DeviceState::Disconnected))
+    if (s.state == engine::SourceState{devices::DeviceState::Disconnected})
         return "Disconnected: showing the last frame; streaming resumes when the camera is back.";
-    if (s.state == devices::toString(devices::DeviceState::Stalled))
+    if (s.state == engine::SourceState{devices::DeviceState::Stalled})
         return "Stalled: the camera stopped delivering frames.";
     return {};
 }
