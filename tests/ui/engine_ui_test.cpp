@@ -185,6 +185,22 @@ TEST_F(EngineUiTest, APausedReplayShowsEverySettingChangeInTheNextFrame) {
     expectEachSettingShowsInTheNextFrame(*this, *viewer_, renderer_, [this] { frame(0.0); });
 }
 
+// The status line says where a replay stands from the instrument's typed state: paused, then playing
+// (the device's own state), then at its end.
+TEST_F(EngineUiTest, TheStatusLineSaysAReplayIsPausedPlayingOrEnded) {
+    ASSERT_NO_FATAL_FAILURE(startPausedReplay());
+    EXPECT_EQ(instrument_->status().state.note, engine::SourceState::Note::Paused);
+    EXPECT_EQ(viewer_->statusLine().state, "paused");
+    instrument_->replay()->setLoop(false);
+    instrument_->replay()->play();
+    EXPECT_EQ(viewer_->statusLine().state, "streaming");
+    for (int i = 0; i < 400 && !instrument_->replay()->status().atEnd; ++i)
+        frame(0.0);
+    ASSERT_TRUE(instrument_->replay()->status().atEnd);
+    EXPECT_EQ(instrument_->status().state.note, engine::SourceState::Note::Ended);
+    EXPECT_EQ(viewer_->statusLine().state, "ended");
+}
+
 // Nothing is computed for nobody, down to the composite: a still, paused view is not drawn again, and
 // each change to it is drawn in the very next frame, also one that only a texture shows (the cloud turned).
 TEST_F(EngineUiTest, AStillViewKeepsItsPictureAndEveryChangeIsDrawnInTheNextFrame) {
