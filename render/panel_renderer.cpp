@@ -85,40 +85,32 @@ Status PanelRenderer::init() {
 void PanelRenderer::renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters,
                                 float maxMeters, Colormap colormap, DepthHoles holes) {
     const Panel& panel = depth_[static_cast<std::size_t>(colormap)];
-    if (!begin(target, textures, panel, textures.hasDepth()))
-        return;
-    glUniform1f(panel.minMeters, minMeters);
-    glUniform1f(panel.inverseRangeMeters, 1.0f / glm::max(maxMeters - minMeters, kMinRangeMeters));
-    glUniform1f(panel.holeAlpha, holes == DepthHoles::Transparent ? 0.0f : 1.0f);
-    draw();
+    draw(target, textures, panel, [&] {
+        glUniform1f(panel.minMeters, minMeters);
+        glUniform1f(panel.inverseRangeMeters, 1.0f / glm::max(maxMeters - minMeters, kMinRangeMeters));
+        glUniform1f(panel.holeAlpha, holes == DepthHoles::Transparent ? 0.0f : 1.0f);
+    });
 }
 
 void PanelRenderer::renderConfidence(RenderTarget& target, const FrameTextures& textures) {
-    if (begin(target, textures, confidence_, textures.hasDepth()))
-        draw();
+    draw(target, textures, confidence_, [] {});
 }
 
-// Clears the target to black and readies `panel` to draw; false (with the pass already ended) when there
-// is nothing to draw.
-bool PanelRenderer::begin(RenderTarget& target, const FrameTextures& textures, const Panel& panel,
-                          bool hasData) const {
+// Clears the target to black and, where there is data, draws `panel` over it with the uniforms `setUniforms`
+// sets beside the viewport size.
+void PanelRenderer::draw(RenderTarget& target, const FrameTextures& textures, const Panel& panel,
+                         const std::function<void()>& setUniforms) const {
     if (target.empty())
-        return false;
-    beginPass(target, glm::vec3(0.0f), false);
-    if (!panel.program || !hasData) {
-        endPass();
-        return false;
-    }
+        return;
+    const RenderPass pass(target, glm::vec3(0.0f), false);
+    if (!panel.program || !textures.hasDepth())
+        return;
     glUseProgram(panel.program.id());
     glUniform2f(panel.viewportSize, static_cast<float>(target.width()), static_cast<float>(target.height()));
+    setUniforms();
     textures.bind();
-    return true;
-}
-
-void PanelRenderer::draw() const {
     glBindVertexArray(emptyVertexArray_.id());
     glDrawArrays(GL_TRIANGLES, 0, 3);
-    endPass();
 }
 
 } // namespace dc::render

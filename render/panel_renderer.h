@@ -7,6 +7,7 @@
 #include "render/render_target.h"
 
 #include <array>
+#include <functional>
 
 namespace dc::render {
 
@@ -38,8 +39,8 @@ private:
         GLint holeAlpha = -1;
     };
 
-    bool begin(RenderTarget& target, const FrameTextures& textures, const Panel& panel, bool hasData) const;
-    void draw() const;
+    void draw(RenderTarget& target, const FrameTextures& textures, const Panel& panel,
+              const std::function<void()>& setUniforms) const;
 
     gl::VertexArray emptyVertexArray_;        // core profile draws need a bound VAO even without attributes
     std::array<Panel, kColormapCount> depth_; // one per colormap (colormapGlsl says why)

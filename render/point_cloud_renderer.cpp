@@ -160,7 +160,7 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
     lastPointCount_ = 0;
     if (target.empty())
         return;
-    beginPass(target, params.background, true);
+    const RenderPass pass(target, params.background, true);
     if (params.accumulated) {
         params.accumulated->draw(params.worldToClip, params.pointSizePixels);
     } else if (const CloudProgram& cloud = programs_[static_cast<std::size_t>(params.colormap)];
@@ -181,7 +181,6 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
         lastPointCount_ = static_cast<std::size_t>(count);
     }
     drawAnchors(params);
-    endPass();
 }
 
 void PointCloudRenderer::renderSplat(RenderTarget& target, const CloudSplatter& splat,
@@ -199,7 +198,7 @@ void PointCloudRenderer::renderSplat(RenderTarget& target, const CloudSplatter& 
                         splat.picture().data());
         return;
     }
-    beginPass(target, params.background, true);
+    const RenderPass pass(target, params.background, true);
     if (fits && splatProgram_) {
         glActiveTexture(GL_TEXTURE0);
         glBindTexture(GL_TEXTURE_2D, splatKeys_.id());
@@ -220,7 +219,6 @@ void PointCloudRenderer::renderSplat(RenderTarget& target, const CloudSplatter& 
         glDrawArrays(GL_TRIANGLES, 0, 3);
     }
     drawAnchors(params);
-    endPass();
 }
 
 void PointCloudRenderer::drawAnchors(const CloudParams& params) const {

@@ -2,7 +2,7 @@
 
 namespace dc::render {
 
-void beginPass(const RenderTarget& target, const glm::vec3& clearColor, bool depthTest) {
+RenderPass::RenderPass(const RenderTarget& target, const glm::vec3& clearColor, bool depthTest) {
     target.bind();
     glDisable(GL_BLEND);
     glDisable(GL_SCISSOR_TEST);
@@ -20,7 +20,7 @@ void beginPass(const RenderTarget& target, const glm::vec3& clearColor, bool dep
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
 }
 
-void endPass() {
+RenderPass::~RenderPass() {
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
