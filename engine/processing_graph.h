@@ -130,7 +130,7 @@ private:
     processing::ShownCloud shownCloud(const processing::ShownFrame& shown, const Demand& demand);
 
     processing::Pipeline pipeline_;
-    processing::CameraColourTable colourTable_;
+    processing::CameraColorTable colourTable_;
     frame::JpegDecoder jpegDecoder_;
     Memo<frame::FramePtr, frame::FramePtr> decoded_;
     Memo<DepthKey, processing::ShownDepth> depth_;

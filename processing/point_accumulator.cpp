@@ -247,7 +247,7 @@ std::size_t PointAccumulator::add(const frame::Frame& frame, frame::Confidence m
     if (!frame.pose || !frame.sceneDepth)
         return 0;
     const auto& d = frame.sceneDepth->depthMeters;
-    CameraColourTable table;
+    CameraColorTable table;
     const PointColours colors = framePointColours(frame, d, table);
     return add({&*frame.sceneDepth, frame.depthIntrinsics(), colors.colors.get()}, *frame.pose, minLevel,
                nearMeters);

@@ -44,7 +44,7 @@ std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confid
     if (!frame.sceneDepth)
         return {};
     const auto& d = frame.sceneDepth->depthMeters;
-    CameraColourTable table;
+    CameraColorTable table;
     const PointColours colors = framePointColours(frame, d, table);
     return buildPointCloud({&*frame.sceneDepth, frame.depthIntrinsics(), colors.colors.get()}, minLevel,
                            nearMeters);

@@ -344,7 +344,7 @@ bool isSingleCamera(const frame::RigCalibration& rig) {
 }
 
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
-                               CameraColourTable& table) {
+                               CameraColorTable& table) {
     if (!frame.rig)
         return framePointColours(frame, depth, {}, table);
     return framePointColours(frame, depth, frame.rig->depth.intrinsics.scaledTo(depth.width, depth.height),
@@ -352,7 +352,7 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
 }
 
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
-                               const frame::Intrinsics& depthIntrinsics, CameraColourTable& table) {
+                               const frame::Intrinsics& depthIntrinsics, CameraColorTable& table) {
     const frame::CapturedImage& image = frame.capturedImage;
     if (!frame.rig || isSingleCamera(*frame.rig))
         return {std::make_shared<const RgbImage>(pointColors(image, depth.width, depth.height, table)),
@@ -429,7 +429,7 @@ RgbaImage seenColourOverlay(const PointColours& colours) {
 }
 
 RgbImage colourAlignedToDepth(const frame::Frame& frame, const frame::Plane<float>& depth, int width,
-                              int height, CameraColourTable& table) {
+                              int height, CameraColorTable& table) {
     frame::Plane<float> nearest(width, height);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)

@@ -86,11 +86,11 @@ struct PointColours {
 // The colours of a depth map's points for `frame`: the single-camera pointColors() when the frame has no
 // rig (bit for bit today's colours), else each point coloured where registerDepth() puts it.
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
-                               CameraColourTable& table);
+                               CameraColorTable& table);
 // The same for a depth map whose intrinsics are given (a decimated map's cells sit at their centres, which
 // scaling the rig's intrinsics to its size would not give).
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
-                               const frame::Intrinsics& depthIntrinsics, CameraColourTable& table);
+                               const frame::Intrinsics& depthIntrinsics, CameraColorTable& table);
 
 // Whether the colour camera sees sample (u, v) of `depth`, exactly as framePointColours decides it, for one
 // sample (the hover readout of a cloud whose colours the GPU made): one projection of every sample, no
@@ -108,6 +108,6 @@ RgbaImage seenColourOverlay(const PointColours& colours);
 // resampled nearest), kUnseenGray where it sees none. The guide of upsampling on a two-sensor frame; a
 // frame without a rig gets its camera image resampled (pointColors).
 RgbImage colourAlignedToDepth(const frame::Frame& frame, const frame::Plane<float>& depth, int width,
-                              int height, CameraColourTable& table);
+                              int height, CameraColorTable& table);
 
 } // namespace dc::processing

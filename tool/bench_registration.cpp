@@ -63,7 +63,7 @@ int runBenchRegistration(const BenchRegistrationOptions& o) {
     const frame::Plane<float>& depth = frame->sceneDepth->depthMeters;
     frame::Frame oneCamera = *frame;
     oneCamera.rig = nullptr;
-    processing::CameraColourTable table;
+    processing::CameraColorTable table;
     const std::vector<Case> cases{
         {"registration",
          [&] {

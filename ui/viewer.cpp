@@ -337,7 +337,7 @@ Expected<std::string> Viewer::writeSnapshot(const std::string& parent) const {
     processing::CloudSamples samples = shown_->samples();
     std::shared_ptr<const processing::RgbImage> colours;
     if (!samples.colors && samples.depth && settings_.cloud.coloring == render::PointColoring::Camera) {
-        processing::CameraColourTable table;
+        processing::CameraColorTable table;
         colours = processing::framePointColours(*shown_->frame, samples.depth->depthMeters, table).colors;
         samples.colors = colours.get();
     }

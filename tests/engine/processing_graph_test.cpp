@@ -244,7 +244,7 @@ TEST(ProcessingGraphRig, PointsOfATwoSensorFrameAreRegisteredAndCarryTheSeenMask
     const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
     ASSERT_TRUE(shown->pointColors && shown->pointSeen);
     EXPECT_EQ(shown->depth.intrinsics, frame->rig->depth.intrinsics.scaledTo(212, 120));
-    processing::CameraColourTable table;
+    processing::CameraColorTable table;
     const processing::PointColours expected =
         processing::framePointColours(*frame, frame->sceneDepth->depthMeters, table);
     EXPECT_EQ(shown->pointColors->pixels, expected.colors->pixels);
@@ -353,7 +353,7 @@ TEST(ProcessingGraphRig, ColourOverDepthIsTheRegisteredColourAndTransparentWhere
     ASSERT_TRUE(shown->colourOverDepth && shown->depth.data);
     EXPECT_FALSE(shown->cloud.colors) << "the points do not take the camera's colour";
     EXPECT_EQ(graph.runs(kColourOverlayStage), 1u);
-    processing::CameraColourTable table;
+    processing::CameraColorTable table;
     const processing::PointColours expected =
         processing::framePointColours(*frame, shown->depth.data->depthMeters, table);
     ASSERT_TRUE(expected.seen);
@@ -462,7 +462,7 @@ TEST(ProcessingGraphShaderColours, ADecimatedCloudIsColouredOnlyWhereItsPointsAr
     ASSERT_TRUE(cloud.data && shown->cloud.colors);
     EXPECT_EQ(cloud.width(), 106);
     EXPECT_FALSE(shown->pointColors) << "no colour for samples the cloud does not draw";
-    processing::CameraColourTable table;
+    processing::CameraColorTable table;
     const auto expected =
         processing::framePointColours(*frame, cloud.data->depthMeters, cloud.intrinsics, table).colors;
     EXPECT_EQ(shown->cloud.colors->pixels, expected->pixels);

@@ -59,7 +59,7 @@ protected:
     // Draws the samples of `depth` seen straight from the depth camera (sample (u, v) on target pixel
     // (u, v)), coloured on the CPU and by the shader, and compares the two pictures.
     Comparison drawBoth(const frame::Frame& frame, const processing::ShownDepth& depth) {
-        processing::CameraColourTable table;
+        processing::CameraColorTable table;
         const auto colours =
             processing::framePointColours(frame, depth.data->depthMeters, depth.intrinsics, table).colors;
         EXPECT_TRUE(target_.resize(depth.width(), depth.height()).ok());
@@ -162,7 +162,7 @@ TEST_F(CameraColoursTest, TheRigIsRegisteredThroughItsLensWithItsOcclusions) {
 TEST_F(CameraColoursTest, TheSplatPathShowsTheShadersColours) {
     const frame::FramePtr frame = rigFrame();
     const processing::ShownDepth depth = shownDepth(frame);
-    processing::CameraColourTable table;
+    processing::CameraColorTable table;
     const auto colours =
         processing::framePointColours(*frame, depth.data->depthMeters, depth.intrinsics, table).colors;
     ASSERT_TRUE(target_.resize(depth.width(), depth.height()).ok());

@@ -346,7 +346,7 @@ TEST_F(EngineUiTest, OnTheGlPointsPathTheCameraIsConvertedOnlyOnTheGpu) {
     const auto dir = viewer_->saveSnapshot((dir_ / "gpu").string());
     ASSERT_TRUE(dir.ok()) << dir.error().message;
     const std::vector<PlyPoint> ply = readPly(fs::path(*dir) / "cloud.ply");
-    processing::CameraColourTable table;
+    processing::CameraColorTable table;
     const processing::ShownDepth& depth = shown().depth;
     const auto colours = processing::framePointColours(*shown().frame, depth.data->depthMeters, table).colors;
     const auto expected = processing::buildPointCloud({depth.data.get(), depth.intrinsics, colours.get()},

@@ -130,7 +130,7 @@ struct OccludedWall {
 
 TEST(Registration, WallHiddenByAForegroundObjectIsFlaggedUnseenAndNeverTakesItsColour) {
     const OccludedWall scene;
-    CameraColourTable table;
+    CameraColorTable table;
     const PointColours colours = framePointColours(scene.frame, scene.frame.sceneDepth->depthMeters, table);
     ASSERT_TRUE(colours.seen);
     // 0: wall seen, 1: wall hidden, 2: the square itself.
@@ -169,7 +169,7 @@ TEST(Registration, WallHiddenByAForegroundObjectIsFlaggedUnseenAndNeverTakesItsC
 // hidden wall and square alike.
 TEST(Registration, OneSamplesVisibilityIsTheSeenMasks) {
     const OccludedWall scene;
-    CameraColourTable table;
+    CameraColorTable table;
     const frame::Plane<float>& depth = scene.frame.sceneDepth->depthMeters;
     const PointColours colours = framePointColours(scene.frame, depth, table);
     int hidden = 0;
@@ -217,7 +217,7 @@ TEST(Registration, SingleCameraColoursAreTodaysPointColorsBitForBit) {
     const frame::Plane<float>& depth = frame->sceneDepth->depthMeters;
     const RgbImage today = pointColors(frame->capturedImage, depth.width, depth.height);
 
-    CameraColourTable table;
+    CameraColorTable table;
     const PointColours none = framePointColours(*frame, depth, table);
     EXPECT_EQ(none.colors->pixels, today.pixels);
     EXPECT_FALSE(none.seen);
@@ -302,7 +302,7 @@ TEST(Registration, TheRawFramesCloudOfATwoSensorFrameTakesTheRegisteredColours) 
     devices::SyntheticDevice device(dc::test::smallRigConfig());
     ASSERT_TRUE(device.open());
     const frame::FramePtr frame = device.makeFrame(0, 0.0);
-    CameraColourTable table;
+    CameraColorTable table;
     const PointColours colours = framePointColours(*frame, frame->sceneDepth->depthMeters, table);
     const auto fromFrame = buildPointCloud(*frame, frame::Confidence::Low, 0.0f);
     const auto registered = buildPointCloud(

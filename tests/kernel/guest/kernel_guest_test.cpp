@@ -273,7 +273,7 @@ int expectRegisteredAsPredicted(const frame::Frame& f) {
 // The colour the points get (the cloud's, fog's and upsampling's source) is the predicted pixel's.
 void expectPointColoursFromThePredictedPixels(const frame::Frame& f) {
     const frame::Plane<float>& depth = f.sceneDepth->depthMeters;
-    processing::CameraColourTable table;
+    processing::CameraColorTable table;
     const processing::PointColours colours = processing::framePointColours(f, depth, table);
     ASSERT_TRUE(colours.colors && colours.seen) << "colours registered from a second sensor";
     ASSERT_TRUE(table.use(f.capturedImage));
