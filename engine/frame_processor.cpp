@@ -26,7 +26,7 @@ FrameProcessor::FrameProcessor(StageStats& stages, processing::AccumulationWorke
 FrameProcessor::~FrameProcessor() {
     setSession(nullptr);
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         stopping_ = true;
     }
     wake_.notify_all();
@@ -36,7 +36,7 @@ FrameProcessor::~FrameProcessor() {
 void FrameProcessor::setSession(std::shared_ptr<devices::Session> session) {
     std::shared_ptr<devices::Session> old;
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         old = std::exchange(session_, session);
         ++epoch_;
         reset_ = true;
@@ -56,7 +56,7 @@ void FrameProcessor::setSession(std::shared_ptr<devices::Session> session) {
 
 void FrameProcessor::onFrame() {
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         frameReady_ = true;
         arrival_ = Clock::now();
     }
@@ -64,7 +64,7 @@ void FrameProcessor::onFrame() {
 }
 
 std::uint64_t FrameProcessor::setDemand(const Demand& demand) {
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     if (demand == demand_ && generation_ > 0)
         return generation_;
     demand_ = demand;
@@ -75,7 +75,7 @@ std::uint64_t FrameProcessor::setDemand(const Demand& demand) {
 
 void FrameProcessor::afterSeek(std::uint64_t seekGeneration) {
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         awaitedSeek_ = std::max(awaitedSeek_, seekGeneration);
         reset_ = true;
     }
@@ -87,9 +87,9 @@ bool FrameProcessor::hasWork() const {
 }
 
 void FrameProcessor::run() {
-    std::unique_lock lock(mutex_);
+    base::MutexLock lock(mutex_);
     for (;;) {
-        wake_.wait(lock, [this] { return hasWork(); });
+        lock.wait(wake_, [this]() DC_REQUIRES(mutex_) { return hasWork(); });
         if (stopping_)
             return;
         const Work work{session_,
@@ -210,7 +210,7 @@ void FrameProcessor::publish(processing::ShownFramePtr result, const Work& work)
 }
 
 std::optional<processing::ShownFramePtr> FrameProcessor::take() {
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     if (slot_)
         ++counts_.resultsTaken;
     return std::exchange(slot_, std::nullopt);
@@ -219,30 +219,30 @@ std::optional<processing::ShownFramePtr> FrameProcessor::take() {
 std::optional<processing::ShownFramePtr>
 FrameProcessor::waitFor(std::chrono::milliseconds timeout,
                         const std::function<bool(const processing::ShownFrame&)>& ready) {
-    std::unique_lock lock(mutex_);
-    if (!published_.wait_for(lock, timeout, [&] { return slot_ && ready(**slot_); }))
+    base::MutexLock lock(mutex_);
+    if (!lock.waitFor(published_, timeout, [&]() DC_REQUIRES(mutex_) { return slot_ && ready(**slot_); }))
         return std::nullopt;
     ++counts_.resultsTaken;
     return std::exchange(slot_, std::nullopt);
 }
 
 ProcessorCounts FrameProcessor::counts() const {
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     return counts_;
 }
 
 base::RollingStats FrameProcessor::latencyMs() const {
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     return latencyMs_;
 }
 
 base::RollingStats FrameProcessor::cpuMs() const {
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     return cpuMs_;
 }
 
 std::uint64_t FrameProcessor::stageRuns(std::string_view stage) const {
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     const auto it = runs_.find(stage);
     return it == runs_.end() ? 0 : it->second;
 }

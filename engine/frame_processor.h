@@ -1,5 +1,6 @@
 #pragma once
 
+#include "base/mutex.h"
 #include "base/rolling_stats.h"
 #include "devices/session.h"
 #include "engine/demand.h"
@@ -12,7 +13,6 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
 #include <thread>
 #include <utility>
@@ -81,12 +81,12 @@ private:
     };
 
     void run();
-    bool hasWork() const; // with mutex_ held
+    bool hasWork() const DC_REQUIRES(mutex_);
     std::optional<processing::ShownFramePtr> process(const Work& work);
     // process() inside an exception barrier: a stage that throws costs that result, not the thread.
     std::optional<processing::ShownFramePtr> processGuarded(const Work& work);
     void accumulate(const processing::ShownFrame& shown, const Demand& demand, bool fresh);
-    void publish(processing::ShownFramePtr result, const Work& work); // with mutex_ held
+    void publish(processing::ShownFramePtr result, const Work& work) DC_REQUIRES(mutex_);
     void onFrame();
 
     StageStats& stages_;
@@ -101,24 +101,27 @@ private:
     // Processor thread only: the budget and voxel size accumulation last added with; none while it is off.
     std::optional<std::pair<std::size_t, float>> accumulatedWith_;
 
-    mutable std::mutex mutex_;
+    mutable base::Mutex mutex_;
     std::condition_variable wake_;      // work for the thread
     std::condition_variable published_; // a result for the GL thread
-    std::shared_ptr<devices::Session> session_;
-    std::uint64_t epoch_ = 0; // counts sessions, so a result of the old one is never published
-    Demand demand_;
-    std::uint64_t generation_ = 0; // 0: no demand yet, so nothing is processed (nobody asked for anything)
-    std::uint64_t doneGeneration_ = 0;
-    std::uint64_t awaitedSeek_ = 0;
-    bool reset_ = false;
-    bool frameReady_ = false;
-    Clock::time_point arrival_;
-    bool stopping_ = false;
-    std::optional<processing::ShownFramePtr> slot_;
-    ProcessorCounts counts_;
-    base::RollingStats latencyMs_;
-    base::RollingStats cpuMs_;
-    std::map<std::string, std::uint64_t, std::less<>> runs_; // a copy of graph_'s, for other threads
+    std::shared_ptr<devices::Session> session_ DC_GUARDED_BY(mutex_);
+    std::uint64_t
+        epoch_ DC_GUARDED_BY(mutex_) = 0; // counts sessions, so a result of the old one is never published
+    Demand demand_ DC_GUARDED_BY(mutex_);
+    std::uint64_t generation_ DC_GUARDED_BY(mutex_) =
+        0; // 0: no demand yet, so nothing is processed (nobody asked for anything)
+    std::uint64_t doneGeneration_ DC_GUARDED_BY(mutex_) = 0;
+    std::uint64_t awaitedSeek_ DC_GUARDED_BY(mutex_) = 0;
+    bool reset_ DC_GUARDED_BY(mutex_) = false;
+    bool frameReady_ DC_GUARDED_BY(mutex_) = false;
+    Clock::time_point arrival_ DC_GUARDED_BY(mutex_);
+    bool stopping_ DC_GUARDED_BY(mutex_) = false;
+    std::optional<processing::ShownFramePtr> slot_ DC_GUARDED_BY(mutex_);
+    ProcessorCounts counts_ DC_GUARDED_BY(mutex_);
+    base::RollingStats latencyMs_ DC_GUARDED_BY(mutex_);
+    base::RollingStats cpuMs_ DC_GUARDED_BY(mutex_);
+    std::map<std::string, std::uint64_t, std::less<>>
+        runs_ DC_GUARDED_BY(mutex_); // a copy of graph_'s, for other threads
     std::thread thread_;
 };
 

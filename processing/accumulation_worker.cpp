@@ -11,7 +11,7 @@ AccumulationWorker::AccumulationWorker() : thread_([this] { run(); }) {}
 
 AccumulationWorker::~AccumulationWorker() {
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         stopping_ = true;
     }
     wake_.notify_all();
@@ -20,7 +20,7 @@ AccumulationWorker::~AccumulationWorker() {
 
 void AccumulationWorker::submit(Request request) {
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         if (pending_)
             ++skipped_;
         pending_ = std::move(request);
@@ -30,26 +30,30 @@ void AccumulationWorker::submit(Request request) {
 
 void AccumulationWorker::clear() {
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         pending_.reset();
         ++generation_;
     }
-    std::lock_guard points(pointsMutex_);
+    base::MutexLock points(pointsMutex_);
     accumulator_.clear();
     size_ = 0;
 }
 
 bool AccumulationWorker::tryRead(const std::function<void(PointAccumulator&)>& read) {
-    std::unique_lock points(pointsMutex_, std::try_to_lock);
-    if (!points.owns_lock())
+    if (!pointsMutex_.tryLock())
         return false;
-    read(accumulator_);
+    // Through the barrier, so that the mutex is released whatever `read` does.
+    const Status s =
+        base::guarded("reading the world cloud", [&]() DC_REQUIRES(pointsMutex_) { read(accumulator_); });
+    pointsMutex_.unlock();
+    if (!s)
+        logError(s.error().message);
     return true;
 }
 
 void AccumulationWorker::waitIdle() const {
-    std::unique_lock lock(mutex_);
-    idle_.wait(lock, [this] { return !pending_ && !busy_; });
+    base::MutexLock lock(mutex_);
+    lock.wait(idle_, [this]() DC_REQUIRES(mutex_) { return !pending_ && !busy_; });
 }
 
 void AccumulationWorker::run() {
@@ -57,8 +61,8 @@ void AccumulationWorker::run() {
         Request request;
         std::uint64_t generation = 0;
         {
-            std::unique_lock lock(mutex_);
-            wake_.wait(lock, [this] { return stopping_ || pending_; });
+            base::MutexLock lock(mutex_);
+            lock.wait(wake_, [this]() DC_REQUIRES(mutex_) { return stopping_ || pending_; });
             if (stopping_)
                 return;
             request = std::move(*pending_);
@@ -70,7 +74,7 @@ void AccumulationWorker::run() {
         if (Status s = base::guarded("accumulation failed", [&] { add(request, generation); }); !s)
             logError(s.error().message);
         {
-            std::lock_guard lock(mutex_);
+            base::MutexLock lock(mutex_);
             busy_ = false;
         }
         idle_.notify_all();
@@ -78,10 +82,10 @@ void AccumulationWorker::run() {
 }
 
 void AccumulationWorker::add(const Request& request, std::uint64_t generation) {
-    std::lock_guard points(pointsMutex_);
+    base::MutexLock points(pointsMutex_);
     const auto start = std::chrono::steady_clock::now();
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         if (generation != generation_)
             return; // cleared since this frame was taken: it belongs to what was cleared
     }

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "base/mutex.h"
 #include "frame/frame.h"
 #include "processing/point_accumulator.h"
 
@@ -7,7 +8,6 @@
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
-#include <mutex>
 #include <optional>
 #include <thread>
 
@@ -51,17 +51,18 @@ public:
 
 private:
     void run();
-    void add(const Request& request, std::uint64_t generation);
+    void add(const Request& request, std::uint64_t generation) DC_EXCLUDES(mutex_, pointsMutex_);
 
-    mutable std::mutex mutex_; // guards pending_, busy_, stopping_, generation_
+    mutable base::Mutex mutex_;
     mutable std::condition_variable wake_, idle_;
-    std::optional<Request> pending_;
-    bool busy_ = false;
-    bool stopping_ = false;
-    std::uint64_t generation_ = 0; // counts clears, so a frame taken before one is not added after it
+    std::optional<Request> pending_ DC_GUARDED_BY(mutex_);
+    bool busy_ DC_GUARDED_BY(mutex_) = false;
+    bool stopping_ DC_GUARDED_BY(mutex_) = false;
+    // Counts clears, so a frame taken before one is not added after it.
+    std::uint64_t generation_ DC_GUARDED_BY(mutex_) = 0;
 
-    std::mutex pointsMutex_; // guards accumulator_
-    PointAccumulator accumulator_{10'000};
+    base::Mutex pointsMutex_;
+    PointAccumulator accumulator_ DC_GUARDED_BY(pointsMutex_){10'000};
 
     std::atomic<std::size_t> size_{0};
     std::atomic<std::uint64_t> skipped_{0};

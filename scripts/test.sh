@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Command 2: install what is missing, build, and run every test tier (unit, gl, ui, app, kernel, package),
-# then the unit and gl tiers and the UI monkey again under AddressSanitizer + UndefinedBehaviorSanitizer, the
-# threaded tests under ThreadSanitizer, and the fuzz targets briefly.
+# clang's thread-safety analysis, then the unit and gl tiers and the UI monkey again under AddressSanitizer +
+# UndefinedBehaviorSanitizer, the threaded tests under ThreadSanitizer, and the fuzz targets briefly.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 ./scripts/setup.sh
@@ -19,11 +19,12 @@ for label in unit gl ui app kernel package; do
     fi
 done
 ctest --test-dir build --output-on-failure -j"$jobs" --timeout 600
+./scripts/thread-safety.sh build # clang's thread-safety analysis of the annotated shared state
 
 echo "test.sh: unit and gl tiers under ASan + UBSan"
 cmake -S . -B build-asan -DCMAKE_BUILD_TYPE=Debug -DDC_BUILD_TESTS=ON -DDC_WERROR=ON -DDC_SANITIZE=ON >/dev/null
 cmake --build build-asan -j"$jobs" --target test_unit test_processing test_settings test_gl test_recording test_live \
-    test_ui
+    test_engine test_probe test_ui
 # Mesa's llvmpipe keeps allocations alive until process exit; leak checking stays on for the unit tier.
 ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^unit$'
 ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^gl$'
