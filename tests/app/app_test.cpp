@@ -327,6 +327,14 @@ void expectTheScreenIsTheScreenshot(const std::string& xwd, const cv::Mat& shot)
     EXPECT_EQ(cv::countNonZero(difference.reshape(1)), 0) << "the screen holds the whole picture";
 }
 
+// The screenshot has the window's size, and the screen holds the whole of it.
+void expectTheWholePictureAt(const std::string& xwd, const cv::Mat& shot, int width, int height) {
+    ASSERT_FALSE(shot.empty());
+    EXPECT_EQ(shot.cols, width);
+    EXPECT_EQ(shot.rows, height);
+    expectTheScreenIsTheScreenshot(xwd, shot);
+}
+
 // A short recording to replay paused, and settings in `configHome` that turn auto-rotate off: a view in
 // which nothing moves.
 void prepareStillReplay(const std::string& take, const std::string& configHome) {
@@ -400,9 +408,7 @@ TEST(AppWindow, AResizedWindowShowsTheWholePictureAtItsNewSize) {
     ASSERT_EQ(r.exitCode, 0) << r.output;
     EXPECT_NE(r.output.find("drawn where it changes"), std::string::npos) << r.output;
     const cv::Mat shot = cv::imread(out.str() + "/screenshot.png", cv::IMREAD_COLOR);
-    EXPECT_EQ(shot.cols, 1100);
-    EXPECT_EQ(shot.rows, 640);
-    ASSERT_NO_FATAL_FAILURE(expectTheScreenIsTheScreenshot(work.str() + "/screen.xwd", shot));
+    ASSERT_NO_FATAL_FAILURE(expectTheWholePictureAt(work.str() + "/screen.xwd", shot, 1100, 640));
     EXPECT_GT(contrast(region(shot, 0.3, 0.2, 0.6, 0.6)), 15.0) << "and it is the cloud";
 }
 
@@ -478,10 +484,7 @@ TEST(AppWindowManager, RestoredGrownAndShrunkTheWindowShowsTheWholePictureAndCli
                           "xdotool windowsize --sync \"$w\" 1280 720\nsleep 2\n"
                           "xdotool mousemove --window \"$w\" 1113 119 click 1\nsleep 2\n"
                           "xdotool mousemove --window \"$w\" 640 300\n");
-    ASSERT_FALSE(shot.empty());
-    EXPECT_EQ(shot.cols, 1280);
-    EXPECT_EQ(shot.rows, 720);
-    ASSERT_NO_FATAL_FAILURE(expectTheScreenIsTheScreenshot(work.str() + "/screen.xwd", shot));
+    ASSERT_NO_FATAL_FAILURE(expectTheWholePictureAt(work.str() + "/screen.xwd", shot, 1280, 720));
     EXPECT_GT(longestJetLegend(shot), shot.cols * 6 / 10)
         << "the click opened the depth panel over the window";
 }
@@ -500,10 +503,7 @@ TEST(AppWindowManager, ResizedFasterThanItDrawsTheWindowLivesAndShowsTheWholePic
         "  xdotool windowsize \"$w\" $((900 + i * 37 % 500)) $((500 + i * 23 % 300)); sleep 0.$((i % 2))\n"
         "done\n"
         "xdotool windowsize --sync \"$w\" 1100 640\nsleep 2\nxdotool mousemove --window \"$w\" 640 300\n");
-    ASSERT_FALSE(shot.empty());
-    EXPECT_EQ(shot.cols, 1100);
-    EXPECT_EQ(shot.rows, 640);
-    ASSERT_NO_FATAL_FAILURE(expectTheScreenIsTheScreenshot(work.str() + "/screen.xwd", shot));
+    ASSERT_NO_FATAL_FAILURE(expectTheWholePictureAt(work.str() + "/screen.xwd", shot, 1100, 640));
 }
 
 // Real X input through xdotool: a click on the depth panel zooms it over the window, P saves a snapshot,
