@@ -112,25 +112,25 @@ void Session::onStalled(const std::string& message) {
 std::optional<frame::FramePtr> Session::noteAge(std::optional<frame::FramePtr> frame) {
     const std::optional<std::int64_t> now = nowOnFrameClockNs(capabilities_);
     if (now && frame && *frame) {
-        std::lock_guard lock(agesMutex_);
+        base::MutexLock lock(agesMutex_);
         ages_.add(frameAgeMs(**frame, *now));
     }
     return frame;
 }
 
 void Session::setFrameTap(std::function<void(const frame::FramePtr&)> tap) {
-    std::lock_guard lock(tapMutex_);
+    base::MutexLock lock(tapMutex_);
     tap_ = std::move(tap);
 }
 
 void Session::setFrameListener(std::function<void()> listener) {
-    std::lock_guard lock(tapMutex_);
+    base::MutexLock lock(tapMutex_);
     listener_ = std::move(listener);
 }
 
 void Session::onFrame(frame::FramePtr frame) {
     {
-        std::lock_guard lock(tapMutex_);
+        base::MutexLock lock(tapMutex_);
         if (tap_)
             tap_(frame);
     }
@@ -141,7 +141,7 @@ void Session::onFrame(frame::FramePtr frame) {
     mailbox_.post(std::move(frame));
     deliveries_.tick();
     deviceFps_ = deliveries_.perSecond();
-    std::lock_guard lock(tapMutex_);
+    base::MutexLock lock(tapMutex_);
     if (listener_)
         listener_();
 }
@@ -149,17 +149,17 @@ void Session::onFrame(frame::FramePtr frame) {
 void Session::push(SessionEvent event) {
     if (event.kind == SessionEvent::Kind::Error)
         logError(description_ + ": " + event.message);
-    std::lock_guard lock(eventsMutex_);
+    base::MutexLock lock(eventsMutex_);
     events_.push_back(std::move(event));
 }
 
 std::vector<SessionEvent> Session::drainEvents() {
-    std::lock_guard lock(eventsMutex_);
+    base::MutexLock lock(eventsMutex_);
     return std::exchange(events_, {});
 }
 
 SessionStats Session::stats() const {
-    std::lock_guard lock(agesMutex_);
+    base::MutexLock lock(agesMutex_);
     return {mailbox_.posted(), mailbox_.dropped(), deviceFps_.load(), ages_.median()};
 }
 

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "base/mailbox.h"
+#include "base/mutex.h"
 #include "base/rate_meter.h"
 #include "base/rolling_stats.h"
 #include "devices/device.h"
@@ -10,7 +11,6 @@
 #include <chrono>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <thread>
 #include <vector>
@@ -88,13 +88,14 @@ private:
     std::atomic<DeviceState> state_{DeviceState::Closed};
     std::atomic<double> deviceFps_{0.0};
     base::RateMeter deliveries_; // capture thread only; published through deviceFps_
-    mutable std::mutex agesMutex_;
-    base::RollingStats ages_{31}; // ages of the frames consumers took, for latencyMs
-    std::mutex tapMutex_;
-    std::function<void(const frame::FramePtr&)> tap_;
-    std::function<void()> listener_; // guarded by tapMutex_
-    mutable std::mutex eventsMutex_;
-    std::vector<SessionEvent> events_;
+    mutable base::Mutex agesMutex_;
+    base::RollingStats ages_ DC_GUARDED_BY(agesMutex_){
+        31}; // ages of the frames consumers took, for latencyMs
+    base::Mutex tapMutex_;
+    std::function<void(const frame::FramePtr&)> tap_ DC_GUARDED_BY(tapMutex_);
+    std::function<void()> listener_ DC_GUARDED_BY(tapMutex_);
+    mutable base::Mutex eventsMutex_;
+    std::vector<SessionEvent> events_ DC_GUARDED_BY(eventsMutex_);
 };
 
 } // namespace dc::devices
