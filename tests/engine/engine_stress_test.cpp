@@ -180,11 +180,15 @@ TEST(EngineStressTest, RealSourcesSwitchedSoughtAndRedemandedFromTheUiThread) {
     const auto start = std::chrono::steady_clock::now();
     const auto end = start + std::chrono::duration<double>(stressSeconds());
     auto nextSwitch = start;
+    // A source is switched away from once it has shown a frame: a slow build (ASan, Debug) takes longer
+    // than the switching period to start the synthetic camera.
+    bool shownSinceSwitch = true;
     for (int i = 0; std::chrono::steady_clock::now() < end; ++i) {
         const Demand& d = ds[static_cast<std::size_t>(i) % ds.size()];
         const std::uint64_t generation = instrument.setDemand(d);
-        if (std::chrono::steady_clock::now() >= nextSwitch) {
-            nextSwitch += 250ms;
+        if (std::chrono::steady_clock::now() >= nextSwitch && shownSinceSwitch) {
+            nextSwitch = std::chrono::steady_clock::now() + 250ms;
+            shownSinceSwitch = false;
             const std::string next = instrument.replay() ? synthetic : "replay:" + recording + ":loop";
             ASSERT_TRUE(instrument.openSource(next).ok()) << next;
         }
@@ -195,6 +199,7 @@ TEST(EngineStressTest, RealSourcesSwitchedSoughtAndRedemandedFromTheUiThread) {
             ASSERT_TRUE((*r)->frame);
             instrument.presented(**r);
             ++shown[instrument.replay() ? "replay" : "synthetic"];
+            shownSinceSwitch = true;
         }
     }
     EXPECT_GT(shown["synthetic"], 0u);
