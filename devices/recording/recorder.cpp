@@ -77,7 +77,8 @@ void Recorder::encodeLoop(EncodeOptions options) {
         lock.unlock();
         const auto begin = std::chrono::steady_clock::now();
         Encoded result{frame->timestampNs, Error{"not encoded"}};
-        if (Status ran = base::guarded("encoding failed", [&] { result.payload = encoder.encode(*frame); });
+        const auto& captured = *frame; // a lambda may not capture a structured binding (clang 14)
+        if (Status ran = base::guarded("encoding failed", [&] { result.payload = encoder.encode(captured); });
             !ran)
             result.payload = ran.error();
         frame.reset();
