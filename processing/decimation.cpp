@@ -3,6 +3,7 @@
 #include "processing/confidence_filter.h"
 #include "processing/parallel.h"
 
+#include <algorithm>
 #include <limits>
 
 namespace dc::processing {
@@ -69,6 +70,30 @@ DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intri
     k.width = outWidth;
     k.height = outHeight;
     return {std::move(out), k};
+}
+
+namespace {
+
+template <class T> frame::Plane<T> cellCentres(const frame::Plane<T>& plane, int step) {
+    if (plane.empty())
+        return {};
+    frame::Plane<T> out(cells(plane.width, step), cells(plane.height, step));
+    for (int cy = 0; cy < out.height; ++cy) {
+        const int y = std::min(plane.height - 1, cy * step + step / 2);
+        for (int cx = 0; cx < out.width; ++cx)
+            out.at(cx, cy) = plane.at(std::min(plane.width - 1, cx * step + step / 2), y);
+    }
+    return out;
+}
+
+} // namespace
+
+frame::DepthData sampleCellCentres(const frame::DepthData& depth, int step) {
+    frame::DepthData out;
+    out.depthMeters = cellCentres(depth.depthMeters, step);
+    out.confidence = cellCentres(depth.confidence, step);
+    out.confidenceEstimated = depth.confidenceEstimated;
+    return out;
 }
 
 } // namespace dc::processing

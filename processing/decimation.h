@@ -26,4 +26,9 @@ int footprintFactor(int width, int height, std::size_t maxPoints);
 DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intrinsics& intrinsics, int factor,
                                frame::Confidence minLevel, float nearMeters);
 
+// Every `step`-th sample of `depth` in each direction (step >= 2), the one nearest the centre of its
+// step x step cell, with its confidence: what a panel shows of the map under nearest sampling when it is
+// shown at 1/step of the map's size, so a panel can be drawn from these instead of the whole map.
+frame::DepthData sampleCellCentres(const frame::DepthData& depth, int step);
+
 } // namespace dc::processing

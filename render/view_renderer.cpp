@@ -1,5 +1,7 @@
 #include "render/view_renderer.h"
 
+#include "processing/decimation.h"
+
 #include <algorithm>
 #include <array>
 
@@ -115,8 +117,34 @@ void ViewRenderer::renderPanels(const PanelParams& params) {
         drawDepthOverCamera(params);
 }
 
+void ViewRenderer::renderPanelsWhole() {
+    if (!panelsDrawnWith_ || panelStep_ == 1)
+        return;
+    PanelParams whole = *panelsDrawnWith_;
+    whole.shownWidth = 0;
+    renderPanels(whole);
+}
+
+const FrameTextures& ViewRenderer::panelTextures(int step) {
+    if (step <= 1)
+        return texturesFor(panelDepth_, depth_, pointColors_, false);
+    if (panelSampledFrom_ != depth_.data || panelStep_ != step) {
+        processing::ShownDepth sampled;
+        sampled.data =
+            std::make_shared<const frame::DepthData>(processing::sampleCellCentres(*depth_.data, step));
+        texturesFor(panelSamples_, sampled, nullptr, false);
+        panelSampledFrom_ = depth_.data;
+    }
+    return panelSamples_.textures;
+}
+
 void ViewRenderer::drawDataPanels(const PanelParams& params) {
-    const FrameTextures& textures = texturesFor(panelDepth_, depth_, pointColors_, false);
+    // Nearest sampling shows one sample in `step` of a map drawn `step` times smaller than it is: those
+    // samples are all the panel needs, and a 1920x1440 map is 11 MB to upload and 2.8 M pixels to draw.
+    const int step = params.shownWidth > 0 ? std::max(1, depth_.width() / params.shownWidth) : 1;
+    const FrameTextures& textures = panelTextures(step);
+    panelStep_ = step;
+    panelsMap_ = {depth_.width(), depth_.height()};
     if (params.depth) {
         depthTarget_.resize(textures.depthWidth(), textures.depthHeight());
         panels_.renderDepth(depthTarget_, textures, params.minMeters, params.maxMeters, params.colormap);

@@ -18,6 +18,7 @@
 #include <optional>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace dc::render {
 
@@ -29,6 +30,10 @@ struct PanelParams {
     float minMeters = 0.0f;
     float maxMeters = 2.5f;
     Colormap colormap = Colormap::Jet;
+    // The widest the depth and confidence panels' images are shown, in pixels (0: unknown). A map at
+    // least twice as wide is drawn from every n-th sample (processing::sampleCellCentres) at no less than
+    // this width, which is what the screen shows of it, rather than uploaded and drawn whole.
+    int shownWidth = 0;
 
     bool operator==(const PanelParams&) const = default;
 };
@@ -53,9 +58,17 @@ public:
     // Brings accumulated points up to date, unless the worker is adding right now (then the points uploaded
     // last time are drawn again).
     void syncAccumulated(processing::AccumulationWorker& worker);
-    // Draws the depth and confidence panels at the depth map's size, and the depth over the camera at the
-    // aligned depth's size, where their data or `params` changed.
+    // Draws the depth and confidence panels (at the depth map's size, or a fraction of it no smaller than
+    // params.shownWidth), and the depth over the camera at the aligned depth's size, where their data or
+    // `params` changed.
     void renderPanels(const PanelParams& params);
+    // Draws the depth and confidence panels again at the depth map's own size if they were drawn smaller:
+    // for a snapshot, which keeps every sample. The next renderPanels() draws them at the shown size again.
+    void renderPanelsWhole();
+    // The size of the depth map the depth and confidence panels show (their images' shape on screen; the
+    // targets may hold every n-th sample of it).
+    int panelsMapWidth() const { return panelsMap_.first; }
+    int panelsMapHeight() const { return panelsMap_.second; }
     // The camera panel's picture made on the GPU from the image's planes, at the size the panel shows it
     // (processing::cameraPanelImageSize of `shownWidth`), when the engine made none for this frame
     // (engine::Demand::gpuCameraColours); drawn again only when the image or the size changes.
@@ -134,11 +147,17 @@ private:
     // colours from the engine (engine::Demand::gpuCameraColours).
     bool shaderColours(const CloudParams& params, bool accumulated) const;
     void drawDataPanels(const PanelParams& params);
+    // The textures the panels draw from: the shown depth's own, or every `step`-th sample of it.
+    const FrameTextures& panelTextures(int step);
     void drawDepthOverCamera(const PanelParams& params);
 
     UploadedDepth panelDepth_;
     UploadedDepth cloudDepth_; // the cloud's samples when they are decimated
     UploadedDepth overlayDepth_;
+    UploadedDepth panelSamples_; // every n-th sample of the shown depth, for panels shown smaller
+    std::shared_ptr<const frame::DepthData> panelSampledFrom_;
+    int panelStep_ = 1;
+    std::pair<int, int> panelsMap_{0, 0};
     std::shared_ptr<const frame::DepthData> depthOverCamera_;
     processing::ShownDepth depth_;
     std::shared_ptr<const processing::RgbImage> pointColors_;

@@ -10,6 +10,8 @@ bool beginImagePanel(const char* title, bool* open, PanelResult& result) {
 }
 
 void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result) {
+    const float visible = shown.visibleMax.x - shown.visibleMin.x;
+    result.shownWidth = visible > 0.0f ? static_cast<int>((shown.max.x - shown.min.x) / visible) : 0;
     const std::optional<ImVec2> at = imageFractionUnderMouse(shown);
     if (!at)
         return;

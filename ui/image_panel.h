@@ -8,8 +8,8 @@ namespace dc::ui {
 // `result`; like ImGui::Begin, it must be paired with ImGui::End() whatever it returns.
 bool beginImagePanel(const char* title, bool* open, PanelResult& result);
 
-// The hover readout (the depth sample under the mouse, into result.probe) and click-to-zoom over an image
-// drawn with drawImage().
+// The width the image is shown at, the hover readout (the depth sample under the mouse, into
+// result.probe) and click-to-zoom, over an image drawn with drawImage().
 void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result);
 
 } // namespace dc::ui

@@ -46,6 +46,9 @@ struct PanelResult {
     ImVec2 windowSize;
     bool toggleZoom = false;
     std::optional<Probe> probe;
+    // The width in pixels the whole image is shown at (a filled panel shows a crop of a wider image); 0
+    // when none is shown. The GL thread draws the image at this size rather than at the data's own.
+    int shownWidth = 0;
 };
 
 // A mark drawn over the cloud: an anchor (a label at a point) or a measured segment between two.
@@ -117,16 +120,10 @@ PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool es
 PanelResult drawInfraredPanel(const PanelImage& image, const processing::IntensityRange& range,
                               const ProbeSource& probe, bool* open);
 
-struct CameraPanelResult {
-    PanelResult panel;
-    int shownWidth =
-        0; // the width in pixels the image is shown at (0 when hidden), to render it at that size
-};
-
 // The camera image, fitted or filling the panel, optionally with the depth laid over it: the depth panel's
 // image for a single camera, the depth aligned to the colour image for two sensors.
-CameraPanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay,
-                                  const CameraView& view, const ProbeSource& probe, bool* open);
+PanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay, const CameraView& view,
+                            const ProbeSource& probe, bool* open);
 
 // The folder field's text while it is edited (RecordSettings::directory follows it).
 struct RecordPanelState {

@@ -118,7 +118,7 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     const bool depthOverCamera = show.camera && settings_.camera.depthOverlay;
     const bool aligned = shown_ && shown_->depthOverCamera;
     renderer_.renderPanels({show.depth || (depthOverCamera && !aligned), show.confidence, depthOverCamera,
-                            legend_.minMeters, legend_.maxMeters, legend_.colormap});
+                            legend_.minMeters, legend_.maxMeters, legend_.colormap, dataPanelsShownWidth_});
     if (show.camera)
         renderer_.renderCameraImage(cameraShownWidth_);
     // A stage's time is what its work costs: a frame where it had nothing to redraw is not a sample.
@@ -276,7 +276,8 @@ Status Viewer::openPath(const std::string& path) {
     return openSource(*spec);
 }
 
-Expected<std::vector<std::string>> Viewer::savePanels(const std::string& directory) const {
+Expected<std::vector<std::string>> Viewer::savePanels(const std::string& directory) {
+    renderer_.renderPanelsWhole();
     const std::pair<const char*, const render::RenderTarget*> panels[] = {
         {"cloud.png", &renderer_.cloudTarget()},
         {"depth.png", &renderer_.depthTarget()},
@@ -314,7 +315,7 @@ Status Viewer::saveCameraImage(const std::string& path) const {
     return frame::writeRgbaPng(path, image.width, image.height, rgba.data());
 }
 
-Expected<std::string> Viewer::saveSnapshot(const std::string& parent) const {
+Expected<std::string> Viewer::saveSnapshot(const std::string& parent) {
     auto dir = writeSnapshot(parent);
     if (dir)
         logNotice("snapshot saved to " + *dir);
@@ -323,7 +324,7 @@ Expected<std::string> Viewer::saveSnapshot(const std::string& parent) const {
     return dir;
 }
 
-Expected<std::string> Viewer::writeSnapshot(const std::string& parent) const {
+Expected<std::string> Viewer::writeSnapshot(const std::string& parent) {
     if (!shown_)
         return Error{"no frame to save yet"};
     // A new directory every time: two snapshots of one frame (a paused replay) are two snapshots.

@@ -81,11 +81,12 @@ public:
     // Writes cloud.png, depth.png, confidence.png (as rendered, at the depth's resolution) and camera.png
     // (the camera's image at its full resolution, where the frame shown has one) into `directory`; returns
     // the names of the files written.
-    Expected<std::vector<std::string>> savePanels(const std::string& directory) const;
+    // The depth and confidence panels are written with every sample of the map, however small they are shown.
+    Expected<std::vector<std::string>> savePanels(const std::string& directory);
     // Writes the panels as PNGs and the points drawn as cloud.ply (camera frame) into a directory under
     // `parent` named after the frame, new each time (frame-N, frame-N-2, …); returns that directory. Says
     // where it went, or why it failed, in the log (and so on screen).
-    Expected<std::string> saveSnapshot(const std::string& parent) const;
+    Expected<std::string> saveSnapshot(const std::string& parent);
     // The cloud path the settings and the GL choose, and that with the reason ("CPU splat (software GL)").
     render::CloudPath cloudPath() const;
     std::string cloudPathText() const;
@@ -144,7 +145,7 @@ public:
 
 private:
     Status saveCameraImage(const std::string& path) const;
-    Expected<std::string> writeSnapshot(const std::string& parent) const;
+    Expected<std::string> writeSnapshot(const std::string& parent);
     engine::Demand demandOf() const;
     void adopt(processing::ShownFramePtr shown);
     void renderCloud(double timeSeconds);
@@ -186,6 +187,7 @@ private:
     std::optional<processing::ShownFramePtr> awaited_; // taken by awaitFrame, adopted by the next update
     bool presentedShown_ = true;                       // presented() already counted shown_
     int cameraShownWidth_ = kDefaultCameraWidth;
+    int dataPanelsShownWidth_ = 0; // the widest the depth panel's image (or the confidence's) is shown
     float pivotDepthMeters_ = 1.0f;
     bool pivotSet_ = false;
     glm::mat4 cloudViewProjection_{1.0f};

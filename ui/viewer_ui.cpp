@@ -77,6 +77,17 @@ PanelImage imageOf(const render::RenderTarget& target) {
     return {target.colorTexture(), target.width(), target.height(), true};
 }
 
+// A depth or confidence panel's image: shaped as the map it shows, which the target may hold every n-th
+// sample of.
+PanelImage dataPanelImage(const render::RenderTarget& target, const render::ViewRenderer& renderer) {
+    PanelImage image = imageOf(target);
+    if (renderer.panelsMapWidth() > 0) {
+        image.width = renderer.panelsMapWidth();
+        image.height = renderer.panelsMapHeight();
+    }
+    return image;
+}
+
 PanelImage imageOf(const render::RgbaTexture& texture) {
     return {texture.id(), texture.width(), texture.height(), false};
 }
@@ -410,34 +421,45 @@ void Viewer::drawSidePanels(float x, float w, float height) {
     };
     PanelVisibility& show = settings_.panels;
     const ProbeSource probe = probeSource();
+    int dataPanelsWidth = 0;
+    const auto afterDataPanel = [&](const char* title, const PanelResult& result) {
+        afterPanel(title, result);
+        dataPanelsWidth = std::max(dataPanelsWidth, result.shownWidth);
+    };
     if (show.depth) {
         place(kDepthTitle);
         const DepthView& view = settings_.depthView;
         const bool overlay = view.colourOverlay && shown_ && shown_->colourOverDepth;
         const PanelImage colour = overlay ? imageOf(renderer_.colourOverDepthTexture()) : PanelImage{};
-        afterPanel(kDepthTitle, drawDepthPanel(imageOf(renderer_.depthTarget()),
-                                               {colour, view.overlayOpacity}, legend_, probe, &show.depth));
+        afterDataPanel(kDepthTitle,
+                       drawDepthPanel(dataPanelImage(renderer_.depthTarget(), renderer_),
+                                      {colour, view.overlayOpacity}, legend_, probe, &show.depth));
     }
     if (show.confidence) {
         place(kConfidenceTitle);
         const bool estimated = !probe.empty() && probe.depth->confidenceEstimated;
         const bool available = instrument_.capabilities().confidence || estimated;
-        afterPanel(kConfidenceTitle, drawConfidencePanel(imageOf(renderer_.confidenceTarget()), available,
-                                                         estimated, probe, &show.confidence));
+        afterDataPanel(kConfidenceTitle,
+                       drawConfidencePanel(dataPanelImage(renderer_.confidenceTarget(), renderer_), available,
+                                           estimated, probe, &show.confidence));
     }
     if (show.camera) {
         place(kCameraTitle);
-        const PanelImage depth = shown_ && shown_->depthOverCamera
-                                     ? imageOf(renderer_.depthOverCameraTarget())
-                                     : imageOf(renderer_.depthTarget());
-        const CameraPanelResult r =
-            drawCameraPanel(renderer_.cameraFromGpu() ? imageOf(renderer_.cameraTarget())
-                                                      : imageOf(renderer_.cameraTexture()),
-                            depth, settings_.camera, probe, &show.camera);
-        afterPanel(kCameraTitle, r.panel);
+        const bool aligned = shown_ && shown_->depthOverCamera;
+        const PanelImage depth = aligned ? imageOf(renderer_.depthOverCameraTarget())
+                                         : dataPanelImage(renderer_.depthTarget(), renderer_);
+        const PanelResult r = drawCameraPanel(renderer_.cameraFromGpu() ? imageOf(renderer_.cameraTarget())
+                                                                        : imageOf(renderer_.cameraTexture()),
+                                              depth, settings_.camera, probe, &show.camera);
+        afterPanel(kCameraTitle, r);
         if (r.shownWidth > 0)
             cameraShownWidth_ = r.shownWidth;
+        // A single camera's depth overlay is the depth panel's image, shown at the camera panel's size.
+        if (!aligned && settings_.camera.depthOverlay)
+            dataPanelsWidth = std::max(dataPanelsWidth, r.shownWidth);
     }
+    if (dataPanelsWidth > 0)
+        dataPanelsShownWidth_ = dataPanelsWidth;
     if (show.infrared && infraredAvailable()) {
         place(kInfraredTitle);
         const processing::IntensityRange range =

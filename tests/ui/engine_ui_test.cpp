@@ -16,6 +16,7 @@
 
 #include <epoxy/gl.h>
 
+#include <algorithm>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -434,6 +435,55 @@ TEST_F(EngineUiTest, AReplayDecodesItsVideoOnlyWhileSomethingShowsIt) {
     const processing::RgbImage& image = *shown().cameraImage;
     EXPECT_EQ(processing::cameraRgbImage(reference->capturedImage, image.width, image.height).pixels,
               image.pixels);
+}
+
+// A 1024x768 map in a side panel a third as wide: the panels are drawn from every n-th sample, the ones
+// nearest sampling shows, and a snapshot still writes every sample.
+TEST_F(EngineUiTest, PanelsShownSmallerThanTheirMapDrawEveryNthSampleAndASnapshotWritesThemWhole) {
+    devices::SyntheticConfig config = smallScene();
+    config.depthWidth = 1024;
+    config.depthHeight = 768;
+    devices::SyntheticDevice device(config);
+    ASSERT_TRUE(device.open() && device.start());
+    const auto f = std::make_shared<frame::Frame>(*device.capture(std::chrono::seconds(1)).frame);
+    Settings settings;
+    settings.cloud.motion.enabled = false;
+    start(std::make_unique<devices::FrameListDevice>(std::vector<frame::FramePtr>{f}, 60.0), "large depth",
+          settings);
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    for (int i = 0; i < 4; ++i)
+        ASSERT_TRUE(nextFrame(0.0));
+    const int width = shown().depth.width(), height = shown().depth.height();
+    ASSERT_EQ(width, 1024);
+    const render::RenderTarget& depth = renderer_.depthTarget();
+    const render::RenderTarget& confidence = renderer_.confidenceTarget();
+    const int step = (width + depth.width() - 1) / depth.width();
+    ASSERT_GE(step, 2) << "drawn " << depth.width() << " wide";
+    EXPECT_EQ(depth.width(), (width + step - 1) / step);
+    EXPECT_EQ(confidence.width(), depth.width());
+    const std::vector<std::uint8_t> smallDepth = depth.readRgba(), smallConfidence = confidence.readRgba();
+    const int smallWidth = depth.width(), smallHeight = depth.height();
+
+    const auto written = viewer_->savePanels(dir_.string());
+    ASSERT_TRUE(written.ok()) << written.error().message;
+    ASSERT_EQ(depth.width(), width) << "the snapshot's depth.png holds every sample";
+    ASSERT_EQ(depth.height(), height);
+    const std::vector<std::uint8_t> wholeDepth = depth.readRgba(), wholeConfidence = confidence.readRgba();
+    std::size_t differing = 0;
+    for (int y = 0; y < smallHeight; ++y)
+        for (int x = 0; x < smallWidth; ++x) {
+            const std::size_t s = (static_cast<std::size_t>(y) * smallWidth + x) * 4;
+            const std::size_t w =
+                (static_cast<std::size_t>(std::min(height - 1, y * step + step / 2)) * width +
+                 std::min(width - 1, x * step + step / 2)) *
+                4;
+            differing += !std::equal(&smallDepth[s], &smallDepth[s] + 4, &wholeDepth[w]) ||
+                         !std::equal(&smallConfidence[s], &smallConfidence[s] + 4, &wholeConfidence[w]);
+        }
+    EXPECT_EQ(differing, 0u) << "each drawn pixel is its cell's centre sample";
+
+    frame(0.0);
+    EXPECT_EQ(depth.width(), smallWidth) << "shown again at the panel's size";
 }
 
 TEST_F(EngineUiTest, TheInfraredPanelsImageIsMadeOnlyWhileThePanelIsShown) {

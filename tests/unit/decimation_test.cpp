@@ -59,5 +59,32 @@ TEST(Decimation, FootprintFactorFitsThePanel) {
     EXPECT_EQ(footprintFactor(1280, 720, 0), 1) << "unknown panel size";
 }
 
+TEST(Decimation, APanelsSamplesAreTheCentresOfItsCellsWithTheirConfidence) {
+    // 7x5 samples numbered by position, every 3rd: cells of 3x3 (the last column and row cut short).
+    frame::DepthData depth{frame::Plane<float>(7, 5), frame::Plane<std::uint8_t>(7, 5)};
+    for (int y = 0; y < 5; ++y)
+        for (int x = 0; x < 7; ++x) {
+            depth.depthMeters.at(x, y) = static_cast<float>(10 * y + x);
+            depth.confidence.at(x, y) = static_cast<std::uint8_t>((x + y) % 3);
+        }
+    depth.confidenceEstimated = true;
+
+    const frame::DepthData sampled = sampleCellCentres(depth, 3);
+    ASSERT_EQ(sampled.depthMeters.width, 3);
+    ASSERT_EQ(sampled.depthMeters.height, 2);
+    const int xs[] = {1, 4, 6}; // a cell's centre, or the map's last sample where the cell is cut short
+    const int ys[] = {1, 4};
+    for (int cy = 0; cy < 2; ++cy)
+        for (int cx = 0; cx < 3; ++cx) {
+            EXPECT_EQ(sampled.depthMeters.at(cx, cy), depth.depthMeters.at(xs[cx], ys[cy]))
+                << cx << "," << cy;
+            EXPECT_EQ(sampled.confidence.at(cx, cy), depth.confidence.at(xs[cx], ys[cy])) << cx << "," << cy;
+        }
+    EXPECT_TRUE(sampled.confidenceEstimated);
+
+    depth.confidence = {};
+    EXPECT_TRUE(sampleCellCentres(depth, 2).confidence.empty()) << "no confidence stays none";
+}
+
 } // namespace
 } // namespace dc::processing
