@@ -20,7 +20,7 @@ Session::~Session() {
 }
 
 Status Session::start() {
-    if (thread_.joinable())
+    if (capture_.joinable())
         return Error{"session for " + description_ + " is already running"};
     if (!capabilities_.sceneDepth)
         return Error{kNoDepthMessage};
@@ -35,15 +35,14 @@ Status Session::start() {
           capabilities_.approximateIntrinsics ? kApproximateIntrinsicsMessage : ""});
     stopRequested_ = false;
     deliveries_ = {};
-    thread_ = std::thread([this] { run(); });
+    capture_ = base::Worker("capture from " + description_, [this] { run(); });
     return {};
 }
 
 void Session::stop() {
     stopRequested_ = true;
     device_->interruptCapture();
-    if (thread_.joinable())
-        thread_.join();
+    capture_.join();
     if (device_->state() != DeviceState::Closed) {
         (void)device_->stop();
         device_->close();

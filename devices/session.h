@@ -4,6 +4,7 @@
 #include "base/mutex.h"
 #include "base/rate_meter.h"
 #include "base/rolling_stats.h"
+#include "base/worker.h"
 #include "devices/device.h"
 #include "devices/frame_age.h"
 
@@ -83,7 +84,7 @@ private:
     std::string description_;
     Capabilities capabilities_;
     base::Mailbox<frame::FramePtr> mailbox_;
-    std::thread thread_;
+    base::Worker capture_;
     std::atomic<bool> stopRequested_{false};
     std::atomic<DeviceState> state_{DeviceState::Closed};
     std::atomic<double> deviceFps_{0.0};

@@ -37,7 +37,7 @@ Expected<std::unique_ptr<ExportJob>> ExportJob::start(const std::string& replayS
     std::unique_ptr<ExportJob> job(new ExportJob());
     ExportJob* self = job.get();
     // The thread owns the source; errors and cancellation come back as values, never as exceptions.
-    job->thread_ = std::thread([self, options, src = std::move(*source)]() mutable {
+    job->thread_ = base::Worker("export", [self, options, src = std::shared_ptr(std::move(*source))] {
         Expected<exporting::ExportResult> r = Error{"export did not run"};
         const Status ran = base::guarded("export failed", [&] {
             r = exporting::exportFrames(*src, options, [self](std::size_t done, std::size_t total) {
@@ -65,8 +65,7 @@ ExportJob::~ExportJob() {
 }
 
 void ExportJob::join() {
-    if (thread_.joinable())
-        thread_.join();
+    thread_.join();
 }
 
 std::optional<Expected<exporting::ExportResult>> ExportJob::result() const {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "base/expected.h"
+#include "base/worker.h"
 #include "engine/demand.h"
 #include "exporting/export.h"
 
@@ -9,7 +10,6 @@
 #include <mutex>
 #include <optional>
 #include <string>
-#include <thread>
 
 namespace dc::engine {
 
@@ -47,7 +47,7 @@ private:
     std::atomic<bool> finished_{false};
     mutable std::mutex mutex_;
     std::optional<Expected<exporting::ExportResult>> result_;
-    std::thread thread_;
+    base::Worker thread_;
 };
 
 } // namespace dc::engine

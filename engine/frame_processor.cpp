@@ -20,7 +20,7 @@ FrameProcessor::FrameProcessor(StageStats& stages, processing::AccumulationWorke
                                ProcessingGraph::StageFault fault)
     : stages_(stages), accumulation_(accumulation) {
     graph_.setStageFault(std::move(fault));
-    thread_ = std::thread([this] { run(); });
+    thread_ = base::Worker("frame processor", [this] { run(); });
 }
 
 FrameProcessor::~FrameProcessor() {

@@ -2,6 +2,7 @@
 
 #include "base/mutex.h"
 #include "base/rolling_stats.h"
+#include "base/worker.h"
 #include "devices/session.h"
 #include "engine/demand.h"
 #include "engine/processing_graph.h"
@@ -122,7 +123,7 @@ private:
     base::RollingStats cpuMs_ DC_GUARDED_BY(mutex_);
     std::map<std::string, std::uint64_t, std::less<>>
         runs_ DC_GUARDED_BY(mutex_); // a copy of graph_'s, for other threads
-    std::thread thread_;
+    base::Worker thread_;
 };
 
 } // namespace dc::engine

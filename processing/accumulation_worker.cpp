@@ -7,7 +7,7 @@
 
 namespace dc::processing {
 
-AccumulationWorker::AccumulationWorker() : thread_([this] { run(); }) {}
+AccumulationWorker::AccumulationWorker() : thread_("accumulation", [this] { run(); }) {}
 
 AccumulationWorker::~AccumulationWorker() {
     {

@@ -1,6 +1,7 @@
 #pragma once
 
 #include "base/mutex.h"
+#include "base/worker.h"
 #include "frame/frame.h"
 #include "processing/point_accumulator.h"
 
@@ -9,7 +10,6 @@
 #include <cstdint>
 #include <functional>
 #include <optional>
-#include <thread>
 
 namespace dc::processing {
 
@@ -67,7 +67,7 @@ private:
     std::atomic<std::size_t> size_{0};
     std::atomic<std::uint64_t> skipped_{0};
     std::atomic<double> addMilliseconds_{0.0};
-    std::thread thread_;
+    base::Worker thread_;
 };
 
 } // namespace dc::processing

@@ -21,16 +21,21 @@ Expected<std::unique_ptr<Recorder>> Recorder::start(const std::string& path, con
         return writer.error();
     std::unique_ptr<Recorder> recorder(new Recorder(std::move(*writer), options));
     Recorder* r = recorder.get();
-    r->encodersRunning_ = std::max(1, options.encoderThreads);
-    for (int i = 0; i < r->encodersRunning_; ++i)
-        r->encoders_.emplace_back([r, encode = options.writer.encode] { r->encodeLoop(encode); });
-    r->writerThread_ = std::thread([r] { r->writeLoop(); });
+    const int encoders = std::max(1, options.encoderThreads);
+    {
+        base::MutexLock lock(r->mutex_);
+        r->encodersRunning_ = encoders;
+    }
+    for (int i = 0; i < encoders; ++i)
+        r->encoders_.emplace_back("recording encoder",
+                                  [r, encode = options.writer.encode] { r->encodeLoop(encode); });
+    r->writerThread_ = base::Worker("recording writer", [r] { r->writeLoop(); });
     return recorder;
 }
 
 Recorder::Recorder(RecordingWriter writer, const RecorderOptions& options)
     : path_(writer.path()), writer_(std::move(writer)),
-      capacity_(std::max<std::size_t>(1, options.queueFrames)) {}
+      capacity_(std::max<std::size_t>(1, options.queueFrames)), encodeFault_(options.encodeFault) {}
 
 Recorder::~Recorder() {
     if (Status s = stop(); !s)
@@ -39,7 +44,7 @@ Recorder::~Recorder() {
 
 bool Recorder::push(frame::FramePtr frame) {
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         if (stopping_ || failed_ || inFlight_ >= capacity_) {
             ++stats_.framesDropped;
             return false;
@@ -52,7 +57,7 @@ bool Recorder::push(frame::FramePtr frame) {
 }
 
 RecorderStats Recorder::stats() const {
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     return stats_;
 }
 
@@ -67,9 +72,9 @@ void Recorder::fail(const std::string& message) {
 
 void Recorder::encodeLoop(EncodeOptions options) {
     FrameEncoder encoder(options);
-    std::unique_lock lock(mutex_);
+    base::MutexLock lock(mutex_);
     for (;;) {
-        work_.wait(lock, [this] { return stopping_ || failed_ || !pending_.empty(); });
+        lock.wait(work_, [this]() DC_REQUIRES(mutex_) { return stopping_ || failed_ || !pending_.empty(); });
         if (pending_.empty())
             break;
         auto [sequence, frame] = std::move(pending_.front());
@@ -78,8 +83,13 @@ void Recorder::encodeLoop(EncodeOptions options) {
         const auto begin = std::chrono::steady_clock::now();
         Encoded result{frame->timestampNs, Error{"not encoded"}};
         const auto& captured = *frame; // a lambda may not capture a structured binding (clang 14)
-        if (Status ran = base::guarded("encoding failed", [&] { result.payload = encoder.encode(captured); });
-            !ran)
+        const std::uint64_t number = sequence;
+        const Status ran = base::guarded("encoding failed", [&] {
+            if (encodeFault_)
+                encodeFault_(number);
+            result.payload = encoder.encode(captured);
+        });
+        if (!ran)
             result.payload = ran.error();
         frame.reset();
         const double seconds = secondsSince(begin);
@@ -93,9 +103,11 @@ void Recorder::encodeLoop(EncodeOptions options) {
 }
 
 void Recorder::writeLoop() {
-    std::unique_lock lock(mutex_);
+    base::MutexLock lock(mutex_);
     for (;;) {
-        written_.wait(lock, [this] { return encoded_.contains(nextToWrite_) || encodersRunning_ == 0; });
+        lock.wait(written_, [this]() DC_REQUIRES(mutex_) {
+            return encoded_.contains(nextToWrite_) || encodersRunning_ == 0;
+        });
         const auto next = encoded_.find(nextToWrite_);
         if (next == encoded_.end())
             return; // the encoders have ended and everything they made is written
@@ -135,15 +147,14 @@ Status Recorder::stop() {
     if (result_)
         return *result_;
     {
-        std::lock_guard lock(mutex_);
+        base::MutexLock lock(mutex_);
         stopping_ = true;
     }
     work_.notify_all();
-    for (std::thread& t : encoders_)
+    for (base::Worker& t : encoders_)
         t.join();
-    if (writerThread_.joinable())
-        writerThread_.join();
-    std::lock_guard lock(mutex_);
+    writerThread_.join();
+    base::MutexLock lock(mutex_);
     if (failed_) {
         result_ = Error{stats_.error + " (the frames written before are in " + writer_.partialPath() + ")"};
     } else {

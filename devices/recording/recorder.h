@@ -1,14 +1,16 @@
 #pragma once
 
+#include "base/mutex.h"
+#include "base/worker.h"
 #include "devices/recording/recording_writer.h"
 
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
-#include <mutex>
 #include <string>
-#include <thread>
 #include <vector>
 
 namespace dc::devices::recording {
@@ -21,6 +23,9 @@ struct RecorderOptions {
     // Threads that encode (compress) frames in parallel; one more thread writes them in order. Two keep
     // 1280x720 depth + color at 30 fps on a 2-core machine.
     int encoderThreads = 2;
+    // The fault-injection seam: called with each frame's number (0, 1, ...) just before it is encoded,
+    // on an encoder thread; a test throws from it to play an encoder that fails.
+    std::function<void(std::uint64_t)> encodeFault;
 };
 
 struct RecorderStats {
@@ -62,26 +67,27 @@ private:
     Recorder(RecordingWriter writer, const RecorderOptions& options);
     void encodeLoop(EncodeOptions options);
     void writeLoop();
-    void fail(const std::string& message); // with mutex_ held
+    void fail(const std::string& message) DC_REQUIRES(mutex_);
 
     std::string path_;
     RecordingWriter writer_; // writer thread only, until stop() has joined it
     std::size_t capacity_;
-    mutable std::mutex mutex_;
+    std::function<void(std::uint64_t)> encodeFault_;
+    mutable base::Mutex mutex_;
     std::condition_variable work_;    // encoders: a frame to encode, or stop
     std::condition_variable written_; // writer: an encoded frame, or the encoders ended
-    std::deque<std::pair<std::uint64_t, frame::FramePtr>> pending_;
-    std::map<std::uint64_t, Encoded> encoded_;
-    std::uint64_t nextSequence_ = 0;
-    std::uint64_t nextToWrite_ = 0;
-    std::size_t inFlight_ = 0;
-    int encodersRunning_ = 0;
-    bool stopping_ = false;
-    bool failed_ = false;
-    RecorderStats stats_;
-    std::optional<Status> result_;
-    std::vector<std::thread> encoders_;
-    std::thread writerThread_;
+    std::deque<std::pair<std::uint64_t, frame::FramePtr>> pending_ DC_GUARDED_BY(mutex_);
+    std::map<std::uint64_t, Encoded> encoded_ DC_GUARDED_BY(mutex_);
+    std::uint64_t nextSequence_ DC_GUARDED_BY(mutex_) = 0;
+    std::uint64_t nextToWrite_ DC_GUARDED_BY(mutex_) = 0;
+    std::size_t inFlight_ DC_GUARDED_BY(mutex_) = 0;
+    int encodersRunning_ DC_GUARDED_BY(mutex_) = 0;
+    bool stopping_ DC_GUARDED_BY(mutex_) = false;
+    bool failed_ DC_GUARDED_BY(mutex_) = false;
+    RecorderStats stats_ DC_GUARDED_BY(mutex_);
+    std::optional<Status> result_; // stop()'s caller only
+    std::vector<base::Worker> encoders_;
+    base::Worker writerThread_;
 };
 
 } // namespace dc::devices::recording

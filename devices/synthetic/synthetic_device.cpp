@@ -1,7 +1,8 @@
 #include "devices/synthetic/synthetic_device.h"
-#include "base/barrier.h"
 #include "base/clock.h"
 #include "base/log.h"
+#include "base/mutex.h"
+#include "base/worker.h"
 
 #include <algorithm>
 #include <condition_variable>
@@ -21,18 +22,15 @@ public:
         : device_(device), nextToRender_(first), nextToTake_(first),
           ahead_(static_cast<std::size_t>(threads) + 1) {
         for (int i = 0; i < threads; ++i)
-            threads_.emplace_back([this] {
-                if (Status s = base::guarded("synthetic rendering stopped", [this] { work(); }); !s)
-                    logError(s.error().message);
-            });
+            threads_.emplace_back("synthetic rendering stopped", [this] { work(); });
     }
     ~RenderAhead() {
         {
-            std::lock_guard lock(mutex_);
+            base::MutexLock lock(mutex_);
             stopping_ = true;
         }
         space_.notify_all();
-        for (std::thread& t : threads_)
+        for (base::Worker& t : threads_)
             t.join();
     }
     RenderAhead(const RenderAhead&) = delete;
@@ -41,8 +39,9 @@ public:
     // The frame `sequence` (the one after the last taken) once rendered; nullptr when it is not ready
     // within `timeout` or interrupt() was called.
     std::shared_ptr<frame::Frame> take(std::uint64_t sequence, std::chrono::milliseconds timeout) {
-        std::unique_lock lock(mutex_);
-        ready_.wait_for(lock, timeout, [&] { return interrupted_ || done_.contains(sequence); });
+        base::MutexLock lock(mutex_);
+        lock.waitFor(ready_, timeout,
+                     [&]() DC_REQUIRES(mutex_) { return interrupted_ || done_.contains(sequence); });
         interrupted_ = false;
         const auto found = done_.find(sequence);
         if (found == done_.end())
@@ -57,7 +56,7 @@ public:
 
     void interrupt() {
         {
-            std::lock_guard lock(mutex_);
+            base::MutexLock lock(mutex_);
             interrupted_ = true;
         }
         ready_.notify_all();
@@ -65,9 +64,11 @@ public:
 
 private:
     void work() {
-        std::unique_lock lock(mutex_);
+        base::MutexLock lock(mutex_);
         for (;;) {
-            space_.wait(lock, [&] { return stopping_ || nextToRender_ < nextToTake_ + ahead_; });
+            lock.wait(space_, [&]() DC_REQUIRES(mutex_) {
+                return stopping_ || nextToRender_ < nextToTake_ + ahead_;
+            });
             if (stopping_)
                 return;
             const std::uint64_t sequence = nextToRender_++;
@@ -80,16 +81,16 @@ private:
     }
 
     const SyntheticDevice& device_;
-    std::mutex mutex_;
+    base::Mutex mutex_;
     std::condition_variable ready_; // a frame was rendered, or interrupt()
     std::condition_variable space_; // a frame was taken, or stopping
-    std::map<std::uint64_t, std::shared_ptr<frame::Frame>> done_;
-    std::uint64_t nextToRender_;
-    std::uint64_t nextToTake_;
-    std::size_t ahead_;
-    bool stopping_ = false;
-    bool interrupted_ = false;
-    std::vector<std::thread> threads_;
+    std::map<std::uint64_t, std::shared_ptr<frame::Frame>> done_ DC_GUARDED_BY(mutex_);
+    std::uint64_t nextToRender_ DC_GUARDED_BY(mutex_);
+    std::uint64_t nextToTake_ DC_GUARDED_BY(mutex_);
+    const std::size_t ahead_;
+    bool stopping_ DC_GUARDED_BY(mutex_) = false;
+    bool interrupted_ DC_GUARDED_BY(mutex_) = false;
+    std::vector<base::Worker> threads_;
 };
 
 Status checkSyntheticConfig(const SyntheticConfig& c) {

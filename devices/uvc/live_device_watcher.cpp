@@ -1,7 +1,7 @@
 #include "devices/uvc/live_device_watcher.h"
 
-#include "base/barrier.h"
 #include "base/log.h"
+#include "base/worker.h"
 
 #include <algorithm>
 #include <cerrno>
@@ -50,10 +50,7 @@ LiveDeviceWatcher::LiveDeviceWatcher(std::chrono::milliseconds fallbackPollInter
         logInfo("camera list: no device events (" + source.error().message + "); re-listing every " +
                 std::to_string(pollInterval_.count()) + " ms");
     }
-    thread_ = std::thread([this] {
-        if (Status s = base::guarded("the camera watcher stopped", [this] { run(); }); !s)
-            logError(s.error().message);
-    });
+    thread_ = base::Worker("the camera watcher stopped", [this] { run(); });
 }
 
 LiveDeviceWatcher::~LiveDeviceWatcher() {
@@ -65,14 +62,14 @@ LiveDeviceWatcher::~LiveDeviceWatcher() {
 }
 
 std::optional<LiveDeviceListing> LiveDeviceWatcher::takeUpdate() {
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     return std::exchange(pending_, std::nullopt);
 }
 
 void LiveDeviceWatcher::relist() {
     LiveDeviceListing listing = lister_();
     std::string signature = signatureOf(listing);
-    std::lock_guard lock(mutex_);
+    base::MutexLock lock(mutex_);
     if (published_ && signature == lastSignature_)
         return;
     published_ = true;

@@ -1,6 +1,8 @@
 #pragma once
 
+#include "base/mutex.h"
 #include "base/unique_fd.h"
+#include "base/worker.h"
 #include "devices/uvc/live_devices.h"
 #include "devices/uvc/udev_monitor.h"
 
@@ -8,9 +10,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
-#include <mutex>
 #include <optional>
-#include <thread>
 
 namespace dc::devices {
 
@@ -49,11 +49,12 @@ private:
     bool watchingEvents_ = false;
     base::UniqueFd stopFd_; // an eventfd: readable once the watcher is stopping
     std::atomic<bool> stopping_{false};
-    std::mutex mutex_;
-    std::optional<LiveDeviceListing> pending_;
-    bool published_ = false;
-    std::string lastSignature_; // of the last listing published, to publish changes only
-    std::thread thread_;
+    base::Mutex mutex_;
+    std::optional<LiveDeviceListing> pending_ DC_GUARDED_BY(mutex_);
+    bool published_ DC_GUARDED_BY(mutex_) = false;
+    std::string
+        lastSignature_ DC_GUARDED_BY(mutex_); // of the last listing published, to publish changes only
+    base::Worker thread_;
 };
 
 } // namespace dc::devices

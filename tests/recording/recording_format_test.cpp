@@ -13,10 +13,13 @@
 
 #include <algorithm>
 #include <bit>
+#include <chrono>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <limits>
+#include <stdexcept>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -465,6 +468,35 @@ TEST(Recorder, WritesWhatItAcceptsAndCountsWhatItDrops) {
     auto reader = RecordingReader::open(dir.path("q.dcrec"));
     ASSERT_TRUE(reader);
     EXPECT_EQ(reader->frameCount(), static_cast<std::size_t>(accepted));
+}
+
+// An encoder that throws (the seam throws on the third frame) fails the take with the exception's message,
+// as a write error does: the frames before it are in the partial file, later pushes are refused, and the
+// process goes on.
+TEST(Recorder, AnEncoderThatThrowsFailsTheTakeWithItsMessageAndKeepsWhatWasWritten) {
+    TempDir dir;
+    const auto frames = test::syntheticFrames(6);
+    RecorderOptions options;
+    options.encoderThreads = 1; // frames are encoded in order, so the two before the fault are written
+    options.encodeFault = [](std::uint64_t frame) {
+        if (frame == 2)
+            throw std::runtime_error("the codec ran out of memory");
+    };
+    auto recorder = Recorder::start(dir.path("fault.dcrec"), {"fault", {}}, options);
+    ASSERT_TRUE(recorder);
+    for (int i = 0; i < 3; ++i)
+        ASSERT_TRUE((*recorder)->push(frames[static_cast<std::size_t>(i)]));
+    for (int i = 0; i < 500 && (*recorder)->stats().error.empty(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    EXPECT_FALSE((*recorder)->push(frames[3])) << "nothing is accepted after the failure";
+    const Status stopped = (*recorder)->stop();
+    ASSERT_FALSE(stopped);
+    EXPECT_NE(stopped.error().message.find("encoding failed: the codec ran out of memory"), std::string::npos)
+        << stopped.error().message;
+    EXPECT_EQ((*recorder)->stats().framesWritten, 2u);
+    auto partial = RecordingReader::open(dir.path("fault.dcrec.partial"));
+    ASSERT_TRUE(partial) << partial.error().message;
+    EXPECT_EQ(partial->frameCount(), 2u);
 }
 
 // A two-sensor frame keeps its calibration through a recording; a damaged one is refused, never applied.

@@ -1,7 +1,7 @@
 #include "devices/uvc/usb/hotplug_monitor.h"
 
-#include "base/barrier.h"
 #include "base/log.h"
+#include "base/worker.h"
 #include "devices/uvc/usb/libusb_device_info.h"
 #include "devices/uvc/usb/libusb_handles.h"
 
@@ -22,7 +22,7 @@ struct HotplugMonitor::Impl {
     UsbContext context;
     libusb_hotplug_callback_handle callback = 0;
     bool registered = false;
-    std::thread thread;
+    base::Worker thread;
     std::atomic<bool> stopRequested{false};
     Sysfs sysfs;
     std::map<std::pair<int, int>, UsbDeviceInfo> known; // (bus, address); event thread only once started
@@ -106,10 +106,7 @@ Status HotplugMonitor::start() {
     }
     impl_->registered = true;
     impl_->stopRequested = false;
-    impl_->thread = std::thread([impl = impl_.get()] {
-        if (Status s = base::guarded("the USB hotplug monitor stopped", [impl] { impl->run(); }); !s)
-            logError(s.error().message);
-    });
+    impl_->thread = base::Worker("the USB hotplug monitor stopped", [impl = impl_.get()] { impl->run(); });
     return {};
 }
 
