@@ -8,6 +8,7 @@
 #include <fstream>
 #include <numbers>
 #include <opencv2/core.hpp>
+#include <optional>
 #include <sstream>
 #include <vector>
 
@@ -15,71 +16,59 @@ namespace dc::frame {
 
 namespace {
 
-cv::FileNode cameraMatrixNode(const cv::FileStorage& fs) {
-    for (const char* name : {"camera_matrix", "cameraMatrix", "K"}) {
-        cv::FileNode node = fs[name];
-        if (!node.empty())
-            return node;
-    }
-    return {};
+// An image side beyond this is not a camera's; refusing it keeps the conversion to int defined.
+constexpr double kMaxImageSidePixels = 65535.0;
+
+// image_width or image_height; 0, which Intrinsics::valid() refuses, when absent or not a number. A real is
+// rounded to the nearest pixel, as OpenCV's own reader of these files does.
+int imageSide(const YAML::Node& root, const std::string& name) {
+    const std::optional<double> value = fields::number(fields::child(root, name));
+    return value && *value >= 0.0 && *value <= kMaxImageSidePixels ? static_cast<int>(std::lround(*value))
+                                                                   : 0;
 }
 
-Expected<Calibration> readCalibration(const cv::FileStorage& fs, const std::string& origin) {
-    const cv::FileNode matrix = cameraMatrixNode(fs);
-    if (matrix.empty() || !matrix.isMap())
+Expected<Calibration> readCalibration(const YAML::Node& root, const std::string& origin) {
+    const fields::Named matrix = fields::firstOf(root, {"camera_matrix", "cameraMatrix", "K"});
+    if (!matrix.node.IsMap())
         return Error{origin + ": no camera_matrix (expected OpenCV or ROS camera_info calibration YAML)"};
     std::vector<double> k;
-    matrix["data"] >> k;
+    if (const YAML::Node data = fields::child(matrix.node, "data"); data.IsDefined()) {
+        auto read = fields::numbers(data, matrix.name, origin);
+        if (!read)
+            return read.error();
+        k = std::move(*read);
+    }
     if (k.size() != 9)
-        return Error{origin + ": camera_matrix must hold 9 values (3x3), found " + std::to_string(k.size())};
+        return Error{origin + ": " + matrix.name + " must hold 9 values (3x3), found " +
+                     std::to_string(k.size())};
     Calibration result;
-    result.format =
-        fs["distortion_model"].empty() && fs["camera_name"].empty() ? "OpenCV YAML" : "ROS camera_info YAML";
+    result.format = fields::has(root, "distortion_model") || fields::has(root, "camera_name")
+                        ? "ROS camera_info YAML"
+                        : "OpenCV YAML";
     result.intrinsics = {
-        k[0], k[4], k[2], k[5], static_cast<int>(fs["image_width"]), static_cast<int>(fs["image_height"])};
+        k[0], k[4], k[2], k[5], imageSide(root, "image_width"), imageSide(root, "image_height")};
     if (!result.intrinsics.valid())
         return Error{origin + ": calibration needs image_width, image_height and positive focal lengths"};
     return result;
 }
 
-// YAML lets a block sequence under a key start at the key's own indentation ("T_cn_cnm1:\n- [...]"), as
-// Kalibr writes it; FileStorage's parser wants it indented deeper, so such items move two spaces in.
-std::string indentCompactSequences(const std::string& text) {
-    std::istringstream in(text);
-    std::string out, line;
-    std::size_t keyIndent = std::string::npos; // of the last key with nothing after its colon
-    while (std::getline(in, line)) {
-        const std::size_t indent = line.find_first_not_of(' ');
-        const bool item = indent != std::string::npos && line.compare(indent, 2, "- ") == 0;
-        out += (item && indent == keyIndent ? "  " : "") + line + "\n";
-        const std::size_t last = line.find_last_not_of(" \r");
-        if (!item && indent != std::string::npos)
-            keyIndent = line[last] == ':' ? indent : std::string::npos;
-    }
-    return out;
-}
-
 } // namespace
 
+// Every format is read by one YAML parser: JSON is YAML's flow style, and Kalibr's block sequences at their
+// key's own indentation are plain YAML, so no format is rewritten before it is read.
 Expected<Calibration> parseCalibration(const std::string& text, const std::string& origin) {
-    const bool json = text.find_first_not_of(" \t\r\n") != std::string::npos &&
-                      text[text.find_first_not_of(" \t\r\n")] == '{';
-    // ROS camera_info and Kalibr files are plain YAML without OpenCV's "%YAML:1.0" header, which
-    // FileStorage needs to read YAML from memory.
-    const std::string yaml = json ? text : indentCompactSequences(text);
-    const std::string content = json || text.rfind("%YAML", 0) == 0 ? yaml : "%YAML:1.0\n---\n" + yaml;
-    try {
-        const cv::FileStorage fs(content, cv::FileStorage::READ | cv::FileStorage::MEMORY);
-        if (!fs.isOpened())
-            return Error{origin + ": not a YAML or JSON calibration file"};
-        if (formats::isKalibr(fs))
-            return formats::readKalibr(fs, origin);
-        if (formats::isOpenCvStereo(fs))
-            return formats::readOpenCvStereo(fs, origin, json);
-        return readCalibration(fs, origin);
-    } catch (const cv::Exception&) {
-        return Error{origin + ": malformed calibration YAML or JSON"};
-    }
+    const std::size_t first = text.find_first_not_of(" \t\r\n");
+    const bool json = first != std::string::npos && text[first] == '{';
+    const auto root = fields::parseDocument(text, origin);
+    if (!root)
+        return root.error();
+    if (!root->IsMap())
+        return Error{origin + ": not a YAML or JSON calibration file"};
+    if (formats::isKalibr(*root))
+        return formats::readKalibr(*root, origin);
+    if (formats::isOpenCvStereo(*root))
+        return formats::readOpenCvStereo(*root, origin, json);
+    return readCalibration(*root, origin);
 }
 
 Expected<Calibration> loadCalibration(const std::string& path) {

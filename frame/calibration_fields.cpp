@@ -1,6 +1,9 @@
 #include "frame/calibration_fields.h"
 
+#include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <string_view>
 
 namespace dc::frame::fields {
 
@@ -10,46 +13,98 @@ namespace {
 constexpr double kMaxBaselineMeters = 1.0;
 // R Rᵀ may differ from I by rounding in the file: calibration tools print 6 to 9 digits.
 constexpr double kRotationTolerance = 1e-4;
+// OpenCV's FileStorage begins its YAML with "%YAML:1.0", a spelling of its own: YAML's directive is
+// "%YAML 1.0". yaml-cpp 0.7 happens to skip it as an unknown directive named "YAML:1.0", which another
+// version may refuse; written YAML's way it says what FileStorage meant, and every line stays where it was,
+// so the line an error names is the file's.
+constexpr std::string_view kOpenCvVersionDirective = "%YAML:";
 
-Status appendNumber(const cv::FileNode& item, const std::string& field, const std::string& origin,
+Status appendNumber(const YAML::Node& item, const std::string& field, const std::string& origin,
                     std::vector<double>& out) {
-    if (item.isSeq()) {
-        for (const cv::FileNode& inner : item)
+    if (item.IsSequence()) {
+        for (const YAML::Node& inner : item)
             if (Status s = appendNumber(inner, field, origin, out); !s)
                 return s;
         return {};
     }
-    if (item.isString() && (item.string() == ".nan" || item.string() == "nan")) {
-        out.push_back(std::nan(""));
-        return {};
-    }
-    if (!item.isInt() && !item.isReal())
+    const std::optional<double> value = number(item);
+    if (!value)
         return fieldError(origin, field, "expected numbers");
-    out.push_back(static_cast<double>(item));
+    out.push_back(*value);
     return {};
 }
 
+// A yaml-cpp exception as one line naming the file and, when yaml-cpp knows it, the line and column.
+Error yamlError(const std::string& origin, const YAML::Exception& e, const std::string& problem) {
+    // yaml-cpp counts lines and columns from 0; editors and compilers from 1.
+    const std::string where =
+        e.mark.is_null() ? ""
+                         : ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1);
+    return Error{origin + where + ": " + problem + " (" + e.msg + ")"};
+}
+
 } // namespace
+
+Expected<YAML::Node> parseDocument(const std::string& text, const std::string& origin) {
+    std::string yaml = text;
+    if (yaml.starts_with(kOpenCvVersionDirective))
+        yaml[kOpenCvVersionDirective.size() - 1] = ' ';
+    try {
+        return YAML::Load(yaml);
+    } catch (const YAML::Exception& e) {
+        return yamlError(origin, e, "malformed calibration YAML or JSON");
+    }
+}
+
+YAML::Node child(const YAML::Node& parent, const std::string& name) {
+    if (!parent.IsMap())
+        return YAML::Node(YAML::NodeType::Undefined);
+    // The const lookup: it inserts nothing, and a key it lacks comes back as a node only IsDefined() may ask.
+    const YAML::Node node = parent[name];
+    return node.IsDefined() && !node.IsNull() ? node : YAML::Node(YAML::NodeType::Undefined);
+}
+
+bool has(const YAML::Node& parent, const std::string& name) {
+    return child(parent, name).IsDefined();
+}
+
+Named firstOf(const YAML::Node& parent, std::initializer_list<std::string> names) {
+    for (const std::string& name : names)
+        if (YAML::Node node = child(parent, name); node.IsDefined())
+            return {node, name};
+    return {YAML::Node(YAML::NodeType::Undefined), *names.begin()};
+}
+
+std::string text(const YAML::Node& node) {
+    return node.IsScalar() ? node.Scalar() : "";
+}
+
+std::optional<double> number(const YAML::Node& node) {
+    // yaml-cpp tags a quoted scalar "!": it is text, as in JSON, even when it reads like a number.
+    if (!node.IsScalar() || node.Tag() == "!")
+        return std::nullopt;
+    // yaml-cpp reads YAML's .nan, .NaN and .NAN only; OpenCV writes .Nan, and some tools a bare nan.
+    std::string lower = node.Scalar();
+    std::transform(lower.begin(), lower.end(), lower.begin(),
+                   [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+    if (lower == "nan" || lower == ".nan")
+        return std::nan("");
+    double value = 0.0;
+    if (!YAML::convert<double>::decode(node, value))
+        return std::nullopt;
+    return value;
+}
 
 Error fieldError(const std::string& origin, const std::string& field, const std::string& problem) {
     return Error{origin + ": " + field + ": " + problem};
 }
 
-Named firstOf(const cv::FileNode& parent, std::initializer_list<const char*> names) {
-    for (const char* name : names) {
-        cv::FileNode node = parent[name];
-        if (!node.empty())
-            return {node, name};
-    }
-    return {{}, *names.begin()};
-}
-
-Expected<std::vector<double>> numbers(const cv::FileNode& node, const std::string& field,
+Expected<std::vector<double>> numbers(const YAML::Node& node, const std::string& field,
                                       const std::string& origin, std::size_t count) {
-    if (node.empty())
+    if (!node.IsDefined())
         return fieldError(origin, field, "missing");
     std::vector<double> out;
-    if (Status s = appendNumber(node.isMap() ? node["data"] : node, field, origin, out); !s)
+    if (Status s = appendNumber(node.IsMap() ? child(node, "data") : node, field, origin, out); !s)
         return s.error();
     if (count > 0 && out.size() != count)
         return fieldError(origin, field,
@@ -61,7 +116,7 @@ Expected<std::vector<double>> numbers(const cv::FileNode& node, const std::strin
     return out;
 }
 
-Expected<std::array<int, 2>> imageSize(const cv::FileNode& node, const std::string& field,
+Expected<std::array<int, 2>> imageSize(const YAML::Node& node, const std::string& field,
                                        const std::string& origin) {
     auto size = numbers(node, field, origin, 2);
     if (!size)

@@ -11,44 +11,40 @@ namespace {
 
 using fields::fieldError;
 
-std::string stringOf(const cv::FileNode& node) {
-    return node.isString() ? node.string() : "";
-}
-
 // One camera block: camera_model pinhole, intrinsics [fu, fv, pu, pv], distortion radtan (k1 k2 p1 p2) or
 // none, resolution [width, height].
-Expected<CameraModel> readCamera(const cv::FileNode& cam, const std::string& name,
-                                 const std::string& origin) {
-    if (cam.empty() || !cam.isMap())
+Expected<CameraModel> readCamera(const YAML::Node& cam, const std::string& name, const std::string& origin) {
+    if (!cam.IsMap())
         return fieldError(origin, name, "missing");
-    const std::string model = stringOf(cam["camera_model"]);
-    if (!cam["camera_model"].empty() && model != "pinhole")
+    const std::string model = fields::text(fields::child(cam, "camera_model"));
+    if (fields::has(cam, "camera_model") && model != "pinhole")
         return fieldError(origin, name + ".camera_model", "'" + model + "' is not supported (pinhole)");
-    auto k = fields::numbers(cam["intrinsics"], name + ".intrinsics", origin, 4);
+    auto k = fields::numbers(fields::child(cam, "intrinsics"), name + ".intrinsics", origin, 4);
     if (!k)
         return k.error();
-    auto size = fields::imageSize(cam["resolution"], name + ".resolution", origin);
+    auto size = fields::imageSize(fields::child(cam, "resolution"), name + ".resolution", origin);
     if (!size)
         return size.error();
     CameraModel camera{{(*k)[0], (*k)[1], (*k)[2], (*k)[3], (*size)[0], (*size)[1]}, {}};
     if (Status s = fields::checkIntrinsics(camera.intrinsics, name + ".intrinsics", origin); !s)
         return s.error();
-    const std::string distortion = stringOf(cam["distortion_model"]);
+    const std::string distortion = fields::text(fields::child(cam, "distortion_model"));
     if (distortion == "radtan") {
-        auto d = fields::numbers(cam["distortion_coeffs"], name + ".distortion_coeffs", origin, 4);
+        auto d =
+            fields::numbers(fields::child(cam, "distortion_coeffs"), name + ".distortion_coeffs", origin, 4);
         if (!d)
             return d.error();
         camera.lens = {LensModel::BrownConrady, {(*d)[0], (*d)[1], (*d)[2], (*d)[3], 0.0}};
-    } else if (!cam["distortion_model"].empty() && distortion != "none") {
+    } else if (fields::has(cam, "distortion_model") && distortion != "none") {
         return fieldError(origin, name + ".distortion_model",
                           "'" + distortion + "' is not supported (radtan or none)");
     }
     return camera;
 }
 
-Expected<RigidTransform> readTransform(const cv::FileNode& cam1, const std::string& origin) {
+Expected<RigidTransform> readTransform(const YAML::Node& cam1, const std::string& origin) {
     const std::string field = "cam1.T_cn_cnm1";
-    auto m = fields::numbers(cam1["T_cn_cnm1"], field, origin, 16);
+    auto m = fields::numbers(fields::child(cam1, "T_cn_cnm1"), field, origin, 16);
     if (!m)
         return m.error();
     const std::vector<double>& v = *m;
@@ -88,18 +84,18 @@ std::string cameraBlock(const CameraModel& camera) {
 
 } // namespace
 
-bool isKalibr(const cv::FileStorage& fs) {
-    return !fs["cam0"].empty() && fs["cam0"].isMap();
+bool isKalibr(const YAML::Node& root) {
+    return fields::child(root, "cam0").IsMap();
 }
 
-Expected<Calibration> readKalibr(const cv::FileStorage& fs, const std::string& origin) {
-    auto depth = readCamera(fs["cam0"], "cam0", origin);
+Expected<Calibration> readKalibr(const YAML::Node& root, const std::string& origin) {
+    auto depth = readCamera(fields::child(root, "cam0"), "cam0", origin);
     if (!depth)
         return depth.error();
-    auto colour = readCamera(fs["cam1"], "cam1", origin);
+    auto colour = readCamera(fields::child(root, "cam1"), "cam1", origin);
     if (!colour)
         return colour.error();
-    auto transform = readTransform(fs["cam1"], origin);
+    auto transform = readTransform(fields::child(root, "cam1"), origin);
     if (!transform)
         return transform.error();
     Calibration result{colour->intrinsics, "Kalibr camchain", RigCalibration{}, "cam0.resolution",

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <opencv2/core.hpp>
 
 namespace dc::frame::formats {
 
@@ -10,11 +11,11 @@ namespace {
 
 using fields::fieldError;
 
-Expected<LensModel> lensModel(const cv::FileNode& node, const std::string& field, const std::string& origin,
+Expected<LensModel> lensModel(const YAML::Node& node, const std::string& field, const std::string& origin,
                               bool anyCoefficient) {
-    if (node.empty())
+    if (!node.IsDefined())
         return anyCoefficient ? LensModel::BrownConrady : LensModel::None;
-    const std::string name = node.isString() ? node.string() : "";
+    const std::string name = fields::text(node);
     for (LensModel m : {LensModel::None, LensModel::BrownConrady, LensModel::InverseBrownConrady})
         if (name == toString(m))
             return m;
@@ -23,17 +24,16 @@ Expected<LensModel> lensModel(const cv::FileNode& node, const std::string& field
 }
 
 // Camera `index` (1: depth, 2: colour): K, D, its image size and lens model.
-Expected<CameraModel> readCamera(const cv::FileStorage& fs, int index, const std::string& origin,
+Expected<CameraModel> readCamera(const YAML::Node& root, int index, const std::string& origin,
                                  std::string& sizeField) {
     const std::string n = std::to_string(index);
-    const fields::Named kNode =
-        fields::firstOf(fs.root(), {("K" + n).c_str(), ("M" + n).c_str(), ("cameraMatrix" + n).c_str()});
+    const fields::Named kNode = fields::firstOf(root, {"K" + n, "M" + n, "cameraMatrix" + n});
     auto k = fields::numbers(kNode.node, kNode.name, origin, 9);
     if (!k)
         return k.error();
-    const fields::Named dNode = fields::firstOf(fs.root(), {("D" + n).c_str(), ("distCoeffs" + n).c_str()});
+    const fields::Named dNode = fields::firstOf(root, {"D" + n, "distCoeffs" + n});
     std::vector<double> d(5, 0.0);
-    if (!dNode.node.empty()) {
+    if (dNode.node.IsDefined()) {
         auto read = fields::numbers(dNode.node, dNode.name, origin);
         if (!read)
             return read.error();
@@ -43,14 +43,13 @@ Expected<CameraModel> readCamera(const cv::FileStorage& fs, int index, const std
                               "expected k1 k2 p1 p2 [k3] (rational and thin-prism terms are not supported)");
         std::copy_n(read->begin(), std::min<std::size_t>(5, read->size()), d.begin());
     }
-    const fields::Named sizeNode =
-        fields::firstOf(fs.root(), {("image_size" + n).c_str(), ("imageSize" + n).c_str()});
+    const fields::Named sizeNode = fields::firstOf(root, {"image_size" + n, "imageSize" + n});
     sizeField = sizeNode.name;
     auto size = fields::imageSize(sizeNode.node, sizeNode.name, origin);
     if (!size)
         return size.error();
     const bool anyCoefficient = std::any_of(d.begin(), d.end(), [](double c) { return c != 0.0; });
-    auto model = lensModel(fs["lens_model" + n], "lens_model" + n, origin, anyCoefficient);
+    auto model = lensModel(fields::child(root, "lens_model" + n), "lens_model" + n, origin, anyCoefficient);
     if (!model)
         return model.error();
     CameraModel camera{{(*k)[0], (*k)[4], (*k)[2], (*k)[5], (*size)[0], (*size)[1]}, {*model, {}}};
@@ -79,27 +78,27 @@ void writeCamera(cv::FileStorage& fs, const CameraModel& camera, int index) {
 
 // Any of a stereo file's own fields makes it one, so that a missing one is named rather than the file
 // being taken for a single camera's.
-bool isOpenCvStereo(const cv::FileStorage& fs) {
+bool isOpenCvStereo(const YAML::Node& root) {
     for (const char* name : {"R", "T", "K1", "M1", "cameraMatrix1", "K2", "M2", "cameraMatrix2"})
-        if (!fs[name].empty())
+        if (fields::has(root, name))
             return true;
     return false;
 }
 
-Expected<Calibration> readOpenCvStereo(const cv::FileStorage& fs, const std::string& origin, bool json) {
+Expected<Calibration> readOpenCvStereo(const YAML::Node& root, const std::string& origin, bool json) {
     Calibration result;
     result.format = json ? "OpenCV stereo JSON" : "OpenCV stereo YAML";
     RigCalibration rig;
-    auto depth = readCamera(fs, 1, origin, result.depthSizeField);
+    auto depth = readCamera(root, 1, origin, result.depthSizeField);
     if (!depth)
         return depth.error();
-    auto colour = readCamera(fs, 2, origin, result.colourSizeField);
+    auto colour = readCamera(root, 2, origin, result.colourSizeField);
     if (!colour)
         return colour.error();
-    auto r = fields::numbers(fs["R"], "R", origin, 9);
+    auto r = fields::numbers(fields::child(root, "R"), "R", origin, 9);
     if (!r)
         return r.error();
-    auto t = fields::numbers(fs["T"], "T", origin, 3);
+    auto t = fields::numbers(fields::child(root, "T"), "T", origin, 3);
     if (!t)
         return t.error();
     rig.depth = *depth;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
 #include <string>
 
 namespace dc::frame {
@@ -213,6 +214,103 @@ TEST(RigCalibrationFiles, EachBadFieldIsAnErrorNamingIt) {
         EXPECT_NE(result.error().message.find(std::string("bad.yaml: ") + c.field), std::string::npos)
             << "expected '" << c.field << "' in: " << result.error().message;
     }
+}
+
+// Kalibr's camchain at its own shallow indentation (each sequence at its key's column, as PyYAML writes it),
+// annotated the way people annotate it: comments after a key and between rows, intrinsics one per line.
+constexpr const char* kKalibrAnnotated = R"(cam0:
+  camera_model: pinhole
+  distortion_coeffs: [0.0, 0.0, 0.0, 0.0]
+  distortion_model: radtan
+  intrinsics:  # fu, fv, pu, pv
+  - 385.75
+  - 386.25
+  - 321.5
+  - 238.25
+  resolution: [640, 480]
+cam1:
+  T_cn_cnm1: # takes cam0's points to cam1's
+  - [0.9999875, -0.0049999, 0.0, -0.0147]
+  # the rows of [R | t], then [0, 0, 0, 1]
+  - [0.0049999, 0.9999875, 0.0, 0.0002]
+  - [0.0, 0.0, 1.0, 0.0003]
+  - [0.0, 0.0, 0.0, 1.0]
+  camera_model: pinhole
+  distortion_coeffs: [0.11, -0.21, 0.0005, -0.0007]
+  distortion_model: radtan
+  intrinsics: [615.5, 615.25, 322.75, 241.5]
+  resolution: [1280, 720]
+)";
+
+TEST(RigCalibrationFiles, KalibrCamchainAtItsShallowIndentationReadsWithItsComments) {
+    const auto c = parseCalibration(kKalibrAnnotated, "camchain.yaml");
+    ASSERT_TRUE(c) << c.error().message;
+    ASSERT_TRUE(c->rig);
+    EXPECT_EQ(c->format, "Kalibr camchain");
+    EXPECT_EQ(c->rig->depth.intrinsics, (Intrinsics{385.75, 386.25, 321.5, 238.25, 640, 480}));
+    EXPECT_EQ(c->rig->colour.intrinsics, (Intrinsics{615.5, 615.25, 322.75, 241.5, 1280, 720}));
+    EXPECT_EQ(c->rig->depthToColour.rotation,
+              (std::array<double, 9>{0.9999875, -0.0049999, 0.0, 0.0049999, 0.9999875, 0.0, 0.0, 0.0, 1.0}));
+    EXPECT_EQ(c->rig->depthToColour.translationMeters, (std::array<double, 3>{-0.0147, 0.0002, 0.0003}));
+}
+
+TEST(RigCalibrationFiles, AMisnamedOrMissingFieldIsOneLineNamingIt) {
+    Calibration stereo{{}, "", sampleRig(LensModel::BrownConrady, 0.0), "", ""};
+    const auto json = writeCalibration(stereo, CalibrationFormat::OpenCvStereoJson);
+    const auto single =
+        writeCalibration(Calibration{{385.5, 385.5, 320.0, 240.0, 640, 480}, "", std::nullopt, "", ""},
+                         CalibrationFormat::RosCameraInfo);
+    ASSERT_TRUE(json && single);
+    const std::string cv = kOpenCvStereo, kalibr = kKalibr;
+    const std::pair<std::string, std::string> cases[] = {
+        {replaced(kalibr, "  intrinsics: [615.5", "  intrinsic: [615.5"),
+         "bad.yaml: cam1.intrinsics: missing"},
+        {replaced(kalibr, "T_cn_cnm1:", "T_cam_imu:"), "bad.yaml: cam1.T_cn_cnm1: missing"},
+        {replaced(kalibr, "  resolution: [640, 480]\n  rostopic: /camera/depth", "  rostopic: /camera/depth"),
+         "bad.yaml: cam0.resolution: missing"},
+        {replaced(cv, "R: !!opencv-matrix", "Rot: !!opencv-matrix"), "bad.yaml: R: missing"},
+        {replaced(cv, "M2: !!opencv-matrix", "M_2: !!opencv-matrix"), "bad.yaml: K2: missing"},
+        {replaced(*json, "\"T\"", "\"t\""), "bad.yaml: T: missing"},
+        {replaced(*single, "camera_matrix:", "camera_matrx:"),
+         "bad.yaml: no camera_matrix (expected OpenCV or ROS camera_info calibration YAML)"},
+    };
+    for (const auto& [text, expected] : cases) {
+        const auto result = parseCalibration(text, "bad.yaml");
+        ASSERT_FALSE(result) << expected;
+        EXPECT_EQ(result.error().message, expected);
+    }
+}
+
+TEST(RigCalibrationFiles, MalformedYamlOrJsonIsAnErrorNamingTheFileAndLine) {
+    struct Case {
+        std::string text;
+        const char* origin;
+        const char* where; // file:line: the line yaml-cpp stopped at, counted from 1
+    };
+    const Case cases[] = {
+        // M1's dt, indented deeper than its siblings, on line 8: OpenCV's directive line counts too.
+        {replaced(kOpenCvStereo, "   dt: d\n", "     dt: d\n"), "stereo.yml", "stereo.yml:8:"},
+        {R"({
+    "image_size1": [ 848, 480 ],
+    "K1": { "type_id": "opencv-matrix", "rows": 3,
+        "cols": 3 ]
+})",
+         "stereo.json", "stereo.json:4:"},
+    };
+    for (const Case& c : cases) {
+        const auto result = parseCalibration(c.text, c.origin);
+        ASSERT_FALSE(result) << c.where;
+        const std::string& message = result.error().message;
+        EXPECT_EQ(message.rfind(c.where, 0), 0u) << message;
+        EXPECT_NE(message.find("malformed calibration YAML or JSON"), std::string::npos) << message;
+        EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+    }
+    // A file, read from disk: its second row one column off the others, on line 12.
+    const std::string path = ::testing::TempDir() + "malformed_camchain.yaml";
+    std::ofstream(path) << replaced(kKalibr, "  - [0.0, 1.0, 0.0, 0.0002]", "   - [0.0, 1.0, 0.0, 0.0002]");
+    const auto loaded = loadCalibration(path);
+    ASSERT_FALSE(loaded);
+    EXPECT_EQ(loaded.error().message.rfind(path + ":12:", 0), 0u) << loaded.error().message;
 }
 
 TEST(RigCalibrationFiles, StreamsOfAnotherShapeAreRefusedNamingTheSizeField) {
