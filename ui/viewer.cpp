@@ -3,14 +3,12 @@
 #include "base/files.h"
 #include "base/log.h"
 #include "devices/device.h"
-#include "exporting/ply.h"
+#include "exporting/snapshot.h"
 #include "frame/camera_model.h"
 #include "frame/image_io.h"
 #include "frame/jpeg_codec.h"
 #include "processing/camera_image.h"
 #include "processing/depth_statistics.h"
-#include "processing/point_cloud.h"
-#include "processing/registration.h"
 
 #include <algorithm>
 #include <cmath>
@@ -333,19 +331,11 @@ Expected<std::string> Viewer::writeSnapshot(const std::string& parent) {
         return dir.error();
     if (auto written = savePanels(*dir); !written)
         return written.error();
-    // Exactly the points drawn: the shown depth, its colours, the cloud's confidence and near limits. Colours
-    // a shader made for the screen are made once more here, on the CPU.
-    processing::CloudSamples samples = shown_->samples();
-    std::shared_ptr<const processing::RgbImage> colours;
-    if (!samples.colors && samples.depth && settings_.cloud.coloring == render::PointColoring::Camera) {
-        processing::CameraColorTable table;
-        colours = processing::framePointColours(*shown_->frame, samples.depth->depthMeters, table).colors;
-        samples.colors = colours.get();
-    }
-    const auto points =
-        processing::buildPointCloud(samples, settings_.cloud.minConfidence, settings_.cloud.nearMeters);
-    const auto ply = exporting::encodePly(points, {"depthcloud snapshot of " + instrument_.status().source});
-    if (Status s = base::writeFileAtomically(*dir + "/cloud.ply", ply); !s)
+    const exporting::SnapshotCloud cloud{settings_.cloud.minConfidence, settings_.cloud.nearMeters,
+                                         settings_.cloud.coloring == render::PointColoring::Camera};
+    if (Status s =
+            exporting::writeSnapshotPly(*shown_, cloud, instrument_.status().source, *dir + "/cloud.ply");
+        !s)
         return s.error();
     return dir;
 }
