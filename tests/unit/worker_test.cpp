@@ -7,11 +7,21 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <stdexcept>
 #include <thread>
 
 namespace dc::base {
 namespace {
+
+// A body that polls its stop token, then says it returned.
+std::function<void(std::stop_token)> pollUntilStopped(std::atomic<bool>& returned) {
+    return [&returned](std::stop_token stop) {
+        while (!stop.stop_requested())
+            std::this_thread::sleep_for(std::chrono::milliseconds(1));
+        returned = true;
+    };
+}
 
 TEST(Worker, AnExceptionEndsItsThreadNotTheProcessAndIsKeptForItsOwner) {
     Worker worker("decoding failed", [] { throw std::runtime_error("corrupt chunk"); });
@@ -36,11 +46,7 @@ TEST(Worker, ABodyThatReturnsLeavesNoError) {
 TEST(Worker, DestroyingItAsksTheBodyToStopAndWaitsForIt) {
     std::atomic<bool> returned{false};
     {
-        Worker worker("polling", [&](std::stop_token stop) {
-            while (!stop.stop_requested())
-                std::this_thread::sleep_for(std::chrono::milliseconds(1));
-            returned = true;
-        });
+        Worker worker("polling", pollUntilStopped(returned));
         std::this_thread::sleep_for(std::chrono::milliseconds(5));
         EXPECT_FALSE(returned.load());
     }
@@ -49,11 +55,7 @@ TEST(Worker, DestroyingItAsksTheBodyToStopAndWaitsForIt) {
 
 TEST(Worker, AssigningAnotherStopsAndJoinsTheFirst) {
     std::atomic<bool> firstReturned{false};
-    Worker worker("first", [&](std::stop_token stop) {
-        while (!stop.stop_requested())
-            std::this_thread::sleep_for(std::chrono::milliseconds(1));
-        firstReturned = true;
-    });
+    Worker worker("first", pollUntilStopped(firstReturned));
     worker = Worker("second", [] {});
     EXPECT_TRUE(firstReturned.load());
     worker.join();
