@@ -10,6 +10,7 @@
 #include "tool/bench_upsample_options.h"
 #include "tool/live_commands.h"
 #include "tool/options.h"
+#include "tool/quality_command.h"
 #include "tool/recording_commands.h"
 #include "tool/version.h"
 
@@ -135,6 +136,8 @@ int main(int argc, char** argv) {
     CLI::App* benchUpsampleCmd = addBenchUpsampleCommand(*benchCmd, benchUpsample);
     DevicesOptions devicesOptions;
     CLI::App* devicesCmd = addDevicesCommand(app, devicesOptions);
+    QualityOptions qualityOptions;
+    CLI::App* qualityCmd = addQualityCommand(app, qualityOptions);
 
     RecordingCommands recording;
     addRecordingCommands(app, *benchCmd, recording);
@@ -168,5 +171,7 @@ int main(int argc, char** argv) {
         return runBenchUpsample(benchUpsample);
     if (devicesCmd->parsed())
         return runDevices(devicesOptions);
+    if (qualityCmd->parsed())
+        return runQuality(qualityOptions);
     return runViewer(viewer);
 }

@@ -1,0 +1,499 @@
+#include "processing/depth_quality.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+#include <random>
+#include <string>
+
+namespace dc::processing {
+
+namespace {
+
+using Matrix3 = std::array<std::array<double, 3>, 3>;
+
+constexpr double kMetersToMm = 1000.0;
+// DQT trims this fraction of the residuals from each end before its plane-fit RMS.
+constexpr double kDqtTrimFraction = 0.005;
+// Random planes are scored on at most this many points: the median of 2,000 residuals picks the same
+// winner as the median of a million at a fraction of the cost; the inliers are then chosen among all.
+constexpr std::size_t kScoreSamples = 2000;
+// 1.4826 x the median |residual| estimates sigma for Gaussian noise.
+constexpr double kMadToSigma = 1.4826;
+
+Error notEnough(const std::string& why) {
+    return Error{std::string(kNotEnoughSamples) + ": " + why};
+}
+
+// Cyclic Jacobi rotations on a symmetric 3x3 matrix: the rotations converge quadratically and never produce
+// a NaN for finite input (a vanishing off-diagonal element is skipped, a huge theta makes t = 0). Returns
+// the eigenvalues; `vectors` holds the eigenvectors as columns.
+std::array<double, 3> jacobiEigen(Matrix3 a, Matrix3& vectors) {
+    vectors = {{{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}};
+    for (int sweep = 0; sweep < 50; ++sweep) {
+        const double off = a[0][1] * a[0][1] + a[0][2] * a[0][2] + a[1][2] * a[1][2];
+        const double diag = a[0][0] * a[0][0] + a[1][1] * a[1][1] + a[2][2] * a[2][2];
+        if (off <= 1e-30 * diag || off == 0.0)
+            break;
+        for (int p = 0; p < 2; ++p) {
+            for (int q = p + 1; q < 3; ++q) {
+                if (a[p][q] == 0.0)
+                    continue;
+                const double theta = (a[q][q] - a[p][p]) / (2.0 * a[p][q]);
+                const double t =
+                    (theta >= 0 ? 1.0 : -1.0) / (std::abs(theta) + std::sqrt(theta * theta + 1.0));
+                const double c = 1.0 / std::sqrt(t * t + 1.0);
+                const double s = t * c;
+                for (int k = 0; k < 3; ++k) {
+                    const double kp = a[k][p], kq = a[k][q];
+                    a[k][p] = c * kp - s * kq;
+                    a[k][q] = s * kp + c * kq;
+                }
+                for (int k = 0; k < 3; ++k) {
+                    const double pk = a[p][k], qk = a[q][k];
+                    a[p][k] = c * pk - s * qk;
+                    a[q][k] = s * pk + c * qk;
+                }
+                for (int k = 0; k < 3; ++k) {
+                    const double kp = vectors[k][p], kq = vectors[k][q];
+                    vectors[k][p] = c * kp - s * kq;
+                    vectors[k][q] = s * kp + c * kq;
+                }
+            }
+        }
+    }
+    return {a[0][0], a[1][1], a[2][2]};
+}
+
+// n pointing away from the camera, so the same surface always gives the same normal and offset.
+PlaneModel orientedPlane(std::array<double, 3> n, const Point3d& through) {
+    if (n[2] < 0.0)
+        n = {-n[0], -n[1], -n[2]};
+    return {n, n[0] * through.x + n[1] * through.y + n[2] * through.z};
+}
+
+double median(std::vector<double> values) {
+    const std::size_t mid = values.size() / 2;
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
+    const double upper = values[mid];
+    if (values.size() % 2 == 1)
+        return upper;
+    return 0.5 *
+           (upper + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
+
+std::vector<Point3d> select(std::span<const Point3d> points, const std::vector<std::size_t>& indices) {
+    std::vector<Point3d> out;
+    out.reserve(indices.size());
+    for (std::size_t i : indices)
+        out.push_back(points[i]);
+    return out;
+}
+
+std::vector<std::size_t> inliersOf(std::span<const Point3d> points, const PlaneModel& plane,
+                                   double threshold) {
+    std::vector<std::size_t> inliers;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (std::abs(plane.signedDistance(points[i])) <= threshold)
+            inliers.push_back(i);
+    }
+    return inliers;
+}
+
+double rmsDistance(std::span<const Point3d> points, const PlaneModel& plane) {
+    double sum = 0.0;
+    for (const Point3d& p : points)
+        sum += plane.signedDistance(p) * plane.signedDistance(p);
+    return points.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(points.size()));
+}
+
+// The plane through three points; none when they are (nearly) collinear.
+std::optional<PlaneModel> planeThrough(const Point3d& a, const Point3d& b, const Point3d& c) {
+    const std::array<double, 3> u{b.x - a.x, b.y - a.y, b.z - a.z};
+    const std::array<double, 3> v{c.x - a.x, c.y - a.y, c.z - a.z};
+    const std::array<double, 3> n{u[1] * v[2] - u[2] * v[1], u[2] * v[0] - u[0] * v[2],
+                                  u[0] * v[1] - u[1] * v[0]};
+    const double length = std::sqrt(n[0] * n[0] + n[1] * n[1] + n[2] * n[2]);
+    const double scale =
+        std::sqrt((u[0] * u[0] + u[1] * u[1] + u[2] * u[2]) * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]));
+    if (!(length > 1e-9 * scale) || !std::isfinite(length))
+        return std::nullopt;
+    return orientedPlane({n[0] / length, n[1] / length, n[2] / length}, a);
+}
+
+struct RandomPlane {
+    PlaneModel plane;
+    double medianResidual = 0.0;
+};
+
+// The minimal-sample plane with the smallest median |residual| over a random subset of the points (random,
+// not a stride: a stride can alias with a pattern in the data, such as every fifth row being an edge).
+std::optional<RandomPlane> bestRandomPlane(std::span<const Point3d> points, const RobustFitParams& params) {
+    std::mt19937_64 random(params.seed);
+    std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
+    std::vector<std::size_t> scored(std::min(points.size(), kScoreSamples));
+    for (std::size_t k = 0; k < scored.size(); ++k)
+        scored[k] = points.size() <= kScoreSamples ? k : pick(random);
+    std::vector<double> residuals(scored.size());
+    std::optional<RandomPlane> best;
+    for (int i = 0; i < params.iterations; ++i) {
+        const std::size_t a = pick(random), b = pick(random), c = pick(random);
+        if (a == b || b == c || a == c)
+            continue;
+        const auto plane = planeThrough(points[a], points[b], points[c]);
+        if (!plane)
+            continue;
+        for (std::size_t k = 0; k < scored.size(); ++k)
+            residuals[k] = std::abs(plane->signedDistance(points[scored[k]]));
+        const double m = median(residuals);
+        if (!best || m < best->medianResidual)
+            best = RandomPlane{*plane, m};
+    }
+    return best;
+}
+
+bool finite(const Point3d& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+} // namespace
+
+Roi centredRoi(int imageWidth, int imageHeight, double percent) {
+    const double f = std::clamp(percent, 0.0, 100.0) / 100.0;
+    const int w = std::clamp(static_cast<int>(std::lround(imageWidth * f)), 1, std::max(1, imageWidth));
+    const int h = std::clamp(static_cast<int>(std::lround(imageHeight * f)), 1, std::max(1, imageHeight));
+    return {(imageWidth - w) / 2, (imageHeight - h) / 2, w, h};
+}
+
+bool roiInside(const Roi& roi, int imageWidth, int imageHeight) {
+    return roi.width > 0 && roi.height > 0 && roi.x >= 0 && roi.y >= 0 && roi.x <= imageWidth - roi.width &&
+           roi.y <= imageHeight - roi.height;
+}
+
+Expected<PlaneModel> fitPlaneLeastSquares(std::span<const Point3d> points) {
+    if (points.size() < 3)
+        return notEnough(std::to_string(points.size()) + " points, a plane needs 3");
+    Point3d c;
+    for (const Point3d& p : points) {
+        if (!finite(p))
+            return Error{"a point of the plane fit is not finite"};
+        c.x += p.x;
+        c.y += p.y;
+        c.z += p.z;
+    }
+    const double n = static_cast<double>(points.size());
+    c = {c.x / n, c.y / n, c.z / n};
+    Matrix3 cov{};
+    for (const Point3d& p : points) {
+        const std::array<double, 3> d{p.x - c.x, p.y - c.y, p.z - c.z};
+        for (int i = 0; i < 3; ++i)
+            for (int j = i; j < 3; ++j)
+                cov[i][j] += d[i] * d[j];
+    }
+    cov[1][0] = cov[0][1];
+    cov[2][0] = cov[0][2];
+    cov[2][1] = cov[1][2];
+    Matrix3 vectors;
+    const std::array<double, 3> values = jacobiEigen(cov, vectors);
+    std::array<int, 3> order{0, 1, 2};
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return values[a] < values[b]; });
+    // Collinear or coincident points leave two eigenvalues at zero: any plane through the line fits.
+    if (!(values[order[1]] > 1e-12 * values[order[2]]))
+        return notEnough("the points are collinear or coincident");
+    const int k = order[0];
+    return orientedPlane({vectors[0][k], vectors[1][k], vectors[2][k]}, c);
+}
+
+Expected<RobustPlaneFit> fitPlaneRobust(std::span<const Point3d> points, const RobustFitParams& params) {
+    if (points.size() < 3)
+        return notEnough(std::to_string(points.size()) + " points, a plane needs 3");
+    const auto best = bestRandomPlane(points, params);
+    if (!best)
+        return notEnough("no three points span a plane");
+    const double threshold = params.inlierThresholdMeters.value_or(
+        std::max(3.0 * kMadToSigma * best->medianResidual, kMinInlierThresholdMeters));
+    PlaneModel plane = best->plane;
+    std::vector<std::size_t> inliers;
+    for (int pass = 0; pass < 2; ++pass) {
+        std::vector<std::size_t> chosen = inliersOf(points, plane, threshold);
+        const auto fit = fitPlaneLeastSquares(select(points, chosen));
+        if (!fit)
+            return fit.error();
+        plane = *fit;
+        inliers = std::move(chosen);
+    }
+    RobustPlaneFit result;
+    result.plane = plane;
+    result.rmsMeters = rmsDistance(select(points, inliers), plane);
+    result.inlierFraction = static_cast<double>(inliers.size()) / static_cast<double>(points.size());
+    result.inlierThresholdMeters = threshold;
+    result.inliers = std::move(inliers);
+    return result;
+}
+
+Expected<double> dqtPlaneFitRms(std::span<const Point3d> points) {
+    const auto plane = fitPlaneLeastSquares(points);
+    if (!plane)
+        return plane.error();
+    std::vector<double> residuals;
+    residuals.reserve(points.size());
+    for (const Point3d& p : points)
+        residuals.push_back(plane->signedDistance(p));
+    std::sort(residuals.begin(), residuals.end());
+    const auto trim =
+        static_cast<std::size_t>(std::floor(kDqtTrimFraction * static_cast<double>(points.size())));
+    double sum = 0.0;
+    for (std::size_t i = trim; i < residuals.size() - trim; ++i)
+        sum += residuals[i] * residuals[i];
+    return std::sqrt(sum / static_cast<double>(residuals.size() - 2 * trim));
+}
+
+Expected<double> distanceAlongOpticalAxis(const PlaneModel& plane) {
+    const double d = plane.offsetMeters / plane.normal[2];
+    if (!(plane.normal[2] > 1e-9) || !std::isfinite(d))
+        return Error{"the plane is parallel to the optical axis"};
+    return d;
+}
+
+double angleToOpticalAxisDegrees(const PlaneModel& plane) {
+    return std::acos(std::clamp(std::abs(plane.normal[2]), 0.0, 1.0)) * 180.0 / std::numbers::pi;
+}
+
+double zAccuracyPercent(double measuredMeters, double truthMeters) {
+    return (measuredMeters - truthMeters) / truthMeters * 100.0;
+}
+
+Expected<double> subpixelRms(std::span<const Point3d> points, const PlaneModel& plane, double focalPixels,
+                             double baselineMeters) {
+    if (!(focalPixels > 0.0) || !(baselineMeters > 0.0))
+        return Error{"subpixel RMS needs a positive focal length and baseline"};
+    const double fb = focalPixels * baselineMeters;
+    double sum = 0.0;
+    std::size_t count = 0;
+    for (const Point3d& p : points) {
+        const double along = plane.normal[0] * p.x + plane.normal[1] * p.y + plane.normal[2] * p.z;
+        const double zPlane = plane.offsetMeters * p.z / along;
+        if (!(p.z > 0.0) || !(zPlane > 0.0) || !std::isfinite(zPlane))
+            continue;
+        const double error = fb / zPlane - fb / p.z;
+        sum += error * error;
+        ++count;
+    }
+    if (count == 0)
+        return notEnough("no point's ray meets the plane in front of the camera");
+    return std::sqrt(sum / static_cast<double>(count));
+}
+
+namespace {
+
+bool measured(const frame::Plane<float>& depth, int x, int y) {
+    if (x < 0 || y < 0 || x >= depth.width || y >= depth.height)
+        return false;
+    const float d = depth.at(x, y);
+    return std::isfinite(d) && d > 0.0f;
+}
+
+bool differsSameSense(const frame::Plane<float>& depth, int x, int y, int dx, int dy, float threshold) {
+    if (!measured(depth, x - dx, y - dy) || !measured(depth, x + dx, y + dy))
+        return false;
+    const float d = depth.at(x, y);
+    const float a = depth.at(x - dx, y - dy);
+    const float b = depth.at(x + dx, y + dy);
+    return (a - d > threshold && b - d > threshold) || (d - a > threshold && d - b > threshold);
+}
+
+SampleCause classify(const frame::DepthData& depth, int x, int y, const QualityParams& params) {
+    const float d = depth.depthMeters.at(x, y);
+    if (!std::isfinite(d) || d <= 0.0f)
+        return SampleCause::NoMeasurement;
+    if (d < params.nearMeters || d > params.farMeters)
+        return SampleCause::OutOfRange;
+    const auto& confidence = depth.confidence;
+    if (confidence.width == depth.depthMeters.width && confidence.height == depth.depthMeters.height &&
+        !confidence.empty() && confidence.at(x, y) < static_cast<std::uint8_t>(params.minConfidence))
+        return SampleCause::LowConfidence;
+    const float t = params.flyingThresholdMeters;
+    if (differsSameSense(depth.depthMeters, x, y, 1, 0, t) ||
+        differsSameSense(depth.depthMeters, x, y, 0, 1, t))
+        return SampleCause::FlyingPixel;
+    return SampleCause::Valid;
+}
+
+Expected<PlaneFigures> planeFigures(const std::vector<Point3d>& points, const frame::Intrinsics& k,
+                                    const QualityParams& params) {
+    const auto fit = fitPlaneRobust(points, params.fit);
+    if (!fit)
+        return fit.error();
+    const auto distance = distanceAlongOpticalAxis(fit->plane);
+    if (!distance)
+        return distance.error();
+    const auto dqt = dqtPlaneFitRms(points);
+    if (!dqt)
+        return dqt.error();
+    PlaneFigures f;
+    f.plane = fit->plane;
+    f.distanceMm = *distance * kMetersToMm;
+    f.angleDeg = angleToOpticalAxisDegrees(fit->plane);
+    f.planeFitRmsMm = fit->rmsMeters * kMetersToMm;
+    f.planeFitRmsPercent = fit->rmsMeters / *distance * 100.0;
+    f.inlierFraction = fit->inlierFraction;
+    f.dqtPlaneFitRmsMm = *dqt * kMetersToMm;
+    if (params.groundTruthMeters)
+        f.zAccuracyPercent = zAccuracyPercent(*distance, *params.groundTruthMeters);
+    if (params.baselineMeters) {
+        const auto subpixel =
+            subpixelRms(select(points, fit->inliers), fit->plane, k.fx, *params.baselineMeters);
+        if (subpixel)
+            f.subpixelRms = *subpixel;
+    }
+    return f;
+}
+
+} // namespace
+
+std::vector<SampleCause> classifySamples(const frame::DepthData& depth, const QualityParams& params,
+                                         FillBreakdown& counts) {
+    const Roi& r = params.roi;
+    std::vector<SampleCause> causes;
+    causes.reserve(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
+    counts = {};
+    for (int y = r.y; y < r.y + r.height; ++y) {
+        for (int x = r.x; x < r.x + r.width; ++x) {
+            const SampleCause c = classify(depth, x, y, params);
+            causes.push_back(c);
+            switch (c) {
+            case SampleCause::Valid:
+                ++counts.valid;
+                break;
+            case SampleCause::NoMeasurement:
+                ++counts.noMeasurement;
+                break;
+            case SampleCause::OutOfRange:
+                ++counts.outOfRange;
+                break;
+            case SampleCause::LowConfidence:
+                ++counts.lowConfidence;
+                break;
+            case SampleCause::FlyingPixel:
+                ++counts.flyingPixel;
+                break;
+            }
+        }
+    }
+    counts.roiSamples = causes.size();
+    return causes;
+}
+
+Expected<FrameQuality> measureFrameQuality(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
+                                           const QualityParams& params) {
+    if (!intrinsics.valid())
+        return Error{"the depth intrinsics cannot place points"};
+    const Roi& r = params.roi;
+    if (!roiInside(r, depth.depthMeters.width, depth.depthMeters.height))
+        return Error{"the region of interest is outside the " + std::to_string(depth.depthMeters.width) +
+                     "x" + std::to_string(depth.depthMeters.height) + " depth map"};
+    FrameQuality q;
+    const std::vector<SampleCause> causes = classifySamples(depth, params, q.fill);
+    std::vector<Point3d> points;
+    points.reserve(q.fill.valid);
+    std::size_t i = 0;
+    for (int y = r.y; y < r.y + r.height; ++y) {
+        for (int x = r.x; x < r.x + r.width; ++x, ++i) {
+            if (causes[i] != SampleCause::Valid)
+                continue;
+            const double z = depth.depthMeters.at(x, y);
+            points.push_back(
+                {(x - intrinsics.cx) * z / intrinsics.fx, (y - intrinsics.cy) * z / intrinsics.fy, z});
+        }
+    }
+    auto figures = planeFigures(points, intrinsics, params);
+    if (figures)
+        q.plane = std::move(*figures);
+    else
+        q.planeError = figures.error().message;
+    return q;
+}
+
+NoiseWindow::NoiseWindow(const QualityParams& params, int windowFrames)
+    : params_(params), windowFrames_(static_cast<std::size_t>(std::max(windowFrames, 1))),
+      pixels_(static_cast<std::size_t>(std::max(params.roi.width, 0)) *
+              static_cast<std::size_t>(std::max(params.roi.height, 0))) {}
+
+void NoiseWindow::add(const frame::DepthData& depth, std::optional<double> planeFitRmsMm) {
+    WindowFrame f{std::vector<float>(pixels_.size(), std::numeric_limits<float>::quiet_NaN()), planeFitRmsMm};
+    const Roi& r = params_.roi;
+    if (roiInside(r, depth.depthMeters.width, depth.depthMeters.height)) {
+        FillBreakdown counts;
+        const std::vector<SampleCause> causes = classifySamples(depth, params_, counts);
+        for (std::size_t i = 0; i < causes.size(); ++i) {
+            if (causes[i] == SampleCause::Valid)
+                f.depthMeters[i] =
+                    depth.depthMeters.at(r.x + static_cast<int>(i % static_cast<std::size_t>(r.width)),
+                                         r.y + static_cast<int>(i / static_cast<std::size_t>(r.width)));
+        }
+    }
+    enter(f);
+    window_.push_back(std::move(f));
+    if (window_.size() > windowFrames_) {
+        leave(window_.front());
+        window_.pop_front();
+    }
+}
+
+// Welford's update: the mean and the sum of squared deviations without the cancellation of sum(x^2) - n m^2.
+void NoiseWindow::enter(const WindowFrame& f) {
+    for (std::size_t i = 0; i < pixels_.size(); ++i) {
+        const double x = f.depthMeters[i];
+        if (std::isnan(x))
+            continue;
+        Running& p = pixels_[i];
+        ++p.count;
+        const double delta = x - p.mean;
+        p.mean += delta / p.count;
+        p.m2 += delta * (x - p.mean);
+    }
+}
+
+// Welford's update run backwards: the mean and m2 as they were before x entered.
+void NoiseWindow::leave(const WindowFrame& f) {
+    for (std::size_t i = 0; i < pixels_.size(); ++i) {
+        const double x = f.depthMeters[i];
+        if (std::isnan(x))
+            continue;
+        Running& p = pixels_[i];
+        if (p.count <= 1) {
+            p = {};
+            continue;
+        }
+        const double before = (p.count * p.mean - x) / (p.count - 1);
+        p.m2 = std::max(0.0, p.m2 - (x - before) * (x - p.mean));
+        p.mean = before;
+        --p.count;
+    }
+}
+
+Expected<double> NoiseWindow::temporalNoiseMm() const {
+    if (window_.size() < 2)
+        return notEnough("temporal noise needs at least 2 frames");
+    std::vector<double> deviations;
+    for (const Running& p : pixels_) {
+        if (p.count == window_.size())
+            deviations.push_back(std::sqrt(p.m2 / (p.count - 1)) * kMetersToMm);
+    }
+    if (deviations.empty())
+        return notEnough("no pixel is valid in every frame of the window");
+    return median(std::move(deviations));
+}
+
+Expected<double> NoiseWindow::spatialNoiseMm() const {
+    std::vector<double> rms;
+    for (const WindowFrame& f : window_) {
+        if (f.planeFitRmsMm)
+            rms.push_back(*f.planeFitRmsMm);
+    }
+    if (rms.empty())
+        return notEnough("no frame of the window had a plane fit");
+    return median(std::move(rms));
+}
+
+} // namespace dc::processing

@@ -1,0 +1,134 @@
+// depthcloud quality on the synthetic source: exit 0 when every expectation holds, 1 when one fails, 2 for a
+// bad argument (one line naming it); the JSON has every figure, finite where it was measured.
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <sys/wait.h>
+#include <unistd.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct RunResult {
+    int exitCode = -1;
+    std::string out;
+    std::string err;
+};
+
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    return {std::istreambuf_iterator<char>(in), {}};
+}
+
+std::size_t lines(const std::string& text) {
+    return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+}
+
+class Quality : public ::testing::Test {
+protected:
+    void SetUp() override {
+        std::string pattern = (fs::temp_directory_path() / "depthcloud-quality-XXXXXX").string();
+        ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
+        dir_ = pattern;
+    }
+    void TearDown() override { fs::remove_all(dir_); }
+
+    RunResult run(const std::string& arguments) const {
+        const std::string command = "cd '" + dir_.string() + "' && " + DEPTHCLOUD_BINARY + " quality " +
+                                    arguments + " > out.txt 2> err.txt";
+        const int status = std::system(command.c_str());
+        RunResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(dir_ / "out.txt"),
+                    readFile(dir_ / "err.txt")};
+        fs::remove(dir_ / "out.txt");
+        fs::remove(dir_ / "err.txt");
+        return r;
+    }
+
+    fs::path dir_;
+};
+
+const char* const kFigures[] = {"fillRate",        "planeFitRmsMm",  "planeFitRmsPercent", "dqtPlaneFitRmsMm",
+                                "temporalNoiseMm", "spatialNoiseMm", "distanceMm",         "angleDeg",
+                                "inlierFraction",  "frames"};
+
+TEST_F(Quality, HeldExpectationsExitZeroAndTheJsonHasEveryFigure) {
+    const RunResult r = run("--source synthetic:64x48 --frames 6 --ground-truth-mm 1000 --baseline-mm 50 "
+                            "--expect \"fillRate>=0.5,frames==6\" --json q.json");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    EXPECT_NE(r.out.find("planeFitRmsMm "), std::string::npos) << r.out;
+    const nlohmann::json j = nlohmann::json::parse(readFile(dir_ / "q.json"));
+    for (const char* key : kFigures) {
+        ASSERT_TRUE(j.contains(key)) << key;
+        ASSERT_TRUE(j[key].is_number()) << key << " = " << j[key];
+        EXPECT_TRUE(std::isfinite(j[key].get<double>())) << key;
+    }
+    EXPECT_TRUE(j["subpixelRms"].is_number());
+    EXPECT_TRUE(j["zAccuracyPercent"].is_number());
+    EXPECT_EQ(j["frames"], 6);
+    for (const char* cause : {"noMeasurement", "outOfRange", "lowConfidence", "flyingPixel"}) {
+        EXPECT_TRUE(j["shortfall"][cause]["count"].is_number()) << cause;
+        EXPECT_TRUE(j["shortfall"][cause]["fraction"].is_number()) << cause;
+    }
+}
+
+TEST_F(Quality, FiguresWithoutWhatTheyNeedAreNull) {
+    const RunResult r = run("--source synthetic:64x48 --frames 2 --json q.json");
+    ASSERT_EQ(r.exitCode, 0) << r.err;
+    const nlohmann::json j = nlohmann::json::parse(readFile(dir_ / "q.json"));
+    EXPECT_TRUE(j["subpixelRms"].is_null());
+    EXPECT_TRUE(j["zAccuracyPercent"].is_null());
+}
+
+TEST_F(Quality, AFailedExpectationExitsOneNamingItAndItsValue) {
+    const RunResult r = run("--source synthetic:64x48 --frames 2 --expect \"frames>=1,fillRate>1\"");
+    EXPECT_EQ(r.exitCode, 1) << r.err;
+    EXPECT_NE(r.err.find("fillRate>1 failed: fillRate = "), std::string::npos) << r.err;
+    EXPECT_EQ(lines(r.err), 1u) << r.err;
+    const RunResult unmeasured = run("--source synthetic:64x48 --frames 2 --expect \"zAccuracyPercent<=1\"");
+    EXPECT_EQ(unmeasured.exitCode, 1) << unmeasured.err;
+    EXPECT_NE(unmeasured.err.find("zAccuracyPercent was not measured"), std::string::npos) << unmeasured.err;
+}
+
+TEST_F(Quality, BadArgumentsExitTwoWithOneLineNamingTheArgument) {
+    struct Case {
+        const char* args;
+        const char* mentions;
+    };
+    const Case cases[] = {
+        {"--expect \"noSuchFigure<=1\"", "--expect"},
+        {"--expect \"fillRate=1\"", "--expect"},
+        {"--expect \"fillRate>=high\"", "--expect"},
+        {"--roi 1,2,3", "--roi"},
+        {"--source synthetic:64x48 --roi 60,0,10,10", "--roi"},
+        {"--roi 0,0,8,8 --roi-percent 20", "--roi"},
+        {"--frames 0", "--frames"},
+        {"--source nowhere:at:all", "--source"},
+    };
+    for (const Case& c : cases) {
+        const RunResult r = run(c.args);
+        EXPECT_EQ(r.exitCode, 2) << c.args << "\n" << r.err;
+        EXPECT_NE(r.err.find(c.mentions), std::string::npos) << c.args << "\n" << r.err;
+        EXPECT_EQ(lines(r.err), 1u) << c.args << "\n" << r.err;
+    }
+}
+
+TEST_F(Quality, AnExistingJsonIsKeptUnlessOverwriteIsGiven) {
+    std::ofstream(dir_ / "q.json") << "an earlier run";
+    const RunResult r = run("--source synthetic:64x48 --frames 2 --json q.json");
+    EXPECT_EQ(r.exitCode, 2) << r.err;
+    EXPECT_NE(r.err.find("--json q.json already exists"), std::string::npos) << r.err;
+    EXPECT_EQ(readFile(dir_ / "q.json"), "an earlier run");
+    const RunResult replaced = run("--source synthetic:64x48 --frames 2 --json q.json --overwrite");
+    EXPECT_EQ(replaced.exitCode, 0) << replaced.err;
+    EXPECT_TRUE(nlohmann::json::parse(readFile(dir_ / "q.json")).contains("fillRate"));
+}
+
+} // namespace

@@ -1,0 +1,326 @@
+// Depth quality figures (issue 29): a noisy tilted plane gives back its distance, angle and noise; gross
+// outliers do not move the robust fit; DQT's figures on data small enough to work out by hand; every cause of
+// a missing sample counted exactly; extreme and empty input gives finite figures or a clear error.
+
+#include "processing/depth_quality.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <numbers>
+#include <random>
+#include <vector>
+
+namespace dc::processing {
+namespace {
+
+constexpr double kDegToRad = std::numbers::pi / 180.0;
+
+// A plane crossing the optical axis at distanceMeters, its normal tilted by angleDeg about the y axis,
+// sampled uniformly across +-0.3 distance sideways, each point moved along the normal by N(0, sigma).
+std::vector<Point3d> noisyPlane(double distanceMeters, double angleDeg, double sigmaMeters, int count,
+                                unsigned seed) {
+    const double s = std::sin(angleDeg * kDegToRad), c = std::cos(angleDeg * kDegToRad);
+    std::mt19937 random(seed);
+    std::uniform_real_distribution<double> side(-0.3 * distanceMeters, 0.3 * distanceMeters);
+    std::normal_distribution<double> noise(0.0, sigmaMeters);
+    std::vector<Point3d> points;
+    for (int i = 0; i < count; ++i) {
+        const double x = side(random), y = side(random);
+        const double z = (distanceMeters * c - s * x) / c;
+        const double e = noise(random);
+        points.push_back({x + e * s, y, z + e * c});
+    }
+    return points;
+}
+
+TEST(DepthQuality, RecoversDistanceAngleAndNoiseOfATiltedPlane) {
+    const double sigma = 0.002;
+    const std::vector<Point3d> points = noisyPlane(1.5, 20.0, sigma, 40000, 1);
+    const auto fit = fitPlaneRobust(points);
+    ASSERT_TRUE(fit.ok()) << fit.error().message;
+    const auto distance = distanceAlongOpticalAxis(fit->plane);
+    ASSERT_TRUE(distance.ok());
+    EXPECT_NEAR(*distance, 1.5, 0.0005);
+    EXPECT_NEAR(angleToOpticalAxisDegrees(fit->plane), 20.0, 0.1);
+    EXPECT_NEAR(fit->rmsMeters, sigma, 0.03 * sigma);
+    EXPECT_GT(fit->inlierFraction, 0.99);
+}
+
+TEST(DepthQuality, GrossOutliersMoveTheLeastSquaresFitButNotTheRobustOne) {
+    std::vector<Point3d> points = noisyPlane(2.0, 30.0, 0.002, 20000, 2);
+    std::mt19937 random(3);
+    std::uniform_real_distribution<double> nearer(0.05, 0.5);
+    for (std::size_t i = 0; i < points.size(); i += 5) {
+        const double f = 1.0 - nearer(random) / points[i].z; // along the pixel's ray, toward the camera
+        points[i] = {points[i].x * f, points[i].y * f, points[i].z * f};
+    }
+    const auto robust = fitPlaneRobust(points);
+    ASSERT_TRUE(robust.ok());
+    const auto plain = fitPlaneLeastSquares(points);
+    ASSERT_TRUE(plain.ok());
+    EXPECT_NEAR(*distanceAlongOpticalAxis(robust->plane), 2.0, 0.001);
+    EXPECT_GT(std::abs(*distanceAlongOpticalAxis(*plain) - 2.0), 0.01);
+    EXPECT_NEAR(robust->inlierFraction, 0.8, 0.01);
+}
+
+// A 10 x 20 grid at z = 1 +- 1 mm in a checkerboard (its residual pattern is orthogonal to 1, x and y, so
+// the least-squares plane is exactly z = 1), plus two points at the grid's centroid 50 mm in front and
+// behind: 202 points, floor(1.01) = 1 trimmed from each end removes exactly those two.
+TEST(DepthQuality, DqtRmsTrimsHalfAPercentFromEachEnd) {
+    std::vector<Point3d> points;
+    for (int j = 0; j < 20; ++j)
+        for (int i = 0; i < 10; ++i)
+            points.push_back({0.01 * i, 0.01 * j, 1.0 + ((i + j) % 2 ? 0.001 : -0.001)});
+    points.push_back({0.045, 0.095, 1.05});
+    points.push_back({0.045, 0.095, 0.95});
+    const auto plane = fitPlaneLeastSquares(points);
+    ASSERT_TRUE(plane.ok());
+    EXPECT_NEAR(plane->normal[2], 1.0, 1e-12);
+    EXPECT_NEAR(plane->offsetMeters, 1.0, 1e-12);
+    const auto dqt = dqtPlaneFitRms(points);
+    ASSERT_TRUE(dqt.ok());
+    EXPECT_NEAR(*dqt, 0.001, 1e-9);
+}
+
+TEST(DepthQuality, ZAccuracyIsTheRelativeErrorOfTheDistance) {
+    EXPECT_NEAR(zAccuracyPercent(1.002, 1.0), 0.2, 1e-9);
+    EXPECT_NEAR(zAccuracyPercent(0.995, 1.0), -0.5, 1e-9);
+}
+
+// f B = 100 px x 0.05 m = 5 px m against the plane z = 1: a point measured at 1.25 m has disparity 4 px
+// instead of 5, one at 5/6 m has 6 px: errors of +1 and -1 px, RMS 1 px.
+TEST(DepthQuality, SubpixelRmsIsTheDisparityErrorAgainstThePlane) {
+    const PlaneModel plane{{0.0, 0.0, 1.0}, 1.0};
+    const std::vector<Point3d> points{{0.0, 0.0, 1.25}, {0.1 * 5.0 / 6.0, 0.0, 5.0 / 6.0}};
+    const auto rms = subpixelRms(points, plane, 100.0, 0.05);
+    ASSERT_TRUE(rms.ok());
+    EXPECT_NEAR(*rms, 1.0, 1e-12);
+    EXPECT_FALSE(subpixelRms(points, plane, 100.0, 0.0).ok());
+}
+
+frame::Intrinsics intrinsics(int w, int h) {
+    return {120.0, 120.0, (w - 1) / 2.0, (h - 1) / 2.0, w, h};
+}
+
+frame::DepthData flat(int w, int h, float meters) {
+    frame::DepthData d;
+    d.depthMeters = frame::Plane<float>(w, h, meters);
+    d.confidence = frame::Plane<std::uint8_t>(w, h, 2);
+    return d;
+}
+
+struct CauseCase {
+    const char* name;
+    std::function<void(frame::DepthData&)> make;
+    FillBreakdown expected;
+};
+
+TEST(DepthQuality, EachCauseOfAMissingSampleIsCountedExactly) {
+    const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+    auto none = [&](frame::DepthData& d) {
+        d.depthMeters.at(1, 1) = 0.0f;
+        d.depthMeters.at(3, 1) = nan;
+        d.depthMeters.at(5, 1) = inf;
+    };
+    auto range = [](frame::DepthData& d) {
+        d.depthMeters.at(1, 3) = 0.3f;
+        d.depthMeters.at(5, 3) = 10.0f;
+    };
+    auto confidence = [](frame::DepthData& d) { d.confidence.at(3, 5) = 0; };
+    auto flying = [](frame::DepthData& d) {
+        d.depthMeters.at(1, 5) = 1.5f;
+        d.depthMeters.at(5, 5) = 0.9f;
+    };
+    const CauseCase cases[] = {
+        {"no measurement", none, {49, 46, 3, 0, 0, 0}},
+        {"out of range", range, {49, 47, 0, 2, 0, 0}},
+        {"low confidence", confidence, {49, 48, 0, 0, 1, 0}},
+        {"flying", flying, {49, 47, 0, 0, 0, 2}},
+        {"all",
+         [&](frame::DepthData& d) {
+             none(d);
+             range(d);
+             confidence(d);
+             flying(d);
+         },
+         {49, 41, 3, 2, 1, 2}},
+    };
+    QualityParams params;
+    params.roi = {0, 0, 7, 7};
+    params.nearMeters = 0.5f;
+    params.farMeters = 5.0f;
+    params.minConfidence = frame::Confidence::Medium;
+    for (const CauseCase& c : cases) {
+        frame::DepthData d = flat(7, 7, 1.0f);
+        c.make(d);
+        FillBreakdown got;
+        classifySamples(d, params, got);
+        EXPECT_EQ(got.roiSamples, c.expected.roiSamples) << c.name;
+        EXPECT_EQ(got.valid, c.expected.valid) << c.name;
+        EXPECT_EQ(got.noMeasurement, c.expected.noMeasurement) << c.name;
+        EXPECT_EQ(got.outOfRange, c.expected.outOfRange) << c.name;
+        EXPECT_EQ(got.lowConfidence, c.expected.lowConfidence) << c.name;
+        EXPECT_EQ(got.flyingPixel, c.expected.flyingPixel) << c.name;
+        EXPECT_DOUBLE_EQ(got.fillRate(), static_cast<double>(c.expected.valid) / 49.0) << c.name;
+    }
+}
+
+TEST(DepthQuality, ASlantedSurfaceIsNotFlying) {
+    frame::DepthData d = flat(7, 7, 1.0f);
+    for (int y = 0; y < 7; ++y)
+        for (int x = 0; x < 7; ++x)
+            d.depthMeters.at(x, y) = 1.0f + 0.2f * static_cast<float>(x + y);
+    QualityParams params;
+    params.roi = {0, 0, 7, 7};
+    FillBreakdown got;
+    classifySamples(d, params, got);
+    EXPECT_EQ(got.valid, 49u);
+}
+
+// The depth a camera with intrinsics k sees of a plane crossing its axis at distance, tilted by angleDeg:
+// 0 where the pixel's ray misses the plane in front.
+frame::DepthData planeDepth(const frame::Intrinsics& k, double distance, double angleDeg) {
+    const double s = std::sin(angleDeg * kDegToRad), c = std::cos(angleDeg * kDegToRad);
+    frame::DepthData d = flat(k.width, k.height, 0.0f);
+    for (int y = 0; y < k.height; ++y) {
+        for (int x = 0; x < k.width; ++x) {
+            const double along = s * (x - k.cx) / k.fx + c;
+            d.depthMeters.at(x, y) = along > 0.0 ? static_cast<float>(distance * c / along) : 0.0f;
+        }
+    }
+    return d;
+}
+
+void expectFiniteOrNotEnough(const FrameQuality& q, const char* name) {
+    EXPECT_TRUE(std::isfinite(q.fill.fillRate())) << name;
+    if (!q.plane) {
+        EXPECT_NE(q.planeError.find(kNotEnoughSamples), std::string::npos) << name << ": " << q.planeError;
+        return;
+    }
+    const PlaneFigures& f = *q.plane;
+    for (double v : {f.distanceMm, f.angleDeg, f.planeFitRmsMm, f.planeFitRmsPercent, f.inlierFraction,
+                     f.dqtPlaneFitRmsMm, f.zAccuracyPercent.value_or(0.0), f.subpixelRms.value_or(0.0)})
+        EXPECT_TRUE(std::isfinite(v)) << name;
+}
+
+TEST(DepthQuality, ExtremePlanesGiveFiniteFigures) {
+    const frame::Intrinsics k = intrinsics(160, 120);
+    QualityParams params;
+    params.roi = centredRoi(160, 120, 50.0);
+    params.groundTruthMeters = 1.0;
+    params.baselineMeters = 0.05;
+    const struct {
+        double distance, angle;
+    } cases[] = {{0.1, 0.0}, {20.0, 0.0}, {0.1, 85.0}, {20.0, 85.0}, {1.0, 60.0}};
+    for (const auto& c : cases) {
+        const auto q = measureFrameQuality(planeDepth(k, c.distance, c.angle), k, params);
+        ASSERT_TRUE(q.ok()) << q.error().message;
+        ASSERT_TRUE(q->plane.has_value()) << q->planeError;
+        expectFiniteOrNotEnough(*q, "extreme plane");
+        EXPECT_NEAR(q->plane->distanceMm, c.distance * 1000.0, c.distance * 1000.0 * 1e-3);
+        EXPECT_NEAR(q->plane->angleDeg, c.angle, 0.05);
+    }
+}
+
+TEST(DepthQuality, FewOrNoValidSamplesGiveTheNotEnoughError) {
+    const frame::Intrinsics k = intrinsics(16, 12);
+    QualityParams params;
+    params.roi = {0, 0, 16, 12};
+    params.groundTruthMeters = 1.0;
+    params.baselineMeters = 0.05;
+
+    frame::DepthData three = flat(16, 12, 0.0f);
+    three.depthMeters.at(2, 2) = three.depthMeters.at(10, 3) = three.depthMeters.at(5, 9) = 1.0f;
+    const auto q3 = measureFrameQuality(three, k, params);
+    ASSERT_TRUE(q3.ok());
+    ASSERT_TRUE(q3->plane.has_value()) << q3->planeError;
+    expectFiniteOrNotEnough(*q3, "three samples");
+    EXPECT_NEAR(q3->plane->distanceMm, 1000.0, 1e-3);
+    EXPECT_NEAR(*q3->plane->zAccuracyPercent, 0.0, 1e-6);
+
+    frame::DepthData collinear = flat(16, 12, 0.0f);
+    collinear.depthMeters.at(2, 2) = collinear.depthMeters.at(6, 2) = collinear.depthMeters.at(10, 2) = 1.0f;
+    const auto ql = measureFrameQuality(collinear, k, params);
+    ASSERT_TRUE(ql.ok());
+    EXPECT_FALSE(ql->plane.has_value());
+    expectFiniteOrNotEnough(*ql, "collinear samples");
+
+    const auto q0 = measureFrameQuality(flat(16, 12, 0.0f), k, params);
+    ASSERT_TRUE(q0.ok());
+    EXPECT_FALSE(q0->plane.has_value());
+    EXPECT_EQ(q0->fill.fillRate(), 0.0);
+    expectFiniteOrNotEnough(*q0, "no valid sample");
+
+    const auto qMax = measureFrameQuality(flat(16, 12, 65.535f), k, params);
+    ASSERT_TRUE(qMax.ok());
+    ASSERT_TRUE(qMax->plane.has_value()) << qMax->planeError;
+    expectFiniteOrNotEnough(*qMax, "65.535 m everywhere");
+    EXPECT_NEAR(qMax->plane->distanceMm, 65535.0, 0.01);
+
+    params.roi = {10, 0, 16, 12};
+    EXPECT_FALSE(measureFrameQuality(flat(16, 12, 1.0f), k, params).ok());
+}
+
+TEST(DepthQuality, ZAccuracyOfAFlatTargetAgainstGroundTruth) {
+    const frame::Intrinsics k = intrinsics(40, 30);
+    QualityParams params;
+    params.roi = centredRoi(40, 30, 50.0);
+    params.groundTruthMeters = 1.0;
+    const auto q = measureFrameQuality(flat(40, 30, 1.002f), k, params);
+    ASSERT_TRUE(q.ok() && q->plane.has_value());
+    EXPECT_NEAR(*q->plane->zAccuracyPercent, 0.2, 1e-4);
+    EXPECT_FALSE(q->plane->subpixelRms.has_value());
+}
+
+TEST(DepthQuality, CentredRoiIsDqtsPercentOfEachSide) {
+    EXPECT_EQ(centredRoi(1280, 720, 40.0), (Roi{384, 216, 512, 288}));
+    EXPECT_EQ(centredRoi(10, 10, 0.0), (Roi{4, 4, 1, 1}));
+    EXPECT_EQ(centredRoi(10, 10, 100.0), (Roi{0, 0, 10, 10}));
+}
+
+// 10 frames of 20 mm noise, then 30 of 3 mm: a 30-frame window has forgotten the first ten.
+TEST(DepthQuality, TemporalNoiseIsEachPixelsDeviationOverTheWindow) {
+    QualityParams params;
+    params.roi = {0, 0, 32, 24};
+    params.flyingThresholdMeters = 1.0f;
+    NoiseWindow window(params, 30);
+    std::mt19937 random(5);
+    for (int frame = 0; frame < 40; ++frame) {
+        std::normal_distribution<float> noise(0.0f, frame < 10 ? 0.02f : 0.003f);
+        frame::DepthData d = flat(32, 24, 0.0f);
+        for (int y = 0; y < 24; ++y)
+            for (int x = 0; x < 32; ++x)
+                d.depthMeters.at(x, y) = 2.0f + 0.01f * static_cast<float>(x) + noise(random);
+        window.add(d, frame < 10 ? 100.0 : static_cast<double>(frame));
+    }
+    EXPECT_EQ(window.frames(), 30u);
+    const auto temporal = window.temporalNoiseMm();
+    ASSERT_TRUE(temporal.ok()) << temporal.error().message;
+    EXPECT_NEAR(*temporal, 3.0, 0.15);
+    const auto spatial = window.spatialNoiseMm();
+    ASSERT_TRUE(spatial.ok());
+    EXPECT_DOUBLE_EQ(*spatial, 24.5); // the median of 10 .. 39
+}
+
+TEST(DepthQuality, TemporalNoiseNeedsAPixelValidInEveryFrame) {
+    QualityParams params;
+    params.roi = {0, 0, 4, 4};
+    NoiseWindow window(params, 5);
+    EXPECT_FALSE(window.temporalNoiseMm().ok());
+    for (int frame = 0; frame < 5; ++frame) {
+        frame::DepthData d = flat(4, 4, 1.0f);
+        for (int i = 0; i < 16; ++i)
+            d.depthMeters.pixels[static_cast<std::size_t>(i)] = i == frame ? 0.0f : 1.0f + 0.001f * frame;
+        window.add(d, std::nullopt);
+    }
+    const auto temporal = window.temporalNoiseMm();
+    ASSERT_TRUE(temporal.ok());
+    EXPECT_NEAR(*temporal, 1.5811, 1e-3); // sample std of 0, 1, 2, 3, 4 mm
+    EXPECT_FALSE(window.spatialNoiseMm().ok());
+}
+
+} // namespace
+} // namespace dc::processing
