@@ -2,6 +2,8 @@
 // ../shared), bad arguments refused with exit code 2 and one line naming the argument, failures while
 // running with exit code 1, help that prints names and agrees with the checks.
 
+#include "tool_in_temp_dir.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -16,44 +18,14 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct RunResult {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
+using dc::test::lines;
+using dc::test::readFile;
+using dc::test::RunResult;
 
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-// A fresh working directory under the temp dir, far from the checkout.
-class Cli : public ::testing::Test {
+class Cli : public dc::test::ToolInTempDir {
 protected:
-    void SetUp() override {
-        std::string pattern = (fs::temp_directory_path() / "depthcloud-cli-XXXXXX").string();
-        ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
-        dir_ = pattern;
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    RunResult run(const std::string& arguments) const {
-        const std::string command =
-            "cd '" + dir_.string() + "' && " + DEPTHCLOUD_BINARY + " " + arguments + " > out.txt 2> err.txt";
-        const int status = std::system(command.c_str());
-        RunResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(dir_ / "out.txt"),
-                    readFile(dir_ / "err.txt")};
-        fs::remove(dir_ / "out.txt");
-        fs::remove(dir_ / "err.txt");
-        return r;
-    }
-
-    fs::path dir_;
+    RunResult run(const std::string& arguments) const { return runTool(arguments); }
 };
-
-std::size_t lines(const std::string& text) {
-    return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-}
 
 bool printable(const std::string& text) {
     return std::all_of(text.begin(), text.end(), [](char c) {

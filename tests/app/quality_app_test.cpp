@@ -1,58 +1,23 @@
 // depthcloud quality on the synthetic source: exit 0 when every expectation holds, 1 when one fails, 2 for a
 // bad argument (one line naming it); the JSON has every figure, finite where it was measured.
 
+#include "tool_in_temp_dir.h"
+
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
-#include <algorithm>
 #include <cmath>
-#include <cstdlib>
-#include <filesystem>
 #include <fstream>
-#include <iterator>
-#include <sys/wait.h>
-#include <unistd.h>
 
 namespace {
 
-namespace fs = std::filesystem;
+using dc::test::lines;
+using dc::test::readFile;
+using dc::test::RunResult;
 
-struct RunResult {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
-
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-std::size_t lines(const std::string& text) {
-    return static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
-}
-
-class Quality : public ::testing::Test {
+class Quality : public dc::test::ToolInTempDir {
 protected:
-    void SetUp() override {
-        std::string pattern = (fs::temp_directory_path() / "depthcloud-quality-XXXXXX").string();
-        ASSERT_NE(::mkdtemp(pattern.data()), nullptr);
-        dir_ = pattern;
-    }
-    void TearDown() override { fs::remove_all(dir_); }
-
-    RunResult run(const std::string& arguments) const {
-        const std::string command = "cd '" + dir_.string() + "' && " + DEPTHCLOUD_BINARY + " quality " +
-                                    arguments + " > out.txt 2> err.txt";
-        const int status = std::system(command.c_str());
-        RunResult r{WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(dir_ / "out.txt"),
-                    readFile(dir_ / "err.txt")};
-        fs::remove(dir_ / "out.txt");
-        fs::remove(dir_ / "err.txt");
-        return r;
-    }
-
-    fs::path dir_;
+    RunResult run(const std::string& arguments) const { return runTool("quality " + arguments); }
 };
 
 const char* const kFigures[] = {"fillRate",        "planeFitRmsMm",  "planeFitRmsPercent", "dqtPlaneFitRmsMm",
