@@ -89,6 +89,7 @@ struct CaseResult {
     std::uint64_t droppedBeforeDisplay = 0;    // processed, then replaced before the GL thread took it
     std::vector<double> latencyMs;             // arrival (the source's stamp) to on screen (after glFinish)
     std::vector<double> glCpuMs;               // the GL thread's CPU per frame it drew
+    std::vector<double> gpuClockMhz;           // the GPU's clock after each frame (none: not known)
     double processingCpuMs = 0.0;     // the processor thread's own CPU per new frame, median (not its pool's)
     double processingLatencyMs = 0.0; // arrival to result ready, median
     double processCpuMsPerFrame = 0.0; // every thread's CPU per delivered frame
@@ -135,6 +136,9 @@ public:
             r.latencyMs.push_back(static_cast<double>(base::monotonicNowNs() - shown->frame->timestampNs) *
                                   1e-6);
         }
+        if (const auto& clock = currentGpuClock())
+            if (const auto mhz = clock->graphicsMhz())
+                r.gpuClockMhz.push_back(*mhz);
     }
 
 private:
@@ -230,8 +234,9 @@ void printResult(const CaseResult& r) {
         "every thread's CPU per delivered frame %.1f ms\n",
         latency.median, latency.p99, r.processingLatencyMs, gl.median, gl.p99, r.processingCpuMs,
         r.processCpuMsPerFrame);
-    std::printf("  bare GL_POINTS of every sample into the %dx%d cloud panel %.2f ms; stage medians:",
-                r.cloudWidth, r.cloudHeight, r.bareGlPointsMs);
+    std::printf(
+        "  bare GL_POINTS of every sample into the %dx%d cloud panel %.2f ms;%s stage medians:", r.cloudWidth,
+        r.cloudHeight, r.bareGlPointsMs, gpuClockText(spreadOf(r.gpuClockMhz).median).c_str());
     for (const engine::StageSummary& s : r.stages)
         std::printf(" %s %.2f", s.name.c_str(), s.medianMs);
     std::printf("\n");
@@ -263,6 +268,7 @@ nlohmann::json toJson(const CaseResult& r) {
         {"cloudPath", r.cloudPath},
         {"cloudPanel", {r.cloudWidth, r.cloudHeight}},
         {"bareGlPointsMs", r.bareGlPointsMs},
+        {"gpuClockMhz", spreadOf(r.gpuClockMhz).median},
         {"stageMedianMs", stages}};
 }
 

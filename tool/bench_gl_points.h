@@ -1,6 +1,10 @@
 #pragma once
 
 #include "processing/shown_frame.h"
+#include "tool/gpu_clock.h"
+
+#include <optional>
+#include <string>
 
 namespace dc::tool {
 
@@ -11,11 +15,16 @@ struct GlFrameMs {
     double wall = 0.0;
     double cpu = 0.0;
     double gpu = 0.0;
+    double gpuClockMhz = 0.0; // the GPU's graphics clock over the frames, median (0: not known)
 };
 
 // The peer every viewer bench is measured against: GL_POINTS of every shown sample through the cloud
 // shader into a target of the cloud panel's size, the view turning each frame, nothing else drawn; the
 // medians over `frames` (after a warm-up), each ended by glFinish. Needs a current context.
 GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int height, int frames);
+// The clock of the GPU the current context draws on, opened once (none where GpuClock::open finds none).
+const std::optional<GpuClock>& currentGpuClock();
+// A text for the clock, " at a GPU clock of N of M MHz", or empty when it is not known.
+std::string gpuClockText(double mhz);
 
 } // namespace dc::tool

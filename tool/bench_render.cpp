@@ -8,6 +8,7 @@
 #include "render/orbit_camera.h"
 #include "tool/bench_frames.h"
 #include "tool/bench_gl_points.h"
+#include "tool/gpu_clock.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"
@@ -43,6 +44,7 @@ struct PathResult {
     std::string variant;            // empty: the default view; else what the --breakdown run left out
     double medianMs = 0, p90Ms = 0; // wall, to glFinish
     double cpuMs = 0, gpuMs = 0;    // the GL thread's CPU submitting a frame, the GPU's time for it
+    double gpuClockMhz = 0;         // the GPU's clock over those frames (0: not known)
     std::uint64_t points = 0;
     int decimation = 1;
     std::vector<engine::StageSummary> stages;
@@ -85,13 +87,15 @@ std::vector<frame::FramePtr> makeFrames(const BenchCase& c) {
 // next result is the other thread's, not this one's), draw(i) is timed and ended by glFinish (llvmpipe
 // draws asynchronously).
 struct FrameTimes {
-    base::RollingStats wall, cpu, gpu;
-    GlFrameMs medians() const { return {wall.median(), cpu.median(), gpu.median()}; }
+    base::RollingStats wall, cpu, gpu, clock;
+    GlFrameMs medians() const {
+        return {wall.median(), cpu.median(), gpu.median(), clock.count() > 0 ? clock.median() : 0.0};
+    }
 };
 
 template <class Before, class Draw> FrameTimes timeFrames(int frames, Before&& before, Draw&& draw) {
     const auto n = static_cast<std::size_t>(frames);
-    FrameTimes t{base::RollingStats(n), base::RollingStats(n), base::RollingStats(n)};
+    FrameTimes t{base::RollingStats(n), base::RollingStats(n), base::RollingStats(n), base::RollingStats(n)};
     const render::gl::Query query = render::gl::Query::create();
     for (int i = 0; i < kWarmupFrames + frames; ++i) {
         before(i);
@@ -109,6 +113,9 @@ template <class Before, class Draw> FrameTimes timeFrames(int frames, Before&& b
         t.wall.add(msSince(start));
         t.cpu.add(cpuMs);
         t.gpu.add(static_cast<double>(gpuNs) * 1e-6);
+        if (const auto& clock = currentGpuClock())
+            if (const auto mhz = clock->graphicsMhz())
+                t.clock.add(*mhz);
     }
     return t;
 }
@@ -119,6 +126,21 @@ template <class Draw> FrameTimes timeFrames(int frames, Draw&& draw) {
 }
 
 } // namespace
+
+const std::optional<GpuClock>& currentGpuClock() {
+    static const std::optional<GpuClock> clock =
+        GpuClock::open(reinterpret_cast<const char*>(glGetString(GL_RENDERER)));
+    return clock;
+}
+
+std::string gpuClockText(double mhz) {
+    const auto& clock = currentGpuClock();
+    if (!clock || mhz <= 0.0)
+        return "";
+    char text[64];
+    std::snprintf(text, sizeof text, " at a GPU clock of %.0f of %u MHz", mhz, clock->maxGraphicsMhz());
+    return text;
+}
 
 GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int height, int frames) {
     render::PointCloudRenderer renderer;
@@ -199,6 +221,7 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
                  percentile(ms.wall, 0.9),
                  ms.cpu.median(),
                  ms.gpu.median(),
+                 ms.medians().gpuClockMhz,
                  viewer.summary().pointsDrawn,
                  shown ? shown->cloud.factor : 1,
                  viewer.summary().stages};
@@ -234,8 +257,8 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
 
 std::string glFrameText(const GlFrameMs& t) {
     char text[96];
-    std::snprintf(text, sizeof text, "%.2f ms (GL thread's CPU %.2f, GPU %.2f)", t.wall, t.cpu, t.gpu);
-    return text;
+    std::snprintf(text, sizeof text, "%.2f ms (GL thread's CPU %.2f, GPU %.2f", t.wall, t.cpu, t.gpu);
+    return text + gpuClockText(t.gpuClockMhz) + ")";
 }
 
 void printResult(const CaseResult& r, const BenchOptions& o) {
@@ -250,7 +273,7 @@ void printResult(const CaseResult& r, const BenchOptions& o) {
             "  %-10s frame median %s, p90 %.2f ms = %.0f fps; %.2fx bare GL_POINTS (GPU %.2fx); %llu "
             "points at %dx decimation\n   ",
             (std::string(render::toString(p.path)) + (p.variant.empty() ? "" : ", " + p.variant)).c_str(),
-            glFrameText({p.medianMs, p.cpuMs, p.gpuMs}).c_str(), p.p90Ms, 1000.0 / p.medianMs,
+            glFrameText({p.medianMs, p.cpuMs, p.gpuMs, p.gpuClockMhz}).c_str(), p.p90Ms, 1000.0 / p.medianMs,
             p.medianMs / r.bare.wall, p.gpuMs / r.bare.gpu, static_cast<unsigned long long>(p.points),
             p.decimation);
         for (const auto& s : p.stages)
@@ -260,7 +283,7 @@ void printResult(const CaseResult& r, const BenchOptions& o) {
 }
 
 nlohmann::json toJson(const GlFrameMs& t) {
-    return {{"wallMs", t.wall}, {"glThreadCpuMs", t.cpu}, {"gpuMs", t.gpu}};
+    return {{"wallMs", t.wall}, {"glThreadCpuMs", t.cpu}, {"gpuMs", t.gpu}, {"gpuClockMhz", t.gpuClockMhz}};
 }
 
 nlohmann::json toJson(const CaseResult& r) {
@@ -275,6 +298,7 @@ nlohmann::json toJson(const CaseResult& r) {
                          {"frameP90Ms", p.p90Ms},
                          {"frameGlThreadCpuMs", p.cpuMs},
                          {"frameGpuMs", p.gpuMs},
+                         {"gpuClockMhz", p.gpuClockMhz},
                          {"vsBareGlPoints", p.medianMs / r.bare.wall},
                          {"gpuVsBareGlPoints", p.gpuMs / r.bare.gpu},
                          {"points", p.points},
