@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <string>
@@ -20,6 +21,9 @@ constexpr double kDqtTrimFraction = 0.005;
 constexpr std::size_t kScoreSamples = 2000;
 // 1.4826 x the median |residual| estimates sigma for Gaussian noise.
 constexpr double kMadToSigma = 1.4826;
+// The adaptive sampling's bounds: a chance of never drawing three inliers, and the fewest samples drawn.
+constexpr double kMissProbability = 1e-9;
+constexpr int kMinIterations = 20;
 
 Error notEnough(const std::string& why) {
     return Error{std::string(kNotEnoughSamples) + ": " + why};
@@ -90,16 +94,6 @@ std::vector<Point3d> select(std::span<const Point3d> points, const std::vector<s
     return out;
 }
 
-std::vector<std::size_t> inliersOf(std::span<const Point3d> points, const PlaneModel& plane,
-                                   double threshold) {
-    std::vector<std::size_t> inliers;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (std::abs(plane.signedDistance(points[i])) <= threshold)
-            inliers.push_back(i);
-    }
-    return inliers;
-}
-
 double rmsDistance(std::span<const Point3d> points, const PlaneModel& plane) {
     double sum = 0.0;
     for (const Point3d& p : points)
@@ -121,6 +115,25 @@ std::optional<PlaneModel> planeThrough(const Point3d& a, const Point3d& b, const
     return orientedPlane({n[0] / length, n[1] / length, n[2] / length}, a);
 }
 
+// How many minimal samples make missing an all-inlier one less likely than kMissProbability, given the
+// fraction of scored points within 3 sigma of the best plane so far (the standard adaptive stopping rule:
+// a flat target with few outliers needs a few dozen, not hundreds). Never fewer than kMinIterations.
+int samplesNeeded(const std::vector<double>& residuals, double medianResidual) {
+    const double threshold = 3.0 * kMadToSigma * medianResidual;
+    const auto within =
+        std::count_if(residuals.begin(), residuals.end(), [&](double r) { return r <= threshold; });
+    const double w = static_cast<double>(within) / static_cast<double>(residuals.size());
+    const double allInliers = w * w * w;
+    if (allInliers >= 1.0)
+        return kMinIterations;
+    if (allInliers <= 0.0)
+        return std::numeric_limits<int>::max();
+    const double n = std::ceil(std::log(kMissProbability) / std::log1p(-allInliers));
+    return n >= static_cast<double>(std::numeric_limits<int>::max())
+               ? std::numeric_limits<int>::max()
+               : std::max(kMinIterations, static_cast<int>(n));
+}
+
 struct RandomPlane {
     PlaneModel plane;
     double medianResidual = 0.0;
@@ -136,7 +149,8 @@ std::optional<RandomPlane> bestRandomPlane(std::span<const Point3d> points, cons
         scored[k] = points.size() <= kScoreSamples ? k : pick(random);
     std::vector<double> residuals(scored.size());
     std::optional<RandomPlane> best;
-    for (int i = 0; i < params.iterations; ++i) {
+    int needed = params.iterations;
+    for (int i = 0; i < std::min(needed, params.iterations); ++i) {
         const std::size_t a = pick(random), b = pick(random), c = pick(random);
         if (a == b || b == c || a == c)
             continue;
@@ -146,8 +160,10 @@ std::optional<RandomPlane> bestRandomPlane(std::span<const Point3d> points, cons
         for (std::size_t k = 0; k < scored.size(); ++k)
             residuals[k] = std::abs(plane->signedDistance(points[scored[k]]));
         const double m = median(residuals);
-        if (!best || m < best->medianResidual)
-            best = RandomPlane{*plane, m};
+        if (best && m >= best->medianResidual)
+            continue;
+        best = RandomPlane{*plane, m};
+        needed = samplesNeeded(residuals, m);
     }
     return best;
 }
@@ -173,26 +189,35 @@ bool roiInside(const Roi& roi, int imageWidth, int imageHeight) {
 Expected<PlaneModel> fitPlaneLeastSquares(std::span<const Point3d> points) {
     if (points.size() < 3)
         return notEnough(std::to_string(points.size()) + " points, a plane needs 3");
-    Point3d c;
+    // One pass of sums about the first point: the offsets are as small as the region, so the covariance
+    // S2 - S1 S1' / n keeps its precision however far the plane is.
+    const Point3d o = points.front();
+    std::array<double, 3> s1{};
+    std::array<double, 6> s2{}; // xx xy xz yy yz zz
+    bool allFinite = true;
     for (const Point3d& p : points) {
-        if (!finite(p))
-            return Error{"a point of the plane fit is not finite"};
-        c.x += p.x;
-        c.y += p.y;
-        c.z += p.z;
+        allFinite &= finite(p);
+        const double x = p.x - o.x, y = p.y - o.y, z = p.z - o.z;
+        s1[0] += x;
+        s1[1] += y;
+        s1[2] += z;
+        s2[0] += x * x;
+        s2[1] += x * y;
+        s2[2] += x * z;
+        s2[3] += y * y;
+        s2[4] += y * z;
+        s2[5] += z * z;
     }
+    if (!allFinite)
+        return Error{"a point of the plane fit is not finite"};
     const double n = static_cast<double>(points.size());
-    c = {c.x / n, c.y / n, c.z / n};
-    Matrix3 cov{};
-    for (const Point3d& p : points) {
-        const std::array<double, 3> d{p.x - c.x, p.y - c.y, p.z - c.z};
-        for (int i = 0; i < 3; ++i)
-            for (int j = i; j < 3; ++j)
-                cov[i][j] += d[i] * d[j];
-    }
-    cov[1][0] = cov[0][1];
-    cov[2][0] = cov[0][2];
-    cov[2][1] = cov[1][2];
+    const Point3d c{o.x + s1[0] / n, o.y + s1[1] / n, o.z + s1[2] / n};
+    const auto covariance = [&](int i, int j, int k) {
+        return s2[static_cast<std::size_t>(k)] - s1[i] * s1[j] / n;
+    };
+    const Matrix3 cov{{{covariance(0, 0, 0), covariance(0, 1, 1), covariance(0, 2, 2)},
+                       {covariance(0, 1, 1), covariance(1, 1, 3), covariance(1, 2, 4)},
+                       {covariance(0, 2, 2), covariance(1, 2, 4), covariance(2, 2, 5)}}};
     Matrix3 vectors;
     const std::array<double, 3> values = jacobiEigen(cov, vectors);
     std::array<int, 3> order{0, 1, 2};
@@ -213,18 +238,25 @@ Expected<RobustPlaneFit> fitPlaneRobust(std::span<const Point3d> points, const R
     const double threshold = params.inlierThresholdMeters.value_or(
         std::max(3.0 * kMadToSigma * best->medianResidual, kMinInlierThresholdMeters));
     PlaneModel plane = best->plane;
+    std::vector<Point3d> chosen;
     std::vector<std::size_t> inliers;
+    chosen.reserve(points.size());
     for (int pass = 0; pass < 2; ++pass) {
-        std::vector<std::size_t> chosen = inliersOf(points, plane, threshold);
-        const auto fit = fitPlaneLeastSquares(select(points, chosen));
+        chosen.clear();
+        inliers.clear();
+        for (std::size_t i = 0; i < points.size(); ++i)
+            if (std::abs(plane.signedDistance(points[i])) <= threshold) {
+                chosen.push_back(points[i]);
+                inliers.push_back(i);
+            }
+        const auto fit = fitPlaneLeastSquares(chosen);
         if (!fit)
             return fit.error();
         plane = *fit;
-        inliers = std::move(chosen);
     }
     RobustPlaneFit result;
     result.plane = plane;
-    result.rmsMeters = rmsDistance(select(points, inliers), plane);
+    result.rmsMeters = rmsDistance(chosen, plane);
     result.inlierFraction = static_cast<double>(inliers.size()) / static_cast<double>(points.size());
     result.inlierThresholdMeters = threshold;
     result.inliers = std::move(inliers);
@@ -239,9 +271,13 @@ Expected<double> dqtPlaneFitRms(std::span<const Point3d> points) {
     residuals.reserve(points.size());
     for (const Point3d& p : points)
         residuals.push_back(plane->signedDistance(p));
-    std::sort(residuals.begin(), residuals.end());
     const auto trim =
         static_cast<std::size_t>(std::floor(kDqtTrimFraction * static_cast<double>(points.size())));
+    // The trimmed ends by rank, as a sort would leave them, in linear time: the `trim` smallest first, then
+    // the `trim` largest of the rest last.
+    const auto lowEnd = residuals.begin() + static_cast<std::ptrdiff_t>(trim);
+    std::nth_element(residuals.begin(), lowEnd, residuals.end());
+    std::nth_element(lowEnd, residuals.end() - static_cast<std::ptrdiff_t>(trim), residuals.end());
     double sum = 0.0;
     for (std::size_t i = trim; i < residuals.size() - trim; ++i)
         sum += residuals[i] * residuals[i];
@@ -286,37 +322,49 @@ Expected<double> subpixelRms(std::span<const Point3d> points, const PlaneModel& 
 
 namespace {
 
-bool measured(const frame::Plane<float>& depth, int x, int y) {
-    if (x < 0 || y < 0 || x >= depth.width || y >= depth.height)
-        return false;
-    const float d = depth.at(x, y);
-    return std::isfinite(d) && d > 0.0f;
+bool measured(float d) {
+    return d > 0.0f && d < std::numeric_limits<float>::infinity(); // NaN fails both
 }
 
-bool differsSameSense(const frame::Plane<float>& depth, int x, int y, int dx, int dy, float threshold) {
-    if (!measured(depth, x - dx, y - dy) || !measured(depth, x + dx, y + dy))
-        return false;
-    const float d = depth.at(x, y);
-    const float a = depth.at(x - dx, y - dy);
-    const float b = depth.at(x + dx, y + dy);
-    return (a - d > threshold && b - d > threshold) || (d - a > threshold && d - b > threshold);
+bool differsSameSense(float d, float a, float b, float threshold) {
+    return measured(a) && measured(b) &&
+           ((a - d > threshold && b - d > threshold) || (d - a > threshold && d - b > threshold));
 }
 
-SampleCause classify(const frame::DepthData& depth, int x, int y, const QualityParams& params) {
-    const float d = depth.depthMeters.at(x, y);
-    if (!std::isfinite(d) || d <= 0.0f)
+// One ROI row's neighbourhood in the depth map: the rows above and below (none at the image border) and
+// the row's confidence (none when the map has no confidence of the depth's size).
+struct RowView {
+    const float* above;
+    const float* row;
+    const float* below;
+    const std::uint8_t* confidence;
+    int width;
+};
+
+SampleCause classify(const RowView& v, int x, const QualityParams& params) {
+    const float d = v.row[x];
+    if (!measured(d))
         return SampleCause::NoMeasurement;
     if (d < params.nearMeters || d > params.farMeters)
         return SampleCause::OutOfRange;
-    const auto& confidence = depth.confidence;
-    if (confidence.width == depth.depthMeters.width && confidence.height == depth.depthMeters.height &&
-        !confidence.empty() && confidence.at(x, y) < static_cast<std::uint8_t>(params.minConfidence))
+    if (v.confidence && v.confidence[x] < static_cast<std::uint8_t>(params.minConfidence))
         return SampleCause::LowConfidence;
     const float t = params.flyingThresholdMeters;
-    if (differsSameSense(depth.depthMeters, x, y, 1, 0, t) ||
-        differsSameSense(depth.depthMeters, x, y, 0, 1, t))
+    if ((x > 0 && x + 1 < v.width && differsSameSense(d, v.row[x - 1], v.row[x + 1], t)) ||
+        (v.above && v.below && differsSameSense(d, v.above[x], v.below[x], t)))
         return SampleCause::FlyingPixel;
     return SampleCause::Valid;
+}
+
+RowView rowView(const frame::DepthData& depth, int y) {
+    const frame::Plane<float>& map = depth.depthMeters;
+    const auto& confidence = depth.confidence;
+    const bool withConfidence =
+        !confidence.empty() && confidence.width == map.width && confidence.height == map.height;
+    const auto rowOf = [&map](int r) { return &map.pixels[static_cast<std::size_t>(r) * map.width]; };
+    return {y > 0 ? rowOf(y - 1) : nullptr, rowOf(y), y + 1 < map.height ? rowOf(y + 1) : nullptr,
+            withConfidence ? &confidence.pixels[static_cast<std::size_t>(y) * confidence.width] : nullptr,
+            map.width};
 }
 
 Expected<PlaneFigures> planeFigures(const std::vector<Point3d>& points, const frame::Intrinsics& k,
@@ -354,33 +402,23 @@ Expected<PlaneFigures> planeFigures(const std::vector<Point3d>& points, const fr
 std::vector<SampleCause> classifySamples(const frame::DepthData& depth, const QualityParams& params,
                                          FillBreakdown& counts) {
     const Roi& r = params.roi;
-    std::vector<SampleCause> causes;
-    causes.reserve(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
-    counts = {};
+    std::vector<SampleCause> causes(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
+    std::array<std::size_t, 5> perCause{};
+    SampleCause* out = causes.data();
     for (int y = r.y; y < r.y + r.height; ++y) {
-        for (int x = r.x; x < r.x + r.width; ++x) {
-            const SampleCause c = classify(depth, x, y, params);
-            causes.push_back(c);
-            switch (c) {
-            case SampleCause::Valid:
-                ++counts.valid;
-                break;
-            case SampleCause::NoMeasurement:
-                ++counts.noMeasurement;
-                break;
-            case SampleCause::OutOfRange:
-                ++counts.outOfRange;
-                break;
-            case SampleCause::LowConfidence:
-                ++counts.lowConfidence;
-                break;
-            case SampleCause::FlyingPixel:
-                ++counts.flyingPixel;
-                break;
-            }
+        const RowView view = rowView(depth, y);
+        for (int x = r.x; x < r.x + r.width; ++x, ++out) {
+            *out = classify(view, x, params);
+            ++perCause[static_cast<std::size_t>(*out)];
         }
     }
+    counts = {};
     counts.roiSamples = causes.size();
+    counts.valid = perCause[static_cast<std::size_t>(SampleCause::Valid)];
+    counts.noMeasurement = perCause[static_cast<std::size_t>(SampleCause::NoMeasurement)];
+    counts.outOfRange = perCause[static_cast<std::size_t>(SampleCause::OutOfRange)];
+    counts.lowConfidence = perCause[static_cast<std::size_t>(SampleCause::LowConfidence)];
+    counts.flyingPixel = perCause[static_cast<std::size_t>(SampleCause::FlyingPixel)];
     return causes;
 }
 
@@ -393,7 +431,8 @@ Expected<FrameQuality> measureFrameQuality(const frame::DepthData& depth, const 
         return Error{"the region of interest is outside the " + std::to_string(depth.depthMeters.width) +
                      "x" + std::to_string(depth.depthMeters.height) + " depth map"};
     FrameQuality q;
-    const std::vector<SampleCause> causes = classifySamples(depth, params, q.fill);
+    q.causes = classifySamples(depth, params, q.fill);
+    const std::vector<SampleCause>& causes = q.causes;
     std::vector<Point3d> points;
     points.reserve(q.fill.valid);
     std::size_t i = 0;
@@ -420,16 +459,26 @@ NoiseWindow::NoiseWindow(const QualityParams& params, int windowFrames)
               static_cast<std::size_t>(std::max(params.roi.height, 0))) {}
 
 void NoiseWindow::add(const frame::DepthData& depth, std::optional<double> planeFitRmsMm) {
+    if (!roiInside(params_.roi, depth.depthMeters.width, depth.depthMeters.height)) {
+        add(depth, {}, planeFitRmsMm);
+        return;
+    }
+    FillBreakdown counts;
+    add(depth, classifySamples(depth, params_, counts), planeFitRmsMm);
+}
+
+void NoiseWindow::add(const frame::DepthData& depth, std::span<const SampleCause> causes,
+                      std::optional<double> planeFitRmsMm) {
     WindowFrame f{std::vector<float>(pixels_.size(), std::numeric_limits<float>::quiet_NaN()), planeFitRmsMm};
     const Roi& r = params_.roi;
-    if (roiInside(r, depth.depthMeters.width, depth.depthMeters.height)) {
-        FillBreakdown counts;
-        const std::vector<SampleCause> causes = classifySamples(depth, params_, counts);
-        for (std::size_t i = 0; i < causes.size(); ++i) {
-            if (causes[i] == SampleCause::Valid)
-                f.depthMeters[i] =
-                    depth.depthMeters.at(r.x + static_cast<int>(i % static_cast<std::size_t>(r.width)),
-                                         r.y + static_cast<int>(i / static_cast<std::size_t>(r.width)));
+    if (causes.size() == pixels_.size() && roiInside(r, depth.depthMeters.width, depth.depthMeters.height)) {
+        std::size_t i = 0;
+        for (int y = r.y; y < r.y + r.height; ++y) {
+            const float* row =
+                &depth.depthMeters.pixels[static_cast<std::size_t>(y) * depth.depthMeters.width];
+            for (int x = r.x; x < r.x + r.width; ++x, ++i)
+                if (causes[i] == SampleCause::Valid)
+                    f.depthMeters[i] = row[x];
         }
     }
     enter(f);

@@ -144,6 +144,7 @@ struct PlaneFigures {
 
 struct FrameQuality {
     FillBreakdown fill;
+    std::vector<SampleCause> causes;   // every ROI sample's, as classifySamples gives them
     std::optional<PlaneFigures> plane; // unset: planeError says why
     std::string planeError;
 };
@@ -162,6 +163,9 @@ public:
     NoiseWindow(const QualityParams& params, int windowFrames);
     // One frame: its depth (classified as measureFrameQuality does) and its plane-fit RMS when it had one.
     void add(const frame::DepthData& depth, std::optional<double> planeFitRmsMm);
+    // The same with the frame's causes already found (FrameQuality::causes), so they are not found twice.
+    void add(const frame::DepthData& depth, std::span<const SampleCause> causes,
+             std::optional<double> planeFitRmsMm);
     Expected<double> temporalNoiseMm() const;
     Expected<double> spatialNoiseMm() const;
     std::size_t frames() const { return window_.size(); }

@@ -5,6 +5,7 @@
 #include "tool/bench_camera.h"
 #include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
+#include "tool/bench_quality.h"
 #include "tool/bench_registration.h"
 #include "tool/bench_soak.h"
 #include "tool/bench_upsample_options.h"
@@ -130,6 +131,8 @@ int main(int argc, char** argv) {
     CLI::App* benchCaptureCmd = addBenchCaptureCommand(*benchCmd, benchCapture);
     BenchLatencyOptions benchLatency;
     CLI::App* benchLatencyCmd = addBenchLatencyCommand(*benchCmd, benchLatency);
+    BenchQualityOptions benchQuality;
+    CLI::App* benchQualityCmd = addBenchQualityCommand(*benchCmd, benchQuality);
     BenchRegistrationOptions benchRegistration;
     CLI::App* benchRegistrationCmd = addBenchRegistrationCommand(*benchCmd, benchRegistration);
     BenchUpsampleOptions benchUpsample;
@@ -165,6 +168,8 @@ int main(int argc, char** argv) {
         return runBenchCapture(benchCapture);
     if (benchLatencyCmd->parsed())
         return runBenchLatency(benchLatency);
+    if (benchQualityCmd->parsed())
+        return runBenchQuality(benchQuality);
     if (benchRegistrationCmd->parsed())
         return runBenchRegistration(benchRegistration);
     if (benchUpsampleCmd->parsed())

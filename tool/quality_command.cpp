@@ -245,7 +245,7 @@ std::string capture(devices::Device& device, const QualityOptions& o, processing
         if (!q)
             return q.error().message;
         collect(*q, c.collected);
-        c.noise->add(*r.frame->sceneDepth,
+        c.noise->add(*r.frame->sceneDepth, q->causes,
                      q->plane ? std::optional<double>(q->plane->planeFitRmsMm) : std::nullopt);
     }
     if (c.collected.frames == 0)
