@@ -137,7 +137,7 @@ void Session::onFrame(frame::FramePtr frame) {
         state_ = DeviceState::Streaming;
         push({SessionEvent::Kind::StateChanged, DeviceState::Streaming, "frames flow again"});
     }
-    mailbox_.post(std::move(frame));
+    frames_.put(std::move(frame));
     deliveries_.tick();
     deviceFps_ = deliveries_.perSecond();
     base::MutexLock lock(tapMutex_);
@@ -158,8 +158,9 @@ std::vector<SessionEvent> Session::drainEvents() {
 }
 
 SessionStats Session::stats() const {
+    const base::LatestSlot<frame::FramePtr>::Counts frames = frames_.counts();
     base::MutexLock lock(agesMutex_);
-    return {mailbox_.posted(), mailbox_.dropped(), deviceFps_.load(), ages_.median()};
+    return {frames.put, frames.replaced, deviceFps_.load(), ages_.median()};
 }
 
 } // namespace dc::devices

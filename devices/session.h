@@ -1,6 +1,6 @@
 #pragma once
 
-#include "base/mailbox.h"
+#include "base/latest_slot.h"
 #include "base/mutex.h"
 #include "base/rate_meter.h"
 #include "base/rolling_stats.h"
@@ -28,7 +28,7 @@ struct SessionEvent {
 
 struct SessionStats {
     std::uint64_t framesCaptured = 0;
-    std::uint64_t framesDropped = 0; // replaced in the mailbox before any consumer took them
+    std::uint64_t framesDropped = 0; // replaced in the slot before any consumer took them
     double deviceFps = 0.0;          // delivery rate measured on the capture thread
     // Median age of the frames consumers took (now - timestampNs at take), for devices whose timestamps are
     // capture times on a clock of this machine (Capabilities::monotonicTimestamps or realtimeTimestamps); 0
@@ -37,7 +37,7 @@ struct SessionStats {
 };
 
 // Runs one device on its own capture thread. The thread only captures and posts: frames reach consumers
-// through a latest-wins mailbox, state changes and errors through an event queue.
+// through a latest-wins slot, state changes and errors through an event queue.
 class Session {
 public:
     static constexpr const char* kNoDepthMessage = "Unsupported device: this source provides no depth";
@@ -52,9 +52,9 @@ public:
     Status start();
     void stop();
 
-    std::optional<frame::FramePtr> takeLatest() { return noteAge(mailbox_.take()); }
+    std::optional<frame::FramePtr> takeLatest() { return noteAge(frames_.take()); }
     std::optional<frame::FramePtr> waitForFrame(std::chrono::milliseconds timeout) {
-        return noteAge(mailbox_.waitTake(timeout));
+        return noteAge(frames_.waitTake(timeout));
     }
     std::vector<SessionEvent> drainEvents();
 
@@ -83,7 +83,7 @@ private:
     std::unique_ptr<Device> device_;
     std::string description_;
     Capabilities capabilities_;
-    base::Mailbox<frame::FramePtr> mailbox_;
+    base::LatestSlot<frame::FramePtr> frames_;
     base::Worker capture_;
     std::atomic<bool> stopRequested_{false};
     std::atomic<DeviceState> state_{DeviceState::Closed};

@@ -42,7 +42,7 @@ void FrameProcessor::setSession(std::shared_ptr<devices::Session> session) {
         reset_ = true;
         frameReady_ = session != nullptr; // frames may be waiting already
         awaitedSeek_ = 0;
-        slot_.reset();
+        results_.reset();
         // The counts are the source's: another source's frames were neither shown nor dropped by this one.
         counts_ = {};
     }
@@ -195,40 +195,40 @@ void FrameProcessor::publish(processing::ShownFramePtr result, const Work& work)
     } else {
         ++counts_.redone;
     }
-    if (slot_ && (*slot_)->newFrame) {
-        if ((*slot_)->frame->timestampNs != result->frame->timestampNs) {
-            ++counts_.framesUnshown;
-        } else if (!result->newFrame) {
-            // A redo of a frame not yet taken: it is still that frame's first showing.
-            auto carried = std::make_shared<processing::ShownFrame>(*result);
-            carried->newFrame = true;
-            result = std::move(carried);
-        }
-    }
-    slot_ = std::move(result);
-    published_.notify_all();
+    bool unshown = false;
+    results_.put(std::move(result),
+                 [&unshown](const processing::ShownFramePtr& unseen, processing::ShownFramePtr& next) {
+                     if (!unseen->newFrame)
+                         return;
+                     if (unseen->frame->timestampNs != next->frame->timestampNs) {
+                         unshown = true;
+                     } else if (!next->newFrame) {
+                         // A redo of a frame not yet taken: it is still that frame's first showing.
+                         auto carried = std::make_shared<processing::ShownFrame>(*next);
+                         carried->newFrame = true;
+                         next = std::move(carried);
+                     }
+                 });
+    if (unshown)
+        ++counts_.framesUnshown;
 }
 
 std::optional<processing::ShownFramePtr> FrameProcessor::take() {
-    base::MutexLock lock(mutex_);
-    if (slot_)
-        ++counts_.resultsTaken;
-    return std::exchange(slot_, std::nullopt);
+    return results_.take();
 }
 
 std::optional<processing::ShownFramePtr>
 FrameProcessor::waitFor(std::chrono::milliseconds timeout,
                         const std::function<bool(const processing::ShownFrame&)>& ready) {
-    base::MutexLock lock(mutex_);
-    if (!lock.waitFor(published_, timeout, [&]() DC_REQUIRES(mutex_) { return slot_ && ready(**slot_); }))
-        return std::nullopt;
-    ++counts_.resultsTaken;
-    return std::exchange(slot_, std::nullopt);
+    return results_.waitTake(timeout,
+                             [&ready](const processing::ShownFramePtr& result) { return ready(*result); });
 }
 
 ProcessorCounts FrameProcessor::counts() const {
     base::MutexLock lock(mutex_);
-    return counts_;
+    ProcessorCounts counts = counts_;
+    counts.resultsTaken = results_.counts().taken;
+    return counts;
 }
 
 base::RollingStats FrameProcessor::latencyMs() const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "base/latest_slot.h"
 #include "base/mutex.h"
 #include "base/rolling_stats.h"
 #include "base/worker.h"
@@ -103,8 +104,7 @@ private:
     std::optional<std::pair<std::size_t, float>> accumulatedWith_;
 
     mutable base::Mutex mutex_;
-    std::condition_variable wake_;      // work for the thread
-    std::condition_variable published_; // a result for the GL thread
+    std::condition_variable wake_; // work for the thread
     std::shared_ptr<devices::Session> session_ DC_GUARDED_BY(mutex_);
     std::uint64_t
         epoch_ DC_GUARDED_BY(mutex_) = 0; // counts sessions, so a result of the old one is never published
@@ -117,8 +117,10 @@ private:
     bool frameReady_ DC_GUARDED_BY(mutex_) = false;
     Clock::time_point arrival_ DC_GUARDED_BY(mutex_);
     bool stopping_ DC_GUARDED_BY(mutex_) = false;
-    std::optional<processing::ShownFramePtr> slot_ DC_GUARDED_BY(mutex_);
-    ProcessorCounts counts_ DC_GUARDED_BY(mutex_);
+    // Results for the GL thread. Put and reset with mutex_ held, so counts_ and the slot's counts agree;
+    // taken without it, so the GL thread never waits for the processor's bookkeeping.
+    base::LatestSlot<processing::ShownFramePtr> results_;
+    ProcessorCounts counts_ DC_GUARDED_BY(mutex_); // but resultsTaken, which is results_'s count
     base::RollingStats latencyMs_ DC_GUARDED_BY(mutex_);
     base::RollingStats cpuMs_ DC_GUARDED_BY(mutex_);
     std::map<std::string, std::uint64_t, std::less<>>

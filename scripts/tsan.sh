@@ -5,7 +5,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 targets=(
-    test_unit      # sessions, the synthetic device's render-ahead threads, mailboxes, accumulation worker
+    test_unit      # sessions, the synthetic device's render-ahead threads, latest-wins slots,
+                   # accumulation worker
     test_recording # the recorder's encoder and writer threads, replay
     test_live      # the V4L2 capture thread over the fake driver, the camera-list watcher
 )
