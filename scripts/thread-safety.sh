@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Clang's thread-safety analysis over every translation unit that uses the annotated mutex (base/mutex.h) or
-# the kit built on it (base/latest_slot.h, whose template is checked where used):
+# the kit built on it (base/latest_slot.h, base/ordered_pool.h, whose templates are checked where used):
 # each is compiled for syntax only, with its flags from the build's compile_commands.json, and any access
 # to guarded state without its mutex is an error. Usage: scripts/thread-safety.sh [BUILD_DIR]
 set -euo pipefail
@@ -21,7 +21,7 @@ for entry in json.load(open(database)):
         continue
     header = os.path.splitext(source)[0] + ".h"
     text = open(source).read() + (open(header).read() if os.path.exists(header) else "")
-    kit = ("base/mutex.h", "base/latest_slot.h", "DC_GUARDED_BY")
+    kit = ("base/mutex.h", "base/latest_slot.h", "base/ordered_pool.h", "DC_GUARDED_BY")
     if not any(marker in text for marker in kit):
         continue
     seen.add(source)

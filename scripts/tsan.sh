@@ -6,8 +6,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 targets=(
     test_unit      # sessions, the synthetic device's render-ahead threads, latest-wins slots,
-                   # accumulation worker
-    test_recording # the recorder's encoder and writer threads, replay
+                   # the ordered pool, accumulation worker
+    test_recording # the recorder's ordered pool (encoders, the in-order writer), replay
     test_live      # the V4L2 capture thread over the fake driver, the camera-list watcher
 )
 # The engine's tests (frame processor, instrument: three threads around one demand), where the tree has them.

@@ -9,9 +9,18 @@
 namespace dc::devices::recording {
 
 namespace {
+
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+std::vector<FrameEncoder> makeEncoders(const RecorderOptions& options) {
+    std::vector<FrameEncoder> encoders;
+    for (int i = 0; i < std::max(1, options.encoderThreads); ++i)
+        encoders.emplace_back(options.writer.encode);
+    return encoders;
+}
+
 } // namespace
 
 Expected<std::unique_ptr<Recorder>> Recorder::start(const std::string& path, const DeviceInfo& device,
@@ -19,23 +28,19 @@ Expected<std::unique_ptr<Recorder>> Recorder::start(const std::string& path, con
     auto writer = RecordingWriter::create(path, device, options.writer);
     if (!writer)
         return writer.error();
-    std::unique_ptr<Recorder> recorder(new Recorder(std::move(*writer), options));
-    Recorder* r = recorder.get();
-    const int encoders = std::max(1, options.encoderThreads);
-    {
-        base::MutexLock lock(r->mutex_);
-        r->encodersRunning_ = encoders;
-    }
-    for (int i = 0; i < encoders; ++i)
-        r->encoders_.emplace_back("recording encoder",
-                                  [r, encode = options.writer.encode] { r->encodeLoop(encode); });
-    r->writerThread_ = base::Worker("recording writer", [r] { r->writeLoop(); });
-    return recorder;
+    return std::unique_ptr<Recorder>(new Recorder(std::move(*writer), options));
 }
 
 Recorder::Recorder(RecordingWriter writer, const RecorderOptions& options)
-    : path_(writer.path()), writer_(std::move(writer)),
-      capacity_(std::max<std::size_t>(1, options.queueFrames)), encodeFault_(options.encodeFault) {}
+    : path_(writer.path()), writer_(std::move(writer)), encodeFault_(options.encodeFault),
+      encoders_(makeEncoders(options)),
+      pool_(
+          {"recording encoder", "encoding failed", encoders_.size(),
+           std::max<std::size_t>(1, options.queueFrames)},
+          [this](frame::FramePtr& frame, std::uint64_t number, std::size_t worker) {
+              return encode(frame, number, worker);
+          },
+          [this](Expected<Encoded> encoded) { write(std::move(encoded)); }) {}
 
 Recorder::~Recorder() {
     if (Status s = stop(); !s)
@@ -43,22 +48,19 @@ Recorder::~Recorder() {
 }
 
 bool Recorder::push(frame::FramePtr frame) {
-    {
-        base::MutexLock lock(mutex_);
-        if (stopping_ || failed_ || inFlight_ >= capacity_) {
-            ++stats_.framesDropped;
-            return false;
-        }
-        pending_.emplace_back(nextSequence_++, std::move(frame));
-        stats_.queueDepth = ++inFlight_;
+    base::MutexLock lock(mutex_);
+    if (stopping_ || failed_ || !pool_.trySubmit(std::move(frame))) {
+        ++stats_.framesDropped;
+        return false;
     }
-    work_.notify_one();
     return true;
 }
 
 RecorderStats Recorder::stats() const {
     base::MutexLock lock(mutex_);
-    return stats_;
+    RecorderStats stats = stats_;
+    stats.queueDepth = pool_.pending();
+    return stats;
 }
 
 void Recorder::fail(const std::string& message) {
@@ -66,81 +68,50 @@ void Recorder::fail(const std::string& message) {
     if (!failed_)
         stats_.error = message;
     failed_ = true;
-    stats_.framesDropped += pending_.size();
-    pending_.clear();
+    stats_.framesDropped += pool_.dropQueued();
 }
 
-void Recorder::encodeLoop(EncodeOptions options) {
-    FrameEncoder encoder(options);
+Recorder::Encoded Recorder::encode(const frame::FramePtr& frame, std::uint64_t number, std::size_t worker) {
+    const auto begin = std::chrono::steady_clock::now();
+    if (encodeFault_)
+        encodeFault_(number);
+    Encoded result{frame->timestampNs, encoders_[worker].encode(*frame)};
+    const double seconds = secondsSince(begin);
     base::MutexLock lock(mutex_);
-    for (;;) {
-        lock.wait(work_, [this]() DC_REQUIRES(mutex_) { return stopping_ || failed_ || !pending_.empty(); });
-        if (pending_.empty())
-            break;
-        auto [sequence, frame] = std::move(pending_.front());
-        pending_.pop_front();
-        lock.unlock();
-        const auto begin = std::chrono::steady_clock::now();
-        Encoded result{frame->timestampNs, Error{"not encoded"}};
-        const auto& captured = *frame; // a lambda may not capture a structured binding (clang 14)
-        const std::uint64_t number = sequence;
-        const Status ran = base::guarded("encoding failed", [&] {
-            if (encodeFault_)
-                encodeFault_(number);
-            result.payload = encoder.encode(captured);
+    stats_.encodeSeconds += seconds;
+    return result;
+}
+
+void Recorder::write(Expected<Encoded> encoded) {
+    {
+        base::MutexLock lock(mutex_);
+        if (failed_) {
+            ++stats_.framesDropped;
+            return;
+        }
+    }
+    const auto begin = std::chrono::steady_clock::now();
+    // The encoder either threw (the pool's error) or returned an error.
+    const Error* notEncoded = !encoded            ? &encoded.error()
+                              : !encoded->payload ? &encoded->payload.error()
+                                                  : nullptr;
+    Status s = Status::success();
+    if (notEncoded) {
+        s = Error{path_ + ": frame " + std::to_string(writer_.framesWritten()) + ": " + notEncoded->message};
+    } else {
+        const Status ran = base::guarded(path_ + ": writing failed", [&] {
+            s = writer_.appendEncoded(*encoded->payload, encoded->timestampNs);
         });
         if (!ran)
-            result.payload = ran.error();
-        frame.reset();
-        const double seconds = secondsSince(begin);
-        lock.lock();
-        stats_.encodeSeconds += seconds;
-        encoded_.emplace(sequence, std::move(result));
-        written_.notify_one();
+            s = ran;
     }
-    --encodersRunning_;
-    written_.notify_one();
-}
-
-void Recorder::writeLoop() {
+    const double seconds = secondsSince(begin);
     base::MutexLock lock(mutex_);
-    for (;;) {
-        lock.wait(written_, [this]() DC_REQUIRES(mutex_) {
-            return encoded_.contains(nextToWrite_) || encodersRunning_ == 0;
-        });
-        const auto next = encoded_.find(nextToWrite_);
-        if (next == encoded_.end())
-            return; // the encoders have ended and everything they made is written
-        Encoded item = std::move(next->second);
-        encoded_.erase(next);
-        ++nextToWrite_;
-        if (failed_) {
-            --inFlight_;
-            ++stats_.framesDropped;
-            continue;
-        }
-        lock.unlock();
-        const auto begin = std::chrono::steady_clock::now();
-        Status s = Error{path_ + ": frame " + std::to_string(writer_.framesWritten()) + ": " +
-                         (item.payload ? "" : item.payload.error().message)};
-        if (item.payload) {
-            const Status ran = base::guarded(path_ + ": writing failed", [&] {
-                s = writer_.appendEncoded(*item.payload, item.timestampNs);
-            });
-            if (!ran)
-                s = ran;
-        }
-        const double seconds = secondsSince(begin);
-        lock.lock();
-        stats_.writeSeconds += seconds;
-        stats_.framesWritten = writer_.framesWritten();
-        stats_.bytesWritten = writer_.bytesWritten();
-        stats_.queueDepth = --inFlight_;
-        if (!s) {
-            fail(s.error().message);
-            work_.notify_all();
-        }
-    }
+    stats_.writeSeconds += seconds;
+    stats_.framesWritten = writer_.framesWritten();
+    stats_.bytesWritten = writer_.bytesWritten();
+    if (!s)
+        fail(s.error().message);
 }
 
 Status Recorder::stop() {
@@ -150,10 +121,7 @@ Status Recorder::stop() {
         base::MutexLock lock(mutex_);
         stopping_ = true;
     }
-    work_.notify_all();
-    for (base::Worker& t : encoders_)
-        t.join();
-    writerThread_.join();
+    pool_.finish();
     base::MutexLock lock(mutex_);
     if (failed_) {
         result_ = Error{stats_.error + " (the frames written before are in " + writer_.partialPath() + ")"};

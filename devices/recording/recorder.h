@@ -1,15 +1,14 @@
 #pragma once
 
 #include "base/mutex.h"
-#include "base/worker.h"
+#include "base/ordered_pool.h"
+#include "devices/recording/frame_codec.h"
 #include "devices/recording/recording_writer.h"
 
-#include <condition_variable>
 #include <cstdint>
-#include <deque>
 #include <functional>
-#include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -39,8 +38,8 @@ struct RecorderStats {
 };
 
 // Records frames without ever stalling the caller: push() queues the frame or, when the queue is full,
-// drops it and counts the drop. Encoder threads compress frames in parallel and one writer thread
-// appends them to the file in the order they were pushed.
+// drops it and counts the drop. An ordered pool compresses frames in parallel and appends them to the file in
+// the order they were pushed.
 class Recorder {
 public:
     static Expected<std::unique_ptr<Recorder>> start(const std::string& path, const DeviceInfo& device,
@@ -65,29 +64,23 @@ private:
     };
 
     Recorder(RecordingWriter writer, const RecorderOptions& options);
-    void encodeLoop(EncodeOptions options);
-    void writeLoop();
+    // A pool worker's job: the frame numbered `number`, on the worker's own encoder.
+    Encoded encode(const frame::FramePtr& frame, std::uint64_t number, std::size_t worker);
+    // The pool's consumer: each frame's encoding, in the order the frames were pushed.
+    void write(Expected<Encoded> encoded);
     void fail(const std::string& message) DC_REQUIRES(mutex_);
 
     std::string path_;
-    RecordingWriter writer_; // writer thread only, until stop() has joined it
-    std::size_t capacity_;
+    RecordingWriter writer_; // the pool's delivering thread only, until stop() has finished the pool
     std::function<void(std::uint64_t)> encodeFault_;
+    std::vector<FrameEncoder> encoders_; // one per pool worker, used by that worker only
     mutable base::Mutex mutex_;
-    std::condition_variable work_;    // encoders: a frame to encode, or stop
-    std::condition_variable written_; // writer: an encoded frame, or the encoders ended
-    std::deque<std::pair<std::uint64_t, frame::FramePtr>> pending_ DC_GUARDED_BY(mutex_);
-    std::map<std::uint64_t, Encoded> encoded_ DC_GUARDED_BY(mutex_);
-    std::uint64_t nextSequence_ DC_GUARDED_BY(mutex_) = 0;
-    std::uint64_t nextToWrite_ DC_GUARDED_BY(mutex_) = 0;
-    std::size_t inFlight_ DC_GUARDED_BY(mutex_) = 0;
-    int encodersRunning_ DC_GUARDED_BY(mutex_) = 0;
     bool stopping_ DC_GUARDED_BY(mutex_) = false;
     bool failed_ DC_GUARDED_BY(mutex_) = false;
-    RecorderStats stats_ DC_GUARDED_BY(mutex_);
-    std::optional<Status> result_; // stop()'s caller only
-    std::vector<base::Worker> encoders_;
-    base::Worker writerThread_;
+    RecorderStats stats_ DC_GUARDED_BY(mutex_); // but queueDepth, which is the pool's
+    std::optional<Status> result_;              // stop()'s caller only
+    // Encoders in parallel, the writer in push order. Last: its threads use everything above.
+    base::OrderedPool<frame::FramePtr, Encoded> pool_;
 };
 
 } // namespace dc::devices::recording
