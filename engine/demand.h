@@ -15,7 +15,8 @@ struct Demand {
     bool pointColors = true; // its points take the camera's colour (rather than a depth or confidence map)
     // The cloud's GL path colours camera-coloured points itself, from the camera image and the rig of
     // ShownFrame::frame: no colour per point is made for it here, unless the rig is one a shader cannot
-    // register (processing::shaderRegistrable).
+    // register (processing::shaderCanColour). It makes the colour overlay and the depth over the camera
+    // the same way, so neither is made here either.
     bool gpuCameraColours = false;
     bool depthImage = true;      // the depth panel, or the camera panel's depth overlay
     bool confidencePanel = true; // the confidence panel

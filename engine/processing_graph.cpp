@@ -159,15 +159,16 @@ void ProcessingGraph::addCameraImage(processing::ShownFrame& shown, const frame:
 }
 
 // Accumulation and the depth panel's colour overlay read a colour for every shown sample; the cloud reads
-// colours only for the samples it draws (after decimation), and none when its shader colours them.
+// colours only for the samples it draws (after decimation), and none when its shader colours them (nor the
+// overlay then: the GL path makes it from the camera's planes).
 void ProcessingGraph::addPointColours(processing::ShownFrame& shown, const frame::Frame& frame,
                                       const Demand& demand) {
     if (!shown.depth.data)
         return;
     const frame::CapturedImage& image = frame.capturedImage;
-    const bool overlay = demand.colourOverDepth && !image.empty();
-    const bool shaded = demand.gpuCameraColours && (!frame.rig || processing::isSingleCamera(*frame.rig) ||
-                                                    processing::shaderRegistrable(*frame.rig));
+    const bool shaded = demand.gpuCameraColours && processing::shaderCanColour(frame.rig.get());
+    // The GL path makes the colour overlay in a shader too, at the size the depth panel is drawn.
+    const bool overlay = demand.colourOverDepth && !image.empty() && !shaded;
     const bool cloudColours = demand.cloud && demand.pointColors && !shaded && shown.cloud.depth.data;
     const bool whole = shown.cloud.factor <= 1;
     if (demand.accumulate || overlay || (cloudColours && whole)) {
@@ -199,10 +200,12 @@ void ProcessingGraph::addPointColours(processing::ShownFrame& shown, const frame
 }
 
 // The camera panel's depth overlay of a two-sensor frame, at the size fog and aura align the depth to:
-// one aligned depth serves all three.
+// one aligned depth serves all three. The GL path draws it itself, from the depth samples into the colour
+// camera's view, when its shaders register the rig.
 void ProcessingGraph::addDepthOverCamera(processing::ShownFrame& shown, const frame::Frame& frame,
                                          const Demand& demand) {
-    if (!demand.depthOverCamera || frame.capturedImage.empty())
+    if (!demand.depthOverCamera || frame.capturedImage.empty() ||
+        (demand.gpuCameraColours && processing::shaderCanColour(frame.rig.get())))
         return;
     const auto [w, h] = processing::halfCameraSize(frame.capturedImage);
     const std::shared_ptr<const frame::DepthData> depth = colourViewDepth(shown, frame, w, h);

@@ -343,6 +343,10 @@ bool isSingleCamera(const frame::RigCalibration& rig) {
            proportional(rig.depth.intrinsics, rig.colour.intrinsics);
 }
 
+bool shaderCanColour(const frame::RigCalibration* rig) {
+    return !rig || isSingleCamera(*rig) || shaderRegistrable(*rig);
+}
+
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
                                CameraColorTable& table) {
     if (!frame.rig)

@@ -69,6 +69,11 @@ inline float sameSurfaceMeters(float colourZ) {
 // on the CPU.
 bool shaderRegistrable(const frame::RigCalibration& rig);
 
+// Whether a shader colours the samples of a frame with this rig (null: a single camera) itself: one camera,
+// or a rig it registers (shaderRegistrable). The engine then leaves camera colours and the overlays made
+// from them to the GL path (engine::Demand::gpuCameraColours).
+bool shaderCanColour(const frame::RigCalibration* rig);
+
 // A rig that is really one camera: no rotation or translation between the sensors, the same lens, and
 // depth intrinsics that are the colour intrinsics scaled. Colouring then takes the single-camera path.
 bool isSingleCamera(const frame::RigCalibration& rig);

@@ -16,6 +16,11 @@ constexpr int kFormatNone = 0, kFormatNv12 = 1, kFormatYuyv = 2, kFormatRgb = 3;
 // surface over each colour pixel, as registerDepth's z-buffer does.
 constexpr const char* kNearestVertexMain = R"glsl(
 uniform vec4 depthIntrinsics; // fx, fy, cx, cy in depth-map pixels
+flat out float colourZMeters; // what the aligned depth's fragments colour
+flat out vec3 colourSquare;   // the sample's position in the colour image and its square's half side, pixels
+// The aligned depth's pass: image row 0 at the target's top (RenderTarget's pictures), not at GL's y = 0,
+// and each point a pixel wider on every side, its fragment shader keeping exactly the pixels of its square.
+uniform bool topDown;
 
 void main() {
     ivec2 size = textureSize(depthMap, 0);
@@ -29,10 +34,15 @@ void main() {
         gl_Position = vec4(2.0, 2.0, 2.0, 1.0); // clipped
         return;
     }
-    gl_PointSize = 2.0 * clamp(halfPerDepthOverColourZ * z / c.z, 0.5, 16384.0);
+    colourZMeters = c.z;
+    float halfSide = clamp(halfPerDepthOverColourZ * z / c.z, 0.5, 16384.0);
+    colourSquare = vec3(c.xy, halfSide);
+    gl_PointSize = 2.0 * halfSide + (topDown ? 2.0 : 0.0);
     // Pixel centres of the colour image sit at integers, GL's at half integers; the view has a margin
     // on every side so that samples just outside the image still cover its border pixels.
     vec2 window = c.xy + 0.5 + float(nearestMargin);
+    if (topDown)
+        window.y = float(cameraSize.y + 2 * nearestMargin) - window.y;
     gl_Position = vec4(window / vec2(cameraSize + 2 * nearestMargin) * 2.0 - 1.0,
                        c.z / kNearestFarMeters * 2.0 - 1.0, 1.0);
 }
@@ -40,6 +50,51 @@ void main() {
 
 constexpr const char* kDepthOnlyFragmentShader = R"glsl(#version 330 core
 void main() {
+}
+)glsl";
+
+// The nearest sample over each pixel of the colour camera's view, in the depth panel's colormap. A sample
+// covers the pixels of its square as registerDepth's z-buffer rounds them (ceil to floor): the rasteriser's
+// own rule, applied to positions snapped to its subpixel grid, gave a neighbouring sample's depth on a few
+// pixels in a thousand.
+constexpr const char* kAlignedFragmentMain = R"glsl(
+flat in float colourZMeters;
+flat in vec3 colourSquare;
+uniform float minMeters;
+uniform float inverseRangeMeters;
+uniform int outputHeight;
+out vec4 fragColor;
+
+void main() {
+    vec2 pixel = vec2(floor(gl_FragCoord.x), float(outputHeight - 1) - floor(gl_FragCoord.y));
+    if (any(lessThan(pixel, ceil(colourSquare.xy - colourSquare.z))) ||
+        any(greaterThan(pixel, floor(colourSquare.xy + colourSquare.z))))
+        discard;
+    fragColor = vec4(colormapColor((colourZMeters - minMeters) * inverseRangeMeters), 1.0);
+}
+)glsl";
+
+// One pixel per shown cell of the depth panel, which shows sample processing::sampleCellCentres keeps of
+// each step x step cell: that sample of the whole map is coloured, so that visibility is decided against
+// every sample as framePointColours decides it. A registered sample without depth lands nowhere.
+constexpr const char* kSeenColoursFragmentMain = R"glsl(
+uniform vec4 depthIntrinsics; // of the whole map
+uniform int sampleStep;
+uniform ivec2 outputSize;
+out vec4 fragColor;
+
+void main() {
+    ivec2 mapSize = textureSize(depthMap, 0);
+    ivec2 cell = ivec2(int(gl_FragCoord.x), outputSize.y - 1 - int(gl_FragCoord.y));
+    ivec2 pixel = min(cell * sampleStep + sampleStep / 2, mapSize - 1);
+    float z = texelFetch(depthMap, pixel, 0).r;
+    if (registered && !validDepth(z)) {
+        fragColor = vec4(0.0);
+        return;
+    }
+    vec3 point = vec3((vec2(pixel) - depthIntrinsics.zw) * z / depthIntrinsics.xy, z);
+    vec4 colour = seenCameraColor(pixel, mapSize, point);
+    fragColor = colour.a > 0.0 ? colour : vec4(0.0);
 }
 )glsl";
 
@@ -84,6 +139,9 @@ bool usableImage(const frame::CapturedImage& image) {
     return !image.empty() && image.raw() && image.width > 0 && image.height > 0 &&
            image.bytes->size() >= frame::CapturedImage::byteSize(image.format, image.width, image.height);
 }
+
+// Thinner than any depth range worth showing, as PanelRenderer's; keeps a collapsed range finite.
+constexpr float kMinRangeMeters = 1e-6f;
 
 float finiteOrMax(double v) {
     return std::isfinite(v) ? static_cast<float>(v) : std::numeric_limits<float>::max();
@@ -150,20 +208,26 @@ vec3 toColourImage(vec3 p) {
     return lands ? vec3(pixel, q.z) : vec3(0.0);
 }
 
-vec3 cameraPointColor(ivec2 pixel, ivec2 mapSize, vec3 point) {
+vec4 seenCameraColor(ivec2 pixel, ivec2 mapSize, vec3 point) {
+    const vec4 unseen = vec4(vec3(kUnseenGray), 0.0);
     if (cameraFormat == 0)
-        return vec3(kUnseenGray);
+        return vec4(vec3(kUnseenGray), 1.0);
     if (!registered) // processing::cameraPixelOf, in integers
-        return cameraRgb((2 * pixel + 1) * cameraSize / (2 * mapSize));
+        return vec4(cameraRgb((2 * pixel + 1) * cameraSize / (2 * mapSize)), 1.0);
     vec3 c = toColourImage(point);
     if (!(c.z > 0.0) || any(lessThan(c.xy, vec2(-0.5))) || any(greaterThanEqual(c.xy, vec2(cameraSize) - 0.5)))
-        return vec3(kUnseenGray);
+        return unseen;
     ivec2 at = min(ivec2(c.xy + 0.5), cameraSize - 1);
     float nearest = texelFetch(colourNearest, at + nearestMargin, 0).r * kNearestFarMeters;
     // processing::sameSurfaceMeters
     if (c.z > nearest + 0.01 + 0.02 * c.z)
-        return vec3(kUnseenGray);
-    return cameraRgb(at);
+        return unseen;
+    return vec4(cameraRgb(at), 1.0);
+}
+
+vec3 cameraPointColor(ivec2 pixel, ivec2 mapSize, vec3 point) {
+    vec4 colour = seenCameraColor(pixel, mapSize, point);
+    return colour.a > 0.0 ? colour.rgb : vec3(kUnseenGray);
 }
 )glsl";
 
@@ -185,8 +249,35 @@ Status CameraColours::init() {
     imageProgram_ = std::move(image).value();
     connectSamplers(imageProgram_);
     glUseProgram(0);
+    Expected<gl::Program> seen = gl::Program::link(gl::kFullscreenVertexShader,
+                                                   std::string("#version 330 core\n") + kFrameTexturesGlsl +
+                                                       kCameraColoursGlsl + kSeenColoursFragmentMain);
+    if (!seen)
+        return Error{"colour overlay shaders: " + seen.error().message};
+    seenProgram_ = std::move(seen).value();
+    FrameTextures::connectSamplers(seenProgram_);
+    connectSamplers(seenProgram_);
+    if (Status s = linkAlignedPrograms(vertexShader); !s)
+        return s;
+    glUseProgram(0);
     nearestFramebuffer_ = gl::Framebuffer::create();
     emptyVertexArray_ = gl::VertexArray::create();
+    return Status::success();
+}
+
+// One program per colormap, as PanelRenderer has (colormapGlsl says why).
+Status CameraColours::linkAlignedPrograms(const std::string& vertexShader) {
+    for (int c = 0; c < kColormapCount; ++c) {
+        Expected<gl::Program> aligned = gl::Program::link(
+            vertexShader, std::string("#version 330 core\n") + colormapGlsl(static_cast<Colormap>(c)) +
+                              kAlignedFragmentMain);
+        if (!aligned)
+            return Error{"aligned depth shaders: " + aligned.error().message};
+        gl::Program& program = alignedPrograms_[static_cast<std::size_t>(c)];
+        program = std::move(aligned).value();
+        FrameTextures::connectSamplers(program);
+        connectSamplers(program);
+    }
     return Status::success();
 }
 
@@ -324,6 +415,76 @@ void CameraColours::renderImage(RenderTarget& target, int width, int height) {
     ++imagePasses_;
 }
 
+void CameraColours::renderSeenColours(RenderTarget& target, const FrameTextures& whole, int step) {
+    step = std::max(step, 1);
+    if (!whole.hasDepth() ||
+        !target.resize((whole.depthWidth() + step - 1) / step, (whole.depthHeight() + step - 1) / step))
+        return;
+    // Without an image the colour camera sees nothing: the overlay is left empty.
+    if (format_ != kFormatNone && registers())
+        renderNearest(whole);
+    target.bindAndClear(0.0f, 0.0f, 0.0f, 0.0f);
+    if (format_ == kFormatNone) {
+        glBindFramebuffer(GL_FRAMEBUFFER, 0);
+        return;
+    }
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_DEPTH_TEST);
+    glUseProgram(seenProgram_.id());
+    const frame::Intrinsics& k = whole.depthIntrinsics();
+    glUniform4f(seenProgram_.uniformLocation("depthIntrinsics"), static_cast<float>(k.fx),
+                static_cast<float>(k.fy), static_cast<float>(k.cx), static_cast<float>(k.cy));
+    glUniform1i(seenProgram_.uniformLocation("sampleStep"), step);
+    glUniform2i(seenProgram_.uniformLocation("outputSize"), target.width(), target.height());
+    setUniforms(seenProgram_, whole);
+    whole.bind();
+    bind();
+    glBindVertexArray(emptyVertexArray_.id());
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    ++seenPasses_;
+}
+
+void CameraColours::renderAlignedDepth(RenderTarget& target, const FrameTextures& textures, int width,
+                                       int height, const AlignedColours& colours) {
+    if (!rig_ || width <= 0 || height <= 0 || !textures.hasDepth() || !textures.depthIntrinsics().valid() ||
+        !target.resize(width, height))
+        return;
+    target.bindAndClear(0.0f, 0.0f, 0.0f, 0.0f);
+    const processing::ColourProjection p =
+        processing::colourProjection(*rig_, textures.depthIntrinsics(), width, height);
+    // GL drops a point whose centre is outside the viewport: the viewport reaches the margin past the
+    // target on every side, so that samples just outside still cover its border pixels (the pixels out
+    // there are not the framebuffer's and are not drawn).
+    const int margin = static_cast<int>(std::ceil(p.marginPixels));
+    glViewport(-margin, -margin, width + 2 * margin, height + 2 * margin);
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_PROGRAM_POINT_SIZE);
+    const gl::Program& program = alignedPrograms_[static_cast<std::size_t>(colours.colormap)];
+    glUseProgram(program.id());
+    const frame::Intrinsics& k = textures.depthIntrinsics();
+    glUniform4f(program.uniformLocation("depthIntrinsics"), static_cast<float>(k.fx),
+                static_cast<float>(k.fy), static_cast<float>(k.cx), static_cast<float>(k.cy));
+    glUniform2i(program.uniformLocation("cameraSize"), width, height);
+    glUniform1i(program.uniformLocation("topDown"), 1);
+    glUniform1i(program.uniformLocation("outputHeight"), height);
+    setProjection(program, p);
+    glUniform1f(program.uniformLocation("minMeters"), colours.minMeters);
+    glUniform1f(program.uniformLocation("inverseRangeMeters"),
+                1.0f / std::max(colours.maxMeters - colours.minMeters, kMinRangeMeters));
+    textures.bind();
+    glBindVertexArray(emptyVertexArray_.id());
+    glDrawArrays(GL_POINTS, 0, textures.depthWidth() * textures.depthHeight());
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    ++alignedPasses_;
+}
+
 void CameraColours::bind() const {
     gl::bindTextureUnits({{kLumaUnit, luma_.texture.id()},
                           {kChromaUnit, chroma_.texture.id()},
@@ -335,9 +496,11 @@ void CameraColours::setUniforms(const gl::Program& program, const FrameTextures&
     glUniform2i(program.uniformLocation("cameraSize"), std::max(width_, 1), std::max(height_, 1));
     const bool registered = rig_ && format_ != kFormatNone && textures.depthIntrinsics().valid();
     glUniform1i(program.uniformLocation("registered"), registered ? 1 : 0);
-    if (!registered)
-        return;
-    const processing::ColourProjection& p = projection(textures.depthIntrinsics());
+    if (registered)
+        setProjection(program, projection(textures.depthIntrinsics()));
+}
+
+void CameraColours::setProjection(const gl::Program& program, const processing::ColourProjection& p) {
     GLfloat rotation[9];
     std::transform(p.depthToColour.rotation.begin(), p.depthToColour.rotation.end(), rotation,
                    [](double v) { return static_cast<GLfloat>(v); });
@@ -359,7 +522,7 @@ void CameraColours::setUniforms(const gl::Program& program, const FrameTextures&
     glUniform1f(program.uniformLocation("colourMarginPixels"), static_cast<float>(p.marginPixels));
     glUniform1f(program.uniformLocation("halfPerDepthOverColourZ"),
                 static_cast<float>(p.halfPerDepthOverColourZ));
-    glUniform1i(program.uniformLocation("nearestMargin"), marginPixels(textures.depthIntrinsics()));
+    glUniform1i(program.uniformLocation("nearestMargin"), static_cast<int>(std::ceil(p.marginPixels)));
 }
 
 } // namespace dc::render

@@ -4,13 +4,16 @@
 #include "frame/camera_model.h"
 #include "frame/frame.h"
 #include "processing/registration.h"
+#include "render/colormap.h"
 #include "render/frame_textures.h"
 #include "render/gl_objects.h"
 #include "render/render_target.h"
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace dc::render {
@@ -43,6 +46,22 @@ public:
     // The camera panel's picture: the uploaded image in RGB at width x height, each pixel the area average of
     // the image pixels it covers (as processing::cameraRgbImage resizes), top row at the target's top.
     void renderImage(RenderTarget& target, int width, int height);
+    // The depth panel's colour overlay (processing::seenColourOverlay) at the size the panel is drawn: one
+    // pixel per step x step cell of `whole` (the shown depth map undecimated), each the colour of the sample
+    // processing::sampleCellCentres keeps, opaque where the colour camera sees it and transparent where it
+    // does not (with a rig, after a visibility pass of every sample of `whole`). Changes the bound
+    // framebuffer and viewport.
+    void renderSeenColours(RenderTarget& target, const FrameTextures& whole, int step);
+    // The depth over the camera of a two-sensor frame: the samples of `textures` drawn into the colour
+    // camera's view at width x height, each pixel the nearest sample covering it (processing::
+    // alignDepthToColour) in `colours`, transparent where none does. The target needs a depth buffer.
+    struct AlignedColours {
+        float minMeters = 0.0f;
+        float maxMeters = 1.0f;
+        Colormap colormap = Colormap::Jet;
+    };
+    void renderAlignedDepth(RenderTarget& target, const FrameTextures& textures, int width, int height,
+                            const AlignedColours& colours);
     // Binds the planes and the nearest-depth map to their units.
     void bind() const;
     // Sets a point program's uniforms (kCameraColoursGlsl) for the samples of `textures`; the program must
@@ -56,6 +75,8 @@ public:
     std::uint64_t uploads() const { return uploads_; }
     std::uint64_t nearestPasses() const { return nearestPasses_; }
     std::uint64_t imagePasses() const { return imagePasses_; }
+    std::uint64_t seenPasses() const { return seenPasses_; }
+    std::uint64_t alignedPasses() const { return alignedPasses_; }
     // Whether an image is uploaded (and what renderImage draws is a picture).
     bool hasImage() const { return format_ != 0; }
 
@@ -70,6 +91,9 @@ private:
     // The projection of the current rig for a depth map with these intrinsics, recomputed when they change.
     const processing::ColourProjection& projection(const frame::Intrinsics& depthIntrinsics) const;
     int marginPixels(const frame::Intrinsics& depthIntrinsics) const;
+    // The registration uniforms of kCameraColoursGlsl for projection p; the program must be in use.
+    static void setProjection(const gl::Program& program, const processing::ColourProjection& p);
+    Status linkAlignedPrograms(const std::string& vertexShader);
 
     Plane luma_;     // NV12: Y (R8); YUYV: one texel per pixel pair, Y0 Cb Y1 Cr (RGBA8); RGB: RGB8
     Plane chroma_;   // NV12: CbCr (RG8), one texel per 2x2 pixels
@@ -80,17 +104,23 @@ private:
     mutable std::optional<std::pair<frame::Intrinsics, processing::ColourProjection>> projection_;
     gl::Program nearestProgram_;
     gl::Program imageProgram_;
+    gl::Program seenProgram_;
+    std::array<gl::Program, kColormapCount> alignedPrograms_;
     gl::Framebuffer nearestFramebuffer_;
     Plane nearest_; // GL_DEPTH_COMPONENT32F, the camera image's size plus a margin on every side
     gl::VertexArray emptyVertexArray_;
     std::uint64_t uploads_ = 0;
     std::uint64_t nearestPasses_ = 0;
     std::uint64_t imagePasses_ = 0;
+    std::uint64_t seenPasses_ = 0;
+    std::uint64_t alignedPasses_ = 0;
 };
 
 // GLSL for a point vertex shader that includes kFrameTexturesGlsl first:
 //   vec3 cameraPointColor(ivec2 pixel, ivec2 mapSize, vec3 point)
-// the camera's colour of depth sample `pixel` of a mapSize map, at `point` of the depth camera's frame.
+// the camera's colour of depth sample `pixel` of a mapSize map, at `point` of the depth camera's frame;
+//   vec4 seenCameraColor(ivec2 pixel, ivec2 mapSize, vec3 point)
+// the same with alpha 1 where the colour camera sees the sample and 0 where it does not.
 extern const char* const kCameraColoursGlsl;
 
 } // namespace dc::render

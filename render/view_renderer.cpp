@@ -1,6 +1,7 @@
 #include "render/view_renderer.h"
 
 #include "processing/decimation.h"
+#include "processing/registration.h"
 
 #include <algorithm>
 #include <array>
@@ -46,11 +47,18 @@ void ViewRenderer::uploadOnce(const std::shared_ptr<const T>& product, std::shar
 }
 
 void ViewRenderer::sync(const processing::ShownFrame& shown) {
-    if (shown.depth.data != depth_.data)
+    // The GPU's overlays are made from the depth and the camera image: either new redraws them.
+    const auto imageBytes = [](const frame::FramePtr& f) { return f ? f->capturedImage.bytes : nullptr; };
+    const bool newImage = imageBytes(shown.frame) != imageBytes(frame_);
+    const bool newDepth = shown.depth.data != depth_.data || newImage;
+    if (newDepth)
         panelsDrawnWith_.reset();
     depth_ = shown.depth;
-    if (shown.depthOverCamera != depthOverCamera_)
+    if (shown.depthOverCamera != depthOverCamera_ || (newDepth && !shown.depthOverCamera))
         overlayDrawnWith_.reset();
+    colourOverDepthFromEngine_ = shown.colourOverDepth != nullptr;
+    if (colourOverDepthFromEngine_)
+        colourOverDepthFromGpu_ = false;
     depthOverCamera_ = shown.depthOverCamera;
     pointColors_ = shown.pointColors;
     cloud_ = shown.cloud;
@@ -101,7 +109,9 @@ void ViewRenderer::syncAccumulated(processing::AccumulationWorker& worker) {
 
 void ViewRenderer::renderPanels(const PanelParams& params) {
     const bool panels = panelsDrawnWith_ != params && depth_.data && (params.depth || params.confidence);
-    const bool overlay = overlayDrawnWith_ != params && depthOverCamera_ && params.depthOverCamera;
+    const bool overlay =
+        overlayDrawnWith_ != params && params.depthOverCamera &&
+        (depthOverCamera_ || (params.gpuOverlays && params.cameraShownWidth > 0 && alignsOnGpu()));
     if (!panels && !overlay)
         return;
     // The last frame's drawing samples these panel textures. Debian 12's llvmpipe now and then lost a pass
@@ -153,6 +163,11 @@ void ViewRenderer::drawDataPanels(const PanelParams& params) {
         confidenceTarget_.resize(textures.depthWidth(), textures.depthHeight());
         panels_.renderConfidence(confidenceTarget_, textures);
     }
+    colourOverDepthFromGpu_ = params.depth && params.colourOverDepth && params.gpuOverlays &&
+                              !colourOverDepthFromEngine_ && frame_ && !frame_->capturedImage.empty() &&
+                              processing::shaderCanColour(frame_->rig.get());
+    if (colourOverDepthFromGpu_)
+        drawColourOverDepth(step);
     panelsDrawnWith_ = params;
     ++panelRenders_;
 }
@@ -160,6 +175,17 @@ void ViewRenderer::drawDataPanels(const PanelParams& params) {
 // The depth panel's colours and range on the depth as the colour camera sees it; where it saw no depth the
 // camera image shows through, since a colour there would be a depth nobody measured.
 void ViewRenderer::drawDepthOverCamera(const PanelParams& params) {
+    if (!depthOverCamera_) {
+        const auto [width, height] =
+            processing::cameraPanelImageSize(frame_->capturedImage, params.cameraShownWidth);
+        prepareCameraColours();
+        cameraColours_.renderAlignedDepth(depthOverCameraTarget_,
+                                          texturesFor(panelDepth_, depth_, pointColors_, false), width,
+                                          height, {params.minMeters, params.maxMeters, params.colormap});
+        overlayDrawnWith_ = params;
+        ++overlayRenders_;
+        return;
+    }
     processing::ShownDepth aligned;
     aligned.data = depthOverCamera_;
     const FrameTextures& textures = texturesFor(overlayDepth_, aligned, nullptr, false);
@@ -168,6 +194,25 @@ void ViewRenderer::drawDepthOverCamera(const PanelParams& params) {
                         DepthHoles::Transparent);
     overlayDrawnWith_ = params;
     ++overlayRenders_;
+}
+
+// Made from every sample of the shown depth, so that a sample hidden behind one the panel skips is hidden
+// as the CPU's overlay hides it.
+void ViewRenderer::drawColourOverDepth(int step) {
+    prepareCameraColours();
+    cameraColours_.renderSeenColours(colourOverDepthTarget_,
+                                     texturesFor(panelDepth_, depth_, pointColors_, false), step);
+}
+
+bool ViewRenderer::alignsOnGpu() const {
+    if (!frame_ || frame_->capturedImage.empty() || !depth_.data || !frame_->rig)
+        return false;
+    return !processing::isSingleCamera(*frame_->rig) && processing::shaderCanColour(frame_->rig.get());
+}
+
+void ViewRenderer::prepareCameraColours() {
+    cameraColours_.uploadImage(frame_->capturedImage);
+    cameraColours_.setRig(frame_->rig);
 }
 
 void ViewRenderer::renderCameraImage(int shownWidth) {
@@ -225,8 +270,7 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
                 ? panelDepth_.textures
                 : texturesFor(uploaded, cloud_.depth, cloud_.colors, camera && !shaded);
         if (shaded) {
-            cameraColours_.uploadImage(frame_->capturedImage);
-            cameraColours_.setRig(frame_->rig);
+            prepareCameraColours();
             cameraColours_.renderNearest(textures);
         }
         cloudRenderer_.render(cloudTarget_, textures, params, shaded ? &cameraColours_ : nullptr);

@@ -27,6 +27,12 @@ struct PanelParams {
     bool depth = true;
     bool confidence = true;
     bool depthOverCamera = false; // the camera panel's overlay of a two-sensor frame's aligned depth
+    bool colourOverDepth = false; // the depth panel's overlay of the camera colours
+    // The overlays the engine did not make are made here, from the shown depth and the camera's planes
+    // (engine::Demand::gpuCameraColours): the colour overlay at the depth panel's drawn size, the depth
+    // over the camera at cameraShownWidth (processing::cameraPanelImageSize).
+    bool gpuOverlays = false;
+    int cameraShownWidth = 0;
     float minMeters = 0.0f;
     float maxMeters = 2.5f;
     Colormap colormap = Colormap::Jet;
@@ -59,8 +65,8 @@ public:
     // last time are drawn again).
     void syncAccumulated(processing::AccumulationWorker& worker);
     // Draws the depth and confidence panels (at the depth map's size, or a fraction of it no smaller than
-    // params.shownWidth), and the depth over the camera at the aligned depth's size, where their data or
-    // `params` changed.
+    // params.shownWidth) with the depth panel's colour overlay, and the depth over the camera, where their
+    // data or `params` changed.
     void renderPanels(const PanelParams& params);
     // Draws the depth and confidence panels again at the depth map's own size if they were drawn smaller:
     // for a snapshot, which keeps every sample. The next renderPanels() draws them at the shown size again.
@@ -91,9 +97,20 @@ public:
     const RenderTarget& confidenceTarget() const { return confidenceTarget_; }
     const RgbaTexture& cameraTexture() const { return camera_; }
     // The shown frame's depth aligned to the colour image in the depth panel's colours, holes transparent;
-    // drawn only while the frame has one (ShownFrame::depthOverCamera) and params ask for it.
+    // drawn only while params ask for it and the frame has one (ShownFrame::depthOverCamera) or, with
+    // params.gpuOverlays, is a two-sensor frame (then drawn here at the camera panel's size).
     const RenderTarget& depthOverCameraTarget() const { return depthOverCameraTarget_; }
     const RgbaTexture& colourOverDepthTexture() const { return colourOverDepth_; }
+    // Whether the depth panel's colour overlay is colourOverDepthTarget() (made here) rather than
+    // colourOverDepthTexture() (the engine's).
+    bool colourOverDepthFromGpu() const { return colourOverDepthFromGpu_; }
+    const RenderTarget& colourOverDepthTarget() const { return colourOverDepthTarget_; }
+    // Whether the camera panel's depth overlay is depthOverCameraTarget(), the depth aligned to the colour
+    // image (a two-sensor frame's, the engine's or, with `gpuOverlays`, made here), rather than the depth
+    // panel's image (a single camera's).
+    bool alignsDepthOverCamera(bool gpuOverlays) const {
+        return depthOverCamera_ != nullptr || (gpuOverlays && alignsOnGpu());
+    }
     const RgbaTexture& infraredTexture() const { return infrared_; }
     const RgbaTexture& fogTexture() const { return fog_; }
     const RgbaTexture& auraTexture() const { return aura_; }
@@ -150,6 +167,11 @@ private:
     // The textures the panels draw from: the shown depth's own, or every `step`-th sample of it.
     const FrameTextures& panelTextures(int step);
     void drawDepthOverCamera(const PanelParams& params);
+    void drawColourOverDepth(int step);
+    // A two-sensor frame whose depth the shaders can align to its camera image.
+    bool alignsOnGpu() const;
+    // The camera's planes and rig of the shown frame, for the shaders' colours.
+    void prepareCameraColours();
 
     UploadedDepth panelDepth_;
     UploadedDepth cloudDepth_; // the cloud's samples when they are decimated
@@ -174,7 +196,10 @@ private:
     RenderTarget cloudTarget_;
     RenderTarget depthTarget_{Sampling::Nearest, DepthBuffer::Without};
     RenderTarget confidenceTarget_{Sampling::Nearest, DepthBuffer::Without};
-    RenderTarget depthOverCameraTarget_{Sampling::Nearest, DepthBuffer::Without};
+    RenderTarget depthOverCameraTarget_{Sampling::Nearest, DepthBuffer::With}; // drawn as points on the GPU
+    RenderTarget colourOverDepthTarget_{Sampling::Nearest, DepthBuffer::Without};
+    bool colourOverDepthFromGpu_ = false;
+    bool colourOverDepthFromEngine_ = false; // the shown frame carries the engine's colour overlay
     RenderTarget cameraTarget_{Sampling::Linear, DepthBuffer::Without};
     // The image and size cameraTarget_ holds; whether this frame's camera panel came from the engine.
     struct CameraDrawing {

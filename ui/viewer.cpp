@@ -111,12 +111,7 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     auto start = Clock::now();
     std::uint64_t version = renderer_.contentVersion();
     const PanelVisibility& show = settings_.panels;
-    // A two-sensor frame's depth over the camera is drawn aligned to the colour image; a single camera's
-    // is the depth panel's image, drawn for it even while the depth panel is hidden.
-    const bool depthOverCamera = show.camera && settings_.camera.depthOverlay;
-    const bool aligned = shown_ && shown_->depthOverCamera;
-    renderer_.renderPanels({show.depth || (depthOverCamera && !aligned), show.confidence, depthOverCamera,
-                            legend_.minMeters, legend_.maxMeters, legend_.colormap, dataPanelsShownWidth_});
+    renderer_.renderPanels(panelParams());
     if (show.camera)
         renderer_.renderCameraImage(cameraShownWidth_);
     // A stage's time is what its work costs: a frame where it had nothing to redraw is not a sample.
@@ -129,6 +124,27 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
     if (renderer_.contentVersion() != version)
         instrument_.recordStage("cloud", millisecondsSince(start));
     return fresh;
+}
+
+render::PanelParams Viewer::panelParams() const {
+    const PanelVisibility& show = settings_.panels;
+    // A two-sensor frame's depth over the camera is drawn aligned to the colour image; a single camera's
+    // is the depth panel's image, drawn for it even while the depth panel is hidden.
+    const bool depthOverCamera = show.camera && settings_.camera.depthOverlay;
+    render::PanelParams panels;
+    // The engine leaves the overlays to the GL path where it leaves it the camera colours (demandOf).
+    panels.gpuOverlays = demand_.gpuCameraColours;
+    const bool aligned = shown_ && renderer_.alignsDepthOverCamera(panels.gpuOverlays);
+    panels.depth = show.depth || (depthOverCamera && !aligned);
+    panels.confidence = show.confidence;
+    panels.depthOverCamera = depthOverCamera;
+    panels.colourOverDepth = show.depth && settings_.depthView.colourOverlay;
+    panels.cameraShownWidth = cameraShownWidth_;
+    panels.minMeters = legend_.minMeters;
+    panels.maxMeters = legend_.maxMeters;
+    panels.colormap = legend_.colormap;
+    panels.shownWidth = dataPanelsShownWidth_;
+    return panels;
 }
 
 bool Viewer::awaitFrame(std::chrono::milliseconds timeout) {

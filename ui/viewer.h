@@ -151,6 +151,8 @@ private:
     void renderCloud(double timeSeconds);
     void updateLegend();
     render::CloudParams cloudParams(double timeSeconds) const;
+    // How the depth, confidence and overlay panels are drawn this frame.
+    render::PanelParams panelParams() const;
     std::uint64_t pointsShown();
     void placePanel(const char* title, float x, float y, float w, float h);
     void keepInsideWorkArea(const ImGuiWindow* window) const;

@@ -429,8 +429,11 @@ void Viewer::drawSidePanels(float x, float w, float height) {
     if (show.depth) {
         place(kDepthTitle);
         const DepthView& view = settings_.depthView;
-        const bool overlay = view.colourOverlay && shown_ && shown_->colourOverDepth;
-        const PanelImage colour = overlay ? imageOf(renderer_.colourOverDepthTexture()) : PanelImage{};
+        const bool gpu = renderer_.colourOverDepthFromGpu();
+        const bool overlay = view.colourOverlay && shown_ && (shown_->colourOverDepth || gpu);
+        const PanelImage colour = !overlay ? PanelImage{}
+                                  : gpu    ? imageOf(renderer_.colourOverDepthTarget())
+                                           : imageOf(renderer_.colourOverDepthTexture());
         afterDataPanel(kDepthTitle,
                        drawDepthPanel(dataPanelImage(renderer_.depthTarget(), renderer_),
                                       {colour, view.overlayOpacity}, legend_, probe, &show.depth));
@@ -445,7 +448,7 @@ void Viewer::drawSidePanels(float x, float w, float height) {
     }
     if (show.camera) {
         place(kCameraTitle);
-        const bool aligned = shown_ && shown_->depthOverCamera;
+        const bool aligned = shown_ && renderer_.alignsDepthOverCamera(demand_.gpuCameraColours);
         const PanelImage depth = aligned ? imageOf(renderer_.depthOverCameraTarget())
                                          : dataPanelImage(renderer_.depthTarget(), renderer_);
         const PanelResult r = drawCameraPanel(renderer_.cameraFromGpu() ? imageOf(renderer_.cameraTarget())

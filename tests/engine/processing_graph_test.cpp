@@ -448,6 +448,44 @@ TEST(ProcessingGraphShaderColours, NoColourIsMadeForPointsTheShaderColours) {
     }
 }
 
+// The GL path makes the depth panel's colour overlay and the depth over the camera in shaders too: with
+// both shown, the engine colours no sample, makes no overlay image and aligns no depth. The splat path's
+// engine makes both, and so does the GL path's for a rig the shaders cannot register.
+TEST(ProcessingGraphShaderColours, TheGlPathsOverlaysAreNotMadeOnTheCpu) {
+    const frame::FramePtr frame = smallRigFrame();
+    ASSERT_TRUE(frame && frame->rig);
+    ProcessingGraph graph;
+    Demand demand = cloudOnly();
+    demand.depthImage = true;
+    demand.colourOverDepth = true;
+    demand.depthOverCamera = true;
+    demand.cameraPanelWidth = 320;
+    demand.gpuCameraColours = true;
+    const processing::ShownFramePtr gpu = graph.run(frame, demand, 1, true);
+    ASSERT_TRUE(gpu->depth.data);
+    EXPECT_FALSE(gpu->colourOverDepth);
+    EXPECT_FALSE(gpu->depthOverCamera);
+    EXPECT_FALSE(gpu->pointColors);
+    EXPECT_EQ(graph.runs(kColourOverlayStage), 0u);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 0u);
+    EXPECT_EQ(graph.runs(kPointColorsStage), 0u);
+
+    demand.gpuCameraColours = false; // the splat path
+    const processing::ShownFramePtr cpu = graph.run(frame, demand, 2, false);
+    EXPECT_TRUE(cpu->colourOverDepth && cpu->depthOverCamera);
+    EXPECT_EQ(graph.runs(kColourOverlayStage), 1u);
+    EXPECT_EQ(graph.runs(kAlignedDepthStage), 1u);
+
+    auto inverseLens = std::make_shared<frame::RigCalibration>(*frame->rig);
+    inverseLens->colour.lens.model = frame::LensModel::InverseBrownConrady;
+    ASSERT_FALSE(processing::shaderCanColour(inverseLens.get()));
+    auto other = std::make_shared<frame::Frame>(*frame);
+    other->rig = inverseLens;
+    demand.gpuCameraColours = true;
+    const processing::ShownFramePtr unregistrable = graph.run(other, demand, 3, true);
+    EXPECT_TRUE(unregistrable->colourOverDepth && unregistrable->depthOverCamera);
+}
+
 // A decimated cloud's colours are made for the samples it draws alone, where they are drawn (each cell's
 // kept sample at the cell's centre), and none for the samples it leaves out.
 TEST(ProcessingGraphShaderColours, ADecimatedCloudIsColouredOnlyWhereItsPointsAre) {

@@ -11,6 +11,7 @@
 #include "processing/infrared_image.h"
 #include "processing/point_cloud.h"
 #include "processing/registration.h"
+#include "tests/small_rig.h"
 #include "tests/test_data.h"
 #include "ui_fixture.h"
 
@@ -319,6 +320,48 @@ TEST_F(EngineUiTest, WithSmoothingOrUpsamplingTheSnapshotHoldsExactlyThePointsDr
             ASSERT_EQ(ply[i].confidence, drawn[i].confidence) << i;
         }
     }
+}
+
+// On the GL points path the overlays are made from the camera's planes on the GPU as well: with the colour
+// overlay and the depth over the camera shown for a two-sensor frame, the engine neither colours the
+// samples, nor makes the overlay image, nor aligns the depth to the colour image; the renderer draws both
+// overlays, again for every new frame, at the sizes their panels show them.
+TEST_F(EngineUiTest, OnTheGlPointsPathTheOverlaysAreMadeOnlyOnTheGpu) {
+    devices::SyntheticConfig rig = dc::test::smallRigConfig();
+    rig.noise = false;
+    Settings settings;
+    settings.cloud.path = CloudPathChoice::Points;
+    settings.cloud.motion.enabled = false;
+    settings.panels.camera = true;
+    settings.panels.depth = true;
+    settings.depthView.colourOverlay = true;
+    settings.camera.depthOverlay = true;
+    ASSERT_NO_FATAL_FAILURE(startViewer(rig, settings));
+    ASSERT_TRUE(viewer_->demand().gpuCameraColours && viewer_->demand().colourOverDepth &&
+                viewer_->demand().depthOverCamera);
+    ASSERT_TRUE(frameUntil(
+        [&] { return renderer_.colourOverDepthFromGpu() && renderer_.cameraColours().alignedPasses() > 0; }));
+    const engine::FrameProcessor& processor = instrument_->processor();
+    const std::uint64_t colourRuns = processor.stageRuns(engine::kPointColorsStage);
+    const std::uint64_t seenPasses = renderer_.cameraColours().seenPasses();
+    const std::uint64_t alignedPasses = renderer_.cameraColours().alignedPasses();
+    for (int i = 0; i < 3; ++i)
+        ASSERT_TRUE(nextFrame(0.0));
+    EXPECT_EQ(processor.stageRuns(engine::kColourOverlayStage), 0u) << "no colour overlay on the CPU";
+    EXPECT_EQ(processor.stageRuns(engine::kAlignedDepthStage), 0u) << "no aligned depth on the CPU";
+    EXPECT_EQ(processor.stageRuns(engine::kPointColorsStage), colourRuns) << "no sample colours on the CPU";
+    EXPECT_FALSE(shown().colourOverDepth);
+    EXPECT_FALSE(shown().depthOverCamera);
+    EXPECT_GE(renderer_.cameraColours().seenPasses(), seenPasses + 3) << "each new frame's colour overlay";
+    EXPECT_GE(renderer_.cameraColours().alignedPasses(), alignedPasses + 3) << "each new frame's depth";
+    EXPECT_TRUE(renderer_.colourOverDepthFromGpu());
+    EXPECT_TRUE(renderer_.alignsDepthOverCamera(true));
+    EXPECT_EQ(renderer_.colourOverDepthTarget().width(), renderer_.depthTarget().width());
+    EXPECT_EQ(renderer_.colourOverDepthTarget().height(), renderer_.depthTarget().height());
+    const auto [w, h] =
+        processing::cameraPanelImageSize(shown().frame->capturedImage, viewer_->demand().cameraPanelWidth);
+    EXPECT_EQ(renderer_.depthOverCameraTarget().width(), w);
+    EXPECT_EQ(renderer_.depthOverCameraTarget().height(), h);
 }
 
 // On the GL points path the GPU makes the camera's colours: the engine converts no camera image, the camera
