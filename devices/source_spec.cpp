@@ -44,6 +44,18 @@ Status parseMode(const std::string& mode, SyntheticConfig& config) {
     return {};
 }
 
+// "DISTANCE_M,TILT_DEG[,NOISE_MM]": a flat target (SyntheticConfig::flatTarget).
+Expected<FlatTarget> parseFlatTarget(const std::string& text) {
+    const Error bad{"malformed plane='" + text +
+                    "' in --source (expected DISTANCE_M,TILT_DEG[,NOISE_MM], e.g. plane=1.5,10,1)"};
+    const std::vector<std::string> v = split(text, ',');
+    FlatTarget t;
+    if (v.size() < 2 || v.size() > 3 || !parseNumber(v[0], t.distanceMeters) ||
+        !parseNumber(v[1], t.tiltDegrees) || (v.size() == 3 && !parseNumber(v[2], t.noiseMm)))
+        return bad;
+    return t;
+}
+
 // The camera's kind comes first: the other options adjust it.
 SyntheticConfig syntheticBase(const std::vector<std::string>& parts) {
     for (std::size_t i = 1; i < parts.size(); ++i)
@@ -69,6 +81,11 @@ Expected<std::unique_ptr<Device>> openSynthetic(const std::vector<std::string>& 
             config.cameraHeight = 480;
         } else if (p == "exact") {
             config.noise = false;
+        } else if (p.starts_with("plane=")) {
+            auto target = parseFlatTarget(p.substr(6));
+            if (!target)
+                return target.error();
+            config.flatTarget = *target;
         } else if (Status s = parseMode(p, config); !s) {
             return s.error();
         }

@@ -93,6 +93,17 @@ private:
     std::vector<base::Worker> threads_;
 };
 
+namespace {
+
+// The flat target's camera image: uniform mid grey.
+frame::CapturedImage greyImage(int width, int height) {
+    const std::size_t size = frame::CapturedImage::byteSize(frame::PixelFormat::Nv12, width, height);
+    return {frame::PixelFormat::Nv12, width, height,
+            std::make_shared<const std::vector<std::uint8_t>>(size, std::uint8_t{128})};
+}
+
+} // namespace
+
 Status checkSyntheticConfig(const SyntheticConfig& c) {
     const auto sideOk = [](int s) { return s >= 1 && s <= kSyntheticMaxImageSide; };
     if (!sideOk(c.depthWidth) || !sideOk(c.depthHeight) || !sideOk(c.cameraWidth) || !sideOk(c.cameraHeight))
@@ -104,6 +115,14 @@ Status checkSyntheticConfig(const SyntheticConfig& c) {
                      std::to_string(kSyntheticMaxDepthPixels) + " pixels (1920x1440)"};
     if (!(c.fps > 0.0 && c.fps <= kSyntheticMaxFps))
         return Error{"synthetic source: frame rate must be in (0, 1000] fps"};
+    if (const auto& t = c.flatTarget) {
+        if (!(t->distanceMeters > 0.0 && t->distanceMeters <= SyntheticScene::kMaxRangeMeters))
+            return Error{"synthetic source: plane distance must be in (0, 5] m"};
+        if (!(std::abs(t->tiltDegrees) <= kFlatTargetMaxTiltDegrees))
+            return Error{"synthetic source: plane tilt must be within 85 degrees of facing the camera"};
+        if (!(t->noiseMm >= 0.0 && t->noiseMm <= kFlatTargetMaxNoiseMm))
+            return Error{"synthetic source: plane noise must be in [0, 100] mm"};
+    }
     return {};
 }
 
@@ -133,7 +152,7 @@ SyntheticDevice::~SyntheticDevice() = default;
 std::string SyntheticDevice::description() const {
     return "synthetic " + std::to_string(config_.depthWidth) + "x" + std::to_string(config_.depthHeight) +
            "@" + std::to_string(static_cast<int>(config_.fps + 0.5)) + (config_.motion ? " (moving)" : "") +
-           (config_.rig ? ", two-sensor rig" : "");
+           (config_.rig ? ", two-sensor rig" : "") + (config_.flatTarget ? ", flat target" : "");
 }
 
 Capabilities SyntheticDevice::capabilities() const {
@@ -154,7 +173,9 @@ void SyntheticDevice::interruptCapture() {
 Status SyntheticDevice::doOpen() {
     if (Status s = checkSyntheticConfig(config_); !s)
         return s;
-    if (!config_.motion)
+    if (config_.flatTarget)
+        staticImage_ = greyImage(cameraIntrinsics_.width, cameraIntrinsics_.height);
+    else if (!config_.motion)
         staticImage_ = renderImage(SyntheticScene::cameraPose(0.0, false));
     return {};
 }
@@ -196,9 +217,12 @@ std::shared_ptr<frame::Frame> SyntheticDevice::renderFrame(std::uint64_t sequenc
     frame->pose = pose;
     frame->cameraIntrinsics = cameraIntrinsics_;
     frame->rig = rig_;
-    frame->capturedImage = config_.motion ? renderImage(pose) : staticImage_;
+    frame->capturedImage = config_.motion && !config_.flatTarget ? renderImage(pose) : staticImage_;
     const frame::Intrinsics depthK = depthIntrinsics();
-    if (config_.noise) {
+    if (config_.flatTarget) {
+        frame->sceneDepth =
+            flatTargetDepth(depthK, *config_.flatTarget, config_.noise, config_.seed, sequence);
+    } else if (config_.noise) {
         frame->sceneDepth = scene_.sensorDepth(depthK, pose, sequence);
     } else {
         frame::DepthData exact{scene_.trueDepth(depthK, pose),

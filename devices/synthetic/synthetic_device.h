@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <optional>
 
 namespace dc::devices {
 
@@ -23,6 +24,8 @@ struct SyntheticConfig {
     // A two-sensor camera (syntheticRigCalibration()): depth from one sensor, colour from another 15 mm
     // away with its own field of view and lens; every frame carries the rig's calibration.
     bool rig = false;
+    // Instead of the desk scene, a flat grey target filling the view (depth-quality measurements).
+    std::optional<FlatTarget> flatTarget = std::nullopt;
 };
 
 // The rig's native modes: 848x480 depth at 30 Hz, 1280x720 colour.

@@ -430,6 +430,29 @@ frame::DepthData SyntheticScene::sensorDepth(const frame::Intrinsics& k, const f
     return out;
 }
 
+frame::DepthData flatTargetDepth(const frame::Intrinsics& k, const FlatTarget& target, bool noise,
+                                 std::uint64_t seed, std::uint64_t sequence) {
+    // The plane n.X = n.(0, 0, D) with n = (sin t, 0, cos t): along the ray (x', y', 1), z = D cos t / (n.r).
+    const double t = target.tiltDegrees * std::numbers::pi / 180.0;
+    const double nx = std::sin(t), nz = std::cos(t);
+    std::seed_seq seq{seed, sequence};
+    std::mt19937_64 rng(seq);
+    std::normal_distribution<double> gauss(0.0, noise ? target.noiseMm * 1e-3 : 0.0);
+    frame::DepthData out{frame::Plane<float>(k.width, k.height),
+                         frame::Plane<std::uint8_t>(k.width, k.height, 0)};
+    for (int y = 0; y < k.height; ++y) {
+        for (int x = 0; x < k.width; ++x) {
+            const double along = nx * (x - k.cx) / k.fx + nz;
+            const double z = along > 0.0 ? target.distanceMeters * nz / along : -1.0;
+            if (!(z > 0.0) || z > SyntheticScene::kMaxRangeMeters)
+                continue;
+            out.depthMeters.at(x, y) = static_cast<float>(std::max(1e-3, z + gauss(rng)));
+            out.confidence.at(x, y) = static_cast<std::uint8_t>(frame::Confidence::High);
+        }
+    }
+    return out;
+}
+
 frame::CapturedImage SyntheticScene::renderImage(const frame::Intrinsics& k, const frame::Pose& pose) const {
     return renderImage(frame::CameraModel{k, {}}, pose);
 }

@@ -43,6 +43,25 @@ struct RegistrationTruth {
     std::vector<std::uint8_t> visible;
 };
 
+// A flat target filling the view, as a depth-quality bench points a camera at a wall: the plane's distance
+// along the optical axis, its turn about the camera's vertical (y) axis, and the standard deviation of the
+// depth noise (along z, independent per sample and per frame).
+struct FlatTarget {
+    double distanceMeters = 1.0;
+    double tiltDegrees = 0.0;
+    double noiseMm = 1.0;
+    bool operator==(const FlatTarget&) const = default;
+};
+// Limits of a flat target: within the sensor's range, and turned short of edge-on.
+inline constexpr double kFlatTargetMaxTiltDegrees = 85.0;
+inline constexpr double kFlatTargetMaxNoiseMm = 100.0;
+
+// The flat target's depth for one frame: the exact plane plus Gaussian noise (none when noiseMm is 0, or
+// `noise` is false), deterministic in (seed, sequence); 0 where the plane lies beyond
+// SyntheticScene::kMaxRangeMeters or behind the camera. Confidence is High wherever there is depth.
+frame::DepthData flatTargetDepth(const frame::Intrinsics& k, const FlatTarget& target, bool noise,
+                                 std::uint64_t seed, std::uint64_t sequence);
+
 // A deterministic procedural scene modelled on the Depth Cloud sample's figure: a desk with an
 // apple-sized sphere and a book on it, a back wall with a window whose opening looks out beyond the
 // sensor's range (no depth), half-open blinds in the window, and a floor. World axes: y up, meters.

@@ -44,6 +44,18 @@ TEST_F(Quality, HeldExpectationsExitZeroAndTheJsonHasEveryFigure) {
     }
 }
 
+// The whole chain a test bench runs: the synthetic wall 1.2 m away, turned 15 degrees, 1 mm of noise.
+TEST_F(Quality, TheSyntheticWallIsMeasuredAtItsDistanceTiltAndNoise) {
+    const RunResult r = run("--source synthetic:320x240:plane=1.2,15,1 --frames 20 --ground-truth-mm 1200 "
+                            "--expect \"fillRate==1,planeFitRmsMm<=1.05,planeFitRmsMm>=0.9\" --json q.json");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    const nlohmann::json j = nlohmann::json::parse(readFile(dir_ / "q.json"));
+    EXPECT_NEAR(j["distanceMm"].get<double>(), 1200.0, 0.5);
+    EXPECT_NEAR(j["angleDeg"].get<double>(), 15.0, 0.1);
+    EXPECT_NEAR(j["zAccuracyPercent"].get<double>(), 0.0, 0.05);
+    EXPECT_NEAR(j["temporalNoiseMm"].get<double>(), 1.0, 0.06);
+}
+
 TEST_F(Quality, FiguresWithoutWhatTheyNeedAreNull) {
     const RunResult r = run("--source synthetic:64x48 --frames 2 --json q.json");
     ASSERT_EQ(r.exitCode, 0) << r.err;

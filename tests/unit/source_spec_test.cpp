@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <utility>
+
 namespace dc::devices {
 namespace {
 
@@ -38,6 +40,33 @@ TEST(SourceSpec, MalformedModesNameTheProblem) {
         auto d = openSourceSpec(bad);
         ASSERT_FALSE(d.ok()) << bad;
         EXPECT_NE(d.error().message.find("malformed mode"), std::string::npos) << bad;
+    }
+}
+
+TEST(SourceSpec, APlaneTakesItsDistanceTiltAndNoise) {
+    auto d = openSourceSpec("synthetic:640x480:plane=1.5,10,2");
+    ASSERT_TRUE(d.ok()) << d.error().message;
+    ASSERT_TRUE(configOf(*d).flatTarget.has_value());
+    EXPECT_EQ(*configOf(*d).flatTarget, (FlatTarget{1.5, 10.0, 2.0}));
+    auto defaultNoise = openSourceSpec("synthetic:plane=0.8,-30");
+    ASSERT_TRUE(defaultNoise.ok()) << defaultNoise.error().message;
+    EXPECT_EQ(*configOf(*defaultNoise).flatTarget, (FlatTarget{0.8, -30.0, 1.0}));
+}
+
+TEST(SourceSpec, ABadPlaneNamesWhatIsWrong) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"synthetic:plane=", "malformed plane=''"},
+        {"synthetic:plane=1.5", "malformed plane='1.5'"},
+        {"synthetic:plane=1.5,x", "malformed plane='1.5,x'"},
+        {"synthetic:plane=1.5,10,1,4", "malformed plane='1.5,10,1,4'"},
+        {"synthetic:plane=0,10", "plane distance must be in (0, 5] m"},
+        {"synthetic:plane=6,10", "plane distance must be in (0, 5] m"},
+        {"synthetic:plane=1,86", "plane tilt must be within 85 degrees"},
+        {"synthetic:plane=1,10,-1", "plane noise must be in [0, 100] mm"}};
+    for (const auto& [spec, message] : cases) {
+        auto d = openSourceSpec(spec);
+        ASSERT_FALSE(d.ok()) << spec;
+        EXPECT_NE(d.error().message.find(message), std::string::npos) << spec << ": " << d.error().message;
     }
 }
 
