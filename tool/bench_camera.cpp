@@ -235,7 +235,7 @@ void printResult(const CaseResult& r) {
         latency.median, latency.p99, r.processingLatencyMs, gl.median, gl.p99, r.processingCpuMs,
         r.processCpuMsPerFrame);
     std::printf(
-        "  bare GL_POINTS of every sample into the %dx%d cloud panel %.2f ms;%s stage medians:", r.cloudWidth,
+        "  bare GL_POINTS of every sample into the %dx%d cloud panel %.2f ms%s; stage medians:", r.cloudWidth,
         r.cloudHeight, r.bareGlPointsMs, gpuClockText(spreadOf(r.gpuClockMhz).median).c_str());
     for (const engine::StageSummary& s : r.stages)
         std::printf(" %s %.2f", s.name.c_str(), s.medianMs);
