@@ -1,5 +1,7 @@
 #include "processing/depth_quality.h"
 
+#include "processing/parallel.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -369,28 +371,38 @@ RowView rowView(const frame::DepthData& depth, int y) {
 
 Expected<PlaneFigures> planeFigures(const std::vector<Point3d>& points, const frame::Intrinsics& k,
                                     const QualityParams& params) {
-    const auto fit = fitPlaneRobust(points, params.fit);
-    if (!fit)
-        return fit.error();
-    const auto distance = distanceAlongOpticalAxis(fit->plane);
+    // The two fits share nothing but the points: one core each.
+    std::optional<Expected<RobustPlaneFit>> fit;
+    std::optional<Expected<double>> dqt;
+    parallelRanges(2, 1, [&](int begin, int end) {
+        for (int job = begin; job < end; ++job) {
+            if (job == 0)
+                fit = fitPlaneRobust(points, params.fit);
+            else
+                dqt = dqtPlaneFitRms(points);
+        }
+    });
+    if (!*fit)
+        return fit->error();
+    const auto distance = distanceAlongOpticalAxis((*fit)->plane);
     if (!distance)
         return distance.error();
-    const auto dqt = dqtPlaneFitRms(points);
-    if (!dqt)
-        return dqt.error();
+    if (!*dqt)
+        return dqt->error();
+    const RobustPlaneFit& robust = **fit;
     PlaneFigures f;
-    f.plane = fit->plane;
+    f.plane = robust.plane;
     f.distanceMm = *distance * kMetersToMm;
-    f.angleDeg = angleToOpticalAxisDegrees(fit->plane);
-    f.planeFitRmsMm = fit->rmsMeters * kMetersToMm;
-    f.planeFitRmsPercent = fit->rmsMeters / *distance * 100.0;
-    f.inlierFraction = fit->inlierFraction;
-    f.dqtPlaneFitRmsMm = *dqt * kMetersToMm;
+    f.angleDeg = angleToOpticalAxisDegrees(robust.plane);
+    f.planeFitRmsMm = robust.rmsMeters * kMetersToMm;
+    f.planeFitRmsPercent = robust.rmsMeters / *distance * 100.0;
+    f.inlierFraction = robust.inlierFraction;
+    f.dqtPlaneFitRmsMm = **dqt * kMetersToMm;
     if (params.groundTruthMeters)
         f.zAccuracyPercent = zAccuracyPercent(*distance, *params.groundTruthMeters);
     if (params.baselineMeters) {
         const auto subpixel =
-            subpixelRms(select(points, fit->inliers), fit->plane, k.fx, *params.baselineMeters);
+            subpixelRms(select(points, robust.inliers), robust.plane, k.fx, *params.baselineMeters);
         if (subpixel)
             f.subpixelRms = *subpixel;
     }
@@ -456,7 +468,11 @@ Expected<FrameQuality> measureFrameQuality(const frame::DepthData& depth, const 
 NoiseWindow::NoiseWindow(const QualityParams& params, int windowFrames)
     : params_(params), windowFrames_(static_cast<std::size_t>(std::max(windowFrames, 1))),
       pixels_(static_cast<std::size_t>(std::max(params.roi.width, 0)) *
-              static_cast<std::size_t>(std::max(params.roi.height, 0))) {}
+              static_cast<std::size_t>(std::max(params.roi.height, 0))),
+      inverse_(windowFrames_ + 1) {
+    for (std::size_t n = 1; n < inverse_.size(); ++n)
+        inverse_[n] = 1.0 / static_cast<double>(n);
+}
 
 void NoiseWindow::add(const frame::DepthData& depth, std::optional<double> planeFitRmsMm) {
     if (!roiInside(params_.roi, depth.depthMeters.width, depth.depthMeters.height)) {
@@ -469,7 +485,15 @@ void NoiseWindow::add(const frame::DepthData& depth, std::optional<double> plane
 
 void NoiseWindow::add(const frame::DepthData& depth, std::span<const SampleCause> causes,
                       std::optional<double> planeFitRmsMm) {
-    WindowFrame f{std::vector<float>(pixels_.size(), std::numeric_limits<float>::quiet_NaN()), planeFitRmsMm};
+    // The frame leaving the window goes first, and its buffer takes the new frame: no allocation per frame.
+    WindowFrame f;
+    if (window_.size() >= windowFrames_) {
+        leave(window_.front());
+        f = std::move(window_.front());
+        window_.pop_front();
+    }
+    f.depthMeters.assign(pixels_.size(), std::numeric_limits<float>::quiet_NaN());
+    f.planeFitRmsMm = planeFitRmsMm;
     const Roi& r = params_.roi;
     if (causes.size() == pixels_.size() && roiInside(r, depth.depthMeters.width, depth.depthMeters.height)) {
         std::size_t i = 0;
@@ -483,10 +507,6 @@ void NoiseWindow::add(const frame::DepthData& depth, std::span<const SampleCause
     }
     enter(f);
     window_.push_back(std::move(f));
-    if (window_.size() > windowFrames_) {
-        leave(window_.front());
-        window_.pop_front();
-    }
 }
 
 // Welford's update: the mean and the sum of squared deviations without the cancellation of sum(x^2) - n m^2.
@@ -498,7 +518,7 @@ void NoiseWindow::enter(const WindowFrame& f) {
         Running& p = pixels_[i];
         ++p.count;
         const double delta = x - p.mean;
-        p.mean += delta / p.count;
+        p.mean += delta * inverse_[p.count];
         p.m2 += delta * (x - p.mean);
     }
 }
@@ -514,7 +534,7 @@ void NoiseWindow::leave(const WindowFrame& f) {
             p = {};
             continue;
         }
-        const double before = (p.count * p.mean - x) / (p.count - 1);
+        const double before = (p.count * p.mean - x) * inverse_[p.count - 1];
         p.m2 = std::max(0.0, p.m2 - (x - before) * (x - p.mean));
         p.mean = before;
         --p.count;

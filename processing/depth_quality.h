@@ -187,6 +187,7 @@ private:
     std::size_t windowFrames_;
     std::deque<WindowFrame> window_;
     std::vector<Running> pixels_;
+    std::vector<double> inverse_; // 1 / n for every count a pixel can reach: multiplications, not divisions
 };
 
 } // namespace dc::processing
