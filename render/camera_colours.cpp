@@ -9,6 +9,22 @@ namespace dc::render {
 
 namespace {
 
+void setDepthIntrinsics(const gl::Program& program, const FrameTextures& textures) {
+    const frame::Intrinsics& k = textures.depthIntrinsics();
+    glUniform4f(program.uniformLocation("depthIntrinsics"), static_cast<float>(k.fx),
+                static_cast<float>(k.fy), static_cast<float>(k.cx), static_cast<float>(k.cy));
+}
+
+// Points drawn into a depth buffer where the nearest sample over a pixel is the one kept.
+void nearestPointWinsState() {
+    glDisable(GL_BLEND);
+    glDisable(GL_SCISSOR_TEST);
+    glDisable(GL_CULL_FACE);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+}
+
 constexpr int kFormatNone = 0, kFormatNv12 = 1, kFormatYuyv = 2, kFormatRgb = 3;
 
 // Draws every sample with depth as a square of its footprint into the colour camera's view, at the depth
@@ -375,19 +391,12 @@ void CameraColours::renderNearest(const FrameTextures& textures) {
     }
     glBindFramebuffer(GL_FRAMEBUFFER, nearestFramebuffer_.id());
     glViewport(0, 0, width, height);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
+    nearestPointWinsState();
     glClearDepth(1.0);
     glClear(GL_DEPTH_BUFFER_BIT);
     glEnable(GL_PROGRAM_POINT_SIZE);
     glUseProgram(nearestProgram_.id());
-    const frame::Intrinsics& k = textures.depthIntrinsics();
-    glUniform4f(nearestProgram_.uniformLocation("depthIntrinsics"), static_cast<float>(k.fx),
-                static_cast<float>(k.fy), static_cast<float>(k.cx), static_cast<float>(k.cy));
+    setDepthIntrinsics(nearestProgram_, textures);
     setUniforms(nearestProgram_, textures);
     textures.bind();
     bind();
@@ -432,9 +441,7 @@ void CameraColours::renderSeenColours(RenderTarget& target, const FrameTextures&
     glDisable(GL_SCISSOR_TEST);
     glDisable(GL_DEPTH_TEST);
     glUseProgram(seenProgram_.id());
-    const frame::Intrinsics& k = whole.depthIntrinsics();
-    glUniform4f(seenProgram_.uniformLocation("depthIntrinsics"), static_cast<float>(k.fx),
-                static_cast<float>(k.fy), static_cast<float>(k.cx), static_cast<float>(k.cy));
+    setDepthIntrinsics(seenProgram_, whole);
     glUniform1i(seenProgram_.uniformLocation("sampleStep"), step);
     glUniform2i(seenProgram_.uniformLocation("outputSize"), target.width(), target.height());
     setUniforms(seenProgram_, whole);
@@ -459,18 +466,11 @@ void CameraColours::renderAlignedDepth(RenderTarget& target, const FrameTextures
     // there are not the framebuffer's and are not drawn).
     const int margin = static_cast<int>(std::ceil(p.marginPixels));
     glViewport(-margin, -margin, width + 2 * margin, height + 2 * margin);
-    glDisable(GL_BLEND);
-    glDisable(GL_SCISSOR_TEST);
-    glDisable(GL_CULL_FACE);
-    glEnable(GL_DEPTH_TEST);
-    glDepthFunc(GL_LESS);
-    glDepthMask(GL_TRUE);
+    nearestPointWinsState();
     glEnable(GL_PROGRAM_POINT_SIZE);
     const gl::Program& program = alignedPrograms_[static_cast<std::size_t>(colours.colormap)];
     glUseProgram(program.id());
-    const frame::Intrinsics& k = textures.depthIntrinsics();
-    glUniform4f(program.uniformLocation("depthIntrinsics"), static_cast<float>(k.fx),
-                static_cast<float>(k.fy), static_cast<float>(k.cx), static_cast<float>(k.cy));
+    setDepthIntrinsics(program, textures);
     glUniform2i(program.uniformLocation("cameraSize"), width, height);
     glUniform1i(program.uniformLocation("topDown"), 1);
     glUniform1i(program.uniformLocation("outputHeight"), height);

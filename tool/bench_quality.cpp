@@ -2,62 +2,35 @@
 
 #include "base/files.h"
 #include "base/log.h"
+#include "devices/synthetic/synthetic_scene.h"
 #include "processing/depth_quality.h"
 #include "tool/bench_frames.h"
+#include "tool/bench_median.h"
 #include "tool/options.h"
 
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <cstdio>
 #include <functional>
-#include <random>
 #include <vector>
 
 namespace dc::tool {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
 constexpr int kDepthWidth = 1280;
 constexpr int kDepthHeight = 720;
 constexpr int kDistinctFrames = 8;
 constexpr int kNoiseWindowFrames = 30;
 
-// The median of `runs` timed calls of work(i), after a few untimed ones that warm caches and allocations.
-double medianMs(int runs, const std::function<void(int)>& work) {
-    for (int i = 0; i < 3; ++i)
-        work(i);
-    std::vector<double> ms;
-    for (int i = 0; i < runs; ++i) {
-        const auto start = Clock::now();
-        work(i);
-        ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-    }
-    std::nth_element(ms.begin(), ms.begin() + static_cast<std::ptrdiff_t>(ms.size() / 2), ms.end());
-    return ms[ms.size() / 2];
-}
-
-// What the figures are made for: a flat target 1.5 m away, turned 10 degrees about the vertical axis, with
-// 1 mm of Gaussian depth noise and 2 % of the samples missing, in `count` distinct frames.
+// What the figures are made for: the synthetic camera's flat target (synthetic:plane=1.5,10,1), a wall
+// 1.5 m away turned 10 degrees about the vertical axis with 1 mm of depth noise, in `count` distinct frames.
 std::vector<frame::DepthData> flatTarget(const frame::Intrinsics& k, int count) {
-    constexpr double kDistanceMeters = 1.5, kTiltRadians = 10.0 * 3.14159265358979 / 180.0;
-    const double nx = std::sin(kTiltRadians), nz = std::cos(kTiltRadians);
-    std::mt19937 random(26);
-    std::normal_distribution<float> noise(0.0f, 0.001f);
-    std::uniform_real_distribution<float> hole(0.0f, 1.0f);
-    std::vector<frame::DepthData> frames(static_cast<std::size_t>(count));
-    for (frame::DepthData& d : frames) {
-        d.depthMeters = frame::Plane<float>(k.width, k.height);
-        for (int y = 0; y < k.height; ++y)
-            for (int x = 0; x < k.width; ++x) {
-                const double z = kDistanceMeters * nz / (nx * (x - k.cx) / k.fx + nz);
-                d.depthMeters.at(x, y) = hole(random) < 0.02f ? 0.0f : static_cast<float>(z) + noise(random);
-            }
-    }
+    std::vector<frame::DepthData> frames;
+    for (int i = 0; i < count; ++i)
+        frames.push_back(
+            devices::flatTargetDepth(k, {1.5, 10.0, 1.0}, true, 1, static_cast<std::uint64_t>(i)));
     return frames;
 }
 
@@ -120,7 +93,7 @@ nlohmann::json runCase(const char* scene, const std::vector<frame::DepthData>& f
                        {"roiSamples", params.roi.width * params.roi.height},
                        {"validSamples", points.size()}};
     for (const Part& p : parts) {
-        const double ms = medianMs(runs, p.work);
+        const double ms = medianMs(runs, p.work, 3);
         std::printf("  %-74s %8.2f ms\n", p.name, ms);
         row[p.name] = ms;
     }

@@ -5,13 +5,13 @@
 #include "devices/synthetic/synthetic_device.h"
 #include "processing/point_colors.h"
 #include "processing/registration.h"
+#include "tool/bench_median.h"
 #include "tool/options.h"
 
 #include <nlohmann/json.hpp>
 #include <opencv2/core.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cstdio>
 #include <functional>
 #include <vector>
@@ -19,21 +19,6 @@
 namespace dc::tool {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// The median of `runs` timed calls of `work`, after one untimed call that warms caches and tables.
-double medianMs(int runs, const std::function<void()>& work) {
-    work();
-    std::vector<double> ms;
-    for (int i = 0; i < runs; ++i) {
-        const auto start = Clock::now();
-        work();
-        ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
-    }
-    std::nth_element(ms.begin(), ms.begin() + static_cast<std::ptrdiff_t>(ms.size() / 2), ms.end());
-    return ms[ms.size() / 2];
-}
 
 struct Case {
     const char* name;
@@ -88,7 +73,7 @@ int runBenchRegistration(const BenchRegistrationOptions& o) {
         cv::setNumThreads(threads);
         nlohmann::json row{{"threads", threads}};
         for (const Case& c : cases) {
-            const double ms = medianMs(o.runs, c.work);
+            const double ms = medianMs(o.runs, [&c](int) { c.work(); });
             std::printf("  %d thread(s)  %-34s %8.2f ms\n", threads, c.name, ms);
             row[c.name] = ms;
         }
