@@ -375,9 +375,13 @@ int runGui(const ViewerOptions& options) {
     const std::string iniPath = configDir + "/layout.ini";
     if (options.reset)
         std::filesystem::remove(iniPath, ec);
-    ui::Settings settings = loadSettings(settingsPath, options.reset);
-    if (options.confidence)
-        settings.cloud.minConfidence = *options.confidence;
+    auto chosen = chosenSettings(
+        options.settingsPath.empty() ? loadSettings(settingsPath, options.reset) : ui::Settings{}, options);
+    if (!chosen) { // runViewer checked the arguments already: only a file changed since can fail here
+        std::fprintf(stderr, "depthcloud: error: %s\n", chosen.error().message.c_str());
+        return kExitFailure;
+    }
+    ui::Settings settings = std::move(*chosen);
 
     WindowPtr window = openWindow(settings.window);
     if (!window) {

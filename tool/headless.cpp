@@ -115,10 +115,11 @@ int runHeadless(const ViewerOptions& options) {
     if (Status s = renderer.init(); !s)
         return fail(s.error().message);
     engine::Instrument instrument(std::move(*device), options.source);
-    ui::Settings settings; // headless snapshots use defaults, never a user's saved view
-    if (options.confidence)
-        settings.cloud.minConfidence = *options.confidence;
-    ui::Viewer viewer(instrument, renderer, settings);
+    // Headless snapshots start from the defaults, never a user's saved view; --settings and --set choose.
+    auto settings = chosenSettings({}, options);
+    if (!settings)
+        return fail(settings.error().message);
+    ui::Viewer viewer(instrument, renderer, *settings);
     viewer.resizeCloud(kCloudWidth, kCloudHeight);
     instrument.start();
     // A source that cannot start has said why already (the instrument logs it as an error, naming it).

@@ -74,11 +74,19 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
            "lowest confidence drawn in the cloud")
         ->transform(CLI::IsMember({"low", "medium", "high"}, CLI::ignore_case));
     app.add_flag("--reset", o.reset, "start with default settings and layout");
+    app.add_option("--settings", o.settingsPath,
+                   "start from this settings file (the JSON the window saves) instead of the saved one");
+    app.add_option(
+        "--set", o.sets,
+        "set one setting, SECTION.KEY=VALUE as named in the settings file (e.g. cloud.fillGaps=false); "
+        "repeatable, applied after --settings");
 }
 
 int runViewer(ViewerOptions o) {
     if (auto device = dc::devices::openSourceSpec(o.source); !device)
         return badArgument("--source: " + device.error().message);
+    if (auto settings = chosenSettings({}, o); !settings)
+        return badArgument(settings.error().message);
     if (!o.headless && !hasDisplay()) {
         dc::logInfo("no display found (DISPLAY and WAYLAND_DISPLAY are unset): running headless");
         o.headless = true;

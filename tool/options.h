@@ -1,9 +1,12 @@
 #pragma once
 
+#include "base/expected.h"
 #include "frame/frame.h"
+#include "ui/settings.h"
 
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace dc::tool {
 
@@ -18,7 +21,9 @@ struct ViewerOptions {
     std::optional<int> frames; // stop after this many frames (headless default: 60)
     std::string outDirectory;  // where headless runs (and GUI runs given --out) write their files
     std::optional<frame::Confidence> confidence;
-    bool reset = false; // ignore saved settings and layout
+    bool reset = false;            // ignore saved settings and layout
+    std::string settingsPath;      // --settings: read instead of the saved settings
+    std::vector<std::string> sets; // --set SECTION.KEY=VALUE, applied in order after them
 };
 
 struct BenchOptions {
@@ -29,6 +34,10 @@ struct BenchOptions {
     std::string jsonPath;    // also write the results as JSON here
     bool breakdown = false;  // also time the GL points frame without each part of the default view
 };
+
+// The settings a run starts from: `saved` (the user's, or the defaults for a headless run), or the
+// --settings file instead, then each --set in order and --confidence. An Error names the argument.
+Expected<ui::Settings> chosenSettings(ui::Settings saved, const ViewerOptions& options);
 
 int runHeadless(const ViewerOptions& options);
 // Returns kExitFailure with a message when no window can be opened.

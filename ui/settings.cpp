@@ -134,6 +134,50 @@ Expected<Settings> settingsFromJson(const std::string& text) {
     return s;
 }
 
+namespace {
+
+// Whether a field read back gives the value it was given: an enumerator out of range is not kept, a float
+// field rounds what it is given.
+bool sameValue(const json& given, const json& kept) {
+    if (given.is_number() && kept.is_number()) {
+        const double a = given.get<double>(), b = kept.get<double>();
+        return std::abs(a - b) <= 1e-6 * std::max(1.0, std::abs(a));
+    }
+    if (given.is_array() && kept.is_array() && given.size() == kept.size()) {
+        for (std::size_t i = 0; i < given.size(); ++i)
+            if (!sameValue(given[i], kept[i]))
+                return false;
+        return true;
+    }
+    return given == kept;
+}
+
+} // namespace
+
+Status applySetting(Settings& settings, const std::string& assignment) {
+    const auto equals = assignment.find('=');
+    if (equals == std::string::npos || equals == 0)
+        return Error{"'" + assignment + "': expected SECTION.KEY=VALUE (e.g. cloud.fillGaps=false)"};
+    const std::string name = assignment.substr(0, equals), text = assignment.substr(equals + 1);
+    const auto field =
+        std::find_if(settingFields().begin(), settingFields().end(), [&](const SettingField& f) {
+            return (f.section.empty() ? f.key : f.section + "." + f.key) == name;
+        });
+    if (field == settingFields().end())
+        return Error{"'" + name +
+                     "' is not a setting (the names are those of the settings file, SECTION.KEY)"};
+    json value = json::parse(text, nullptr, false);
+    if (value.is_discarded())
+        value = text;
+    Settings changed = settings;
+    field->read(value, changed);
+    sanitize(changed); // a value outside the field's range comes back changed
+    if (!sameValue(value, field->write(changed)))
+        return Error{"'" + name + "' cannot be " + text + " (a value like " + field->example.dump() + ")"};
+    settings = std::move(changed);
+    return {};
+}
+
 std::string configDirectory() {
     if (const char* xdg = std::getenv("XDG_CONFIG_HOME"); xdg && *xdg)
         return std::string(xdg) + "/depthcloud";

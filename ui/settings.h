@@ -121,6 +121,12 @@ std::string settingsToJson(const Settings& settings);
 // result is sanitized. A file that is not JSON at all gives an Error naming the parse failure.
 Expected<Settings> settingsFromJson(const std::string& text);
 
+// One `--set SECTION.KEY=VALUE`: the field of the settings file with that name (a top-level one by KEY
+// alone) takes VALUE, read as JSON (true, 2.5, [0.1, 0.2, 0.3]) or else as a string. An unknown name, a
+// value of another type or one out of the field's range is an Error naming it; the settings are then as
+// they were.
+Status applySetting(Settings& settings, const std::string& assignment);
+
 // $XDG_CONFIG_HOME/depthcloud, else $HOME/.config/depthcloud, else the current directory.
 std::string configDirectory();
 

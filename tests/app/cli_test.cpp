@@ -49,6 +49,10 @@ TEST_F(Cli, BadArgumentsExitWithTwoAndOneLineNamingTheArgument) {
         {"record --frames 1 missing/a.dcrec", "no such directory missing"},
         {"bench record --case nope", "--case"},
         {"bench replay --data nowhere", "--data"},
+        {"--headless --set cloud.nosuch=1", "--set 'cloud.nosuch' is not a setting"},
+        {"--headless --set cloud.path=9", "--set 'cloud.path' cannot be 9"},
+        {"--headless --set cloud.fillGaps", "--set 'cloud.fillGaps': expected SECTION.KEY=VALUE"},
+        {"--headless --settings nowhere.json", "--settings nowhere.json: cannot be read"},
     };
     for (const Case& c : cases) {
         const RunResult r = run(c.args);
@@ -56,6 +60,25 @@ TEST_F(Cli, BadArgumentsExitWithTwoAndOneLineNamingTheArgument) {
         EXPECT_NE(r.err.find(c.mentions), std::string::npos) << c.args << "\n" << r.err;
         EXPECT_EQ(lines(r.err), 1u) << "once, on one line: " << c.args << "\n" << r.err;
     }
+}
+
+// A scripted run measures what a person configured: --settings (the file the window saves) and --set.
+TEST_F(Cli, SettingsAndSetChooseWhatAHeadlessRunDraws) {
+    const auto cloudPathOf = [&](const std::string& arguments) {
+        const RunResult r = run("--headless --frames 2 --out out " + arguments);
+        EXPECT_EQ(r.exitCode, 0) << arguments << "\n" << r.err;
+        const std::string summary = readFile(dir_ / "out" / "summary.json");
+        const auto at = summary.find("\"cloudPath\"");
+        return at == std::string::npos ? std::string() : summary.substr(at, summary.find('\n', at) - at);
+    };
+    EXPECT_NE(cloudPathOf("").find("software GL"), std::string::npos)
+        << "llvmpipe chooses the splat by itself";
+    EXPECT_NE(cloudPathOf("--set cloud.path=1").find("GL points (chosen)"), std::string::npos);
+    { std::ofstream(dir_ / "points.json") << R"({"cloud": {"path": 1}})"; }
+    EXPECT_NE(cloudPathOf("--settings points.json").find("GL points (chosen)"), std::string::npos);
+    EXPECT_NE(cloudPathOf("--settings points.json --set cloud.path=2").find("CPU splat (chosen)"),
+              std::string::npos)
+        << "--set applies after --settings";
 }
 
 TEST_F(Cli, AnExistingRecordingIsABadArgumentAndStaysAsItWas) {

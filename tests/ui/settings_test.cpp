@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+#include <vector>
 
 namespace dc::ui {
 namespace {
@@ -129,6 +131,39 @@ TEST(Settings, MistypedAndOutOfRangeValuesFallBackOrClamp) {
     EXPECT_LE(r->cloud.nearMeters, 10.0f);
     EXPECT_LT(r->depthRange.minMeters, r->depthRange.maxMeters) << "an inverted range is repaired";
     EXPECT_TRUE(r->panels.cloud);
+}
+
+TEST(Settings, ASetNamesAFieldOfTheFileAndTakesAValueOfItsType) {
+    Settings s;
+    ASSERT_TRUE(applySetting(s, "cloud.fillGaps=false"));
+    EXPECT_FALSE(s.cloud.fillGaps);
+    ASSERT_TRUE(applySetting(s, "cloud.pointSizePixels=4.5"));
+    EXPECT_FLOAT_EQ(s.cloud.pointSizePixels, 4.5f);
+    ASSERT_TRUE(applySetting(s, "depthRange.colormap=1"));
+    EXPECT_EQ(static_cast<int>(s.depthRange.colormap), 1);
+    ASSERT_TRUE(applySetting(s, "record.directory=/tmp/takes here"));
+    EXPECT_EQ(s.record.directory, "/tmp/takes here");
+    ASSERT_TRUE(applySetting(s, "processing.fogColor=[0.25,0.5,0.75]"));
+    EXPECT_FLOAT_EQ(s.processing.fog.color[2], 0.75f);
+    ASSERT_TRUE(applySetting(s, "recentSources=[\"synthetic\"]"));
+    EXPECT_EQ(s.recentSources, std::vector<std::string>{"synthetic"});
+}
+
+TEST(Settings, ABadSetNamesItsProblemAndChangesNothing) {
+    Settings s;
+    s.cloud.fillGaps = true;
+    const Settings before = s;
+    for (const char* bad : {"cloud.fillGaps=3", "cloud.fillGaps=maybe", "cloud.path=9", "cloud.path=-1",
+                            "cloud.pointSizePixels=1000", "cloud.nosuch=1", "fillGaps=false",
+                            "cloud.fillGaps", "=1", "processing.fogColor=[1,2]"}) {
+        const Status status = applySetting(s, bad);
+        EXPECT_FALSE(status) << bad;
+        EXPECT_EQ(settingsToJson(s), settingsToJson(before)) << bad;
+    }
+    EXPECT_NE(applySetting(s, "cloud.path=9").error().message.find("'cloud.path' cannot be 9"),
+              std::string::npos);
+    EXPECT_NE(applySetting(s, "cloud.nosuch=1").error().message.find("'cloud.nosuch' is not a setting"),
+              std::string::npos);
 }
 
 TEST(Settings, SanitizeRemovesNonFiniteValues) {
