@@ -270,9 +270,11 @@ nlohmann::json readSummary(const std::string& dir) {
     return nlohmann::json::parse(in, nullptr, false);
 }
 
-// Xvfb's GL is llvmpipe: a camera-sized cloud goes the CPU splat path, the status line says so, and the
-// window shows more of the camera's frames than it drops.
-TEST(AppWindow, SoftwareGlDrawsA640x480CameraOnTheSplatPathAndKeepsUp) {
+// Xvfb's GL is llvmpipe: a camera-sized cloud goes the CPU splat path, the status line says so, and every
+// frame the camera delivered is accounted for, shown or dropped, but for the few still on their way (one in
+// the source's slot, one being processed, one waiting for the GL thread). Whether the window keeps up is a
+// speed, measured by `bench camera`, not asserted here: on a loaded machine it drops more than it shows.
+TEST(AppWindow, SoftwareGlDrawsA640x480CameraOnTheSplatPathAndAccountsForEveryFrame) {
     TempDir out, home;
     const RunResult r = run("XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1280x800x24' " +
                             binary() + " --source synthetic:640x480@30 --frames 300 --out " + out.str());
@@ -281,8 +283,11 @@ TEST(AppWindow, SoftwareGlDrawsA640x480CameraOnTheSplatPathAndKeepsUp) {
     ASSERT_FALSE(summary.is_discarded());
     EXPECT_EQ(summary["cloudPath"], "CPU splat (software GL)");
     EXPECT_EQ(summary["depthWidth"], 640);
-    EXPECT_GT(summary["frames"].get<int>(), 0);
-    EXPECT_GE(summary["frames"].get<int>(), summary["framesDropped"].get<int>());
+    const int shown = summary["frames"].get<int>(), dropped = summary["framesDropped"].get<int>();
+    const int delivered = summary["framesDelivered"].get<int>();
+    EXPECT_GT(shown, 0);
+    EXPECT_LE(shown + dropped, delivered);
+    EXPECT_GE(shown + dropped + 3, delivered);
 }
 
 // llvmpipe's swap does not wait for the display, so the window paces itself: a paused replay turning on
