@@ -12,8 +12,9 @@ namespace dc::processing {
 // confidence at or above the selected level. The cloud's vertex shader applies the same rule.
 inline bool keepSample(float depthMeters, std::uint8_t confidence, frame::Confidence minLevel,
                        float nearMeters) {
-    return std::isfinite(depthMeters) && depthMeters > 0.0f && depthMeters >= nearMeters &&
-           confidence >= static_cast<std::uint8_t>(minLevel);
+    // Bitwise: no branch, so that loops over samples vectorise.
+    return std::isfinite(depthMeters) & (depthMeters > 0.0f) & (depthMeters >= nearMeters) &
+           (confidence >= static_cast<std::uint8_t>(minLevel));
 }
 
 // Depth with every sample below `minLevel` (or invalid: NaN, inf, negative) set to 0 = no measurement.

@@ -38,6 +38,68 @@ bool CloudSplatter::makesPicture(const CloudParams& params) {
     return params.anchors.empty();
 }
 
+// Points in clip space, a coordinate per array, so that placing them vectorises. A point whose w is 0
+// lands nowhere (samples that are not drawn are written so rather than skipped, keeping the loops straight).
+struct CloudSplatter::ClipBatch {
+    std::vector<float> x, y, z, w, fill;
+
+    void resize(std::size_t n) {
+        for (auto* axis : {&x, &y, &z, &w, &fill})
+            axis->resize(n);
+    }
+};
+
+// Where each point of a batch lands: its first covered pixel, its size (0 outside the clip volume) and
+// its window depth's bits.
+struct CloudSplatter::Placed {
+    std::vector<int> x, y, size;
+    std::vector<std::uint32_t> depthBits;
+
+    void resize(std::size_t n) {
+        for (auto* v : {&x, &y, &size})
+            v->resize(n);
+        depthBits.resize(n);
+    }
+};
+
+namespace {
+
+// floor-free ceil through one truncating conversion: x86-64's baseline (SSE2) has no rounding
+// instruction, and std::ceil would keep the loop scalar.
+int ceilOf(float v) {
+    const auto i = static_cast<int>(v);
+    return i + static_cast<int>(v > static_cast<float>(i));
+}
+
+} // namespace
+
+// Window coordinates as GL computes them; the point covers the pixels whose centres fall in the
+// size x size square around it, at least pointSize wide and as wide as `fill` (the sample's footprint,
+// pixels, when gaps are filled) rounded up. Every lane is computed and those outside the clip volume
+// are given size 0, without a branch.
+void CloudSplatter::place(const ClipBatch& c, std::size_t n, int pointSize, Placed& out) const {
+    const float width = static_cast<float>(width_);
+    const float height = static_cast<float>(height_);
+    for (std::size_t i = 0; i < n; ++i) {
+        const float w = c.w[i];
+        const bool inside =
+            (w > 0.0f) & (std::abs(c.x[i]) <= w) & (std::abs(c.y[i]) <= w) & (std::abs(c.z[i]) <= w);
+        const float inverseW = 1.0f / w;
+        const float footprint = c.fill[i] * inverseW;
+        // Clamped before the conversion, NaN included, so that it stays in range on every lane.
+        const float wide =
+            footprint < kMaxFillPixels ? (footprint > 0.0f ? footprint : 0.0f) : kMaxFillPixels;
+        const int size = std::max(pointSize, ceilOf(wide));
+        const float offset = 0.5f * static_cast<float>(size) + 0.5f;
+        const float xw = (c.x[i] * inverseW * 0.5f + 0.5f) * width;
+        const float yw = (c.y[i] * inverseW * 0.5f + 0.5f) * height;
+        out.x[i] = ceilOf(inside ? xw - offset : 0.0f);
+        out.y[i] = ceilOf(inside ? yw - offset : 0.0f);
+        out.size[i] = inside ? size : 0;
+        out.depthBits[i] = std::bit_cast<std::uint32_t>(c.z[i] * inverseW * 0.5f + 0.5f);
+    }
+}
+
 template <class Project>
 void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, int height, Project&& project) {
     width_ = std::max(width, 0);
@@ -56,34 +118,39 @@ void CloudSplatter::run(int sourceRows, const CloudParams& params, int width, in
     }
     const int pointSize = std::max(1, static_cast<int>(std::lround(params.pointSizePixels)));
     const int bandRows = std::max(1, (height_ + kBands - 1) / kBands);
+    // The band of each row a splat may reach (it may start up to a splat's size above the image): a
+    // lookup, where a division per point costs more than the rest of placing it.
+    const int firstRow = -static_cast<int>(kMaxFillPixels) - pointSize;
+    std::vector<std::uint8_t> bandOfRow(static_cast<std::size_t>(height_ - firstRow + 1));
+    for (std::size_t r = 0; r < bandOfRow.size(); ++r)
+        bandOfRow[r] =
+            static_cast<std::uint8_t>(std::clamp((static_cast<int>(r) + firstRow) / bandRows, 0, kBands - 1));
+    const auto bandOf = [&](int row) {
+        return bandOfRow[static_cast<std::size_t>(std::clamp(row, firstRow, height_) - firstRow)];
+    };
     std::atomic<std::size_t> projected{0};
     processing::parallelRanges(kPieces, 1, [&](int first, int last) {
+        Placed placed;
         for (int piece = first; piece < last; ++piece) {
             auto& bands = splats_[static_cast<std::size_t>(piece)];
             std::size_t count = 0;
-            // Window coordinates as GL computes them; the point covers the pixels whose centres fall in
-            // the size x size square around it, at least pointSize wide and as wide as `fill` (the sample's
-            // footprint, pixels, when gaps are filled) rounded up.
-            const auto emit = [&](const glm::vec4& clip, std::uint32_t rgb, float fill) {
-                ++count;
-                if (!(clip.w > 0.0f) || std::abs(clip.x) > clip.w || std::abs(clip.y) > clip.w ||
-                    std::abs(clip.z) > clip.w)
-                    return;
-                const float inverseW = 1.0f / clip.w;
-                const int size = std::max(
-                    pointSize, static_cast<int>(std::min(std::ceil(fill * inverseW), kMaxFillPixels)));
-                const float offset = 0.5f * static_cast<float>(size) + 0.5f;
-                const float xw = (clip.x * inverseW * 0.5f + 0.5f) * static_cast<float>(width_);
-                const float yw = (clip.y * inverseW * 0.5f + 0.5f) * static_cast<float>(height_);
-                const float zw = clip.z * inverseW * 0.5f + 0.5f;
-                const Splat splat{static_cast<std::int16_t>(std::ceil(xw - offset)),
-                                  static_cast<std::int16_t>(std::ceil(yw - offset)),
-                                  static_cast<std::uint16_t>(size),
-                                  std::uint64_t{std::bit_cast<std::uint32_t>(zw)} << 32 | rgb};
-                const int firstBand = std::clamp(splat.y / bandRows, 0, kBands - 1);
-                const int lastBand = std::clamp((splat.y + size - 1) / bandRows, 0, kBands - 1);
-                for (int band = firstBand; band <= lastBand; ++band)
-                    bands[static_cast<std::size_t>(band)].push_back(splat);
+            const auto emit = [&](const ClipBatch& batch, std::size_t n, std::size_t kept,
+                                  const auto& rgbOf) {
+                count += kept;
+                placed.resize(n);
+                place(batch, n, pointSize, placed);
+                for (std::size_t i = 0; i < n; ++i) {
+                    const int size = placed.size[i];
+                    if (size == 0)
+                        continue;
+                    const Splat splat{static_cast<std::int16_t>(placed.x[i]),
+                                      static_cast<std::int16_t>(placed.y[i]),
+                                      static_cast<std::uint16_t>(size),
+                                      std::uint64_t{placed.depthBits[i]} << 32 | rgbOf(i)};
+                    const int lastBand = bandOf(splat.y + size - 1);
+                    for (int band = bandOf(splat.y); band <= lastBand; ++band)
+                        bands[static_cast<std::size_t>(band)].push_back(splat);
+                }
             };
             project(sourceRows * piece / kPieces, sourceRows * (piece + 1) / kPieces, emit);
             projected += count;
@@ -124,6 +191,40 @@ void CloudSplatter::paint(int band, int bandRows, std::uint32_t background) {
         picture_[i] = keys_[i] == kEmpty ? background : static_cast<std::uint32_t>(keys_[i]) | kOpaque;
 }
 
+// Which samples the cloud draws, as processing::keepSample decides.
+struct CloudSplatter::SampleFilter {
+    frame::Confidence minConfidence;
+    float nearMeters;
+};
+
+// One row of samples in clip space: each column's ray through the view-projection (x, y, z and w
+// arrays) plus the row's, scaled by the depth, plus the translation; what is not drawn gets w = 0. The
+// parameters are copied to locals so that no store to the batch can alias them, and the loop vectorises.
+std::size_t CloudSplatter::projectRow(const float* z, const std::uint8_t* levels,
+                                      const std::array<std::vector<float>, 4>& columns, glm::vec4 row,
+                                      glm::vec4 translation, SampleFilter filter, float footprint,
+                                      ClipBatch& batch) {
+    const std::size_t n = batch.x.size();
+    const float *cx = columns[0].data(), *cy = columns[1].data(), *cz = columns[2].data(),
+                *cw = columns[3].data();
+    // The batch's arrays are its own (restrict): without that, the run-time overlap checks of eleven
+    // arrays are more than the vectoriser will make.
+    float *__restrict x = batch.x.data(), *__restrict y = batch.y.data(), *__restrict zc = batch.z.data(),
+                      *__restrict w = batch.w.data(), *__restrict fill = batch.fill.data();
+    unsigned kept = 0;
+    for (std::size_t u = 0; u < n; ++u) {
+        const bool keep = processing::keepSample(z[u], levels[u], filter.minConfidence, filter.nearMeters);
+        kept += keep ? 1u : 0u;
+        const float clipW = z[u] * (cw[u] + row.w) + translation.w;
+        x[u] = z[u] * (cx[u] + row.x) + translation.x;
+        y[u] = z[u] * (cy[u] + row.y) + translation.y;
+        zc[u] = z[u] * (cz[u] + row.z) + translation.z;
+        w[u] = keep ? clipW : 0.0f;
+        fill[u] = z[u] * footprint;
+    }
+    return kept;
+}
+
 void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Intrinsics& k,
                                  const processing::RgbImage* colors, const CloudParams& params, int width,
                                  int height) {
@@ -141,9 +242,6 @@ void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Int
     const float inverseRange = 1.0f / std::max(params.rangeMaxMeters - params.rangeMinMeters, 1e-6f);
     const glm::mat4& m = params.viewProjection;
     const float footprint = footprintPixelsPerDepth(params, k, width, height);
-    std::vector<glm::vec4> columns(static_cast<std::size_t>(w));
-    for (int u = 0; u < w; ++u)
-        columns[static_cast<std::size_t>(u)] = static_cast<float>((u - k.cx) / k.fx) * m[0];
     const auto colorOf = [&](std::size_t i, float z, std::uint8_t level) -> std::uint32_t {
         switch (params.coloring) {
         case PointColoring::Camera:
@@ -160,17 +258,28 @@ void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Int
         }
         return kMidGray;
     };
+    std::array<std::vector<float>, 4> columns; // x, y, z, w of each column's ray through m
+    for (auto& axis : columns)
+        axis.resize(static_cast<std::size_t>(w));
+    for (int u = 0; u < w; ++u) {
+        const glm::vec4 c = static_cast<float>((u - k.cx) / k.fx) * m[0];
+        for (int a = 0; a < 4; ++a)
+            columns[static_cast<std::size_t>(a)][static_cast<std::size_t>(u)] = c[a];
+    }
     run(h, params, width, height, [&](int firstRow, int lastRow, const auto& emit) {
+        const SampleFilter keep{params.minConfidence, params.nearMeters};
+        ClipBatch batch;
+        batch.resize(static_cast<std::size_t>(w));
+        // Without a confidence map every sample counts as high.
+        const std::vector<std::uint8_t> allHigh(hasConfidence ? 0 : static_cast<std::size_t>(w), 2);
         for (int v = firstRow; v < lastRow; ++v) {
             const glm::vec4 row = static_cast<float>((v - k.cy) / k.fy) * m[1] + m[2];
-            for (int u = 0; u < w; ++u) {
-                const std::size_t i = static_cast<std::size_t>(v) * w + u;
-                const float z = depth.depthMeters.pixels[i];
-                const std::uint8_t level = hasConfidence ? depth.confidence.pixels[i] : 2;
-                if (processing::keepSample(z, level, params.minConfidence, params.nearMeters))
-                    emit(z * (columns[static_cast<std::size_t>(u)] + row) + m[3], colorOf(i, z, level),
-                         z * footprint);
-            }
+            const std::size_t first = static_cast<std::size_t>(v) * static_cast<std::size_t>(w);
+            const float* z = &depth.depthMeters.pixels[first];
+            const std::uint8_t* levels = hasConfidence ? &depth.confidence.pixels[first] : allHigh.data();
+            const std::size_t kept = projectRow(z, levels, columns, row, m[3], keep, footprint, batch);
+            emit(batch, static_cast<std::size_t>(w), kept,
+                 [&](std::size_t u) { return colorOf(first + u, z[u], levels[u]); });
         }
     });
 }
@@ -182,10 +291,21 @@ void CloudSplatter::splatWorld(const std::vector<processing::WorldPoint>& points
     const int rows = static_cast<int>((count + kPerRow - 1) / kPerRow);
     const glm::mat4& m = params.worldToClip;
     run(rows, params, width, height, [&](int firstRow, int lastRow, const auto& emit) {
-        const std::size_t end = std::min(count, static_cast<std::size_t>(lastRow) * kPerRow);
-        for (std::size_t i = static_cast<std::size_t>(firstRow) * kPerRow; i < end; ++i) {
-            const processing::WorldPoint& p = points[i];
-            emit(m * glm::vec4(p.x, p.y, p.z, 1.0f), p.rgba & 0xffffffu, 0.0f);
+        ClipBatch batch;
+        batch.resize(kPerRow);
+        for (int r = firstRow; r < lastRow; ++r) {
+            const std::size_t first = static_cast<std::size_t>(r) * kPerRow;
+            const std::size_t n = std::min(count, first + kPerRow) - first;
+            for (std::size_t i = 0; i < n; ++i) {
+                const processing::WorldPoint& p = points[first + i];
+                const glm::vec4 clip = m * glm::vec4(p.x, p.y, p.z, 1.0f);
+                batch.x[i] = clip.x;
+                batch.y[i] = clip.y;
+                batch.z[i] = clip.z;
+                batch.w[i] = clip.w;
+                batch.fill[i] = 0.0f;
+            }
+            emit(batch, n, n, [&](std::size_t i) { return points[first + i].rgba & 0xffffffu; });
         }
     });
 }

@@ -64,8 +64,16 @@ public:
     };
 
 private:
+    struct ClipBatch;
+    struct Placed;
+    struct SampleFilter;
+    static std::size_t projectRow(const float* z, const std::uint8_t* levels,
+                                  const std::array<std::vector<float>, 4>& columns, glm::vec4 row,
+                                  glm::vec4 translation, SampleFilter filter, float footprint,
+                                  ClipBatch& batch);
     template <class Project>
     void run(int sourceRows, const CloudParams& params, int width, int height, Project&& project);
+    void place(const ClipBatch& batch, std::size_t n, int pointSize, Placed& out) const;
     void write(int band, int bands);
     void paint(int band, int bandRows, std::uint32_t background);
 
@@ -77,7 +85,6 @@ private:
     // [piece][band]: the splats piece `piece` of the sources made that touch rows of band `band`. Kept
     // between frames so a steady cloud allocates nothing.
     std::vector<std::vector<std::vector<Splat>>> splats_;
-    std::vector<std::size_t> counts_;
     std::array<std::uint32_t, 1024> colormapTable_{};
 };
 
