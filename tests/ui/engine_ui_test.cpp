@@ -275,9 +275,10 @@ TEST_F(EngineUiTest, TheConfidenceEstimateRunsOnlyWhileSomethingReadsConfidence)
     devices::SyntheticConfig config = smallScene();
     auto frames = std::vector<frame::FramePtr>();
     devices::SyntheticDevice device(config);
-    ASSERT_TRUE(device.open() && device.start());
+    ASSERT_TRUE(device.open());
     for (int i = 0; i < 4; ++i) {
-        auto f = std::make_shared<frame::Frame>(*device.capture(std::chrono::seconds(1)).frame);
+        auto f =
+            std::make_shared<frame::Frame>(*device.makeFrame(static_cast<std::uint64_t>(i), i / config.fps));
         f->sceneDepth->confidence = {};
         frames.push_back(f);
     }
@@ -487,8 +488,8 @@ TEST_F(EngineUiTest, PanelsShownSmallerThanTheirMapDrawEveryNthSampleAndASnapsho
     config.depthWidth = 1024;
     config.depthHeight = 768;
     devices::SyntheticDevice device(config);
-    ASSERT_TRUE(device.open() && device.start());
-    const auto f = std::make_shared<frame::Frame>(*device.capture(std::chrono::seconds(1)).frame);
+    ASSERT_TRUE(device.open());
+    const auto f = std::make_shared<frame::Frame>(*device.makeFrame(0, 0.0));
     Settings settings;
     settings.cloud.motion.enabled = false;
     start(std::make_unique<devices::FrameListDevice>(std::vector<frame::FramePtr>{f}, 60.0), "large depth",
@@ -531,8 +532,8 @@ TEST_F(EngineUiTest, PanelsShownSmallerThanTheirMapDrawEveryNthSampleAndASnapsho
 
 TEST_F(EngineUiTest, TheInfraredPanelsImageIsMadeOnlyWhileThePanelIsShown) {
     devices::SyntheticDevice device(smallScene());
-    ASSERT_TRUE(device.open() && device.start());
-    auto f = std::make_shared<frame::Frame>(*device.capture(std::chrono::seconds(1)).frame);
+    ASSERT_TRUE(device.open());
+    auto f = std::make_shared<frame::Frame>(*device.makeFrame(0, 0.0));
     frame::Plane<std::uint16_t> infrared(32, 24);
     for (std::size_t i = 0; i < infrared.pixels.size(); ++i)
         infrared.pixels[i] = static_cast<std::uint16_t>(i * 37 % 1000);
