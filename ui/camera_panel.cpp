@@ -6,7 +6,7 @@ PanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOver
                             const ProbeSource& probe, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kCameraTitle, open, result)) {
-        ImGui::End();
+        endImagePanel({});
         return result;
     }
     const ImageRect shown =
@@ -14,7 +14,7 @@ PanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOver
     if (view.depthOverlay)
         drawOverlay(depthOverlay, shown, view.overlayOpacity);
     interactWithImage(shown, probe, result);
-    ImGui::End();
+    endImagePanel(shown);
     return result;
 }
 

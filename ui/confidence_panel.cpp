@@ -17,17 +17,20 @@ PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool es
                                 const ProbeSource& probe, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kConfidenceTitle, open, result)) {
-        ImGui::End();
+        endImagePanel({});
         return result;
     }
     if (!available) {
         ImGui::TextWrapped("This source provides no confidence: every depth sample is treated as high.");
-        ImGui::End();
+        endImagePanel({});
         return result;
     }
     const float legendHeight = ImGui::GetFrameHeightWithSpacing();
-    if (ImGui::BeginChild("##confidence", ImVec2(0.0f, -legendHeight)))
-        interactWithImage(drawImage(image, ImageFit::Fit, "No confidence yet."), probe, result);
+    ImageRect shown;
+    if (ImGui::BeginChild("##confidence", ImVec2(0.0f, -legendHeight))) {
+        shown = drawImage(image, ImageFit::Fit, "No confidence yet.");
+        interactWithImage(shown, probe, result);
+    }
     ImGui::EndChild();
     legendEntry("low", ImVec4(1, 0, 0, 1));
     ImGui::SameLine();
@@ -40,7 +43,7 @@ PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool es
         if (ImGui::IsItemHovered())
             ImGui::SetTooltip("The camera reports none: estimated from holes, local variance and stability.");
     }
-    ImGui::End();
+    endImagePanel(shown);
     return result;
 }
 

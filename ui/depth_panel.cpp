@@ -41,19 +41,20 @@ PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, 
                            const ProbeSource& probe, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kDepthTitle, open, result)) {
-        ImGui::End();
+        endImagePanel({});
         return result;
     }
     const float legendHeight = ImGui::GetTextLineHeight() * 0.6f + ImGui::GetTextLineHeightWithSpacing() +
                                ImGui::GetStyle().ItemSpacing.y * 2.0f;
+    ImageRect shown;
     if (ImGui::BeginChild("##depth", ImVec2(0.0f, -legendHeight))) {
-        const ImageRect shown = drawImage(image, ImageFit::Fit, "No depth yet.");
+        shown = drawImage(image, ImageFit::Fit, "No depth yet.");
         drawOverlay(colour.image, shown, colour.opacity);
         interactWithImage(shown, probe, result);
     }
     ImGui::EndChild();
     drawLegend(legend);
-    ImGui::End();
+    endImagePanel(shown);
     return result;
 }
 

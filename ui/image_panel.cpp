@@ -1,12 +1,52 @@
 #include "ui/image_panel.h"
 
+#include <algorithm>
+
 namespace dc::ui {
 
+namespace {
+
+constexpr int kBackgroundChannel = 0;
+constexpr int kContentChannel = 1;
+
+// Fills [min, max) with `colour` except where `hole` (clamped to it) lies: up to four strips that share
+// the hole's edges exactly, so the two cover every pixel once between them.
+void fillAround(ImDrawList* list, ImVec2 min, ImVec2 max, const ImageRect& hole, ImU32 colour) {
+    const ImVec2 h0{std::clamp(hole.min.x, min.x, max.x), std::clamp(hole.min.y, min.y, max.y)};
+    const ImVec2 h1{std::clamp(hole.max.x, min.x, max.x), std::clamp(hole.max.y, min.y, max.y)};
+    if (h1.x <= h0.x || h1.y <= h0.y) {
+        list->AddRectFilled(min, max, colour);
+        return;
+    }
+    list->AddRectFilled(min, {max.x, h0.y}, colour);
+    list->AddRectFilled({min.x, h1.y}, max, colour);
+    list->AddRectFilled({min.x, h0.y}, {h0.x, h1.y}, colour);
+    list->AddRectFilled({h1.x, h0.y}, {max.x, h1.y}, colour);
+}
+
+} // namespace
+
 bool beginImagePanel(const char* title, bool* open, PanelResult& result) {
-    result.visible = ImGui::Begin(title, open);
+    result.visible = ImGui::Begin(title, open, ImGuiWindowFlags_NoBackground);
     result.windowPos = ImGui::GetWindowPos();
     result.windowSize = ImGui::GetWindowSize();
+    // The background goes into a channel drawn before the content, once the image's place is known.
+    ImDrawList* list = ImGui::GetWindowDrawList();
+    list->ChannelsSplit(2);
+    list->ChannelsSetCurrent(kContentChannel);
     return result.visible;
+}
+
+void endImagePanel(const ImageRect& opaque) {
+    ImDrawList* list = ImGui::GetWindowDrawList();
+    list->ChannelsSetCurrent(kBackgroundChannel);
+    // Where ImGui would fill the window's background (below the title bar), as it would fill it.
+    const ImVec2 pos = ImGui::GetWindowPos();
+    const ImVec2 size = ImGui::GetWindowSize();
+    fillAround(list, {pos.x, pos.y + ImGui::GetFrameHeight()}, {pos.x + size.x, pos.y + size.y}, opaque,
+               ImGui::GetColorU32(ImGuiCol_WindowBg));
+    list->ChannelsMerge();
+    ImGui::End();
 }
 
 void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result) {

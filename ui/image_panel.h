@@ -5,8 +5,15 @@
 namespace dc::ui {
 
 // The parts every image panel shares. beginImagePanel() opens the window and records its place in
-// `result`; like ImGui::Begin, it must be paired with ImGui::End() whatever it returns.
+// `result`; whatever it returns, it must be paired with endImagePanel().
+//
+// The panel's images are opaque, so the window's background is drawn around the image rather than under
+// it: on a software rasteriser a fill under each image is a panel-sized pass of every frame for pixels
+// the image then replaces.
 bool beginImagePanel(const char* title, bool* open, PanelResult& result);
+// Draws the window's background everywhere but `opaque` (the image drawImage() placed, or an empty rect
+// where none was) and ends the window.
+void endImagePanel(const ImageRect& opaque);
 
 // The width the image is shown at, the hover readout (the depth sample under the mouse, into
 // result.probe) and click-to-zoom, over an image drawn with drawImage().

@@ -29,19 +29,21 @@ PanelResult drawInfraredPanel(const PanelImage& image, const processing::Intensi
                               const ProbeSource& probe, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kInfraredTitle, open, result)) {
-        ImGui::End();
+        endImagePanel({});
         return result;
     }
     const float legendHeight = ImGui::GetTextLineHeight() * 0.6f + ImGui::GetTextLineHeightWithSpacing() +
                                ImGui::GetStyle().ItemSpacing.y * 2.0f;
+    ImageRect shown;
     if (ImGui::BeginChild("##infrared", ImVec2(0.0f, -legendHeight))) {
         // The depth sensor's own view: its pixels are the depth map's, so the hover reads the depth (and
         // the raw intensity) there.
-        interactWithImage(drawImage(image, ImageFit::Fit, "No infrared image yet."), probe, result);
+        shown = drawImage(image, ImageFit::Fit, "No infrared image yet.");
+        interactWithImage(shown, probe, result);
     }
     ImGui::EndChild();
     drawStretchLegend(range);
-    ImGui::End();
+    endImagePanel(shown);
     return result;
 }
 
