@@ -1,11 +1,27 @@
 #pragma once
 
 #include "frame/frame.h"
+#include "processing/depth_quality.h"
 #include "processing/pipeline.h"
 
 #include <cstddef>
+#include <optional>
 
 namespace dc::engine {
+
+// The Quality panel's question: the region of interest and how its samples are judged. The region is a
+// centred preset or a rectangle; the frame processor fits either to the depth map it is given, so a source
+// that changes size never gets a region outside its map.
+struct QualityDemand {
+    int roiPercent = 40;     // DQT's centred region, percent of width and height; 0: `roi`
+    processing::Roi roi;     // in the shown depth's pixels, when roiPercent is 0
+    int windowFrames = 30;   // the noise window's length
+    float nearMeters = 0.0f; // samples outside [near, far] are out of range
+    float farMeters = 10.0f;
+    float flyingThresholdMeters = 0.05f;     // processing::QualityParams::flyingThresholdMeters
+    std::optional<double> groundTruthMeters; // the target's true distance, for the Z accuracy
+    bool operator==(const QualityDemand&) const = default;
+};
 
 // What the UI shows this frame, in data terms (rerun's "query"): which products are visible, at what size,
 // with which settings. The frame processor runs exactly the stages this needs, again whenever it changes,
@@ -40,12 +56,14 @@ struct Demand {
     bool accumulate = false; // posed frames add their points to the world cloud
     std::size_t accumulateBudget = 1'000'000;
     float accumulateVoxelMeters = 0.005f;
+    std::optional<QualityDemand> quality; // the Quality panel is shown: its figures for every frame
 
     bool operator==(const Demand&) const = default;
 
     // Anything that shows depth or is derived from it.
     bool needsDepth() const {
-        return cloud || depthImage || confidencePanel || fog || aura || accumulate || automaticRange;
+        return cloud || depthImage || confidencePanel || fog || aura || accumulate || automaticRange ||
+               quality.has_value();
     }
     // The confidence panel, a level above "all", or the fog's confidence overlay.
     bool readsConfidence() const {

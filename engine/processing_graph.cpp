@@ -38,6 +38,31 @@ processing::ProcessingSettings depthSettings(const processing::ProcessingSetting
     return depth;
 }
 
+// The region of interest fitted to a width x height map: a preset centred in it, a rectangle clamped into
+// it (a source that changed size keeps a region, never one outside its map).
+processing::Roi fittedRoi(const QualityDemand& q, int width, int height) {
+    if (q.roiPercent > 0)
+        return processing::centredRoi(width, height, q.roiPercent);
+    if (width <= 0 || height <= 0)
+        return {};
+    processing::Roi r = q.roi;
+    r.x = std::clamp(r.x, 0, width - 1);
+    r.y = std::clamp(r.y, 0, height - 1);
+    r.width = std::clamp(r.width, 1, width - r.x);
+    r.height = std::clamp(r.height, 1, height - r.y);
+    return r;
+}
+
+processing::QualityParams qualityParams(const QualityDemand& q, const processing::Roi& roi) {
+    processing::QualityParams p;
+    p.roi = roi;
+    p.nearMeters = q.nearMeters;
+    p.farMeters = q.farMeters;
+    p.flyingThresholdMeters = q.flyingThresholdMeters;
+    p.groundTruthMeters = q.groundTruthMeters;
+    return p;
+}
+
 } // namespace
 
 bool ProcessingGraph::DepthKey::operator==(const DepthKey& o) const {
@@ -62,6 +87,10 @@ void ProcessingGraph::reset() {
     range_.clear();
     cloud_.clear();
     count_.clear();
+    quality_.clear();
+    noise_.reset();
+    noiseKey_.reset();
+    noiseFedNs_.reset();
 }
 
 std::uint64_t ProcessingGraph::runs(std::string_view stage) const {
@@ -120,6 +149,7 @@ processing::ShownFramePtr ProcessingGraph::run(const frame::FramePtr& captured, 
     addDepthOverCamera(*shown, *frame, demand);
     addDepthProducts(*shown, demand);
     addPointColours(*shown, *frame, demand);
+    addQuality(*shown, demand);
     timings_ = nullptr;
     return shown;
 }
@@ -315,6 +345,57 @@ processing::ShownCloud ProcessingGraph::shownCloud(const processing::ShownFrame&
                       cloud.intrinsics = d.intrinsics;
                       return processing::ShownCloud{cloud, nullptr, factor};
                   });
+}
+
+void ProcessingGraph::addQuality(processing::ShownFrame& shown, const Demand& demand) {
+    if (!demand.quality || !shown.depth.data)
+        return;
+    const QualityDemand& q = *demand.quality;
+    const processing::ShownDepth& depth = shown.depth;
+    const QualityKey key{depth.data, q, fittedRoi(q, depth.width(), depth.height()),
+                         depthSettings(demand.processing)};
+    shown.quality = cached(quality_, key, kQualityStage,
+                           [&] { return measureQuality(key, depth.intrinsics, *shown.frame); });
+}
+
+// Runs once per shown depth and question (the memo's key): a new capture's depth enters the noise window
+// once; a redo of the same frame for another panel's sake, or the same capture delivered again, does not
+// count it twice.
+std::shared_ptr<const processing::ShownQuality>
+ProcessingGraph::measureQuality(const QualityKey& key, const frame::Intrinsics& intrinsics,
+                                const frame::Frame& frame) {
+    const processing::QualityParams params = qualityParams(key.quality, key.roi);
+    auto out = std::make_shared<processing::ShownQuality>();
+    out->roi = key.roi;
+    out->sequence = frame.sequence;
+    QualityKey question = key;
+    question.depth = nullptr;
+    if (!noise_ || noiseKey_ != question) {
+        noise_.emplace(params, key.quality.windowFrames);
+        noiseKey_ = question;
+        noiseFedNs_.reset();
+    }
+    Expected<processing::FrameQuality> measured =
+        processing::measureFrameQuality(*key.depth, intrinsics, params);
+    if (measured) {
+        const auto rms = measured->plane ? std::optional(measured->plane->planeFitRmsMm) : std::nullopt;
+        if (noiseFedNs_ != frame.timestampNs)
+            noise_->add(*key.depth, measured->causes, rms);
+        noiseFedNs_ = frame.timestampNs;
+        out->figures = std::move(*measured);
+    } else {
+        out->error = measured.error().message;
+    }
+    const Expected<double> temporal = noise_->temporalNoiseMm();
+    const Expected<double> spatial = noise_->spatialNoiseMm();
+    if (temporal)
+        out->temporalNoiseMm = *temporal;
+    if (spatial)
+        out->spatialNoiseMm = *spatial;
+    out->noiseError = !temporal ? temporal.error().message : !spatial ? spatial.error().message : "";
+    out->windowFilled = noise_->frames();
+    out->windowFrames = static_cast<std::size_t>(std::max(key.quality.windowFrames, 1));
+    return out;
 }
 
 } // namespace dc::engine

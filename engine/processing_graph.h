@@ -30,6 +30,7 @@ inline constexpr std::string_view kColourOverlayStage = "colour overlay";
 inline constexpr std::string_view kDepthRangeStage = "depth range";
 inline constexpr std::string_view kPointCountStage = "point count";
 inline constexpr std::string_view kDecimationStage = "decimation";
+inline constexpr std::string_view kQualityStage = "depth quality";
 
 // Turns one frame and one demand into the ShownFrame the GL thread draws, running only the stages the
 // demand needs and, of those, only the ones whose inputs changed since the last run (each stage remembers
@@ -114,6 +115,14 @@ private:
         float nearMeters = 0.0f;
         bool operator==(const DecimationKey&) const = default;
     };
+    // The Quality panel's figures: of one shown depth, over one region, under one processing.
+    struct QualityKey {
+        std::shared_ptr<const frame::DepthData> depth;
+        QualityDemand quality;
+        processing::Roi roi; // quality's region fitted to the depth map
+        processing::ProcessingSettings settings;
+        bool operator==(const QualityKey&) const = default;
+    };
     // Runs `make` for `key` unless the memo already holds its result; timed and counted under `stage`.
     template <class Key, class Value, class Make>
     const Value& cached(Memo<Key, Value>& memo, const Key& key, std::string_view stage, Make&& make);
@@ -128,6 +137,9 @@ private:
                                                             const frame::Frame& frame, int width, int height);
     void addDepthProducts(processing::ShownFrame& shown, const Demand& demand);
     processing::ShownCloud shownCloud(const processing::ShownFrame& shown, const Demand& demand);
+    void addQuality(processing::ShownFrame& shown, const Demand& demand);
+    std::shared_ptr<const processing::ShownQuality>
+    measureQuality(const QualityKey& key, const frame::Intrinsics& intrinsics, const frame::Frame& frame);
 
     processing::Pipeline pipeline_;
     processing::CameraColorTable colourTable_;
@@ -151,6 +163,12 @@ private:
     Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;
     Memo<DecimationKey, processing::ShownCloud> cloud_;
     Memo<CountKey, std::size_t> count_;
+    Memo<QualityKey, std::shared_ptr<const processing::ShownQuality>> quality_;
+    // The noise window and the question it answers (QualityKey without the depth): frames enter it as
+    // their figures are made, and a question that changes starts it over.
+    std::optional<processing::NoiseWindow> noise_;
+    std::optional<QualityKey> noiseKey_;
+    std::optional<std::int64_t> noiseFedNs_; // the capture that entered it last (one re-delivered is not new)
     StageFault fault_;
     std::map<std::string, std::uint64_t, std::less<>> runs_;
     std::vector<processing::StageTiming>* timings_ = nullptr; // of the result being made

@@ -2,6 +2,7 @@
 
 #include "frame/frame.h"
 #include "processing/camera_image.h"
+#include "processing/depth_quality.h"
 #include "processing/infrared_image.h"
 #include "processing/pipeline.h"
 #include "processing/point_cloud.h"
@@ -45,6 +46,20 @@ struct DepthRangeMeters {
     bool operator==(const DepthRangeMeters&) const = default;
 };
 
+// The depth-quality figures of one shown frame over a region of interest (the Quality panel), with the
+// noise over the last frames measured with the same region and settings.
+struct ShownQuality {
+    Roi roi;                    // the region measured, in the shown depth's pixels (clamped to the map)
+    std::uint64_t sequence = 0; // the frame measured
+    std::optional<FrameQuality> figures; // unset: `error` says why (a region outside the map, ...)
+    std::string error;
+    std::optional<double> temporalNoiseMm; // unset: noiseError says why (too few frames yet, ...)
+    std::optional<double> spatialNoiseMm;
+    std::string noiseError;
+    std::size_t windowFilled = 0; // frames in the noise window
+    std::size_t windowFrames = 0; // of its length
+};
+
 // What one frame looks like under one demand: everything the GL thread uploads and draws, and nothing it
 // did not ask for (an image no panel shows is null). Immutable once published; each product is shared, so
 // a product that did not change between two results is the same object and need not be uploaded again.
@@ -73,6 +88,7 @@ struct ShownFrame {
     std::optional<DepthRangeMeters> automaticRange; // when the colormap follows the data
     ShownCloud cloud;                               // when the cloud or accumulation shows depth
     std::size_t pointCount = 0;                     // points the cloud draws (of `cloud`)
+    std::shared_ptr<const ShownQuality> quality;    // while the Quality panel is shown
     std::uint64_t demandGeneration = 0;             // the demand this answers
     bool newFrame = false;                          // a device frame's first result (not a redo)
     std::vector<StageTiming> timings;               // the stages that ran for this result

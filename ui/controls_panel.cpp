@@ -256,7 +256,8 @@ bool panelsSection(PanelVisibility& panels, bool infraredAvailable, ControlsResu
                                                      {"Log [L]", &panels.log},
                                                      {"Source [O]", &panels.source},
                                                      {"Fog [F]", &panels.fog},
-                                                     {"Aura [A]", &panels.aura}};
+                                                     {"Aura [A]", &panels.aura},
+                                                     {kQualityTitle, &panels.quality}};
     bool changed = false;
     for (std::size_t i = 0; i < std::size(toggles); ++i) {
         if (i % 2 == 1)

@@ -38,7 +38,7 @@ void drawLegend(const DepthLegend& legend) {
 } // namespace
 
 PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, const DepthLegend& legend,
-                           const ProbeSource& probe, bool* open) {
+                           const ProbeSource& probe, const RoiOverlay& roi, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kDepthTitle, open, result)) {
         endImagePanel({});
@@ -50,7 +50,9 @@ PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, 
     if (ImGui::BeginChild("##depth", ImVec2(0.0f, -legendHeight))) {
         shown = drawImage(image, ImageFit::Fit, "No depth yet.");
         drawOverlay(colour.image, shown, colour.opacity);
-        interactWithImage(shown, probe, result);
+        if (roi.outline && shown.max.x > shown.min.x)
+            outlineImageRect(shown, *roi.outline, IM_COL32(255, 255, 0, 255));
+        interactWithImage(shown, probe, result, roi.drawable && shown.max.x > shown.min.x);
     }
     ImGui::EndChild();
     drawLegend(legend);

@@ -49,15 +49,57 @@ void endImagePanel(const ImageRect& opaque) {
     ImGui::End();
 }
 
-void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result) {
+namespace {
+
+// An invisible button over the image holds the mouse while it drags, so the drag draws rather than moves
+// the window; the rectangle goes from where the button was pressed to where it is released.
+void dragRectangle(const ImageRect& shown, PanelResult& result) {
+    const ImVec2 size{shown.max.x - shown.min.x, shown.max.y - shown.min.y};
+    if (size.x < 1.0f || size.y < 1.0f)
+        return;
+    const ImVec2 cursor = ImGui::GetCursorScreenPos();
+    ImGui::SetCursorScreenPos(shown.min);
+    ImGui::InvisibleButton("##drawRect", size);
+    ImGui::SetCursorScreenPos(cursor);
+    const ImGuiIO& io = ImGui::GetIO();
+    const ImVec2 a = imageFractionAt(shown, io.MouseClickedPos[0]);
+    const ImVec2 b = imageFractionAt(shown, io.MousePos);
+    const ImVec4 rect{std::min(a.x, b.x), std::min(a.y, b.y), std::max(a.x, b.x), std::max(a.y, b.y)};
+    // Non-zero once the mouse moved past ImGui's drag threshold, on the frame it is released too.
+    const ImVec2 delta = ImGui::GetMouseDragDelta(ImGuiMouseButton_Left);
+    const bool dragged = delta.x != 0.0f || delta.y != 0.0f;
+    if (ImGui::IsItemActive() && dragged)
+        outlineImageRect(shown, rect, IM_COL32(255, 255, 255, 255));
+    if (!ImGui::IsItemDeactivated())
+        return;
+    if (dragged)
+        result.drawnRect = rect;
+    else
+        result.toggleZoom = true;
+}
+
+} // namespace
+
+void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result,
+                       bool dragDraws) {
     const float visible = shown.visibleMax.x - shown.visibleMin.x;
     result.shownWidth = visible > 0.0f ? static_cast<int>((shown.max.x - shown.min.x) / visible) : 0;
+    if (dragDraws)
+        dragRectangle(shown, result);
     const std::optional<ImVec2> at = imageFractionUnderMouse(shown);
     if (!at)
         return;
     result.probe = probeAtFraction(source, *at);
-    if (ImGui::IsMouseClicked(ImGuiMouseButton_Left))
+    if (!dragDraws && ImGui::IsMouseClicked(ImGuiMouseButton_Left))
         result.toggleZoom = true;
+}
+
+void outlineImageRect(const ImageRect& shown, ImVec4 fractions, ImU32 colour) {
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->PushClipRect(shown.min, shown.max, true);
+    draw->AddRect(screenAtFraction(shown, {fractions.x, fractions.y}),
+                  screenAtFraction(shown, {fractions.z, fractions.w}), colour, 0.0f, 0, 2.0f);
+    draw->PopClipRect();
 }
 
 } // namespace dc::ui

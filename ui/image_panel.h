@@ -16,7 +16,12 @@ bool beginImagePanel(const char* title, bool* open, PanelResult& result);
 void endImagePanel(const ImageRect& opaque);
 
 // The width the image is shown at, the hover readout (the depth sample under the mouse, into
-// result.probe) and click-to-zoom, over an image drawn with drawImage().
-void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result);
+// result.probe) and click-to-zoom, over an image drawn with drawImage(). With `dragDraws`, a left drag
+// across the image draws a rectangle (into result.drawnRect) and only a click that does not drag zooms.
+void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result,
+                       bool dragDraws = false);
+
+// Outlines a rectangle of the image (fractions: left, top, right, bottom), clipped to the part shown.
+void outlineImageRect(const ImageRect& shown, ImVec4 fractions, ImU32 colour);
 
 } // namespace dc::ui

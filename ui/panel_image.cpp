@@ -60,10 +60,22 @@ std::optional<ImVec2> imageFractionUnderMouse(const ImageRect& shown) {
     if (!ImGui::IsWindowHovered() || m.x < shown.min.x || m.y < shown.min.y || m.x >= shown.max.x ||
         m.y >= shown.max.y)
         return std::nullopt;
-    const float fx = (m.x - shown.min.x) / (shown.max.x - shown.min.x);
-    const float fy = (m.y - shown.min.y) / (shown.max.y - shown.min.y);
+    return imageFractionAt(shown, m);
+}
+
+ImVec2 imageFractionAt(const ImageRect& shown, ImVec2 screen) {
+    const float fx =
+        std::clamp((screen.x - shown.min.x) / std::max(shown.max.x - shown.min.x, 1.0f), 0.0f, 1.0f);
+    const float fy =
+        std::clamp((screen.y - shown.min.y) / std::max(shown.max.y - shown.min.y, 1.0f), 0.0f, 1.0f);
     return ImVec2(shown.visibleMin.x + fx * (shown.visibleMax.x - shown.visibleMin.x),
                   shown.visibleMin.y + fy * (shown.visibleMax.y - shown.visibleMin.y));
+}
+
+ImVec2 screenAtFraction(const ImageRect& shown, ImVec2 fraction) {
+    const ImVec2 visible{shown.visibleMax.x - shown.visibleMin.x, shown.visibleMax.y - shown.visibleMin.y};
+    return ImVec2(shown.min.x + (fraction.x - shown.visibleMin.x) / visible.x * (shown.max.x - shown.min.x),
+                  shown.min.y + (fraction.y - shown.visibleMin.y) / visible.y * (shown.max.y - shown.min.y));
 }
 
 } // namespace dc::ui

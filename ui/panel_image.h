@@ -42,6 +42,11 @@ void drawOverlay(const PanelImage& overlay, const ImageRect& shown, float opacit
 // the window is not hovered.
 std::optional<ImVec2> imageFractionUnderMouse(const ImageRect& shown);
 
+// A point on screen as a fraction of the whole image, clamped to the part shown.
+ImVec2 imageFractionAt(const ImageRect& shown, ImVec2 screen);
+// A fraction of the whole image as a point on screen (outside the shown part where it is cropped away).
+ImVec2 screenAtFraction(const ImageRect& shown, ImVec2 fraction);
+
 // Render targets are stored bottom-up (OpenGL), ImGui draws top-down: these UVs flip them upright.
 inline const ImVec2 kFlippedUv0{0.0f, 1.0f};
 inline const ImVec2 kFlippedUv1{1.0f, 0.0f};

@@ -4,6 +4,7 @@
 #include "engine/instrument.h"
 #include "processing/infrared_image.h"
 #include "processing/pipeline.h"
+#include "processing/shown_frame.h"
 #include "render/render_target.h"
 #include "ui/file_picker.h"
 #include "ui/log_store.h"
@@ -36,6 +37,7 @@ inline constexpr const char* kTimelineTitle = "Timeline";
 inline constexpr const char* kToastPrefix = "##toast";
 inline constexpr const char* kFogTitle = "Fog";
 inline constexpr const char* kAuraTitle = "Aura";
+inline constexpr const char* kQualityTitle = "Quality";
 
 // What every image panel reports back: the window's place (to restore it after a zoom), a request to
 // open it large or bring it back (a click on a 2D panel, the zoom button on the cloud), and the depth
@@ -49,6 +51,16 @@ struct PanelResult {
     // The width in pixels the whole image is shown at (a filled panel shows a crop of a wider image); 0
     // when none is shown. The GL thread draws the image at this size rather than at the data's own.
     int shownWidth = 0;
+    // A rectangle dragged across the image (the depth panel's region of interest), as fractions of the
+    // whole image: (left, top, right, bottom).
+    std::optional<ImVec4> drawnRect;
+};
+
+// The Quality panel's region on the depth panel: outlined there and, while it can be drawn, a left drag
+// across the image draws a new one (a click that does not drag still zooms).
+struct RoiOverlay {
+    bool drawable = false;
+    std::optional<ImVec4> outline; // the region measured, fractions of the image: (left, top, right, bottom)
 };
 
 // A mark drawn over the cloud: an anchor (a label at a point) or a measured segment between two.
@@ -108,7 +120,7 @@ struct PanelOverlay {
 // Depth in the chosen colormap, with the colormap and its range as a legend, and the camera's colour
 // aligned to it laid over it when `colour` has an image.
 PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, const DepthLegend& legend,
-                           const ProbeSource& probe, bool* open);
+                           const ProbeSource& probe, const RoiOverlay& roi, bool* open);
 
 // Confidence as red (low), green (medium), blue (high); `available` false says the source has none,
 // `estimated` that it was estimated from the depth because the camera reports none.
@@ -271,6 +283,10 @@ TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& 
 // setting changed.
 bool drawFogPanel(const PanelImage& image, processing::FogSettings& fog, bool* open);
 bool drawAuraPanel(const PanelImage& image, processing::AuraSettings& aura, bool* open);
+
+// The depth-quality figures of the frame shown over the region of interest (null: none measured yet),
+// with the presets and settings that choose them; returns whether a setting changed.
+bool drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings, bool* open);
 
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.
 float drawStatusBar(const StatusLine& status);

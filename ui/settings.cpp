@@ -49,6 +49,25 @@ void sanitize(processing::ProcessingSettings& p) {
 
 } // namespace
 
+// A preset outside the list, a rectangle off the map or a range upside down: each put back, so that the
+// engine is never asked an impossible question (the rectangle is fitted to each map there as well).
+void sanitize(QualitySettings& q) {
+    const QualitySettings d;
+    if (q.roiPercent != 0 && std::find(std::begin(kQualityRoiPresets), std::end(kQualityRoiPresets),
+                                       q.roiPercent) == std::end(kQualityRoiPresets))
+        q.roiPercent = d.roiPercent;
+    constexpr int kMaxPixels = 16384;
+    q.roiX = std::clamp(q.roiX, 0, kMaxPixels);
+    q.roiY = std::clamp(q.roiY, 0, kMaxPixels);
+    q.roiWidth = std::clamp(q.roiWidth, 0, kMaxPixels);
+    q.roiHeight = std::clamp(q.roiHeight, 0, kMaxPixels);
+    q.windowFrames = std::clamp(q.windowFrames, 2, 600);
+    q.groundTruthMm = std::clamp(finiteOr(q.groundTruthMm, 0.0f), 0.0f, 100000.0f);
+    q.nearMeters = std::clamp(finiteOr(q.nearMeters, d.nearMeters), 0.0f, 99.0f);
+    q.farMeters = std::clamp(finiteOr(q.farMeters, d.farMeters), q.nearMeters + 0.01f, 100.0f);
+    q.flyingThresholdMm = std::clamp(finiteOr(q.flyingThresholdMm, d.flyingThresholdMm), 1.0f, 10000.0f);
+}
+
 void sanitize(CloudSettings& c) {
     const Settings d;
     c.pointSizePixels = std::clamp(finiteOr(c.pointSizePixels, d.cloud.pointSizePixels), 1.0f, 16.0f);
@@ -80,6 +99,7 @@ void sanitize(Settings& s) {
     r.minMeters = std::clamp(finiteOr(r.minMeters, d.depthRange.minMeters), 0.0f, 99.0f);
     r.maxMeters = std::clamp(finiteOr(r.maxMeters, d.depthRange.maxMeters), r.minMeters + 0.01f, 100.0f);
     sanitize(s.processing);
+    sanitize(s.quality);
     const auto colormap = static_cast<int>(r.colormap);
     if (colormap < 0 || colormap >= render::kColormapCount)
         r.colormap = d.depthRange.colormap;

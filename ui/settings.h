@@ -25,6 +25,7 @@ struct PanelVisibility {
     bool fog = false;
     bool aura = false;
     bool infrared = false; // drawn only while the source delivers infrared
+    bool quality = false;  // the depth-quality figures (measured only while it is shown)
 };
 
 // Which cloud path draws (render::CloudPath): automatic picks the CPU splat on software GL.
@@ -84,6 +85,21 @@ struct DepthView {
     float overlayOpacity = 0.5f;
 };
 
+// The Quality panel's region of interest and how its samples are judged (engine::QualityDemand).
+inline constexpr int kQualityRoiPresets[] = {20, 40, 60, 80};
+struct QualitySettings {
+    int roiPercent = 40; // a centred preset (kQualityRoiPresets); 0: the rectangle below
+    int roiX = 0;        // the rectangle, in the shown depth's pixels (drawn on the depth panel)
+    int roiY = 0;
+    int roiWidth = 0;
+    int roiHeight = 0;
+    int windowFrames = 30;      // frames the temporal and spatial noise are measured over
+    float groundTruthMm = 0.0f; // the target's true distance, for the Z accuracy; 0: none entered
+    float nearMeters = 0.0f;    // samples outside [near, far] count as out of range
+    float farMeters = 10.0f;
+    float flyingThresholdMm = 50.0f; // processing::QualityParams::flyingThresholdMeters, in mm
+};
+
 // Where the window was and how large, in screen coordinates, as it was closed (width 0: never saved).
 struct WindowPlacement {
     int x = 0;
@@ -103,6 +119,7 @@ struct Settings {
     DepthView depthView;
     AccumulateSettings accumulate;
     RecordSettings record;
+    QualitySettings quality;
     processing::ProcessingSettings processing;
     std::vector<std::string> recentSources; // newest first, at most kMaxRecentSources
 };
@@ -114,6 +131,7 @@ void rememberSource(Settings& settings, const std::string& source);
 
 // Puts every field back into its valid range (a hand-edited or old settings file may hold anything).
 void sanitize(CloudSettings& cloud);
+void sanitize(QualitySettings& quality);
 void sanitize(Settings& settings);
 
 std::string settingsToJson(const Settings& settings);

@@ -41,6 +41,19 @@ render::OrbitView combine(const render::OrbitView& manual, const render::OrbitVi
             manual.zoom * automatic.zoom, manual.panMeters + automatic.panMeters};
 }
 
+engine::QualityDemand qualityDemand(const QualitySettings& s) {
+    engine::QualityDemand q;
+    q.roiPercent = s.roiPercent;
+    q.roi = {s.roiX, s.roiY, s.roiWidth, s.roiHeight};
+    q.windowFrames = s.windowFrames;
+    q.nearMeters = s.nearMeters;
+    q.farMeters = s.farMeters;
+    q.flyingThresholdMeters = s.flyingThresholdMm * 1e-3f;
+    if (s.groundTruthMm > 0.0f)
+        q.groundTruthMeters = static_cast<double>(s.groundTruthMm) * 1e-3;
+    return q;
+}
+
 } // namespace
 
 Viewer::Viewer(engine::Instrument& instrument, render::ViewRenderer& renderer, Settings settings)
@@ -84,6 +97,8 @@ engine::Demand Viewer::demandOf() const {
     d.accumulate = a.enabled;
     d.accumulateBudget = static_cast<std::size_t>(a.budgetThousands) * 1000;
     d.accumulateVoxelMeters = a.voxelMillimeters * 1e-3f;
+    if (show.quality)
+        d.quality = qualityDemand(settings_.quality);
     // Confidence colours read confidence like the confidence panel does.
     d.confidencePanel |= show.cloud && cloud.coloring == render::PointColoring::Confidence;
     return d;

@@ -104,6 +104,11 @@ public:
     const std::optional<StatsView>& shownFigures() const { return measured_; }
     // The result drawn last (null before the first).
     const processing::ShownFramePtr& shown() const { return shown_; }
+    // The Quality panel's figures of the frame shown (null while the panel is hidden or before a frame).
+    const processing::ShownQuality* quality() const { return shown_ ? shown_->quality.get() : nullptr; }
+    // A rectangle drawn on the depth panel (fractions of its image) becomes the Quality panel's region, in
+    // the shown depth's pixels.
+    void setDrawnRoi(const ImVec4& fractions);
     // The demand stated last.
     const engine::Demand& demand() const { return demand_; }
 
@@ -165,6 +170,8 @@ private:
     void drawCloud(float x, float y, float w, float h);
     void drawSidePanels(float x, float w, float h);
     void drawSourcePicker(float x, float y);
+    void drawQuality(float x, float y);
+    RoiOverlay roiOverlay() const;
     void drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, ImVec2 size);
     float drawMenuBar();
     void drawFileMenu();

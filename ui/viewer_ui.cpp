@@ -7,6 +7,7 @@
 #include <imgui_internal.h>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <string_view>
 #include <tuple>
@@ -199,8 +200,9 @@ void Viewer::resetLayout() {
     restoring_.clear();
     panelPlaces_.clear();
     // Each panel goes back to its default place the next time it is drawn, whenever that is.
-    layoutResets_ = {kCloudTitle, kDepthTitle,  kConfidenceTitle, kCameraTitle, kControlsTitle, kStatsTitle,
-                     kLogTitle,   kSourceTitle, kFogTitle,        kAuraTitle,   kInfraredTitle};
+    layoutResets_ = {kCloudTitle,    kDepthTitle, kConfidenceTitle, kCameraTitle,
+                     kControlsTitle, kStatsTitle, kLogTitle,        kSourceTitle,
+                     kFogTitle,      kAuraTitle,  kInfraredTitle,   kQualityTitle};
 }
 
 // File: what a person opens and saves, each also a shortcut or a button elsewhere.
@@ -279,7 +281,8 @@ float Viewer::drawMenuBar() {
             {kLogTitle, "L", &show.log},
             {kSourceTitle, "O", &show.source},
             {kFogTitle, "F", &show.fog},
-            {kAuraTitle, "A", &show.aura}};
+            {kAuraTitle, "A", &show.aura},
+            {kQualityTitle, nullptr, &show.quality}};
         for (const auto& [title, key, shown] : panels)
             ImGui::MenuItem(title, key, shown, shown != &show.infrared || infraredAvailable());
         ImGui::Separator();
@@ -299,6 +302,8 @@ void Viewer::afterPanel(const char* title, const PanelResult& result) {
         hoverProbe_ = result.probe;
     if (result.toggleZoom)
         setZoomedPanel(zoomed_ == title ? std::string() : std::string(title));
+    if (result.drawnRect)
+        setDrawnRoi(*result.drawnRect);
 }
 
 void Viewer::drawUi() {
@@ -341,6 +346,8 @@ void Viewer::drawUi() {
     drawBottomStrip(l.leftWidth, l.size.y - strip, cloudWidth, strip);
     if (show.source)
         drawSourcePicker(l.leftWidth + 40.0f, 40.0f);
+    if (show.quality)
+        drawQuality(l.leftWidth + 20.0f, 20.0f);
     if (timeline)
         drawTimeline(*replay, {l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});
     if (replay)
@@ -434,9 +441,9 @@ void Viewer::drawSidePanels(float x, float w, float height) {
         const PanelImage colour = !overlay ? PanelImage{}
                                   : gpu    ? imageOf(renderer_.colourOverDepthTarget())
                                            : imageOf(renderer_.colourOverDepthTexture());
-        afterDataPanel(kDepthTitle,
-                       drawDepthPanel(dataPanelImage(renderer_.depthTarget(), renderer_),
-                                      {colour, view.overlayOpacity}, legend_, probe, &show.depth));
+        afterDataPanel(kDepthTitle, drawDepthPanel(dataPanelImage(renderer_.depthTarget(), renderer_),
+                                                   {colour, view.overlayOpacity}, legend_, probe,
+                                                   roiOverlay(), &show.depth));
     }
     if (show.confidence) {
         place(kConfidenceTitle);
@@ -508,6 +515,40 @@ void Viewer::drawSourcePicker(float x, float y) {
         pendingSource_ = std::move(chosen);
 }
 
+// The Quality panel floats over the cloud, like the source picker: its figures are read beside the depth.
+void Viewer::drawQuality(float x, float y) {
+    placePanel(kQualityTitle, x, y, 360.0f, 470.0f);
+    drawQualityPanel(quality(), settings_.quality, &settings_.panels.quality);
+}
+
+// The region measured, outlined on the depth panel, which draws a new one while the Quality panel is shown.
+RoiOverlay Viewer::roiOverlay() const {
+    RoiOverlay overlay;
+    overlay.drawable = settings_.panels.quality && shown_ && shown_->depth.data;
+    const processing::ShownQuality* q = quality();
+    if (!overlay.drawable || !q || q->roi.width <= 0)
+        return overlay;
+    const float w = static_cast<float>(shown_->depth.width()), h = static_cast<float>(shown_->depth.height());
+    overlay.outline = ImVec4(static_cast<float>(q->roi.x) / w, static_cast<float>(q->roi.y) / h,
+                             static_cast<float>(q->roi.x + q->roi.width) / w,
+                             static_cast<float>(q->roi.y + q->roi.height) / h);
+    return overlay;
+}
+
+// Every depth pixel the rectangle touches is in the region (at least one).
+void Viewer::setDrawnRoi(const ImVec4& f) {
+    if (!shown_ || !shown_->depth.data)
+        return;
+    const float w = static_cast<float>(shown_->depth.width()), h = static_cast<float>(shown_->depth.height());
+    QualitySettings& q = settings_.quality;
+    q.roiX = static_cast<int>(std::floor(f.x * w));
+    q.roiY = static_cast<int>(std::floor(f.y * h));
+    q.roiWidth = std::max(static_cast<int>(std::ceil(f.z * w)) - q.roiX, 1);
+    q.roiHeight = std::max(static_cast<int>(std::ceil(f.w * h)) - q.roiY, 1);
+    q.roiPercent = 0;
+    sanitize(q);
+}
+
 void Viewer::drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, ImVec2 size) {
     ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
     ImGui::SetNextWindowSize(size, ImGuiCond_Always);
@@ -553,8 +594,11 @@ void Viewer::startExport() {
         logError("export: " + dir.error().message);
         return;
     }
+    // The files hold what the panels show, not the Quality panel's figures: none are measured for them.
+    engine::Demand shown = demand_;
+    shown.quality.reset();
     if (!instrument_.startExport(static_cast<exporting::ExportFormat>(timelineState_.format), *dir,
-                                 timelineState_.rangeStart, timelineState_.rangeEnd, demand_)) {
+                                 timelineState_.rangeStart, timelineState_.rangeEnd, shown)) {
         std::error_code ec;
         std::filesystem::remove(*dir, ec); // still empty: nothing was started
     }

@@ -221,6 +221,34 @@ TEST_F(ProcessingGraphTest, ANewFrameRerunsWhatItFeedsAndResetStartsOver) {
     EXPECT_EQ(runOn(1, everything()).size(), 10u);
 }
 
+// The Quality panel's figures: measured once per frame and question, off while nobody asks, each new frame
+// entering the noise window once, and a new region starting the window over.
+TEST_F(ProcessingGraphTest, QualityIsMeasuredOncePerFrameAndRegionAndOnlyWhileAsked) {
+    const std::string quality(kQualityStage);
+    EXPECT_EQ(runOn(0, cloudOnly(), true).count(quality), 0u) << "nobody asked";
+    EXPECT_FALSE(last_->quality);
+    Demand d = cloudOnly();
+    d.quality = QualityDemand{};
+    EXPECT_EQ(runOn(0, d).at(quality), 1u);
+    ASSERT_TRUE(last_->quality);
+    EXPECT_EQ(last_->quality->roi, processing::centredRoi(last_->depth.width(), last_->depth.height(), 40.0));
+    EXPECT_EQ(last_->quality->windowFilled, 1u);
+    EXPECT_EQ(runOn(0, d).count(quality), 0u) << "the same frame and question are not measured again";
+    EXPECT_EQ(runOn(1, d, true).at(quality), 1u);
+    EXPECT_EQ(last_->quality->windowFilled, 2u);
+    EXPECT_EQ(last_->quality->sequence, frames_[1]->sequence);
+    d.quality->roiPercent = 0;
+    d.quality->roi = {250, 180, 40, 40}; // partly off the 256x192 map
+    EXPECT_EQ(runOn(1, d).at(quality), 1u);
+    EXPECT_EQ(last_->quality->roi, (processing::Roi{250, 180, 6, 12})) << "clamped to the map";
+    EXPECT_EQ(last_->quality->windowFilled, 1u) << "another region starts the noise window over";
+    d.quality->roi = {0, 0, 1, 1}; // too few samples for a plane: said, not thrown
+    runOn(1, d);
+    ASSERT_TRUE(last_->quality->figures);
+    EXPECT_FALSE(last_->quality->figures->plane);
+    EXPECT_FALSE(last_->quality->figures->planeError.empty());
+}
+
 } // namespace
 } // namespace dc::engine::test
 

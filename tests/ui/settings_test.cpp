@@ -183,5 +183,41 @@ TEST(Settings, SanitizeRemovesNonFiniteValues) {
     EXPECT_GT(s.depthRange.maxMeters, s.depthRange.minMeters);
 }
 
+// The Quality panel's section: every field survives the file, `--set quality.KEY=VALUE` reaches it, and a
+// preset that is not one of DQT's, a window too short to measure noise or a range upside down is refused.
+TEST(Settings, TheQualitySectionRoundTripsAndTakesSets) {
+    Settings s;
+    s.panels.quality = true;
+    s.quality = {0, 10, 20, 30, 40, 45, 1234.5f, 0.3f, 3.5f, 20.0f};
+    const auto back = settingsFromJson(settingsToJson(s));
+    ASSERT_TRUE(back.ok());
+    const QualitySettings& q = back->quality;
+    EXPECT_TRUE(back->panels.quality);
+    EXPECT_EQ(q.roiPercent, 0);
+    EXPECT_EQ(q.roiX, 10);
+    EXPECT_EQ(q.roiY, 20);
+    EXPECT_EQ(q.roiWidth, 30);
+    EXPECT_EQ(q.roiHeight, 40);
+    EXPECT_EQ(q.windowFrames, 45);
+    EXPECT_FLOAT_EQ(q.groundTruthMm, 1234.5f);
+    EXPECT_FLOAT_EQ(q.nearMeters, 0.3f);
+    EXPECT_FLOAT_EQ(q.farMeters, 3.5f);
+    EXPECT_FLOAT_EQ(q.flyingThresholdMm, 20.0f);
+
+    Settings t;
+    ASSERT_TRUE(applySetting(t, "quality.roiPercent=80"));
+    EXPECT_EQ(t.quality.roiPercent, 80);
+    ASSERT_TRUE(applySetting(t, "quality.windowFrames=60"));
+    EXPECT_EQ(t.quality.windowFrames, 60);
+    ASSERT_TRUE(applySetting(t, "quality.groundTruthMm=1000"));
+    EXPECT_FLOAT_EQ(t.quality.groundTruthMm, 1000.0f);
+    ASSERT_TRUE(applySetting(t, "panels.quality=true"));
+    EXPECT_TRUE(t.panels.quality);
+    for (const char* bad :
+         {"quality.roiPercent=33", "quality.windowFrames=1", "quality.farMeters=-1", "quality.nosuch=1"})
+        EXPECT_FALSE(applySetting(t, bad)) << bad;
+    EXPECT_EQ(t.quality.roiPercent, 80);
+}
+
 } // namespace
 } // namespace dc::ui

@@ -23,6 +23,7 @@ TEST_F(UiTest, EveryPanelSurvivesHundredsOfFramesBeingShownAndHidden) {
         show.source = i % 45 < 30;
         show.fog = i % 55 < 35;
         show.aura = i % 65 < 40;
+        show.quality = i % 35 < 20;
         static constexpr const char* kZoomed[] = {kCloudTitle,  "",        kDepthTitle, kConfidenceTitle,
                                                   kCameraTitle, kFogTitle, "",          kAuraTitle};
         if (i % 15 == 0)
@@ -31,10 +32,10 @@ TEST_F(UiTest, EveryPanelSurvivesHundredsOfFramesBeingShownAndHidden) {
     }
     viewer_->setZoomedPanel("");
     show = {};
-    show.fog = show.aura = show.source = true;
+    show.fog = show.aura = show.source = show.quality = true;
     frame(5.0);
     for (const char* name : {kCloudTitle, kDepthTitle, kConfidenceTitle, kCameraTitle, kControlsTitle,
-                             kFogTitle, kAuraTitle, kSourceTitle})
+                             kFogTitle, kAuraTitle, kSourceTitle, kQualityTitle})
         EXPECT_NE(ImGui::FindWindowByName(name), nullptr) << name;
     EXPECT_GT(viewer_->summary().frames.shown, 2u);
 }

@@ -1,0 +1,182 @@
+// The Quality panel (issue 29): its figures are measured by the frame processor, off the GL thread, only
+// while the panel is shown; they are those of the frame shown, and a region drawn on the depth panel is
+// measured in the next frame, a paused replay's too.
+
+#include "engine/processing_graph.h"
+#include "processing/depth_quality.h"
+#include "ui_fixture.h"
+
+#include <filesystem>
+#include <unistd.h>
+
+namespace dc::ui::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// synthetic:plane=1.0,0 — a wall 1 m away facing the camera, with 1 mm of depth noise.
+devices::SyntheticConfig wallScene() {
+    devices::SyntheticConfig c = smallScene();
+    c.flatTarget = devices::FlatTarget{1.0, 0.0, 1.0};
+    return c;
+}
+
+Settings qualityShown() {
+    Settings s;
+    s.panels.quality = true;
+    return s;
+}
+
+class QualityPanelTest : public UiTest {
+protected:
+    void SetUp() override { ASSERT_NO_FATAL_FAILURE(initGl()); }
+
+    void TearDown() override {
+        UiTest::TearDown();
+        if (!dir_.empty())
+            fs::remove_all(dir_);
+    }
+
+    std::uint64_t qualityRuns() const { return instrument_->processor().stageRuns(engine::kQualityStage); }
+
+    // Frames until the figures of a frame with a plane fit are shown.
+    bool figuresShown() {
+        return frameUntil([this] {
+            const processing::ShownQuality* q = viewer_->quality();
+            return q && q->figures && q->figures->plane;
+        });
+    }
+
+    // A left drag on screen from `a` to `b`, a frame for each step, as a hand draws it.
+    void drag(ImVec2 a, ImVec2 b) {
+        gui_.io().MousePos = a;
+        frame(0.0);
+        gui_.io().MouseDown[0] = true;
+        frame(0.0);
+        for (int i = 1; i <= 4; ++i) {
+            const float t = static_cast<float>(i) / 4.0f;
+            gui_.io().MousePos = ImVec2(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t);
+            frame(0.0);
+        }
+        gui_.io().MouseDown[0] = false;
+        frame(0.0);
+    }
+
+    // The shown frame's figures computed here, independently of the engine, over `roi`.
+    processing::FrameQuality measuredHere(const processing::Roi& roi) const {
+        const processing::ShownDepth& depth = viewer_->shown()->depth;
+        processing::QualityParams params;
+        params.roi = roi;
+        params.farMeters = viewer_->settings().quality.farMeters;
+        auto q = processing::measureFrameQuality(*depth.data, depth.intrinsics, params);
+        EXPECT_TRUE(q.ok());
+        return q.ok() ? *q : processing::FrameQuality{};
+    }
+
+    fs::path dir_;
+};
+
+TEST_F(QualityPanelTest, AWallAtOneMeterReadsOneMeterFullyFilledAsTheShownFrameMeasuresIt) {
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), qualityShown()));
+    ASSERT_TRUE(figuresShown());
+    const processing::ShownQuality& q = *viewer_->quality();
+    const processing::ShownDepth& depth = viewer_->shown()->depth;
+    EXPECT_EQ(q.sequence, viewer_->shown()->frame->sequence) << "the figures belong to the frame shown";
+    EXPECT_EQ(q.roi, processing::centredRoi(depth.width(), depth.height(), 40.0))
+        << "the default 40 % preset";
+    const processing::PlaneFigures& p = *q.figures->plane;
+    EXPECT_NEAR(p.distanceMm, 1000.0, 10.0);
+    EXPECT_DOUBLE_EQ(q.figures->fill.fillRate(), 1.0);
+    const processing::FrameQuality here = measuredHere(q.roi);
+    ASSERT_TRUE(here.plane);
+    EXPECT_EQ(q.figures->fill.valid, here.fill.valid);
+    EXPECT_EQ(q.figures->fill.roiSamples, here.fill.roiSamples);
+    EXPECT_DOUBLE_EQ(p.distanceMm, here.plane->distanceMm);
+    EXPECT_DOUBLE_EQ(p.angleDeg, here.plane->angleDeg);
+    EXPECT_DOUBLE_EQ(p.planeFitRmsMm, here.plane->planeFitRmsMm);
+    EXPECT_DOUBLE_EQ(p.dqtPlaneFitRmsMm, here.plane->dqtPlaneFitRmsMm);
+    EXPECT_DOUBLE_EQ(p.inlierFraction, here.plane->inlierFraction);
+    // The noise window fills with the frames that follow; the wall's noise is 1 mm.
+    ASSERT_TRUE(frameUntil([this] { return viewer_->quality() && viewer_->quality()->windowFilled >= 10; }));
+    const processing::ShownQuality& later = *viewer_->quality();
+    EXPECT_EQ(later.windowFrames, 30u);
+    ASSERT_TRUE(later.temporalNoiseMm && later.spatialNoiseMm) << later.noiseError;
+    EXPECT_NEAR(*later.temporalNoiseMm, 1.0, 0.3);
+    EXPECT_NEAR(*later.spatialNoiseMm, 1.0, 0.3);
+}
+
+TEST_F(QualityPanelTest, ARegionDrawnOnTheDepthPanelIsMeasuredInTheNextFrameAndWhilePaused) {
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), qualityShown()));
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    ASSERT_TRUE(figuresShown());
+    const ImGuiWindow* depthPanel = ImGui::FindWindowByName(kDepthTitle);
+    ASSERT_NE(depthPanel, nullptr);
+    const ImVec2 centre{depthPanel->Pos.x + depthPanel->Size.x * 0.5f,
+                        depthPanel->Pos.y + depthPanel->Size.y * 0.5f};
+    drag({centre.x - 40.0f, centre.y - 30.0f}, {centre.x + 20.0f, centre.y + 10.0f});
+    const QualitySettings& s = viewer_->settings().quality;
+    EXPECT_EQ(s.roiPercent, 0) << "the drag drew a region";
+    EXPECT_TRUE(viewer_->zoomedPanel().empty()) << "a drag is no click: the panel is not zoomed";
+    const processing::Roi drawn{s.roiX, s.roiY, s.roiWidth, s.roiHeight};
+    EXPECT_GT(drawn.width, 5);
+    EXPECT_GT(drawn.height, 3);
+    frame(0.0);
+    ASSERT_NE(viewer_->quality(), nullptr);
+    EXPECT_EQ(viewer_->quality()->roi, drawn) << "measured in the next frame";
+    ASSERT_TRUE(viewer_->quality()->figures);
+    EXPECT_EQ(viewer_->quality()->figures->fill.roiSamples,
+              static_cast<std::size_t>(drawn.width * drawn.height));
+    EXPECT_EQ(viewer_->quality()->sequence, viewer_->shown()->frame->sequence);
+
+    // A paused replay of the wall: no new frame comes, the new region is measured all the same.
+    dir_ = fs::temp_directory_path() / ("dc-quality-ui-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    const std::string path = (dir_ / "wall.dcrec").string();
+    ASSERT_TRUE(instrument_->startRecording(path).ok());
+    for (int i = 0; i < 400 && instrument_->recording().frames < 4; ++i)
+        nextFrame(0.0);
+    ASSERT_TRUE(instrument_->stopRecording().ok());
+    ASSERT_TRUE(viewer_->openSource("replay:" + path + ":paused").ok());
+    ASSERT_TRUE(figuresShown());
+    const std::uint64_t sequence = viewer_->shown()->frame->sequence;
+    const std::uint64_t runs = qualityRuns();
+    viewer_->settings().quality.roiPercent = 20;
+    frame(0.0);
+    const processing::ShownDepth& depth = viewer_->shown()->depth;
+    const processing::Roi preset = processing::centredRoi(depth.width(), depth.height(), 20.0);
+    ASSERT_NE(viewer_->quality(), nullptr);
+    EXPECT_EQ(viewer_->quality()->roi, preset);
+    EXPECT_EQ(viewer_->quality()->sequence, sequence) << "the same paused frame, measured again";
+    EXPECT_GT(qualityRuns(), runs);
+    ASSERT_TRUE(viewer_->quality()->figures);
+    EXPECT_EQ(viewer_->quality()->figures->fill.valid, measuredHere(preset).fill.valid);
+    EXPECT_EQ(viewer_->quality()->windowFilled, 1u) << "another region starts the noise window over";
+}
+
+TEST_F(QualityPanelTest, WithThePanelHiddenNothingIsMeasured) {
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene()));
+    for (int i = 0; i < 5; ++i)
+        ASSERT_TRUE(nextFrame(0.0));
+    EXPECT_EQ(qualityRuns(), 0u);
+    EXPECT_EQ(viewer_->quality(), nullptr);
+    EXPECT_FALSE(viewer_->demand().quality);
+    // The counter counts: shown, the panel's figures are measured.
+    viewer_->settings().panels.quality = true;
+    ASSERT_TRUE(figuresShown());
+    EXPECT_GT(qualityRuns(), 0u);
+}
+
+TEST_F(QualityPanelTest, ARegionOffTheMapIsClampedToIt) {
+    Settings settings = qualityShown();
+    settings.quality.roiPercent = 0;
+    settings.quality.roiX = 250; // the map is 256x192
+    settings.quality.roiY = 10;
+    settings.quality.roiWidth = 100;
+    settings.quality.roiHeight = 20;
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), settings));
+    ASSERT_TRUE(frameUntil([this] { return viewer_->quality() != nullptr; }));
+    EXPECT_EQ(viewer_->quality()->roi, (processing::Roi{250, 10, 6, 20}));
+}
+
+} // namespace
+} // namespace dc::ui::test

@@ -1,0 +1,145 @@
+#include "ui/panels.h"
+
+#include <cstdio>
+#include <string>
+
+namespace dc::ui {
+
+namespace {
+
+// What each figure means, as the README defines it (Intel's Depth Quality Tool where it has the figure).
+constexpr const char* kFillHelp =
+    "Valid samples / samples in the region. The rest, by cause: no measurement, "
+    "outside [near, far], below the confidence, flying pixel.";
+constexpr const char* kDistanceHelp = "Where the robust plane fit crosses the optical axis, mm.";
+constexpr const char* kAngleHelp =
+    "Angle between the plane's normal and the optical axis (0: facing the camera).";
+constexpr const char* kRmsHelp =
+    "Perpendicular RMS of the inliers to the robust plane (RANSAC/LMedS, then least "
+    "squares), mm and % of the distance.";
+constexpr const char* kInlierHelp =
+    "Samples within the inlier threshold of the robust plane / valid samples.";
+constexpr const char* kDqtHelp =
+    "Intel DQT's plane-fit RMS: least squares through every valid sample, 0.5 % of "
+    "the residuals trimmed at each end, mm.";
+constexpr const char* kZHelp = "DQT's Z accuracy: (distance - ground truth) / ground truth, %.";
+constexpr const char* kSubpixelHelp = "DQT's subpixel RMS: the plane-fit error as disparity, pixels.";
+constexpr const char* kTemporalHelp =
+    "Each pixel's standard deviation over the window, median over the pixels "
+    "valid in every frame of it, mm.";
+constexpr const char* kSpatialHelp = "Median over the window of each frame's plane-fit RMS, mm.";
+
+// One figure: its name with a (?) that defines it, and its value.
+void row(const char* name, const std::string& value, const char* help) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(name);
+    ImGui::SameLine();
+    ImGui::TextDisabled("(?)");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("%s", help);
+    ImGui::TableNextColumn();
+    ImGui::TextUnformatted(value.c_str());
+}
+
+std::string format(const char* pattern, double value) {
+    char text[64];
+    std::snprintf(text, sizeof text, pattern, value);
+    return text;
+}
+
+// The preset buttons (the one in use marked) and the rectangle drawn on the depth panel.
+bool drawRegion(const processing::ShownQuality* quality, QualitySettings& s) {
+    bool changed = false;
+    ImGui::TextUnformatted("Region");
+    for (const int percent : kQualityRoiPresets) {
+        ImGui::SameLine();
+        ImGui::PushID(percent);
+        const std::string label = std::to_string(percent) + " %";
+        const bool current = s.roiPercent == percent;
+        if (current)
+            ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
+        if (ImGui::Button(label.c_str())) {
+            s.roiPercent = percent;
+            changed = true;
+        }
+        if (current)
+            ImGui::PopStyleColor();
+        ImGui::PopID();
+    }
+    if (quality)
+        ImGui::TextDisabled("%s %d,%d %dx%d px (drag on Depth to draw one)",
+                            s.roiPercent > 0 ? "centred" : "drawn", quality->roi.x, quality->roi.y,
+                            quality->roi.width, quality->roi.height);
+    return changed;
+}
+
+void drawFigures(const processing::ShownQuality& q) {
+    ImGui::Text("Frame %llu", static_cast<unsigned long long>(q.sequence));
+    if (!q.figures) {
+        ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "%s", q.error.c_str());
+        return;
+    }
+    const processing::FillBreakdown& f = q.figures->fill;
+    if (!ImGui::BeginTable("##figures", 2, ImGuiTableFlags_RowBg))
+        return;
+    row("Fill rate", format("%.1f %%", 100.0 * f.fillRate()), kFillHelp);
+    row("  no measurement", format("%.1f %%", 100.0 * f.fraction(f.noMeasurement)), kFillHelp);
+    row("  out of range", format("%.1f %%", 100.0 * f.fraction(f.outOfRange)), kFillHelp);
+    row("  low confidence", format("%.1f %%", 100.0 * f.fraction(f.lowConfidence)), kFillHelp);
+    row("  flying pixels", format("%.1f %%", 100.0 * f.fraction(f.flyingPixel)), kFillHelp);
+    if (const auto& p = q.figures->plane) {
+        row("Distance", format("%.1f mm", p->distanceMm), kDistanceHelp);
+        row("Angle", format("%.2f deg", p->angleDeg), kAngleHelp);
+        row("Plane-fit RMS",
+            format("%.2f mm", p->planeFitRmsMm) + format(" (%.3f %%)", p->planeFitRmsPercent), kRmsHelp);
+        row("Inliers", format("%.1f %%", 100.0 * p->inlierFraction), kInlierHelp);
+        row("DQT plane-fit RMS", format("%.2f mm", p->dqtPlaneFitRmsMm), kDqtHelp);
+        row("Z accuracy", p->zAccuracyPercent ? format("%.2f %%", *p->zAccuracyPercent) : "enter a truth",
+            kZHelp);
+        if (p->subpixelRms)
+            row("Subpixel RMS", format("%.3f px", *p->subpixelRms), kSubpixelHelp);
+    }
+    row("Temporal noise", q.temporalNoiseMm ? format("%.2f mm", *q.temporalNoiseMm) : "-", kTemporalHelp);
+    row("Spatial noise", q.spatialNoiseMm ? format("%.2f mm", *q.spatialNoiseMm) : "-", kSpatialHelp);
+    ImGui::EndTable();
+    ImGui::TextDisabled("noise over %zu of %zu frames", q.windowFilled, q.windowFrames);
+    if (!q.figures->plane)
+        ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "plane: %s", q.figures->planeError.c_str());
+    if (!q.noiseError.empty())
+        ImGui::TextDisabled("noise: %s", q.noiseError.c_str());
+}
+
+bool drawSettings(QualitySettings& s) {
+    if (!ImGui::CollapsingHeader("Settings"))
+        return false;
+    bool changed = ImGui::SliderInt("window frames", &s.windowFrames, 2, 300);
+    changed |= ImGui::InputFloat("ground truth mm", &s.groundTruthMm, 10.0f, 100.0f, "%.1f");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("The target's true distance, for the Z accuracy; 0: none.");
+    changed |= ImGui::DragFloatRange2("range m", &s.nearMeters, &s.farMeters, 0.01f, 0.0f, 100.0f, "%.2f");
+    changed |= ImGui::InputFloat("flying threshold mm", &s.flyingThresholdMm, 1.0f, 10.0f, "%.0f");
+    if (changed)
+        sanitize(s);
+    return changed;
+}
+
+} // namespace
+
+bool drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings, bool* open) {
+    if (!ImGui::Begin(kQualityTitle, open)) {
+        ImGui::End();
+        return false;
+    }
+    bool changed = drawRegion(quality, settings);
+    ImGui::Separator();
+    if (quality)
+        drawFigures(*quality);
+    else
+        ImGui::TextDisabled("No depth measured yet.");
+    changed |= drawSettings(settings);
+    ImGui::End();
+    return changed;
+}
+
+} // namespace dc::ui
