@@ -151,6 +151,17 @@ TEST_F(QualityPanelTest, ARegionDrawnOnTheDepthPanelIsMeasuredInTheNextFrameAndW
     ASSERT_TRUE(viewer_->quality()->figures);
     EXPECT_EQ(viewer_->quality()->figures->fill.valid, measuredHere(preset).fill.valid);
     EXPECT_EQ(viewer_->quality()->windowFilled, 1u) << "another region starts the noise window over";
+
+    // A region drawn while paused is measured on the same frame too (the timeline strip moved the panel).
+    const ImGuiWindow* moved = ImGui::FindWindowByName(kDepthTitle);
+    const ImVec2 middle{moved->Pos.x + moved->Size.x * 0.5f, moved->Pos.y + moved->Size.y * 0.5f};
+    drag({middle.x - 10.0f, middle.y - 10.0f}, {middle.x + 30.0f, middle.y + 25.0f});
+    const processing::Roi drawnPaused{s.roiX, s.roiY, s.roiWidth, s.roiHeight};
+    EXPECT_EQ(s.roiPercent, 0);
+    EXPECT_NE(drawnPaused, drawn);
+    frame(0.0);
+    EXPECT_EQ(viewer_->quality()->roi, drawnPaused);
+    EXPECT_EQ(viewer_->quality()->sequence, sequence);
 }
 
 TEST_F(QualityPanelTest, WithThePanelHiddenNothingIsMeasured) {
