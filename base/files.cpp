@@ -6,6 +6,7 @@
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
+#include <fstream>
 #include <sys/uio.h>
 #include <unistd.h>
 
@@ -109,6 +110,20 @@ Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t
 
 Status writeTextFile(const std::string& path, const std::string& text) {
     return writeFileAtomically(path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+}
+
+Expected<std::vector<std::uint8_t>> readFile(const std::string& path) {
+    std::ifstream in(path, std::ios::binary | std::ios::ate);
+    if (!in)
+        return Error{"cannot open " + path + ": " + std::strerror(errno)};
+    const std::streamoff size = in.tellg(); // -1 for what cannot seek (a pipe): not a capture's file
+    if (size < 0)
+        return Error{"cannot read " + path + ": not a regular file"};
+    std::vector<std::uint8_t> bytes(static_cast<std::size_t>(size));
+    in.seekg(0);
+    if (!in.read(reinterpret_cast<char*>(bytes.data()), size))
+        return Error{"cannot read " + path + ": " + std::strerror(errno)};
+    return bytes;
 }
 
 Expected<std::string> createFreshDirectory(const std::string& parent, const std::string& stem) {

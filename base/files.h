@@ -6,6 +6,7 @@
 #include <functional>
 #include <span>
 #include <string>
+#include <vector>
 
 namespace dc::base {
 
@@ -27,6 +28,8 @@ using AtomicWriteFault = std::function<int(AtomicWriteStep)>;
 Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes,
                            const AtomicWriteFault& fault = {});
 Status writeTextFile(const std::string& path, const std::string& text);
+// Every byte of a file; an error names the file and the reason.
+Expected<std::vector<std::uint8_t>> readFile(const std::string& path);
 
 // Creates a directory under `parent` (made first if missing) that did not exist before: `stem`, else
 // `stem-2`, `stem-3`, … Creation is exclusive, so two savers never share one. Returns its path.

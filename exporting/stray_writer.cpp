@@ -2,10 +2,9 @@
 
 #include "base/files.h"
 
-#include "frame/image_io.h"
+#include "frame/png_codec.h"
 #include "frame/rgb_image.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <algorithm>
@@ -23,16 +22,8 @@ std::string numbered(std::size_t i) {
     return name;
 }
 
-Status writePng(const std::string& path, const cv::Mat& image) {
-    std::vector<std::uint8_t> encoded;
-    try {
-        if (!cv::imencode(".png", image, encoded, {cv::IMWRITE_PNG_COMPRESSION, 1}))
-            return Error{"cannot encode " + path};
-    } catch (const cv::Exception& e) {
-        return Error{"cannot encode " + path + ": " + e.what()};
-    }
-    return base::writeFileAtomically(path, encoded);
-}
+// The fastest zlib level: an export writes two PNGs a frame, and depth maps compress well at any level.
+constexpr int kPngCompression = 1;
 
 // Unit quaternion (x, y, z, w) of the rotation part of a column-major camera-to-world matrix.
 std::array<double, 4> quaternionOf(const frame::Pose& pose) {
@@ -69,7 +60,7 @@ Status writeDepthPng16(const std::string& path, const frame::Plane<float>& depth
                          : 0;
         }
     }
-    return writePng(path, mm);
+    return frame::writePng(path, mm, kPngCompression);
 }
 
 Status StrayWriter::add(const frame::Frame& frame) {
@@ -97,7 +88,7 @@ Status StrayWriter::add(const frame::Frame& frame) {
         if (confidence.width == depth.width && confidence.height == depth.height && !confidence.empty())
             c = cv::Mat(depth.height, depth.width, CV_8UC1,
                         const_cast<std::uint8_t*>(confidence.pixels.data()));
-        if (Status s = writePng(dir_ + "/confidence/" + name, c); !s)
+        if (Status s = frame::writePng(dir_ + "/confidence/" + name, c, kPngCompression); !s)
             return s;
     }
     if (Status s = addColor(frame); !s)
@@ -125,28 +116,29 @@ Status StrayWriter::addColor(const frame::Frame& frame) {
     std::vector<std::uint8_t> rgb = frame::toRgb24(image);
     cv::Mat bgr;
     cv::cvtColor(cv::Mat(image.height, image.width, CV_8UC3, rgb.data()), bgr, cv::COLOR_RGB2BGR);
-    if (!video_.isOpened()) {
+    if (!video_) {
+        if (Status s = devices::video::loadVideoSupport(); !s)
+            return s;
         videoSize_ = bgr.size();
         // The container is chosen by extension, so the temporary name keeps ".mp4".
         const std::string tmp = dir_ + "/rgb.partial.mp4";
-        for (const char* codec : {"avc1", "mp4v"})
-            if (video_.open(tmp, cv::VideoWriter::fourcc(codec[0], codec[1], codec[2], codec[3]), fps_,
-                            videoSize_))
-                break;
-        if (!video_.isOpened())
+        auto writer = devices::video::openVideoWriter(tmp, {"avc1", "mp4v"}, fps_, videoSize_);
+        if (!writer)
             return Error{"cannot create " + tmp + " (no H.264 or MPEG-4 encoder)"};
+        video_ = std::move(*writer);
     }
     if (bgr.size() != videoSize_)
         cv::resize(bgr, bgr, videoSize_);
-    video_.write(bgr);
+    video_->write(bgr);
     return {};
 }
 
 Status StrayWriter::finish() {
     if (count_ == 0)
         return Error{"no frames to write to " + dir_};
-    if (video_.isOpened()) {
-        video_.release();
+    if (video_) {
+        video_->close();
+        video_.reset();
         std::error_code ec;
         std::filesystem::rename(dir_ + "/rgb.partial.mp4", dir_ + "/rgb.mp4", ec);
         if (ec)

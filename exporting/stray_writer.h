@@ -1,11 +1,13 @@
 #pragma once
 
 #include "base/expected.h"
+#include "devices/video/video_codec.h"
 #include "frame/frame.h"
 #include "frame/jpeg_codec.h"
 
-#include <opencv2/videoio.hpp>
+#include <opencv2/core.hpp>
 
+#include <memory>
 #include <string>
 
 namespace dc::exporting {
@@ -33,7 +35,7 @@ private:
     bool withConfidence_ = false; // decided by the first frame, so every frame has the same files
     frame::Intrinsics intrinsics_;
     std::string odometry_ = "timestamp, frame, x, y, z, qx, qy, qz, qw, fx, fy, cx, cy\n";
-    cv::VideoWriter video_;
+    std::unique_ptr<devices::video::VideoWriter> video_;
     frame::JpegDecoder jpegDecoder_;
     cv::Size videoSize_;
 };

@@ -1,6 +1,7 @@
 // The methods and scenes of `depthcloud bench upsample`.
 
 #include "devices/synthetic/synthetic_scene.h"
+#include "frame/png_codec.h"
 #include "processing/camera_image.h"
 #include "processing/global_smoother.h"
 #include "processing/guided_filter.h"
@@ -9,7 +10,6 @@
 #include "tool/bench_upsample.h"
 #include "tool/bench_upsample_inputs.h"
 
-#include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
 #include <dlfcn.h>
@@ -180,15 +180,30 @@ const Method& methodNamed(const std::string& name) {
 
 namespace {
 
+// An 8-bit gray PNG, as every Middlebury depth map here is; anything else is refused, not converted.
+Expected<cv::Mat> readGray8(const std::string& path) {
+    auto image = frame::readPng(path);
+    if (image && image->type() != CV_8UC1)
+        return Error{path + ": expected an 8-bit gray PNG"};
+    return image;
+}
+
 Expected<Problem> middleburyProblem(const std::filesystem::path& dir, const std::string& scene, int factor) {
     const int level = static_cast<int>(std::lround(std::log2(factor)));
-    const cv::Mat truth = cv::imread((dir / (scene + "_big.png")).string(), cv::IMREAD_GRAYSCALE);
-    const cv::Mat color = cv::imread((dir / (scene + "_color.png")).string(), cv::IMREAD_COLOR);
     const std::string input = "depth_" + std::to_string(level) + "_n.png";
-    const cv::Mat low = cv::imread((dir / input).string(), cv::IMREAD_GRAYSCALE);
-    if (truth.empty() || color.empty() || low.empty())
-        return Error{dir.string() + ": cannot read " + scene + "_big.png, " + scene + "_color.png or " +
-                     input};
+    auto truthPng = readGray8((dir / (scene + "_big.png")).string());
+    if (!truthPng)
+        return truthPng.error();
+    auto rgb = frame::readPng((dir / (scene + "_color.png")).string(), frame::PngPixels::Rgb8);
+    if (!rgb)
+        return rgb.error();
+    auto lowPng = readGray8((dir / input).string());
+    if (!lowPng)
+        return lowPng.error();
+    const cv::Mat& truth = *truthPng;
+    const cv::Mat& low = *lowPng;
+    cv::Mat color;
+    cv::cvtColor(*rgb, color, cv::COLOR_RGB2BGR);
     if (color.size() != truth.size())
         return Error{dir.string() + ": " + scene + "_color.png and " + scene + "_big.png differ in size"};
     Problem p;

@@ -2,6 +2,7 @@
 
 #include "base/log.h"
 #include "devices/replay/replay_spec.h"
+#include "devices/video/video_codec.h"
 #include "engine/export_job.h"
 #include "exporting/export.h"
 #include "tool/options.h"
@@ -69,7 +70,8 @@ int runExport(const ExportOptionsCli& o) {
     setLogQuiet(true);
     auto source = devices::replay::openReplaySpecSource(o.source);
     if (!source)
-        return fail("--source: " + source.error().message, kExitBadArguments);
+        return fail("--source: " + source.error().message,
+                    devices::video::isVideoSupportMissing(source.error()) ? kExitFailure : kExitBadArguments);
     exporting::ExportOptions options;
     options.format = formatOf(o.format);
     options.outDirectory = o.out;

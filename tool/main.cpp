@@ -2,6 +2,7 @@
 
 #include "base/log.h"
 #include "devices/source_spec.h"
+#include "devices/video/video_codec.h"
 #include "tool/bench_camera.h"
 #include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
@@ -36,6 +37,15 @@ bool hasDisplay() {
 int badArgument(const std::string& message) {
     std::fprintf(stderr, "depthcloud: error: %s\n", message.c_str());
     return kExitBadArguments;
+}
+
+// A source that cannot open is a bad --source, except where depthcloud's own video module is missing: that
+// is the installation's failure, not the argument's.
+int sourceCannotOpen(const dc::Error& error) {
+    if (!dc::devices::video::isVideoSupportMissing(error))
+        return badArgument("--source: " + error.message);
+    std::fprintf(stderr, "depthcloud: error: %s\n", error.message.c_str());
+    return kExitFailure;
 }
 
 // Creates `dir` if needed and proves it is writable, so a long run does not fail at its very end.
@@ -84,7 +94,7 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
 
 int runViewer(ViewerOptions o) {
     if (auto device = dc::devices::openSourceSpec(o.source); !device)
-        return badArgument("--source: " + device.error().message);
+        return sourceCannotOpen(device.error());
     if (auto settings = chosenSettings({}, o); !settings)
         return badArgument(settings.error().message);
     if (!o.headless && !hasDisplay()) {

@@ -1,10 +1,10 @@
 #include "devices/replay/capture_files.h"
 
+#include "base/files.h"
 #include "devices/recording/frame_codec.h"
+#include "frame/jpeg_codec.h"
+#include "frame/png_codec.h"
 #include "frame/rgb_image.h"
-
-#include <opencv2/imgcodecs.hpp>
-#include <opencv2/imgproc.hpp>
 
 #include <cerrno>
 #include <cstring>
@@ -15,20 +15,36 @@ namespace dc::devices::replay {
 
 namespace {
 
-cv::Mat readImage(const std::string& path, int flags) {
-    try {
-        return cv::imread(path, flags);
-    } catch (const cv::Exception&) {
-        return {};
-    }
+std::string describe(const cv::Mat& m) {
+    return std::to_string(m.channels()) + "-channel " + (m.depth() == CV_16U ? "16-bit" : "8-bit") + " image";
 }
 
-std::string describe(const cv::Mat& m) {
-    return std::to_string(m.channels()) + "-channel " +
-           (m.depth() == CV_16U  ? "16-bit"
-            : m.depth() == CV_8U ? "8-bit"
-                                 : "non-integer") +
-           " image";
+// A JPEG starts with its start-of-image marker.
+bool looksLikeJpeg(std::span<const std::uint8_t> bytes) {
+    return bytes.size() >= 3 && bytes[0] == 0xFF && bytes[1] == 0xD8 && bytes[2] == 0xFF;
+}
+
+Expected<frame::CapturedImage> decodeJpeg(std::span<const std::uint8_t> jpeg) {
+    frame::JpegDecoder decoder;
+    auto size = decoder.size(jpeg);
+    if (!size)
+        return size.error();
+    auto image = decoder.decode(jpeg, size->first, size->second);
+    if (!image)
+        return image.error();
+    return frame::makeRgb24Image(image->width, image->height, frame::toRgb24(*image));
+}
+
+Expected<frame::CapturedImage> decodeColor(std::span<const std::uint8_t> bytes) {
+    if (looksLikeJpeg(bytes))
+        return decodeJpeg(bytes);
+    if (!frame::looksLikePng(bytes))
+        return Error{"not a PNG or JPEG image"};
+    auto rgb = frame::decodePng(bytes, frame::PngPixels::Rgb8);
+    if (!rgb)
+        return rgb.error();
+    const cv::Mat& m = *rgb;
+    return frame::makeRgb24Image(m.cols, m.rows, std::vector<std::uint8_t>(m.datastart, m.dataend));
 }
 
 } // namespace
@@ -43,9 +59,10 @@ Expected<std::string> readTextFile(const std::string& path) {
 }
 
 Expected<frame::Plane<float>> readDepthPng(const std::string& path, double metersPerUnit) {
-    const cv::Mat m = readImage(path, cv::IMREAD_UNCHANGED);
-    if (m.empty())
-        return Error{"cannot read " + path + " (missing or not an image)"};
+    auto png = frame::readPng(path);
+    if (!png)
+        return png.error();
+    const cv::Mat& m = *png;
     if (m.type() != CV_16UC1)
         return Error{path + ": expected a 16-bit single-channel depth PNG, found a " + describe(m)};
     frame::Plane<float> depth(m.cols, m.rows);
@@ -58,9 +75,10 @@ Expected<frame::Plane<float>> readDepthPng(const std::string& path, double meter
 }
 
 Expected<frame::Plane<std::uint8_t>> readConfidencePng(const std::string& path) {
-    const cv::Mat m = readImage(path, cv::IMREAD_UNCHANGED);
-    if (m.empty())
-        return Error{"cannot read " + path + " (missing or not an image)"};
+    auto png = frame::readPng(path);
+    if (!png)
+        return png.error();
+    const cv::Mat& m = *png;
     if (m.type() != CV_8UC1)
         return Error{path + ": expected an 8-bit single-channel confidence PNG, found a " + describe(m)};
     frame::Plane<std::uint8_t> confidence(m.cols, m.rows);
@@ -70,12 +88,13 @@ Expected<frame::Plane<std::uint8_t>> readConfidencePng(const std::string& path) 
 }
 
 Expected<frame::CapturedImage> readColorImage(const std::string& path) {
-    const cv::Mat bgr = readImage(path, cv::IMREAD_COLOR);
-    if (bgr.empty())
-        return Error{"cannot read " + path + " (missing or not an image)"};
-    std::vector<std::uint8_t> rgb(static_cast<std::size_t>(bgr.cols) * bgr.rows * 3);
-    cv::cvtColor(bgr, cv::Mat(bgr.rows, bgr.cols, CV_8UC3, rgb.data()), cv::COLOR_BGR2RGB);
-    return frame::makeRgb24Image(bgr.cols, bgr.rows, std::move(rgb));
+    auto bytes = base::readFile(path);
+    if (!bytes)
+        return bytes.error();
+    auto image = decodeColor(*bytes);
+    if (!image)
+        return Error{"cannot read " + path + ": " + image.error().message};
+    return image;
 }
 
 } // namespace dc::devices::replay

@@ -14,7 +14,7 @@ Expected<std::string> readTextFile(const std::string& path);
 Expected<frame::Plane<float>> readDepthPng(const std::string& path, double metersPerUnit);
 // An 8-bit single-channel PNG (confidence 0/1/2).
 Expected<frame::Plane<std::uint8_t>> readConfidencePng(const std::string& path);
-// Any color image OpenCV reads, as packed RGB.
+// A PNG (gray or colour, 8 or 16 bits) or JPEG colour image, as packed 8-bit RGB.
 Expected<frame::CapturedImage> readColorImage(const std::string& path);
 
 } // namespace dc::devices::replay

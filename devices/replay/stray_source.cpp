@@ -1,10 +1,10 @@
 #include "devices/replay/capture_files.h"
 #include "devices/replay/importers.h"
 #include "devices/replay/stray_format.h"
+#include "devices/video/video_codec.h"
 #include "frame/rgb_image.h"
 
 #include <opencv2/imgproc.hpp>
-#include <opencv2/videoio.hpp>
 
 #include <algorithm>
 #include <charconv>
@@ -83,7 +83,7 @@ private:
     frame::Intrinsics intrinsics_;
     std::vector<StrayOdometryRow> odometry_;
     std::vector<std::string> warnings_;
-    cv::VideoCapture video_;
+    std::unique_ptr<video::VideoReader> video_;
     std::size_t nextVideoFrame_ = 0;
 };
 
@@ -133,16 +133,15 @@ Status StraySource::open() {
 
 Status StraySource::openVideo() {
     const std::string file = (dir_ / "rgb.mp4").string();
-    try {
-        video_.open(file, cv::CAP_FFMPEG);
-    } catch (const cv::Exception&) {
-        video_.release();
-    }
+    if (Status s = video::loadVideoSupport(); !s)
+        return s;
+    auto reader = video::openVideoReader(file);
     cv::Mat first;
-    if (!video_.isOpened() || !video_.read(first) || first.empty())
+    if (!reader || !(*reader)->read(first))
         return Error{"cannot decode " + file + " (unreadable video)"};
+    video_ = std::move(*reader);
     nextVideoFrame_ = 1;
-    const auto videoFrames = static_cast<long long>(video_.get(cv::CAP_PROP_FRAME_COUNT));
+    const long long videoFrames = video_->frameCount();
     if (videoFrames != static_cast<long long>(frames_))
         return Error{dir_.string() + ": mismatched frame counts: depth/ has " + std::to_string(frames_) +
                      " frames, rgb.mp4 has " + std::to_string(videoFrames)};
@@ -154,16 +153,16 @@ Status StraySource::openVideo() {
 Expected<frame::CapturedImage> StraySource::videoFrame(std::size_t i) {
     const std::string file = (dir_ / "rgb.mp4").string();
     if (i < nextVideoFrame_ || i - nextVideoFrame_ > kMaxReadAhead) {
-        video_.set(cv::CAP_PROP_POS_FRAMES, static_cast<double>(i));
+        video_->seek(i);
         nextVideoFrame_ = i;
     }
     while (nextVideoFrame_ < i) {
-        if (!video_.grab())
+        if (!video_->grab())
             return Error{file + ": frame " + std::to_string(nextVideoFrame_) + " cannot be decoded"};
         ++nextVideoFrame_;
     }
     cv::Mat bgr;
-    if (!video_.read(bgr) || bgr.empty()) {
+    if (!video_->read(bgr)) {
         nextVideoFrame_ = frames_ + kMaxReadAhead + 1; // force a seek next time
         return Error{file + ": frame " + std::to_string(i) + " cannot be decoded"};
     }

@@ -2,6 +2,7 @@
 // ../shared), bad arguments refused with exit code 2 and one line naming the argument, failures while
 // running with exit code 1, help that prints names and agrees with the checks.
 
+#include "tests/test_data.h"
 #include "tool_in_temp_dir.h"
 
 #include <gtest/gtest.h>
@@ -107,6 +108,37 @@ TEST_F(Cli, ASourceThatCannotStartIsReportedOnceWithExitOne) {
     EXPECT_NE(r.err.find("ROS"), std::string::npos) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;
     EXPECT_FALSE(fs::exists(dir_ / "out" / "summary.json"));
+}
+
+// Video (a Stray capture's rgb.mp4) is a module loaded on first use; DC_VIDEO_MODULE points the binary at
+// a module that is not there, as on a system where it or one of its libraries is missing.
+TEST_F(Cli, WithoutTheVideoModuleAStrayCaptureIsOneLineAndExitOne) {
+    ASSERT_EQ(::setenv("DC_VIDEO_MODULE", (dir_ / "missing" / "depthcloud-video.so").c_str(), 1), 0);
+    const RunResult replay =
+        run("--headless --frames 1 --out out --source replay:" + dc::test::dataPath("arkit_dance_stray"));
+    ASSERT_EQ(run("record --source synthetic:32x24 --frames 2 take.dcrec").exitCode, 0);
+    const RunResult exported = run("export --source replay:take.dcrec --format stray --out stray");
+    ::unsetenv("DC_VIDEO_MODULE");
+    for (const RunResult* r : {&replay, &exported}) {
+        EXPECT_EQ(r->exitCode, 1) << r->err;
+        EXPECT_NE(r->err.find("video support not installed: "), std::string::npos) << r->err;
+        EXPECT_NE(r->err.find("depthcloud-video.so"), std::string::npos) << "dlerror() names it: " << r->err;
+        EXPECT_EQ(lines(r->err), 1u) << r->err;
+    }
+    EXPECT_FALSE(fs::exists(dir_ / "stray" / "rgb.mp4"));
+}
+
+// The shipped binary stays lean: image files go through libpng and TurboJPEG, video through the module, so
+// neither OpenCV's imgcodecs (GDAL, OpenEXR, ...) nor its videoio (FFmpeg, GStreamer) is in its closure.
+TEST_F(Cli, TheBinaryLoadsNeitherImgcodecsNorVideoio) {
+    const std::string command =
+        std::string("ldd ") + DEPTHCLOUD_BINARY + " > '" + (dir_ / "ldd.txt").string() + "'";
+    ASSERT_EQ(std::system(command.c_str()), 0);
+    const std::string libraries = readFile(dir_ / "ldd.txt");
+    ASSERT_NE(libraries.find("libopencv_core"), std::string::npos) << libraries;
+    for (const char* heavy :
+         {"libopencv_imgcodecs", "libopencv_videoio", "libavcodec", "libgdal", "libgstreamer"})
+        EXPECT_EQ(libraries.find(heavy), std::string::npos) << heavy << " is linked:\n" << libraries;
 }
 
 TEST_F(Cli, HelpPrintsConfidenceLevelsByName) {
