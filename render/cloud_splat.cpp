@@ -197,29 +197,36 @@ struct CloudSplatter::SampleFilter {
     float nearMeters;
 };
 
+namespace {
+
+// out = z * (column + r) + t, lane by lane: one coordinate of a row of samples in clip space. A loop of
+// its own over three arrays, where one loop over them all needs more run-time overlap checks than the
+// vectoriser makes.
+void clipAxis(const float* z, const float* column, float r, float t, std::size_t n, float* out) {
+    for (std::size_t u = 0; u < n; ++u)
+        out[u] = z[u] * (column[u] + r) + t;
+}
+
+} // namespace
+
 // One row of samples in clip space: each column's ray through the view-projection (x, y, z and w
-// arrays) plus the row's, scaled by the depth, plus the translation; what is not drawn gets w = 0. The
-// parameters are copied to locals so that no store to the batch can alias them, and the loop vectorises.
+// arrays) plus the row's, scaled by the depth, plus the translation; what is not drawn gets w = 0.
 std::size_t CloudSplatter::projectRow(const float* z, const std::uint8_t* levels,
                                       const std::array<std::vector<float>, 4>& columns, glm::vec4 row,
                                       glm::vec4 translation, SampleFilter filter, float footprint,
                                       ClipBatch& batch) {
     const std::size_t n = batch.x.size();
-    const float *cx = columns[0].data(), *cy = columns[1].data(), *cz = columns[2].data(),
-                *cw = columns[3].data();
-    // The batch's arrays are its own (restrict): without that, the run-time overlap checks of eleven
-    // arrays are more than the vectoriser will make.
-    float *__restrict x = batch.x.data(), *__restrict y = batch.y.data(), *__restrict zc = batch.z.data(),
-                      *__restrict w = batch.w.data(), *__restrict fill = batch.fill.data();
+    clipAxis(z, columns[0].data(), row.x, translation.x, n, batch.x.data());
+    clipAxis(z, columns[1].data(), row.y, translation.y, n, batch.y.data());
+    clipAxis(z, columns[2].data(), row.z, translation.z, n, batch.z.data());
+    clipAxis(z, columns[3].data(), row.w, translation.w, n, batch.w.data());
+    float* w = batch.w.data();
+    float* fill = batch.fill.data();
     unsigned kept = 0;
     for (std::size_t u = 0; u < n; ++u) {
         const bool keep = processing::keepSample(z[u], levels[u], filter.minConfidence, filter.nearMeters);
         kept += keep ? 1u : 0u;
-        const float clipW = z[u] * (cw[u] + row.w) + translation.w;
-        x[u] = z[u] * (cx[u] + row.x) + translation.x;
-        y[u] = z[u] * (cy[u] + row.y) + translation.y;
-        zc[u] = z[u] * (cz[u] + row.z) + translation.z;
-        w[u] = keep ? clipW : 0.0f;
+        w[u] = keep ? w[u] : 0.0f;
         fill[u] = z[u] * footprint;
     }
     return kept;
