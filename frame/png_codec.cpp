@@ -99,23 +99,21 @@ bool readPixels(png_structp png, png_bytepp rows) {
     return true;
 }
 
-struct ReadStructs {
-    png_structp png = nullptr;
-    png_infop info = nullptr;
-    ReadStructs() = default;
-    ReadStructs(const ReadStructs&) = delete;
-    ReadStructs& operator=(const ReadStructs&) = delete;
-    ~ReadStructs() { png_destroy_read_struct(&png, &info, nullptr); }
-};
+void destroyRead(png_structpp png, png_infopp info) {
+    png_destroy_read_struct(png, info, nullptr);
+}
 
-struct WriteStructs {
+// libpng's structs of one read or write, destroyed together however far their setup went.
+template <auto Destroy> struct PngStructs {
     png_structp png = nullptr;
     png_infop info = nullptr;
-    WriteStructs() = default;
-    WriteStructs(const WriteStructs&) = delete;
-    WriteStructs& operator=(const WriteStructs&) = delete;
-    ~WriteStructs() { png_destroy_write_struct(&png, &info); }
+    PngStructs() = default;
+    PngStructs(const PngStructs&) = delete;
+    PngStructs& operator=(const PngStructs&) = delete;
+    ~PngStructs() { Destroy(&png, &info); }
 };
+using ReadStructs = PngStructs<destroyRead>;
+using WriteStructs = PngStructs<png_destroy_write_struct>;
 
 bool writeImage(png_structp png, png_infop info, const Layout& layout, int colorType, int compressionLevel,
                 png_bytepp rows) {
