@@ -10,6 +10,7 @@
 #include "tool/bench_registration.h"
 #include "tool/bench_soak.h"
 #include "tool/bench_upsample_options.h"
+#include "tool/controls_command.h"
 #include "tool/live_commands.h"
 #include "tool/options.h"
 #include "tool/quality_command.h"
@@ -157,6 +158,8 @@ int main(int argc, char** argv) {
     CLI::App* benchUpsampleCmd = addBenchUpsampleCommand(*benchCmd, benchUpsample);
     DevicesOptions devicesOptions;
     CLI::App* devicesCmd = addDevicesCommand(app, devicesOptions);
+    ControlsOptions controlsOptions;
+    CLI::App* controlsCmd = addControlsCommand(app, controlsOptions);
     QualityOptions qualityOptions;
     CLI::App* qualityCmd = addQualityCommand(app, qualityOptions);
 
@@ -194,6 +197,8 @@ int main(int argc, char** argv) {
         return runBenchUpsample(benchUpsample);
     if (devicesCmd->parsed())
         return runDevices(devicesOptions);
+    if (controlsCmd->parsed())
+        return runControls(controlsOptions);
     if (qualityCmd->parsed())
         return runQuality(qualityOptions);
     return runViewer(viewer);

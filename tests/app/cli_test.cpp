@@ -54,6 +54,9 @@ TEST_F(Cli, BadArgumentsExitWithTwoAndOneLineNamingTheArgument) {
         {"--headless --set cloud.path=9", "--set 'cloud.path' cannot be 9"},
         {"--headless --set cloud.fillGaps", "--set 'cloud.fillGaps': expected SECTION.KEY=VALUE"},
         {"--headless --settings nowhere.json", "--settings nowhere.json: cannot be read"},
+        {"controls --source synthetic", "--source synthetic: controls need a live camera"},
+        {"controls --source v4l2:", "--source"},
+        {"controls", "--source is required"},
     };
     for (const Case& c : cases) {
         const RunResult r = run(c.args);
@@ -97,6 +100,16 @@ TEST_F(Cli, AFailureWhileRunningExitsWithOne) {
     EXPECT_EQ(r.exitCode, 1) << r.err;
     EXPECT_NE(r.err.find("1234:5678"), std::string::npos) << r.err;
     EXPECT_EQ(lines(r.err), 1u) << r.err;
+}
+
+TEST_F(Cli, ControlsOfACameraThatIsNotThereExitWithOneNamingIt) {
+    const RunResult node = run("controls --source v4l2:/dev/video-none");
+    EXPECT_EQ(node.exitCode, 1) << node.err;
+    EXPECT_NE(node.err.find("/dev/video-none: cannot open"), std::string::npos) << node.err;
+    EXPECT_EQ(lines(node.err), 1u) << node.err;
+    const RunResult usb = run("controls --source usb:1234:5678 --set brightness=1");
+    EXPECT_EQ(usb.exitCode, 1) << usb.err;
+    EXPECT_NE(usb.err.find("no camera matches usb:1234:5678"), std::string::npos) << usb.err;
 }
 
 // A source that cannot start in a headless run says why once, naming the source (the instrument's error

@@ -10,6 +10,7 @@
 #include "devices/uvc/usb/hotplug_monitor.h"
 #include "devices/uvc/usb/usb_enumeration.h"
 #include "devices/uvc/uvc_device.h"
+#include "devices/uvc/v4l2/controls.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
 #include "frame/calibration.h"
 #include "processing/registration.h"
@@ -25,6 +26,9 @@
 #include <cstdlib>
 #include <fstream>
 #include <iterator>
+#include <map>
+#include <optional>
+#include <regex>
 #include <thread>
 
 namespace dc::devices {
@@ -489,6 +493,114 @@ TEST(Vivid, Y16IsDepthWithTheConfiguredScale) {
     }
     EXPECT_GT(nonZero, kWidth * kHeight / 2) << "the pattern is not blank";
     (*device)->close();
+}
+
+// ---- vivid's controls, as v4l2-ctl lists them -------------------------------------------------------
+
+// One control of `v4l2-ctl --list-ctrls-menus`: "  brightness 0x00980900 (int) : min=0 max=255 step=1
+// default=128 value=128 flags=slider", its menu entries on the lines after it ("  1: Menu Item 1").
+struct ListedControl {
+    std::uint32_t id = 0;
+    std::string key;
+    std::string type;
+    std::map<std::string, std::string> fields; // min, max, step, default, value
+    std::vector<std::pair<std::int64_t, std::string>> menu;
+};
+
+std::vector<ListedControl> parseV4l2CtlListing(std::istream& in) {
+    std::vector<ListedControl> controls;
+    const std::regex control(R"(^\s*(\S+) (0x[0-9a-f]+) \((\w+)\)\s*:(.*)$)");
+    const std::regex entry(R"(^\s+(\d+): (.*)$)");
+    const std::regex field(R"((\w+)=(\S+))");
+    std::string line;
+    std::smatch m;
+    while (std::getline(in, line)) {
+        if (std::regex_match(line, m, control)) {
+            ListedControl c{static_cast<std::uint32_t>(std::stoul(m[2], nullptr, 16)), m[1], m[3], {}, {}};
+            const std::string rest = m[4];
+            // Flags come last, their names joined by ", ".
+            const std::size_t flagsAt = std::min(rest.find("flags="), rest.size());
+            const std::string numbers = rest.substr(0, flagsAt);
+            for (auto f = std::sregex_iterator(numbers.begin(), numbers.end(), field);
+                 f != std::sregex_iterator(); ++f)
+                c.fields[(*f)[1]] = (*f)[2];
+            if (flagsAt < rest.size()) {
+                std::string flags = rest.substr(flagsAt + 6);
+                std::erase(flags, ' ');
+                c.fields["flags"] = flags;
+            }
+            controls.push_back(std::move(c));
+        } else if (std::regex_match(line, m, entry) && !controls.empty()) {
+            controls.back().menu.emplace_back(std::stoll(m[1]), m[2]);
+        }
+    }
+    return controls;
+}
+
+std::int64_t numberOf(const std::string& text) {
+    return text.starts_with("0x") ? static_cast<std::int64_t>(std::stoull(text, nullptr, 16))
+                                  : std::stoll(text);
+}
+
+// Each integer-like field v4l2-ctl printed equals ours.
+void expectSameFields(const ListedControl& listed, const v4l2::V4l2Control& ours) {
+    const std::map<std::string, std::optional<std::int64_t>> mine{
+        {"min", ours.minimum},
+        {"max", ours.maximum},
+        {"step", static_cast<std::int64_t>(ours.step)},
+        {"default", ours.defaultValue},
+        {"value", ours.value}};
+    for (const auto& [name, text] : listed.fields) {
+        const auto it = mine.find(name);
+        // A volatile or read-only control's value is the driver's to change (vivid's gain under automatic
+        // gain; its read-only integer counts the frames streamed since the listing was taken).
+        const bool changesAlone =
+            (ours.flags & V4L2_CTRL_FLAG_VOLATILE) || ours.readOnly() || listed.type == "button";
+        if (it == mine.end() || (name == "value" && changesAlone))
+            continue;
+        ASSERT_TRUE(it->second.has_value()) << listed.key << " has no " << name;
+        EXPECT_EQ(*it->second, numberOf(text)) << listed.key << " " << name;
+    }
+}
+
+TEST(Vivid, ControlsAreListedAsV4l2CtlListsThem) {
+    ASSERT_FALSE(env("VIVID_CTRLS").empty());
+    std::ifstream in(env("VIVID_CTRLS"));
+    const std::vector<ListedControl> listed = parseV4l2CtlListing(in);
+    ASSERT_GT(listed.size(), 10u) << "vivid has its user controls and a class of test controls";
+    v4l2::V4l2Node node;
+    ASSERT_EQ(node.open(env("VIVID_NODE")), 0);
+    const auto ours = v4l2::queryControls(v4l2::systemSyscalls(), node.fd(), node.path());
+    ASSERT_TRUE(ours) << ours.error().message;
+    std::size_t compared = 0, menus = 0;
+    for (const ListedControl& l : listed) {
+        const auto it = std::find_if(ours->begin(), ours->end(), [&](const auto& c) { return c.id == l.id; });
+        ASSERT_NE(it, ours->end()) << l.key << " is missing";
+        EXPECT_EQ(v4l2::controlKey(it->name), l.key);
+        if (it->settable() || it->readOnly()) {
+            EXPECT_EQ(v4l2::controlTypeName(it->type), l.type) << l.key;
+            expectSameFields(l, *it);
+            const std::string flags = l.fields.count("flags") ? "," + l.fields.at("flags") + "," : "";
+            for (const std::string& flag : v4l2::controlFlagNames(*it))
+                EXPECT_NE(flags.find("," + flag + ","), std::string::npos) << l.key << " " << flag;
+            ++compared;
+        }
+        if (!l.menu.empty()) {
+            ASSERT_EQ(it->menu.size(), l.menu.size()) << l.key;
+            for (std::size_t i = 0; i < l.menu.size(); ++i) {
+                EXPECT_EQ(it->menu[i].index, l.menu[i].first) << l.key;
+                // An integer menu's entry is "16 (0x10)" there, "16" here.
+                EXPECT_TRUE(l.menu[i].second.starts_with(it->menu[i].label))
+                    << l.key << ": " << l.menu[i].second;
+            }
+            ++menus;
+        }
+    }
+    const auto classes = std::count_if(ours->begin(), ours->end(), [](const auto& c) { return c.isClass(); });
+    EXPECT_EQ(ours->size() - static_cast<std::size_t>(classes), listed.size())
+        << "no control v4l2-ctl leaves out";
+    EXPECT_GT(compared, 10u);
+    EXPECT_GE(menus, 2u) << "a menu and an integer menu";
 }
 
 // ---- cameras that are not on USB, seen by the picker through udev alone ----------------------------

@@ -172,7 +172,10 @@ start_vivid() {
 	in_host v4l2-ctl -d $VIVID_NODE -c osd_text_mode=2 &&
 	in_host v4l2-ctl -d $VIVID_NODE --set-fmt-video=width=640,height=480,pixelformat='Y16 ' --stream-mmap \
 		--stream-count=2 --stream-to=$SCRATCH/vivid.raw && result vivid-reference PASS || result vivid-reference FAIL
-	ENV="$ENV VIVID_NODE=$VIVID_NODE VIVID_RAW=$SCRATCH/vivid.raw"
+	# v4l2-ctl's listing of every control is the reference for ours.
+	in_host v4l2-ctl -d $VIVID_NODE --list-ctrls-menus > /host$SCRATCH/vivid-ctrls.txt &&
+		result vivid-controls-reference PASS || result vivid-controls-reference FAIL
+	ENV="$ENV VIVID_NODE=$VIVID_NODE VIVID_RAW=$SCRATCH/vivid.raw VIVID_CTRLS=$SCRATCH/vivid-ctrls.txt"
 	FILTER="$FILTER:Vivid.*"
 }
 
@@ -221,15 +224,37 @@ check_headless_rig() {
 	then result headless-usb-rig PASS; else result headless-usb-rig FAIL; fi
 }
 
+# `depthcloud controls` sets two of vivid's controls (v4l2-ctl reads them back) and refuses a value out of
+# range, naming it, without setting anything. vivid was unbound and bound again by then: its node is found
+# again.
+check_controls() {
+	node=$(find_node vivid 0) || { result controls-command FAIL; return; }
+	in_host $DEPTHCLOUD controls --source v4l2:$node --set brightness=200 --set contrast=0x20 > /tmp/controls.txt 2>&1
+	rc=$?
+	head -12 /tmp/controls.txt | sed 's/^/  controls: /'
+	b=$(in_host v4l2-ctl -d $node -C brightness) c=$(in_host v4l2-ctl -d $node -C contrast)
+	echo "  controls: exit status $rc; v4l2-ctl reads $b, $c"
+	in_host $DEPTHCLOUD controls --source v4l2:$node --set contrast=64 --set brightness=300 > /tmp/controls-bad.txt 2>&1
+	bad=$?
+	sed 's/^/  controls: /' /tmp/controls-bad.txt
+	b2=$(in_host v4l2-ctl -d $node -C brightness) c2=$(in_host v4l2-ctl -d $node -C contrast)
+	echo "  controls: exit status $bad; v4l2-ctl reads $b2, $c2"
+	if [ $rc = 0 ] && [ "$b" = "brightness: 200" ] && [ "$c" = "contrast: 32" ] &&
+		grep -Eq "^ +brightness +int .*: 200" /tmp/controls.txt && [ $bad = 2 ] &&
+		grep -q "'brightness' takes 0..255, not 300" /tmp/controls-bad.txt &&
+		[ "$b2" = "brightness: 200" ] && [ "$c2" = "contrast: 32" ]
+	then result controls-command PASS; else result controls-command FAIL; fi
+}
+
 # Everything is set up first and our programs start once each: under TCG, loading their libraries over
 # 9p is what takes longest.
 ENV="" FILTER=""
-UVC=0
+UVC=0 VIVID=0
 for t in $(echo $TESTS | tr , ' '); do
 	case $t in
 	uvc) start_uvc && UVC=1 ;;
 	loopback) start_loopback ;;
-	vivid) start_vivid ;;
+	vivid) start_vivid && VIVID=1 ;;
 	shell) setsid cttyhack sh ;;
 	esac
 done
@@ -238,5 +263,6 @@ case $FILTER in *Loopback*Vivid*) FILTER="$FILTER:Virtual.*" ;; esac # both virt
 [ -n "$FILTER" ] && in_host /usr/bin/env $ENV $GUEST_TEST --gtest_filter="${FILTER#:}" --gtest_color=no
 [ $UVC = 1 ] && check_headless
 [ $UVC = 1 ] && check_headless_rig
+[ $VIVID = 1 ] && check_controls
 [ $UVC = 1 ] && tail -5 /tmp/feeder.log /tmp/colour-feeder.log
 finish

@@ -1,0 +1,199 @@
+#include "tool/controls_command.h"
+
+#include "devices/uvc/live_devices.h"
+#include "devices/uvc/live_source_spec.h"
+#include "devices/uvc/v4l2/controls.h"
+#include "devices/uvc/v4l2/v4l2_node.h"
+#include "tool/options.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <cstring>
+#include <optional>
+
+namespace dc::tool {
+
+namespace {
+
+namespace v4l2 = devices::v4l2;
+
+struct NodeControls {
+    std::string path;
+    std::string card;
+    std::vector<v4l2::V4l2Control> controls;
+};
+
+struct Failure {
+    int code;
+    std::string message;
+};
+
+// The capture nodes a live --source names: a v4l2: node (and its colour node, when given), or every node
+// of the USB camera that matches.
+Expected<std::vector<std::string>> nodesOf(const devices::UvcConfig& config) {
+    if (!config.usb) {
+        std::vector<std::string> nodes{config.depthNode};
+        if (!config.colorNode.empty())
+            nodes.push_back(config.colorNode);
+        return nodes;
+    }
+    for (const devices::LiveDeviceInfo& d : devices::listLiveDevices().devices) {
+        const bool same = d.usb && d.usb->vendorId == config.usb->vendorId &&
+                          d.usb->productId == config.usb->productId &&
+                          (config.usb->serial.empty() || d.usb->serial == config.usb->serial);
+        if (!same)
+            continue;
+        std::vector<std::string> nodes;
+        for (const devices::VideoNodeInfo& node : d.nodes)
+            nodes.push_back(node.path);
+        return nodes;
+    }
+    return Error{"no camera matches usb:" + config.usb->toString()};
+}
+
+std::optional<Failure> readControls(const std::vector<std::string>& paths, std::vector<NodeControls>& out) {
+    out.clear();
+    for (const std::string& path : paths) {
+        v4l2::V4l2Node node;
+        if (const int r = node.open(path); r < 0)
+            return Failure{kExitFailure, path + ": cannot open: " + std::strerror(-r)};
+        auto controls = v4l2::queryControls(v4l2::systemSyscalls(), node.fd(), path);
+        if (!controls)
+            return Failure{kExitFailure, controls.error().message};
+        out.push_back({path, node.capability().card, std::move(*controls)});
+    }
+    return std::nullopt;
+}
+
+// Checks every --set against the controls before any is set: a bad one changes nothing.
+std::optional<Failure> applySets(const std::vector<std::string>& sets,
+                                 const std::vector<NodeControls>& nodes) {
+    struct Change {
+        const NodeControls* node;
+        const v4l2::V4l2Control* control;
+        std::int64_t value;
+    };
+    std::vector<Change> changes;
+    for (const std::string& set : sets) {
+        const auto equals = set.find('=');
+        const std::string key = v4l2::controlKey(set.substr(0, equals));
+        std::optional<Change> change;
+        for (const NodeControls& node : nodes)
+            for (const v4l2::V4l2Control& c : node.controls)
+                if (!change && !c.isClass() && v4l2::controlKey(c.name) == key)
+                    change = Change{&node, &c, 0};
+        if (equals == std::string::npos || !change)
+            return Failure{
+                kExitBadArguments,
+                "--set " + set + ": " +
+                    (equals == std::string::npos ? "expected NAME=VALUE" : "no control named '" + key + "'")};
+        auto value = v4l2::parseControlValue(*change->control, set.substr(equals + 1));
+        if (!value)
+            return Failure{kExitBadArguments, "--set " + set + ": " + value.error().message};
+        if (Status s = v4l2::checkControlValue(*change->control, *value); !s)
+            return Failure{kExitBadArguments, "--set " + set + ": " + s.error().message};
+        change->value = *value;
+        changes.push_back(*change);
+    }
+    for (const Change& c : changes) {
+        v4l2::V4l2Node node;
+        if (const int r = node.open(c.node->path); r < 0)
+            return Failure{kExitFailure, c.node->path + ": cannot open: " + std::strerror(-r)};
+        if (Status s = v4l2::setControl(v4l2::systemSyscalls(), node.fd(), c.node->path, *c.control, c.value);
+            !s)
+            return Failure{kExitFailure, s.error().message};
+    }
+    return std::nullopt;
+}
+
+nlohmann::json toJson(const std::vector<NodeControls>& nodes) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const NodeControls& node : nodes) {
+        nlohmann::json controls = nlohmann::json::array();
+        for (const v4l2::V4l2Control& c : node.controls) {
+            nlohmann::json menu = nlohmann::json::array();
+            for (const v4l2::MenuEntry& e : c.menu)
+                menu.push_back({{"index", e.index}, {"label", e.label}});
+            controls.push_back({{"id", c.id},
+                                {"key", v4l2::controlKey(c.name)},
+                                {"name", c.name},
+                                {"type", v4l2::controlTypeName(c.type)},
+                                {"min", c.minimum},
+                                {"max", c.maximum},
+                                {"step", c.step},
+                                {"default", c.defaultValue},
+                                {"flags", v4l2::controlFlagNames(c)},
+                                {"menu", menu},
+                                {"value", c.value ? nlohmann::json(*c.value) : nlohmann::json(nullptr)}});
+        }
+        out.push_back({{"node", node.path}, {"card", node.card}, {"controls", controls}});
+    }
+    return nlohmann::json{{"nodes", out}};
+}
+
+void printText(const std::vector<NodeControls>& nodes) {
+    for (const NodeControls& node : nodes) {
+        std::printf("%s  %s\n", node.path.c_str(), node.card.c_str());
+        for (const v4l2::V4l2Control& c : node.controls) {
+            if (c.isClass()) {
+                std::printf("  %s\n", c.name.c_str());
+                continue;
+            }
+            std::string flags;
+            for (const std::string& f : v4l2::controlFlagNames(c))
+                flags += " " + f;
+            const std::string value = c.value ? std::to_string(*c.value) : "-";
+            std::printf("    %-32s %-8s %lld..%lld step %llu default %lld: %s%s\n",
+                        v4l2::controlKey(c.name).c_str(), v4l2::controlTypeName(c.type),
+                        static_cast<long long>(c.minimum), static_cast<long long>(c.maximum),
+                        static_cast<unsigned long long>(c.step), static_cast<long long>(c.defaultValue),
+                        value.c_str(), flags.c_str());
+            for (const v4l2::MenuEntry& e : c.menu)
+                std::printf("      %lld: %s\n", static_cast<long long>(e.index), e.label.c_str());
+        }
+    }
+}
+
+} // namespace
+
+CLI::App* addControlsCommand(CLI::App& app, ControlsOptions& o) {
+    CLI::App* cmd = app.add_subcommand(
+        "controls", "list a V4L2 camera's controls (range, default, flags, value) and set them");
+    cmd->add_option("--source", o.source, devices::kLiveSourceSpecHelp)->required();
+    cmd->add_option("--set", o.sets, "set a control, NAME=VALUE (NAME as listed; repeatable)");
+    cmd->add_flag("--json", o.json, "print the listing as JSON");
+    return cmd;
+}
+
+int runControls(const ControlsOptions& o) {
+    const auto fail = [](const Failure& f) {
+        std::fprintf(stderr, "depthcloud: error: %s\n", f.message.c_str());
+        return f.code;
+    };
+    if (!devices::isLiveSourceSpec(o.source))
+        return fail({kExitBadArguments, "--source " + o.source + ": controls need a live camera (" +
+                                            devices::kLiveSourceSpecHelp + ")"});
+    const auto config = devices::parseLiveSourceSpec(o.source);
+    if (!config)
+        return fail({kExitBadArguments, "--source: " + config.error().message});
+    const auto paths = nodesOf(*config);
+    if (!paths)
+        return fail({kExitFailure, paths.error().message});
+    std::vector<NodeControls> nodes;
+    if (auto f = readControls(*paths, nodes))
+        return fail(*f);
+    if (!o.sets.empty()) {
+        if (auto f = applySets(o.sets, nodes))
+            return fail(*f);
+        if (auto f = readControls(*paths, nodes))
+            return fail(*f);
+    }
+    if (o.json)
+        std::printf("%s\n", toJson(nodes).dump(2).c_str());
+    else
+        printText(nodes);
+    return kExitOk;
+}
+
+} // namespace dc::tool
