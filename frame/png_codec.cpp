@@ -103,17 +103,21 @@ void destroyRead(png_structpp png, png_infopp info) {
     png_destroy_read_struct(png, info, nullptr);
 }
 
-// libpng's structs of one read or write, destroyed together however far their setup went.
-template <auto Destroy> struct PngStructs {
+// libpng's structs of one read or write, made with errors reported through `io`; `info` is null where
+// they could not be made. Destroyed together however far their setup went.
+template <auto Create, auto Destroy> struct PngStructs {
     png_structp png = nullptr;
     png_infop info = nullptr;
-    PngStructs() = default;
+    explicit PngStructs(Io& io) : png(Create(PNG_LIBPNG_VER_STRING, &io, onError, onWarning)) {
+        if (png)
+            info = png_create_info_struct(png);
+    }
     PngStructs(const PngStructs&) = delete;
     PngStructs& operator=(const PngStructs&) = delete;
     ~PngStructs() { Destroy(&png, &info); }
 };
-using ReadStructs = PngStructs<destroyRead>;
-using WriteStructs = PngStructs<png_destroy_write_struct>;
+using ReadStructs = PngStructs<png_create_read_struct, destroyRead>;
+using WriteStructs = PngStructs<png_create_write_struct, png_destroy_write_struct>;
 
 bool writeImage(png_structp png, png_infop info, const Layout& layout, int colorType, int compressionLevel,
                 png_bytepp rows) {
@@ -152,10 +156,7 @@ Expected<cv::Mat> decodePng(std::span<const std::uint8_t> png, PngPixels pixels)
     if (!looksLikePng(png))
         return Error{"not a PNG image"};
     Io io{.data = png.data(), .size = png.size()};
-    ReadStructs s;
-    s.png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &io, onError, onWarning);
-    if (s.png)
-        s.info = png_create_info_struct(s.png);
+    ReadStructs s(io);
     if (!s.info)
         return Error{"cannot start the PNG decoder"};
     Layout layout;
@@ -191,10 +192,7 @@ Expected<std::vector<std::uint8_t>> encodePng(const cv::Mat& image, int compress
     std::vector<std::uint8_t> encoded;
     Io io;
     io.out = &encoded;
-    WriteStructs s;
-    s.png = png_create_write_struct(PNG_LIBPNG_VER_STRING, &io, onError, onWarning);
-    if (s.png)
-        s.info = png_create_info_struct(s.png);
+    WriteStructs s(io);
     if (!s.info)
         return Error{"cannot start the PNG encoder"};
     const Layout layout{static_cast<png_uint_32>(image.cols), static_cast<png_uint_32>(image.rows),
