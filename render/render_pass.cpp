@@ -24,6 +24,10 @@ RenderPass::~RenderPass() {
     glBindVertexArray(0);
     glUseProgram(0);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    // Hands the pass to the GPU now, so that it draws while this thread prepares the next pass and the
+    // window. NVIDIA's driver otherwise held every pass until the frame's end, and the frame took the CPU's
+    // submission plus the GPU's drawing, one after the other (bench render, 1280x720: 2.5 ms = 1.55 + 0.90).
+    glFlush();
 }
 
 } // namespace dc::render
