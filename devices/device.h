@@ -1,9 +1,11 @@
 #pragma once
 
 #include "base/expected.h"
+#include "devices/sensor_controls.h"
 #include "frame/frame.h"
 
 #include <chrono>
+#include <memory>
 #include <string>
 
 namespace dc::devices {
@@ -91,6 +93,8 @@ public:
     // Tells the device what its consumers need from the frames it has not produced yet. May be called from
     // any thread, at any state; a device that cannot leave anything out ignores it.
     virtual void setDemand(const SourceDemand&) {}
+    // The camera's controls for the window, or null for a source without any (all but live cameras).
+    virtual std::shared_ptr<SensorControls> sensorControls() const { return nullptr; }
 
 protected:
     Device() = default;

@@ -67,6 +67,8 @@ public:
     void setFrameListener(std::function<void()> listener);
     // Forwarded to the device (Device::setDemand); thread-safe.
     void setDemand(const SourceDemand& demand) { device_->setDemand(demand); }
+    // Forwarded to the device (Device::sensorControls); thread-safe.
+    std::shared_ptr<SensorControls> sensorControls() const { return device_->sensorControls(); }
     DeviceState state() const { return state_.load(); }
     const std::string& description() const { return description_; }
     const Capabilities& capabilities() const { return capabilities_; }

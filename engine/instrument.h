@@ -89,6 +89,8 @@ public:
     void switchSource(std::unique_ptr<devices::Device> device, std::string spec);
     const std::string& spec() const { return spec_; }
     const devices::Capabilities& capabilities() const { return session_->capabilities(); }
+    // The source's camera controls (null: it has none).
+    std::shared_ptr<devices::SensorControls> sensorControls() const { return session_->sensorControls(); }
 
     // Once per UI frame: what the UI shows now. Returns the demand's generation (results carry it).
     std::uint64_t setDemand(const Demand& demand);

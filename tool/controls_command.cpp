@@ -1,7 +1,8 @@
 #include "tool/controls_command.h"
 
-#include "devices/uvc/live_devices.h"
+#include "base/files.h"
 #include "devices/uvc/live_source_spec.h"
+#include "devices/uvc/v4l2/control_preset.h"
 #include "devices/uvc/v4l2/controls.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
 #include "tool/options.h"
@@ -10,6 +11,7 @@
 
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <optional>
 
 namespace dc::tool {
@@ -28,29 +30,6 @@ struct Failure {
     int code;
     std::string message;
 };
-
-// The capture nodes a live --source names: a v4l2: node (and its colour node, when given), or every node
-// of the USB camera that matches.
-Expected<std::vector<std::string>> nodesOf(const devices::UvcConfig& config) {
-    if (!config.usb) {
-        std::vector<std::string> nodes{config.depthNode};
-        if (!config.colorNode.empty())
-            nodes.push_back(config.colorNode);
-        return nodes;
-    }
-    for (const devices::LiveDeviceInfo& d : devices::listLiveDevices().devices) {
-        const bool same = d.usb && d.usb->vendorId == config.usb->vendorId &&
-                          d.usb->productId == config.usb->productId &&
-                          (config.usb->serial.empty() || d.usb->serial == config.usb->serial);
-        if (!same)
-            continue;
-        std::vector<std::string> nodes;
-        for (const devices::VideoNodeInfo& node : d.nodes)
-            nodes.push_back(node.path);
-        return nodes;
-    }
-    return Error{"no camera matches usb:" + config.usb->toString()};
-}
 
 std::optional<Failure> readControls(const std::vector<std::string>& paths, std::vector<NodeControls>& out) {
     out.clear();
@@ -155,6 +134,24 @@ void printText(const std::vector<NodeControls>& nodes) {
     }
 }
 
+std::string presetJson(const std::string& source, const std::vector<NodeControls>& nodes) {
+    v4l2::ControlPreset preset{source, {}};
+    for (const NodeControls& node : nodes)
+        preset.nodes.push_back(v4l2::presetNodeOf(node.card, node.controls));
+    return v4l2::presetJson(preset);
+}
+
+// What --source names, or why it names no camera (a bad argument either way).
+Expected<devices::UvcConfig> parseSource(const ControlsOptions& o) {
+    if (!devices::isLiveSourceSpec(o.source))
+        return Error{"--source " + o.source + ": controls need a live camera (" +
+                     devices::kLiveSourceSpecHelp + ")"};
+    auto config = devices::parseLiveSourceSpec(o.source);
+    if (!config)
+        return Error{"--source: " + config.error().message};
+    return std::move(*config);
+}
+
 } // namespace
 
 CLI::App* addControlsCommand(CLI::App& app, ControlsOptions& o) {
@@ -163,6 +160,9 @@ CLI::App* addControlsCommand(CLI::App& app, ControlsOptions& o) {
     cmd->add_option("--source", o.source, devices::kLiveSourceSpecHelp)->required();
     cmd->add_option("--set", o.sets, "set a control, NAME=VALUE (NAME as listed; repeatable)");
     cmd->add_flag("--json", o.json, "print the listing as JSON");
+    cmd->add_option("--load", o.load, "apply a preset (JSON, as --save writes it) before any --set");
+    cmd->add_option("--save", o.save, "write the values (after --load and --set) as a preset");
+    cmd->add_flag("--overwrite", o.overwrite, "let --save replace an existing file");
     return cmd;
 }
 
@@ -171,29 +171,45 @@ int runControls(const ControlsOptions& o) {
         std::fprintf(stderr, "depthcloud: error: %s\n", f.message.c_str());
         return f.code;
     };
-    if (!devices::isLiveSourceSpec(o.source))
-        return fail({kExitBadArguments, "--source " + o.source + ": controls need a live camera (" +
-                                            devices::kLiveSourceSpecHelp + ")"});
-    const auto config = devices::parseLiveSourceSpec(o.source);
+    const auto config = parseSource(o);
     if (!config)
-        return fail({kExitBadArguments, "--source: " + config.error().message});
-    const auto paths = nodesOf(*config);
+        return fail({kExitBadArguments, config.error().message});
+    std::optional<v4l2::ControlPreset> preset;
+    if (!o.load.empty()) {
+        auto loaded = v4l2::readPreset(o.load);
+        if (!loaded)
+            return fail({kExitBadArguments, "--load: " + loaded.error().message});
+        preset = std::move(*loaded);
+    }
+    std::error_code ec;
+    if (!o.save.empty() && !o.overwrite && std::filesystem::exists(o.save, ec))
+        return fail(
+            {kExitBadArguments, "--save " + o.save + " already exists (pass --overwrite to replace it)"});
+    const auto paths = devices::cameraNodePaths(*config);
     if (!paths)
         return fail({kExitFailure, paths.error().message});
     std::vector<NodeControls> nodes;
     if (auto f = readControls(*paths, nodes))
         return fail(*f);
-    if (!o.sets.empty()) {
+    std::vector<std::string> refused;
+    if (preset)
+        refused = v4l2::applyPreset(v4l2::systemSyscalls(), *preset, *paths);
+    if (!o.sets.empty())
         if (auto f = applySets(o.sets, nodes))
             return fail(*f);
+    if (preset || !o.sets.empty())
         if (auto f = readControls(*paths, nodes))
             return fail(*f);
-    }
+    if (!o.save.empty())
+        if (Status s = base::writeTextFile(o.save, presetJson(o.source, nodes)); !s)
+            return fail({kExitFailure, "--save: " + s.error().message});
     if (o.json)
         std::printf("%s\n", toJson(nodes).dump(2).c_str());
     else
         printText(nodes);
-    return kExitOk;
+    for (const std::string& message : refused)
+        std::fprintf(stderr, "depthcloud: error: --load %s: %s\n", o.load.c_str(), message.c_str());
+    return refused.empty() ? kExitOk : kExitFailure;
 }
 
 } // namespace dc::tool

@@ -257,7 +257,8 @@ bool panelsSection(PanelVisibility& panels, bool infraredAvailable, ControlsResu
                                                      {"Source [O]", &panels.source},
                                                      {"Fog [F]", &panels.fog},
                                                      {"Aura [A]", &panels.aura},
-                                                     {kQualityTitle, &panels.quality}};
+                                                     {kQualityTitle, &panels.quality},
+                                                     {kCameraControlsTitle, &panels.cameraControls}};
     bool changed = false;
     for (std::size_t i = 0; i < std::size(toggles); ++i) {
         if (i % 2 == 1)

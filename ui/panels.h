@@ -1,6 +1,7 @@
 #pragma once
 
 #include "devices/replay/replay_device.h"
+#include "devices/sensor_controls.h"
 #include "engine/instrument.h"
 #include "processing/infrared_image.h"
 #include "processing/pipeline.h"
@@ -16,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -38,6 +40,7 @@ inline constexpr const char* kToastPrefix = "##toast";
 inline constexpr const char* kFogTitle = "Fog";
 inline constexpr const char* kAuraTitle = "Aura";
 inline constexpr const char* kQualityTitle = "Quality";
+inline constexpr const char* kCameraControlsTitle = "Camera controls";
 
 // What every image panel reports back: the window's place (to restore it after a zoom), a request to
 // open it large or bring it back (a click on a 2D panel, the zoom button on the cloud), and the depth
@@ -287,6 +290,19 @@ bool drawAuraPanel(const PanelImage& image, processing::AuraSettings& aura, bool
 // The depth-quality figures of the frame shown over the region of interest (null: none measured yet),
 // with the presets and settings that choose them; returns whether a setting changed.
 bool drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings, bool* open);
+
+// What the Camera controls panel keeps between frames: the source's controls (null: it has none), their
+// values as last read, and what the driver last refused.
+struct CameraControlsState {
+    std::shared_ptr<devices::SensorControls> controls;
+    std::vector<devices::SensorControlNode> nodes;
+    double readAtSeconds = -1e9;
+    std::string message;              // the last refusal, shown until a value is set
+    std::vector<std::string> refused; // refusals not yet logged (the viewer takes them)
+};
+// Every control of each node with its type's widget: a change is set at once and read back; an inactive
+// control (an auto control decides it) is greyed; "Reset to defaults" per node.
+void drawCameraControlsPanel(CameraControlsState& state, double nowSeconds, bool* open);
 
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.
 float drawStatusBar(const StatusLine& status);

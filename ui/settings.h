@@ -24,8 +24,9 @@ struct PanelVisibility {
     bool timeline = true; // shown while the source is a replay
     bool fog = false;
     bool aura = false;
-    bool infrared = false; // drawn only while the source delivers infrared
-    bool quality = false;  // the depth-quality figures (measured only while it is shown)
+    bool infrared = false;       // drawn only while the source delivers infrared
+    bool quality = false;        // the depth-quality figures (measured only while it is shown)
+    bool cameraControls = false; // a live camera's V4L2 controls
 };
 
 // Which cloud path draws (render::CloudPath): automatic picks the CPU splat on software GL.

@@ -171,6 +171,7 @@ private:
     void drawSidePanels(float x, float w, float h);
     void drawSourcePicker(float x, float y);
     void drawQuality(float x, float y);
+    void drawCameraControls(float x, float y);
     RoiOverlay roiOverlay() const;
     void drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, ImVec2 size);
     float drawMenuBar();
@@ -218,7 +219,9 @@ private:
     LogStore logs_;
     LogPanelState logPanel_;
     SourcePanelState sourcePanel_;
-    std::optional<std::string> pendingSource_; // chosen in the frame being drawn, opened at its end
+    CameraControlsState cameraControls_;
+    std::optional<std::string> cameraControlsSpec_; // the source cameraControls_ belongs to
+    std::optional<std::string> pendingSource_;      // chosen in the frame being drawn, opened at its end
     std::string about_ = "depthcloud";
     bool helpShown_ = false;
     bool aboutShown_ = false;

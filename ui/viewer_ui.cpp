@@ -200,9 +200,9 @@ void Viewer::resetLayout() {
     restoring_.clear();
     panelPlaces_.clear();
     // Each panel goes back to its default place the next time it is drawn, whenever that is.
-    layoutResets_ = {kCloudTitle,    kDepthTitle, kConfidenceTitle, kCameraTitle,
-                     kControlsTitle, kStatsTitle, kLogTitle,        kSourceTitle,
-                     kFogTitle,      kAuraTitle,  kInfraredTitle,   kQualityTitle};
+    layoutResets_ = {kCloudTitle,    kDepthTitle,   kConfidenceTitle,    kCameraTitle, kControlsTitle,
+                     kStatsTitle,    kLogTitle,     kSourceTitle,        kFogTitle,    kAuraTitle,
+                     kInfraredTitle, kQualityTitle, kCameraControlsTitle};
 }
 
 // File: what a person opens and saves, each also a shortcut or a button elsewhere.
@@ -282,7 +282,8 @@ float Viewer::drawMenuBar() {
             {kSourceTitle, "O", &show.source},
             {kFogTitle, "F", &show.fog},
             {kAuraTitle, "A", &show.aura},
-            {kQualityTitle, nullptr, &show.quality}};
+            {kQualityTitle, nullptr, &show.quality},
+            {kCameraControlsTitle, nullptr, &show.cameraControls}};
         for (const auto& [title, key, shown] : panels)
             ImGui::MenuItem(title, key, shown, shown != &show.infrared || infraredAvailable());
         ImGui::Separator();
@@ -348,6 +349,8 @@ void Viewer::drawUi() {
         drawSourcePicker(l.leftWidth + 40.0f, 40.0f);
     if (show.quality)
         drawQuality(l.leftWidth + 20.0f, 20.0f);
+    if (show.cameraControls)
+        drawCameraControls(l.leftWidth + 60.0f, 60.0f);
     if (timeline)
         drawTimeline(*replay, {l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});
     if (replay)
@@ -519,6 +522,21 @@ void Viewer::drawSourcePicker(float x, float y) {
 void Viewer::drawQuality(float x, float y) {
     placePanel(kQualityTitle, x, y, 360.0f, 470.0f);
     drawQualityPanel(quality(), settings_.quality, &settings_.panels.quality);
+}
+
+// The Camera controls panel floats over the cloud, so the effect of a change shows beside it. Its controls
+// follow the source: a new source's are read when the panel next draws.
+void Viewer::drawCameraControls(float x, float y) {
+    if (!cameraControlsSpec_ || *cameraControlsSpec_ != instrument_.spec()) {
+        cameraControls_ = {};
+        cameraControls_.controls = instrument_.sensorControls();
+        cameraControlsSpec_ = instrument_.spec();
+    }
+    placePanel(kCameraControlsTitle, x, y, 460.0f, 520.0f);
+    drawCameraControlsPanel(cameraControls_, ImGui::GetTime(), &settings_.panels.cameraControls);
+    for (const std::string& message : cameraControls_.refused)
+        logWarning(message);
+    cameraControls_.refused.clear();
 }
 
 // The region measured, outlined on the depth panel, which draws a new one while the Quality panel is shown.

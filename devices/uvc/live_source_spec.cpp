@@ -1,5 +1,6 @@
 #include "devices/uvc/live_source_spec.h"
 
+#include "devices/uvc/live_devices.h"
 #include "devices/uvc/v4l2/node_probe.h"
 #include "devices/uvc/v4l2/pixel_formats.h"
 
@@ -69,8 +70,15 @@ Status parseOption(const std::string& key, const std::string& value, UvcConfig& 
         if (!number(value, ms) || ms <= 0)
             return Error{"watchdog=" + value + " in --source: expected milliseconds, e.g. watchdog=2000"};
         config.watchdog = std::chrono::milliseconds(ms);
+    } else if (key == "preset") {
+        auto preset = v4l2::readPreset(value);
+        if (!preset)
+            return Error{"preset=" + value + " in --source: " + preset.error().message};
+        config.preset = std::move(*preset);
+        config.presetPath = value;
     } else {
-        return Error{"unknown option '" + key + "' in --source (format, scale, calib, color, watchdog)"};
+        return Error{"unknown option '" + key +
+                     "' in --source (format, scale, calib, color, watchdog, preset)"};
     }
     return {};
 }
@@ -102,6 +110,27 @@ Status checkDepthNode(const std::string& path) {
 }
 
 } // namespace
+
+Expected<std::vector<std::string>> cameraNodePaths(const UvcConfig& config) {
+    if (!config.usb) {
+        std::vector<std::string> nodes{config.depthNode};
+        if (!config.colorNode.empty())
+            nodes.push_back(config.colorNode);
+        return nodes;
+    }
+    for (const LiveDeviceInfo& d : listLiveDevices().devices) {
+        const bool same = d.usb && d.usb->vendorId == config.usb->vendorId &&
+                          d.usb->productId == config.usb->productId &&
+                          (config.usb->serial.empty() || d.usb->serial == config.usb->serial);
+        if (!same)
+            continue;
+        std::vector<std::string> nodes;
+        for (const VideoNodeInfo& node : d.nodes)
+            nodes.push_back(node.path);
+        return nodes;
+    }
+    return Error{"no camera matches usb:" + config.usb->toString()};
+}
 
 bool isLiveSourceSpec(const std::string& spec) {
     return spec.rfind("v4l2:", 0) == 0 || spec.rfind("usb:", 0) == 0;

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <string>
+#include <vector>
 
 namespace dc::devices {
 
@@ -14,10 +15,14 @@ namespace dc::devices {
 //   usb:VID:PID[:SERIAL][:OPTION...]        a USB camera by its ids (hex), found again after a replug
 // OPTION: WxH[@FPS] (depth mode), format=Z16|Y16, scale=METERS_PER_UNIT, calib=FILE (one camera: OpenCV
 // or ROS camera_info YAML; two sensors, depth and colour: OpenCV stereo YAML/JSON or Kalibr camchain),
-// color=/dev/videoM|none, watchdog=MS (default 2000).
+// color=/dev/videoM|none, watchdog=MS (default 2000), preset=FILE (control values set on open, as
+// `depthcloud controls --save` writes them).
 inline constexpr const char* kLiveSourceSpecHelp = "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS]";
 
 bool isLiveSourceSpec(const std::string& spec);
+// The camera's capture nodes in the order a preset's nodes go to them: every node of the USB camera a usb:
+// source names (as `depthcloud devices` lists them), or a v4l2: source's depth node and its color= node.
+Expected<std::vector<std::string>> cameraNodePaths(const UvcConfig& config);
 // Parses without touching any device (a calibration file is read: a bad one is a bad argument).
 Expected<UvcConfig> parseLiveSourceSpec(const std::string& spec);
 // Parses, and opens a v4l2: node briefly: a path that is no video capture node (/dev/null, a typo) is a bad

@@ -3,6 +3,7 @@
 #include "base/clock.h"
 #include "base/log.h"
 #include "devices/frame_pacer.h"
+#include "devices/uvc/live_source_spec.h"
 #include "devices/uvc/usb/known_cameras.h"
 #include "devices/uvc/usb/sysfs.h"
 #include "devices/uvc/usb/usb_enumeration.h"
@@ -298,7 +299,34 @@ Status UvcDevice::doOpen() {
             (rig_ ? ", " + frame::describe(*rig_) : ""));
     if (!colorPath_.empty() && !rig_)
         logWarning(description() + ": " + kUnregisteredColourMessage);
+    applyPreset();
     return {};
+}
+
+std::shared_ptr<SensorControls> UvcDevice::sensorControls() const {
+    auto nodes = cameraNodePaths(config_);
+    if (!nodes)
+        return nullptr;
+    return std::make_shared<v4l2::V4l2SensorControls>(sys_, std::move(*nodes));
+}
+
+// A value the camera refuses is told and the rest are set: the camera streams either way.
+void UvcDevice::applyPreset() {
+    if (!config_.preset)
+        return;
+    std::vector<std::string> nodes{depthPath_};
+    if (config_.usb) {
+        auto all = cameraNodePaths(config_);
+        if (all)
+            nodes = std::move(*all);
+    } else if (!colorPath_.empty()) {
+        nodes.push_back(colorPath_);
+    }
+    const std::vector<std::string> refused = v4l2::applyPreset(sys_, *config_.preset, nodes);
+    for (const std::string& message : refused)
+        logWarning(description() + ": preset " + config_.presetPath + ": " + message);
+    logInfo(description() + ": preset " + config_.presetPath + " applied" +
+            (refused.empty() ? "" : ", " + std::to_string(refused.size()) + " value(s) refused"));
 }
 
 Status UvcDevice::startStreaming() {

@@ -3,6 +3,7 @@
 #include "devices/device.h"
 #include "devices/frame_pairer.h"
 #include "devices/uvc/usb/usb_device_info.h"
+#include "devices/uvc/v4l2/control_preset.h"
 #include "devices/uvc/v4l2/handles.h"
 #include "devices/uvc/v4l2/node_probe.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
@@ -31,6 +32,9 @@ struct UvcConfig {
     // node's image with its own sensor's model and the transform between the sensors.
     std::optional<frame::Calibration> calibration;
     std::chrono::milliseconds watchdog{2000}; // no frame for this long while streaming: Stalled
+    // preset=FILE: control values set each time the camera opens (also after a replug).
+    std::optional<v4l2::ControlPreset> preset;
+    std::string presetPath;
     std::string sysfsRoot = "/sys";
 };
 
@@ -45,6 +49,9 @@ public:
     ~UvcDevice() override;
 
     std::string description() const override;
+    // The camera's nodes as a preset names them (live_source_spec.h cameraNodePaths): from the
+    // configuration alone, which no thread changes, so the window may use them while the camera streams.
+    std::shared_ptr<SensorControls> sensorControls() const override;
     Capabilities capabilities() const override;
     void interruptCapture() override;
 
@@ -78,6 +85,7 @@ private:
     void chooseDepthScale();
     void chooseIntrinsics();
     Status checkRigSizes() const;
+    void applyPreset();
     Status configureBoth();
     Status startStreaming();
     void closeNodes();

@@ -112,6 +112,36 @@ TEST_F(Cli, ControlsOfACameraThatIsNotThereExitWithOneNamingIt) {
     EXPECT_NE(usb.err.find("no camera matches usb:1234:5678"), std::string::npos) << usb.err;
 }
 
+// A preset is checked before the camera is touched: one that is no preset, or a --save over a file that is
+// there, is a bad argument, and the file stays as it was.
+TEST_F(Cli, ControlsPresetsThatCannotBeUsedAreBadArgumentsBeforeTheCameraIsTouched) {
+    std::ofstream(dir_ / "kept.json") << "an earlier preset";
+    const RunResult save = run("controls --source v4l2:/dev/video-none --save kept.json");
+    EXPECT_EQ(save.exitCode, 2) << save.err;
+    EXPECT_NE(save.err.find("--save kept.json already exists (pass --overwrite to replace it)"),
+              std::string::npos)
+        << save.err;
+    EXPECT_EQ(readFile(dir_ / "kept.json"), "an earlier preset");
+    const RunResult notPreset = run("controls --source v4l2:/dev/video-none --load kept.json");
+    EXPECT_EQ(notPreset.exitCode, 2) << notPreset.err;
+    EXPECT_NE(notPreset.err.find("--load: kept.json: not JSON"), std::string::npos) << notPreset.err;
+    std::ofstream(dir_ / "newer.json")
+        << R"({"format": "depthcloud-controls-preset", "version": 9, "nodes": []})";
+    const RunResult newer = run("controls --source v4l2:/dev/video-none --load newer.json");
+    EXPECT_EQ(newer.exitCode, 2) << newer.err;
+    EXPECT_NE(newer.err.find("newer.json: preset version 9 is newer"), std::string::npos) << newer.err;
+    std::ofstream(dir_ / "bad.json")
+        << R"({"format": "depthcloud-controls-preset", "version": 1, "nodes": [{"controls": [{"name": "gain", "value": 1.5}]}]})";
+    const RunResult value = run("--headless --frames 1 --source v4l2:/dev/video-none:preset=bad.json");
+    EXPECT_EQ(value.exitCode, 2) << value.err;
+    EXPECT_NE(
+        value.err.find("preset=bad.json in --source: bad.json: nodes[0].controls[0]: the value of 'gain'"),
+        std::string::npos)
+        << value.err;
+    for (const RunResult* r : {&save, &notPreset, &newer, &value})
+        EXPECT_EQ(lines(r->err), 1u) << r->err;
+}
+
 // A source that cannot start in a headless run says why once, naming the source (the instrument's error
 // and the run's own were both printed).
 TEST_F(Cli, ASourceThatCannotStartIsReportedOnceWithExitOne) {

@@ -64,7 +64,12 @@ std::optional<std::int64_t> currentValue(Syscalls& sys, int fd, const V4l2Contro
     list.controls = &c;
     if (xioctl(sys, fd, VIDIOC_G_EXT_CTRLS, &list) < 0)
         return std::nullopt;
-    return control.type == V4L2_CTRL_TYPE_INTEGER64 ? c.value64 : c.value;
+    if (control.type == V4L2_CTRL_TYPE_INTEGER64)
+        return std::int64_t{c.value64};
+    // A bitmask's 32 bits are unsigned, as its range is; read as signed, its top bit made it negative.
+    if (control.type == V4L2_CTRL_TYPE_BITMASK)
+        return static_cast<std::uint32_t>(c.value);
+    return std::int64_t{c.value};
 }
 
 V4l2Control describe(const v4l2_query_ext_ctrl& q) {

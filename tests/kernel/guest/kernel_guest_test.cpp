@@ -2,6 +2,7 @@
 // real kernel's uvcvideo, UVC gadget, v4l2loopback and vivid. The scenario passes what it set up through
 // the environment; a missing variable is a failure, never a skip.
 
+#include "base/files.h"
 #include "devices/frame_age.h"
 #include "devices/session.h"
 #include "devices/uvc/live_device_watcher.h"
@@ -10,6 +11,7 @@
 #include "devices/uvc/usb/hotplug_monitor.h"
 #include "devices/uvc/usb/usb_enumeration.h"
 #include "devices/uvc/uvc_device.h"
+#include "devices/uvc/v4l2/control_preset.h"
 #include "devices/uvc/v4l2/controls.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
 #include "frame/calibration.h"
@@ -24,6 +26,7 @@
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -559,7 +562,12 @@ void expectSameFields(const ListedControl& listed, const v4l2::V4l2Control& ours
         if (it == mine.end() || (name == "value" && changesAlone))
             continue;
         ASSERT_TRUE(it->second.has_value()) << listed.key << " has no " << name;
-        EXPECT_EQ(*it->second, numberOf(text)) << listed.key << " " << name;
+        // v4l2-ctl prints a bitmask's value as a signed int; its 32 bits are unsigned, as its range is.
+        if (listed.type == "bitmask")
+            EXPECT_EQ(static_cast<std::uint32_t>(*it->second), static_cast<std::uint32_t>(numberOf(text)))
+                << listed.key << " " << name;
+        else
+            EXPECT_EQ(*it->second, numberOf(text)) << listed.key << " " << name;
     }
 }
 
@@ -601,6 +609,93 @@ TEST(Vivid, ControlsAreListedAsV4l2CtlListsThem) {
         << "no control v4l2-ctl leaves out";
     EXPECT_GT(compared, 10u);
     EXPECT_GE(menus, 2u) << "a menu and an integer menu";
+}
+
+// ---- a preset given as preset= is applied when the source opens ------------------------------------
+
+std::optional<std::int64_t> vividValue(const std::string& key) {
+    v4l2::V4l2Node node;
+    if (node.open(env("VIVID_NODE")) != 0)
+        return std::nullopt;
+    const auto controls = v4l2::queryControls(v4l2::systemSyscalls(), node.fd(), node.path());
+    if (!controls)
+        return std::nullopt;
+    for (const v4l2::V4l2Control& c : *controls)
+        if (!c.isClass() && v4l2::controlKey(c.name) == key)
+            return c.value;
+    return std::nullopt;
+}
+
+// Sets vivid's brightness and contrast, as another program would.
+void setVivid(std::int64_t brightness, std::int64_t contrast) {
+    const v4l2::ControlPreset values{
+        "",
+        {{"vivid", {{"brightness", std::to_string(brightness)}, {"contrast", std::to_string(contrast)}}}}};
+    ASSERT_TRUE(v4l2::applyPreset(v4l2::systemSyscalls(), values, {env("VIVID_NODE")}).empty());
+    ASSERT_EQ(vividValue("brightness"), brightness);
+}
+
+// Opens vivid as a depth source with preset=`path`.
+void openVividWithPreset(const std::string& path) {
+    auto device =
+        openLiveSourceSpec("v4l2:" + env("VIVID_NODE") + ":640x480:format=Y16:color=none:preset=" + path);
+    ASSERT_TRUE(device) << device.error().message;
+    ASSERT_TRUE((*device)->open());
+    (*device)->close();
+}
+
+TEST(Vivid, APresetSavedIsAppliedWhenTheSourceOpensAndARefusedValueLeavesTheRest) {
+    ASSERT_FALSE(env("VIVID_NODE").empty());
+    setVivid(77, 55);
+    v4l2::V4l2Node node;
+    ASSERT_EQ(node.open(env("VIVID_NODE")), 0);
+    const auto controls = v4l2::queryControls(v4l2::systemSyscalls(), node.fd(), node.path());
+    ASSERT_TRUE(controls) << controls.error().message;
+    v4l2::ControlPreset preset{"vivid", {v4l2::presetNodeOf("vivid", *controls)}};
+    ASSERT_GT(preset.nodes[0].values.size(), 10u) << "vivid's writable controls";
+    const std::string path = std::filesystem::temp_directory_path() / "vivid-preset.json";
+    ASSERT_TRUE(base::writeTextFile(path, v4l2::presetJson(preset)));
+    setVivid(10, 20);
+    openVividWithPreset(path);
+    EXPECT_EQ(vividValue("brightness"), 77);
+    EXPECT_EQ(vividValue("contrast"), 55);
+
+    preset.nodes[0].values = {{"brightness", "300"}, {"contrast", "66"}};
+    ASSERT_TRUE(base::writeTextFile(path, v4l2::presetJson(preset)));
+    openVividWithPreset(path);
+    EXPECT_EQ(vividValue("brightness"), 77) << "300 is out of brightness's range: refused, left as it was";
+    EXPECT_EQ(vividValue("contrast"), 66) << "the value after the refused one is set";
+}
+
+// What the Camera controls panel reads and sets (Device::sensorControls) is the driver's own.
+TEST(Vivid, TheCameraControlsOfTheWindowReadAndSetTheDriversValues) {
+    ASSERT_FALSE(env("VIVID_NODE").empty());
+    auto device = openLiveSourceSpec("v4l2:" + env("VIVID_NODE") + ":640x480:format=Y16:color=none");
+    ASSERT_TRUE(device) << device.error().message;
+    const std::shared_ptr<SensorControls> controls = (*device)->sensorControls();
+    ASSERT_TRUE(controls);
+    const auto nodes = controls->read();
+    ASSERT_TRUE(nodes) << nodes.error().message;
+    ASSERT_EQ(nodes->size(), 1u);
+    const auto find = [&](const std::string& key) {
+        const auto& list = nodes->front().controls;
+        const auto it = std::find_if(list.begin(), list.end(),
+                                     [&](const SensorControl& c) { return v4l2::controlKey(c.name) == key; });
+        return it == list.end() ? SensorControl{} : *it;
+    };
+    const SensorControl brightness = find("brightness");
+    EXPECT_EQ(brightness.kind, SensorControl::Kind::Integer);
+    EXPECT_EQ(brightness.maximum, 255);
+    EXPECT_EQ(brightness.value, vividValue("brightness"));
+    EXPECT_EQ(find("gain").inactive, vividValue("gain_automatic") == 1) << "automatic gain decides the gain";
+    EXPECT_EQ(find("user_controls").kind, SensorControl::Kind::Heading);
+    ASSERT_TRUE(controls->set(nodes->front().path, brightness.id, 99));
+    EXPECT_EQ(vividValue("brightness"), 99);
+    const Status refused = controls->set(nodes->front().path, brightness.id, 300);
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("'brightness' takes 0..255, not 300"), std::string::npos)
+        << refused.error().message;
+    EXPECT_EQ(vividValue("brightness"), 99);
 }
 
 // ---- cameras that are not on USB, seen by the picker through udev alone ----------------------------

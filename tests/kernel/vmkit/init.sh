@@ -244,6 +244,23 @@ check_controls() {
 		grep -q "'brightness' takes 0..255, not 300" /tmp/controls-bad.txt &&
 		[ "$b2" = "brightness: 200" ] && [ "$c2" = "contrast: 32" ]
 	then result controls-command PASS; else result controls-command FAIL; fi
+	check_controls_preset "$node"
+}
+
+# --save writes the values as a preset; after v4l2-ctl changes them, --load sets them again.
+check_controls_preset() {
+	node=$1
+	rm -f /host$SCRATCH/preset.json
+	in_host $DEPTHCLOUD controls --source v4l2:$node --save $SCRATCH/preset.json > /dev/null 2>&1
+	saved=$?
+	in_host v4l2-ctl -d $node -c brightness=10,contrast=100
+	in_host $DEPTHCLOUD controls --source v4l2:$node --load $SCRATCH/preset.json > /tmp/controls-load.txt 2>&1
+	loaded=$?
+	b=$(in_host v4l2-ctl -d $node -C brightness) c=$(in_host v4l2-ctl -d $node -C contrast)
+	echo "  controls: --save exit status $saved, --load exit status $loaded; v4l2-ctl reads $b, $c"
+	if [ $saved = 0 ] && [ $loaded = 0 ] && grep -q '"name": "brightness"' /host$SCRATCH/preset.json &&
+		[ "$b" = "brightness: 200" ] && [ "$c" = "contrast: 32" ]
+	then result controls-preset PASS; else result controls-preset FAIL; fi
 }
 
 # Everything is set up first and our programs start once each: under TCG, loading their libraries over
