@@ -206,6 +206,8 @@ PathKind classifyPath(const fs::path& path) {
     switch (devices::replay::classifyCapture(path)) {
     case devices::replay::CaptureKind::DcRecording:
     case devices::replay::CaptureKind::RosBag:
+    case devices::replay::CaptureKind::Mcap:
+    case devices::replay::CaptureKind::Rosbag2:
         return PathKind::Recording;
     case devices::replay::CaptureKind::StrayCapture:
         return PathKind::StrayDirectory;

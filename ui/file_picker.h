@@ -14,7 +14,7 @@ inline constexpr const char* kFilePickerTitle = "Open a recording";
 
 // What a path is to the replay: something it opens, a folder to look into, or neither.
 enum class PathKind {
-    Recording,      // a depthcloud recording or a ROS bag (devices::replay::classifyCapture)
+    Recording,      // a recording: ours, a ROS bag, MCAP, a rosbag2 folder (devices::replay::classifyCapture)
     StrayDirectory, // a Stray Scanner capture: depth/ beside rgb.mp4
     TumDirectory,   // a TUM RGB-D sequence: rgb.txt and depth.txt
     Folder,         // any other directory

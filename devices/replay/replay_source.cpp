@@ -6,6 +6,7 @@
 
 #ifdef DC_HAVE_ROS
 #include "devices/ros/bag_source.h"
+#include "devices/ros/mcap_source.h"
 #endif
 
 #include <algorithm>
@@ -82,6 +83,16 @@ Expected<std::unique_ptr<ReplaySource>> openBag(const std::string& path, const R
 #endif
 }
 
+Expected<std::unique_ptr<ReplaySource>> openMcap(const std::string& path, const ReplayOpenOptions& options) {
+#ifdef DC_HAVE_ROS
+    return ros::openMcapSource(path, {.depthTopic = options.depthTopic, .colorTopic = options.colorTopic});
+#else
+    (void)options;
+    return Error{path + ": this depthcloud was built without ROS (-DDC_ROS=OFF), so it cannot read ROS 2 "
+                        "recordings"};
+#endif
+}
+
 } // namespace
 
 Expected<frame::Frame> loadFrame(ReplaySource& source, std::size_t i) {
@@ -120,6 +131,8 @@ frame::Pose poseFromQuaternion(const double t[3], const double q[4]) {
 
 namespace {
 
+constexpr std::string_view kMcapMagic{"\x89MCAP0\r\n", 8};
+
 std::string lowercaseExtension(const std::filesystem::path& p) {
     std::string extension = p.extension().string();
     std::transform(extension.begin(), extension.end(), extension.begin(),
@@ -133,6 +146,8 @@ CaptureKind classifyFile(const std::filesystem::path& p) {
     if (in.read(head.data(), head.size())) {
         if (std::string_view(head.data(), head.size()) == "#ROSBAG ")
             return CaptureKind::RosBag;
+        if (std::string_view(head.data(), head.size()) == kMcapMagic)
+            return CaptureKind::Mcap;
         if (std::equal(head.begin(), head.end(), recording::kFileMagic.begin(),
                        [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }))
             return CaptureKind::DcRecording;
@@ -141,6 +156,8 @@ CaptureKind classifyFile(const std::filesystem::path& p) {
     const std::string extension = lowercaseExtension(p);
     if (extension == ".bag")
         return CaptureKind::RosBag;
+    if (extension == ".mcap")
+        return CaptureKind::Mcap;
     return extension == ".dcrec" ? CaptureKind::DcRecording : CaptureKind::OtherFile;
 }
 
@@ -151,6 +168,8 @@ CaptureKind classifyCapture(const std::filesystem::path& path) {
         return CaptureKind::Missing;
     if (!isDirectory(path))
         return classifyFile(path);
+    if (pathExists(path / "metadata.yaml"))
+        return CaptureKind::Rosbag2;
     if (pathExists(path / "rgb.txt") || pathExists(path / "depth.txt"))
         return CaptureKind::TumSequence;
     return isDirectory(path / "depth") ? CaptureKind::StrayCapture : CaptureKind::Folder;
@@ -164,6 +183,10 @@ Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path
         return Error{path + " does not exist"};
     case CaptureKind::RosBag:
         source = openBag(path, options);
+        break;
+    case CaptureKind::Mcap:
+    case CaptureKind::Rosbag2:
+        source = openMcap(path, options);
         break;
     case CaptureKind::DcRecording:
     case CaptureKind::OtherFile: // the recording reader names what the file lacks

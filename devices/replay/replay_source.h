@@ -54,18 +54,20 @@ std::size_t sanitizeDepth(frame::Plane<float>& depthMeters);
 
 struct ReplayOpenOptions {
     std::string calibrationPath; // OpenCV YAML camera matrix that replaces the source's intrinsics
-    // A ROS bag's image topics to replay (topics=DEPTH[,COLOR]; without COLOR, no colour); empty: found
-    // by their encodings.
+    // A ROS 1 or 2 recording's image topics to replay (topics=DEPTH[,COLOR]; without COLOR, no colour);
+    // empty: found by their encodings.
     std::string depthTopic{};
     std::string colorTopic{};
 };
 
 // What a path holds, for the replay: a file by its first bytes where they say (a depthcloud recording's
-// magic, a ROS bag's "#ROSBAG "), else by its extension in any case (TAKE.DCREC, x.Bag); a folder by its
-// entries. The file picker, a path dropped on the window and replay: all ask this one question.
+// magic, a ROS bag's "#ROSBAG ", MCAP's), else by its extension in any case (TAKE.DCREC, x.Bag, X.MCAP); a
+// folder by its entries. The file picker, a path dropped on the window and replay: all ask this one question.
 enum class CaptureKind {
     DcRecording,  // a depthcloud recording
     RosBag,       // a ROS 1 bag (RealSense, ROS)
+    Mcap,         // an MCAP file (ROS 2's rosbag2 since Iron, Foxglove)
+    Rosbag2,      // a rosbag2 folder: metadata.yaml beside its storage files
     StrayCapture, // a Stray Scanner capture: depth/ beside rgb.mp4
     TumSequence,  // a TUM RGB-D sequence: rgb.txt and depth.txt
     Folder,       // any other directory
@@ -74,7 +76,8 @@ enum class CaptureKind {
 };
 CaptureKind classifyCapture(const std::filesystem::path& path);
 
-// Opens PATH as whatever it is: a depthcloud recording (a file), a ROS bag (a .bag file), a Stray Scanner
+// Opens PATH as whatever it is: a depthcloud recording (a file), a ROS bag (a .bag file), a ROS 2 recording
+// (an .mcap file or a rosbag2 folder stored as MCAP), a Stray Scanner
 // directory (depth/, rgb.mp4, camera_matrix.csv, odometry.csv) or a TUM RGB-D directory (rgb.txt, depth.txt).
 Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path,
                                                          const ReplayOpenOptions& options = {});

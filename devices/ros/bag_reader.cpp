@@ -56,7 +56,7 @@ Expected<std::unique_ptr<BagReader>> BagReader::open(const std::string& path) {
     return std::unique_ptr<BagReader>(new BagReader(std::move(impl)));
 }
 
-const std::vector<BagReader::Topic>& BagReader::topics() const {
+const std::vector<MessageStore::Topic>& BagReader::topics() const {
     return impl_->topics;
 }
 

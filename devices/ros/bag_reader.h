@@ -1,6 +1,7 @@
 #pragma once
 
 #include "base/expected.h"
+#include "devices/ros/message_store.h"
 #include "devices/ros/ros_messages.h"
 
 #include <cstddef>
@@ -14,28 +15,22 @@ namespace dc::devices::ros {
 
 // A ROS 1 bag read through rosbag_storage, behind plain values (ros_messages.h says why). Every rosbag
 // exception is caught here and becomes an Error naming the file. Not thread-safe.
-class BagReader {
+class BagReader final : public MessageStore {
 public:
-    struct Topic {
-        std::string name;
-        std::string type; // "sensor_msgs/Image", ...
-    };
-
     static Expected<std::unique_ptr<BagReader>> open(const std::string& path);
-    ~BagReader();
+    ~BagReader() override;
 
-    const std::vector<Topic>& topics() const;
-    // The messages of `topic` in recorded order, kept as an index for random access; returns its handle.
-    Expected<std::size_t> indexTopic(const std::string& topic);
-    std::size_t messageCount(std::size_t handle) const;
-    std::int64_t recordedNs(std::size_t handle, std::size_t i) const; // the bag's receive time
-    Expected<RosImage> image(std::size_t handle, std::size_t i) const;
+    std::string formatName() const override { return "ROS bag"; }
+    const std::vector<Topic>& topics() const override;
+    Expected<std::size_t> indexTopic(const std::string& topic) override;
+    std::size_t messageCount(std::size_t handle) const override;
+    std::int64_t recordedNs(std::size_t handle, std::size_t i) const override;
+    Expected<RosImage> image(std::size_t handle, std::size_t i) const override;
 
-    // The first message of a topic, when it exists and has that type.
-    std::optional<RosImage> firstImage(const std::string& topic) const;
-    std::optional<RosCameraInfo> firstCameraInfo(const std::string& topic) const;
-    std::optional<float> firstFloat32(const std::string& topic) const;
-    std::optional<RosTransform> firstTransform(const std::string& topic) const;
+    std::optional<RosImage> firstImage(const std::string& topic) const override;
+    std::optional<RosCameraInfo> firstCameraInfo(const std::string& topic) const override;
+    std::optional<float> firstFloat32(const std::string& topic) const override;
+    std::optional<RosTransform> firstTransform(const std::string& topic) const override;
 
 private:
     struct Impl;

@@ -120,13 +120,14 @@ struct ImageStream {
 
 class BagSource final : public replay::ReplaySource {
 public:
-    BagSource(std::string path, BagOptions options) : path_(std::move(path)), options_(std::move(options)) {}
+    BagSource(std::unique_ptr<MessageStore> store, std::string path, BagOptions options)
+        : path_(std::move(path)), options_(std::move(options)), bag_(std::move(store)) {}
 
     Status open();
 
     std::string description() const override {
-        return "ROS bag " + std::filesystem::path(path_).filename().string() + " (" + depthTopic_ +
-               (colorTopic_.empty() ? "" : ", " + colorTopic_) +
+        return bag_->formatName() + " " + std::filesystem::path(path_).filename().string() + " (" +
+               depthTopic_ + (colorTopic_.empty() ? "" : ", " + colorTopic_) +
                (infraredTopic_.empty() ? "" : ", infrared " + infraredTopic_) + ")";
     }
     Capabilities capabilities() const override {
@@ -150,7 +151,7 @@ private:
 
     std::string path_;
     BagOptions options_;
-    std::unique_ptr<BagReader> bag_;
+    std::unique_ptr<MessageStore> bag_;
     std::string depthTopic_, colorTopic_, infraredTopic_;
     ImageStream depth_, color_, infrared_;
     std::vector<std::optional<std::size_t>> colorOf_, infraredOf_; // per depth image
@@ -161,7 +162,7 @@ private:
     bool decodeColor_ = true;
 };
 
-ImageKind kindOf(const BagReader& bag, const std::string& topic) {
+ImageKind kindOf(const MessageStore& bag, const std::string& topic) {
     const auto image = bag.firstImage(topic);
     return image ? imageKind(image->encoding) : ImageKind::Other;
 }
@@ -169,7 +170,7 @@ ImageKind kindOf(const BagReader& bag, const std::string& topic) {
 Status BagSource::checkTopic(const std::string& topic, ImageKind want, const char* what) const {
     const auto& topics = bag_->topics();
     const auto found = std::find_if(topics.begin(), topics.end(),
-                                    [&](const BagReader::Topic& t) { return t.name == topic; });
+                                    [&](const MessageStore::Topic& t) { return t.name == topic; });
     if (found == topics.end())
         return Error{path_ + " has no topic " + topic};
     if (found->type != kImageType)
@@ -181,15 +182,19 @@ Status BagSource::checkTopic(const std::string& topic, ImageKind want, const cha
 }
 
 Status BagSource::chooseTopics() {
-    // RealSense names its streams; other bags are ranked by the words their drivers use.
+    // RealSense's ROS 1 recordings name their streams; other bags are ranked by the words their drivers use.
+    // ROS 2 wrappers' aligned_depth_to_color comes before their plain depth: its pixels are the colour
+    // image's, so colour is exact without the extrinsics a ROS 2 recording keeps only in tf.
     auto rank = [](const std::string& topic, ImageKind kind) {
         const bool depth = kind == ImageKind::Depth;
         if (topic.find(depth ? "/Depth_" : "/Color_") != std::string::npos)
             return 0;
-        return topic.find(depth ? "depth" : "color") != std::string::npos ? 1 : 2;
+        if (depth && topic.find("aligned_depth_to_color") != std::string::npos)
+            return 1;
+        return topic.find(depth ? "depth" : "color") != std::string::npos ? 2 : 3;
     };
     std::vector<std::pair<int, std::string>> depths, colors;
-    for (const BagReader::Topic& t : bag_->topics()) {
+    for (const MessageStore::Topic& t : bag_->topics()) {
         if (t.type != kImageType)
             continue;
         const ImageKind kind = kindOf(*bag_, t.name);
@@ -222,10 +227,10 @@ Expected<ImageStream> BagSource::index(const std::string& topic) {
     for (std::size_t i = 0; i < bag_->messageCount(*handle); ++i) {
         // Header stamps are the sensor's clock (what a live subscriber sees); a driver that leaves them
         // zero gets the recording time.
-        auto image = bag_->image(*handle, i);
-        if (!image)
-            return Error{path_ + ": " + image.error().message};
-        std::int64_t ns = image->stampNs != 0 ? image->stampNs : bag_->recordedNs(*handle, i);
+        auto stamp = bag_->imageStampNs(*handle, i);
+        if (!stamp)
+            return Error{path_ + ": " + stamp.error().message};
+        std::int64_t ns = *stamp != 0 ? *stamp : bag_->recordedNs(*handle, i);
         // Replay needs non-decreasing time: a stamp that jumps back keeps the one before it.
         if (!stream.timestampsNs.empty() && ns < stream.timestampsNs.back()) {
             ns = stream.timestampsNs.back();
@@ -273,7 +278,7 @@ void BagSource::readCalibration() {
 // The infrared stream is found by name and encoding whatever topics were chosen: it only adds a plane.
 void BagSource::chooseInfrared() {
     int best = 2;
-    for (const BagReader::Topic& t : bag_->topics()) {
+    for (const MessageStore::Topic& t : bag_->topics()) {
         const int rank = infraredRank(t.name);
         if (t.type != kImageType || t.name == depthTopic_ || rank < 0 || rank >= best)
             continue;
@@ -298,10 +303,7 @@ std::vector<std::optional<std::size_t>> BagSource::pairWithDepth(const ImageStre
 }
 
 Status BagSource::open() {
-    auto bag = BagReader::open(path_);
-    if (!bag)
-        return bag.error();
-    bag_ = std::move(*bag);
+    warnings_ = bag_->warnings();
     if (Status s = chooseTopics(); !s)
         return s;
     readCalibration();
@@ -375,12 +377,20 @@ Expected<frame::Frame> BagSource::frame(std::size_t i) {
 
 } // namespace
 
-Expected<std::unique_ptr<replay::ReplaySource>> openBagSource(const std::string& path,
-                                                              const BagOptions& options) {
-    auto source = std::make_unique<BagSource>(path, options);
+Expected<std::unique_ptr<replay::ReplaySource>>
+openMessageSource(std::unique_ptr<MessageStore> store, const std::string& path, const BagOptions& options) {
+    auto source = std::make_unique<BagSource>(std::move(store), path, options);
     if (Status s = source->open(); !s)
         return s.error();
     return std::unique_ptr<replay::ReplaySource>(std::move(source));
+}
+
+Expected<std::unique_ptr<replay::ReplaySource>> openBagSource(const std::string& path,
+                                                              const BagOptions& options) {
+    auto bag = BagReader::open(path);
+    if (!bag)
+        return bag.error();
+    return openMessageSource(std::move(*bag), path, options);
 }
 
 const BagRig* bagRig(const replay::ReplaySource& source) {

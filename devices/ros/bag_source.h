@@ -2,6 +2,7 @@
 
 #include "base/expected.h"
 #include "devices/replay/replay_source.h"
+#include "devices/ros/message_store.h"
 #include "devices/ros/ros_image.h"
 
 #include <array>
@@ -40,6 +41,11 @@ struct BagRig {
 // each with the colour image nearest in time; timestamps are the images' header stamps.
 Expected<std::unique_ptr<replay::ReplaySource>> openBagSource(const std::string& path,
                                                               const BagOptions& options = {});
+
+// Any recording of ROS topics replayed the same way: `path` names it in descriptions and errors.
+Expected<std::unique_ptr<replay::ReplaySource>> openMessageSource(std::unique_ptr<MessageStore> store,
+                                                                  const std::string& path,
+                                                                  const BagOptions& options = {});
 
 // The recorded calibration of a source that openBagSource opened; nullptr for any other source.
 const BagRig* bagRig(const replay::ReplaySource& source);
