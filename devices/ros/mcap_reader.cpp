@@ -133,6 +133,15 @@ Status decompressChunk(std::span<const std::uint8_t> compressed, const std::stri
                        std::uint64_t uncompressedSize, std::vector<std::uint8_t>& out) {
     if (uncompressedSize > kMaxChunkBytes)
         return Error{"a chunk of " + std::to_string(uncompressedSize) + " bytes is more than a chunk can be"};
+    // Sizes the data cannot decompress to are refused before the buffer is made: LZ4 expands at most
+    // 255-fold, and a zstd frame that records its size must agree.
+    const std::uint64_t zstdSize = compression == "zstd"
+                                       ? ZSTD_getFrameContentSize(compressed.data(), compressed.size())
+                                       : ZSTD_CONTENTSIZE_UNKNOWN;
+    if ((compression == "lz4" && uncompressedSize > 255 * compressed.size() + 64) ||
+        (zstdSize != ZSTD_CONTENTSIZE_UNKNOWN && zstdSize != uncompressedSize))
+        return Error{"a " + compression + " chunk of " + std::to_string(compressed.size()) +
+                     " bytes cannot hold the " + std::to_string(uncompressedSize) + " it claims"};
     out.resize(uncompressedSize);
     if (compression.empty()) {
         if (compressed.size() != uncompressedSize)
