@@ -14,6 +14,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <ostream>
 
 namespace dc::devices::ros {
 namespace {
@@ -34,7 +35,23 @@ std::array<std::uint8_t, 3> colorRgb(int x, int y, std::size_t i) {
             static_cast<std::uint8_t>((7 * n + x + y) % 256)};
 }
 
-class McapReplay : public ::testing::TestWithParam<std::string> {
+std::uint16_t infraredValue(int x, int y, std::size_t i) {
+    return static_cast<std::uint16_t>((x * 7 + y * 3 + static_cast<int>(i)) & 0xff);
+}
+
+// One file the writer makes, and what it holds beyond 16UC1 depth and colour.
+struct Layout {
+    const char* file;
+    bool floatDepth = false; // 32FC1 metres
+    bool infrared = false;   // an infra1 mono8 stream
+};
+
+// Test names (and CTest's) show the file, not the struct's bytes.
+void PrintTo(const Layout& layout, std::ostream* out) {
+    *out << layout.file;
+}
+
+class McapReplay : public ::testing::TestWithParam<Layout> {
 protected:
     // CTest writes the files once (the McapTestFiles fixture); a run of the binary alone writes them itself.
     // Without node or its packages (scripts/setup.sh installs both) every test here fails rather than skips.
@@ -53,7 +70,7 @@ protected:
         EXPECT_TRUE(source) << source.error().message;
         return source ? std::move(*source) : nullptr;
     }
-    static void expectFrame(ReplaySource& source, std::size_t i) {
+    static void expectFrame(ReplaySource& source, std::size_t i, const Layout& layout = {}) {
         auto f = source.frame(i);
         ASSERT_TRUE(f) << f.error().message;
         EXPECT_EQ(f->timestampNs,
@@ -64,7 +81,9 @@ protected:
         ASSERT_EQ(d.height, kDepthH);
         for (int y = 0; y < kDepthH; ++y)
             for (int x = 0; x < kDepthW; ++x)
-                ASSERT_EQ(d.at(x, y), recording::depthFromUnits(depthUnits(x, y, i), 0.001))
+                ASSERT_EQ(d.at(x, y), layout.floatDepth
+                                          ? static_cast<float>(depthUnits(x, y, i) / 1000.0)
+                                          : recording::depthFromUnits(depthUnits(x, y, i), 0.001))
                     << "frame " << i << " at " << x << "," << y;
         ASSERT_EQ(f->capturedImage.format, frame::PixelFormat::Rgb24);
         ASSERT_EQ(f->capturedImage.width, kColorW);
@@ -74,12 +93,20 @@ protected:
                 for (int c = 0; c < 3; ++c)
                     ASSERT_EQ((*f->capturedImage.bytes)[(y * kColorW + x) * 3 + c], colorRgb(x, y, i)[c])
                         << "frame " << i << " at " << x << "," << y;
+        ASSERT_EQ(f->infrared.has_value(), layout.infrared);
+        if (!layout.infrared)
+            return;
+        ASSERT_EQ(f->infrared->width, kDepthW);
+        for (int y = 0; y < kDepthH; ++y)
+            for (int x = 0; x < kDepthW; ++x)
+                ASSERT_EQ(f->infrared->at(x, y), infraredValue(x, y, i))
+                    << "frame " << i << " at " << x << "," << y;
     }
     static inline std::string problem_;
 };
 
 TEST_P(McapReplay, EveryFrameEqualsWhatWasWrittenWithItsStamp) {
-    auto source = open("replay:" + file(GetParam()));
+    auto source = open("replay:" + file(GetParam().file));
     ASSERT_TRUE(source);
     ASSERT_EQ(source->frameCount(), kFrames);
     EXPECT_TRUE(source->capabilities().color);
@@ -87,13 +114,17 @@ TEST_P(McapReplay, EveryFrameEqualsWhatWasWrittenWithItsStamp) {
     // Backwards: each read seeks through the index, across chunks, rather than following the file.
     for (std::size_t i = kFrames; i-- > 0;) {
         EXPECT_EQ(source->timestampNs(i), kStartNs + static_cast<std::int64_t>(i) * kFrameNs);
-        expectFrame(*source, i);
+        expectFrame(*source, i, GetParam());
+    }
+    if (GetParam().infrared) {
+        EXPECT_NE(source->description().find("infrared /camera/camera/infra1/image_rect_raw"),
+                  std::string::npos);
     }
     EXPECT_TRUE(source->warnings().empty()) << source->warnings().front();
 }
 
 TEST_P(McapReplay, CalibrationComesFromCameraInfo) {
-    auto source = open("replay:" + file(GetParam()));
+    auto source = open("replay:" + file(GetParam().file));
     ASSERT_TRUE(source);
     EXPECT_FALSE(source->capabilities().approximateIntrinsics);
     const BagRig* rig = bagRig(*source);
@@ -116,17 +147,19 @@ TEST_P(McapReplay, CalibrationComesFromCameraInfo) {
     EXPECT_EQ(f->cameraIntrinsics.fx, 50.0 * kColorW / kDepthW);
 }
 
-INSTANTIATE_TEST_SUITE_P(Layouts, McapReplay,
-                         ::testing::Values("zstd.mcap", "lz4.mcap", "uncompressed-chunks.mcap",
-                                           "unchunked.mcap", "no-summary.mcap", "no-message-index.mcap",
-                                           "big-endian.mcap", "rosbag2"),
-                         [](const auto& info) {
-                             std::string name = info.param;
-                             for (char& c : name)
-                                 if (!std::isalnum(static_cast<unsigned char>(c)))
-                                     c = '_';
-                             return name;
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Layouts, McapReplay,
+    ::testing::Values(Layout{"zstd.mcap"}, Layout{"lz4.mcap"}, Layout{"uncompressed-chunks.mcap"},
+                      Layout{"unchunked.mcap"}, Layout{"no-summary.mcap"}, Layout{"no-message-index.mcap"},
+                      Layout{"big-endian.mcap"}, Layout{"rosbag2"}, Layout{"float-bgr.mcap", true},
+                      Layout{"rgba-infrared.mcap", false, true}, Layout{"bgra-big-endian.mcap", true}),
+    [](const auto& info) {
+        std::string name = info.param.file;
+        for (char& c : name)
+            if (!std::isalnum(static_cast<unsigned char>(c)))
+                c = '_';
+        return name;
+    });
 
 using McapFiles = McapReplay;
 

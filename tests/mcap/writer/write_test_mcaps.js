@@ -51,21 +51,44 @@ function imageMessage(kind, stampNs, encoding, width, height, step, data, bigEnd
   return w.data;
 }
 
-function depthImage(kind, i, stampNs, bigEndianPixels) {
-  const data = new Uint8Array(DEPTH_W * DEPTH_H * 2);
+const infraredValue = (x, y, i) => (x * 7 + y * 3 + i) & 0xff;
+
+// 16UC1 millimetres, or 32FC1 metres (the same depths).
+function depthImage(kind, i, stampNs, bigEndianPixels, encoding) {
+  const bytes = encoding === "32FC1" ? 4 : 2;
+  const data = new Uint8Array(DEPTH_W * DEPTH_H * bytes);
   const view = new DataView(data.buffer);
   for (let y = 0; y < DEPTH_H; ++y)
-    for (let x = 0; x < DEPTH_W; ++x)
-      view.setUint16((y * DEPTH_W + x) * 2, depthUnits(x, y, i), !bigEndianPixels);
-  return imageMessage(kind, stampNs, "16UC1", DEPTH_W, DEPTH_H, DEPTH_W * 2, data, bigEndianPixels);
+    for (let x = 0; x < DEPTH_W; ++x) {
+      const at = (y * DEPTH_W + x) * bytes;
+      if (bytes === 4) view.setFloat32(at, depthUnits(x, y, i) / 1000, !bigEndianPixels);
+      else view.setUint16(at, depthUnits(x, y, i), !bigEndianPixels);
+    }
+  return imageMessage(kind, stampNs, encoding, DEPTH_W, DEPTH_H, DEPTH_W * bytes, data, bigEndianPixels);
 }
 
-function colorImage(kind, i, stampNs) {
-  const data = new Uint8Array(COLOR_W * COLOR_H * 3);
+// The same colours in each byte order the wrappers publish.
+const COLOR_LAYOUTS = {
+  rgb8: (r, g, b) => [r, g, b], bgr8: (r, g, b) => [b, g, r],
+  rgba8: (r, g, b) => [r, g, b, 255], bgra8: (r, g, b) => [b, g, r, 255],
+};
+
+function colorImage(kind, i, stampNs, encoding) {
+  const layout = COLOR_LAYOUTS[encoding];
+  const bytes = layout(0, 0, 0).length;
+  const data = new Uint8Array(COLOR_W * COLOR_H * bytes);
   for (let y = 0; y < COLOR_H; ++y)
     for (let x = 0; x < COLOR_W; ++x)
-      data.set(colorRgb(x, y, i), (y * COLOR_W + x) * 3);
-  return imageMessage(kind, stampNs, "rgb8", COLOR_W, COLOR_H, COLOR_W * 3, data, false);
+      data.set(layout(...colorRgb(x, y, i)), (y * COLOR_W + x) * bytes);
+  return imageMessage(kind, stampNs, encoding, COLOR_W, COLOR_H, COLOR_W * bytes, data, false);
+}
+
+function infraredImage(kind, i, stampNs) {
+  const data = new Uint8Array(DEPTH_W * DEPTH_H);
+  for (let y = 0; y < DEPTH_H; ++y)
+    for (let x = 0; x < DEPTH_W; ++x)
+      data[y * DEPTH_W + x] = infraredValue(x, y, i);
+  return imageMessage(kind, stampNs, "mono8", DEPTH_W, DEPTH_H, DEPTH_W, data, false);
 }
 
 function cameraInfo(kind, stampNs, info) {
@@ -108,7 +131,9 @@ const withoutSummary = {
 
 // Writes one file; returns its bytes and, per depth frame, the file offset at which its message was added
 // (with chunkSize 1 every message is its own chunk, so that offset is where the frame's chunk starts).
-async function write(options, kind = EncapsulationKind.CDR_LE, bigEndianPixels = false) {
+// `images` picks the encodings: 16UC1 + rgb8 unless it says otherwise, and an infra1 mono8 stream.
+async function write(options, kind = EncapsulationKind.CDR_LE, bigEndianPixels = false, images = {}) {
+  const { depthEncoding = "16UC1", colorEncoding = "rgb8", infrared = false } = images;
   const buffer = new TempBuffer();
   const writer = new McapWriter({ writable: buffer, ...options });
   await writer.start({ profile: "ros2", library: "depthcloud test writer" });
@@ -121,6 +146,7 @@ async function write(options, kind = EncapsulationKind.CDR_LE, bigEndianPixels =
   const depthInfo = await channel("/camera/camera/depth/camera_info", "sensor_msgs/msg/CameraInfo");
   const color = await channel("/camera/camera/color/image_raw", "sensor_msgs/msg/Image");
   const colorInfo = await channel("/camera/camera/color/camera_info", "sensor_msgs/msg/CameraInfo");
+  const infra = infrared ? await channel("/camera/camera/infra1/image_rect_raw", "sensor_msgs/msg/Image") : 0;
   const depthOffsets = [];
   let sequence = 0;
   const add = (channelId, stampNs, data) => writer.addMessage({
@@ -129,9 +155,10 @@ async function write(options, kind = EncapsulationKind.CDR_LE, bigEndianPixels =
   for (let i = 0; i < FRAMES; ++i) {
     const stampNs = START_NS + BigInt(i) * FRAME_NS;
     depthOffsets.push(Number(buffer.position()));
-    await add(depth, stampNs, depthImage(kind, i, stampNs, bigEndianPixels));
+    await add(depth, stampNs, depthImage(kind, i, stampNs, bigEndianPixels, depthEncoding));
     await add(depthInfo, stampNs, cameraInfo(kind, stampNs, DEPTH_INFO));
-    await add(color, stampNs + COLOR_OFFSET_NS, colorImage(kind, i, stampNs + COLOR_OFFSET_NS));
+    await add(color, stampNs + COLOR_OFFSET_NS, colorImage(kind, i, stampNs + COLOR_OFFSET_NS, colorEncoding));
+    if (infrared) await add(infra, stampNs, infraredImage(kind, i, stampNs));
     await add(colorInfo, stampNs + COLOR_OFFSET_NS, cameraInfo(kind, stampNs, COLOR_INFO));
   }
   await writer.end();
@@ -158,6 +185,12 @@ async function main() {
   save("no-summary.mcap", (await write({ ...chunked(compressors.zstd), ...withoutSummary })).bytes);
   save("no-message-index.mcap", (await write({ ...chunked(compressors.lz4), useMessageIndex: false })).bytes);
   save("big-endian.mcap", (await write(chunked(compressors.zstd), EncapsulationKind.CDR_BE, true)).bytes);
+  for (const [name, images] of Object.entries({
+    "float-bgr.mcap": { depthEncoding: "32FC1", colorEncoding: "bgr8" },
+    "rgba-infrared.mcap": { colorEncoding: "rgba8", infrared: true },
+    "bgra-big-endian.mcap": { depthEncoding: "32FC1", colorEncoding: "bgra8" },
+  }))
+    save(name, (await write(chunked(compressors.zstd), name.includes("big") ? EncapsulationKind.CDR_BE : EncapsulationKind.CDR_LE, name.includes("big"), images)).bytes);
   // One chunk per message, cut 20 bytes into the chunk of depth frame 3: frames 0-2 survive.
   const small = await write({ compressChunk: compressors.zstd, chunkSize: 1 });
   save("truncated.mcap", small.bytes.subarray(0, small.depthOffsets[3] + 20));
