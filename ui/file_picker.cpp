@@ -159,7 +159,7 @@ void drawLocationRow(FilePickerState& state) {
     ImGui::Checkbox("Sources only", &state.sourcesOnly);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip(
-            "List only folders, recordings (.dcrec, .bag), Stray Scanner and TUM RGB-D captures");
+            "List only folders, recordings (.dcrec, .bag, .mcap), Stray Scanner and TUM RGB-D captures");
     ImGui::SameLine();
     if (ImGui::Button("Refresh"))
         state.listedDirectory.clear();
@@ -237,8 +237,8 @@ Expected<std::string> sourceSpecForPath(const std::string& path) {
     if (kind == PathKind::Folder)
         return Error{path + ": a folder, but neither a Stray Scanner capture (depth/, rgb.mp4, "
                             "camera_matrix.csv, odometry.csv) nor a TUM RGB-D sequence (rgb.txt, depth.txt)"};
-    return Error{path +
-                 ": not a recording (.dcrec, .bag), a Stray Scanner directory or a TUM RGB-D directory"};
+    return Error{
+        path + ": not a recording (.dcrec, .bag, .mcap), a Stray Scanner directory or a TUM RGB-D directory"};
 }
 
 void rememberFolder(FilePickerState& state, const std::string& folder) {

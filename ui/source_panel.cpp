@@ -69,7 +69,7 @@ std::optional<std::string> drawSourcePanel(const SourceList& list, SourcePanelSt
         state.filesOpen = true;
     }
     if (ImGui::IsItemHovered())
-        ImGui::SetTooltip("Pick a recording (.dcrec, .bag), a Stray Scanner or a TUM RGB-D folder");
+        ImGui::SetTooltip("Pick a recording (.dcrec, .bag, .mcap), a Stray Scanner or a TUM RGB-D folder");
     if (!state.error.empty()) {
         ImGui::PushTextWrapPos(0.0f);
         ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.35f, 1.0f), "%s", state.error.c_str());
