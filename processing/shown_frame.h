@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 namespace dc::processing {
@@ -37,6 +38,13 @@ struct ShownCloud {
     // by the camera or the GL path's shader colours them (engine::Demand::gpuCameraColours).
     std::shared_ptr<const RgbImage> colors;
     int factor = 1;
+};
+
+// A panel's picture as drawn, read back top row first, and the name of the file that keeps it
+// (cloud.png, depth.png, ...): what the headless run and a snapshot write.
+struct PanelPicture {
+    std::string fileName;
+    RgbaImage image;
 };
 
 // A depth range in meters, e.g. the automatic colormap range.

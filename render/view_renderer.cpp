@@ -135,6 +135,19 @@ void ViewRenderer::renderPanelsWhole() {
     renderPanels(whole);
 }
 
+Expected<std::vector<processing::PanelPicture>> ViewRenderer::panelPictures() {
+    renderPanelsWhole();
+    const std::pair<const char*, const RenderTarget*> panels[] = {
+        {"cloud.png", &cloudTarget_}, {"depth.png", &depthTarget_}, {"confidence.png", &confidenceTarget_}};
+    std::vector<processing::PanelPicture> pictures;
+    for (const auto& [name, target] : panels) {
+        if (target->empty())
+            return Error{std::string("cannot write ") + name + ": the panel has not been rendered"};
+        pictures.push_back({name, {target->width(), target->height(), target->readRgba()}});
+    }
+    return pictures;
+}
+
 const FrameTextures& ViewRenderer::panelTextures(int step) {
     if (step <= 1)
         return texturesFor(panelDepth_, depth_, pointColors_, false);

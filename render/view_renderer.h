@@ -19,6 +19,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <vector>
 
 namespace dc::render {
 
@@ -71,6 +72,10 @@ public:
     // Draws the depth and confidence panels again at the depth map's own size if they were drawn smaller:
     // for a snapshot, which keeps every sample. The next renderPanels() draws them at the shown size again.
     void renderPanelsWhole();
+    // The cloud, depth and confidence panels as cloud.png, depth.png and confidence.png: drawn whole first
+    // (renderPanelsWhole), so the depth and confidence keep every sample however small they are shown.
+    // An error names a panel not rendered yet.
+    Expected<std::vector<processing::PanelPicture>> panelPictures();
     // The size of the depth map the depth and confidence panels show (their images' shape on screen; the
     // targets may hold every n-th sample of it).
     int panelsMapWidth() const { return panelsMap_.first; }

@@ -1,13 +1,9 @@
 #include "ui/viewer.h"
 
-#include "base/files.h"
 #include "base/log.h"
 #include "devices/device.h"
 #include "exporting/snapshot.h"
 #include "frame/camera_model.h"
-#include "frame/image_io.h"
-#include "frame/jpeg_codec.h"
-#include "processing/camera_image.h"
 #include "processing/depth_statistics.h"
 
 #include <algorithm>
@@ -306,42 +302,10 @@ Status Viewer::openPath(const std::string& path) {
 }
 
 Expected<std::vector<std::string>> Viewer::savePanels(const std::string& directory) {
-    renderer_.renderPanelsWhole();
-    const std::pair<const char*, const render::RenderTarget*> panels[] = {
-        {"cloud.png", &renderer_.cloudTarget()},
-        {"depth.png", &renderer_.depthTarget()},
-        {"confidence.png", &renderer_.confidenceTarget()}};
-    std::vector<std::string> written;
-    for (const auto& [name, target] : panels) {
-        if (target->width() == 0)
-            return Error{std::string("cannot write ") + name + ": the panel has not been rendered"};
-        if (Status s = target->savePng(directory + "/" + name); !s)
-            return s.error();
-        written.emplace_back(name);
-    }
-    // The camera's own image at its full resolution (the panel shows it scaled to the panel); a frame
-    // without one (a depth-only camera) has no camera.png.
-    if (!shown_ || shown_->frame->capturedImage.empty())
-        return written;
-    if (Status s = saveCameraImage(directory + "/camera.png"); !s)
-        return s.error();
-    written.emplace_back("camera.png");
-    return written;
-}
-
-Status Viewer::saveCameraImage(const std::string& path) const {
-    // A JPEG camera's image is decoded only for what shows it; the snapshot is one more reader.
-    const auto captured = frame::JpegDecoder().decode(shown_->frame->capturedImage);
-    if (!captured)
-        return Error{"cannot write camera.png: " + captured.error().message};
-    const processing::RgbImage image =
-        processing::cameraRgbImage(*captured, captured->width, captured->height);
-    if (image.empty())
-        return Error{"cannot write camera.png: the camera image is malformed"};
-    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(image.width) * image.height * 4, 255);
-    for (std::size_t i = 0, n = rgba.size() / 4; i < n; ++i)
-        std::copy_n(&image.pixels[i * 3], 3, &rgba[i * 4]);
-    return frame::writeRgbaPng(path, image.width, image.height, rgba.data());
+    auto pictures = renderer_.panelPictures();
+    if (!pictures)
+        return pictures.error();
+    return exporting::writePanels(directory, *pictures, shown_ ? shown_->frame.get() : nullptr);
 }
 
 Expected<std::string> Viewer::saveSnapshot(const std::string& parent) {
@@ -356,19 +320,12 @@ Expected<std::string> Viewer::saveSnapshot(const std::string& parent) {
 Expected<std::string> Viewer::writeSnapshot(const std::string& parent) {
     if (!shown_)
         return Error{"no frame to save yet"};
-    // A new directory every time: two snapshots of one frame (a paused replay) are two snapshots.
-    auto dir = base::createFreshDirectory(parent, "frame-" + std::to_string(shown_->frame->sequence));
-    if (!dir)
-        return dir.error();
-    if (auto written = savePanels(*dir); !written)
-        return written.error();
+    auto pictures = renderer_.panelPictures();
+    if (!pictures)
+        return pictures.error();
     const exporting::SnapshotCloud cloud{settings_.cloud.minConfidence, settings_.cloud.nearMeters,
                                          settings_.cloud.coloring == render::PointColoring::Camera};
-    if (Status s =
-            exporting::writeSnapshotPly(*shown_, cloud, instrument_.status().source, *dir + "/cloud.ply");
-        !s)
-        return s.error();
-    return dir;
+    return exporting::writeSnapshot(parent, *pictures, *shown_, cloud, instrument_.status().source);
 }
 
 namespace {

@@ -149,7 +149,6 @@ public:
     bool accumulating() const;
 
 private:
-    Status saveCameraImage(const std::string& path) const;
     Expected<std::string> writeSnapshot(const std::string& parent);
     engine::Demand demandOf() const;
     void adopt(processing::ShownFramePtr shown);

@@ -621,6 +621,28 @@ TEST_F(InstrumentTest, TwoSnapshotsOfOneFrameGoToTwoFoldersAndEachSaysWhere) {
     std::filesystem::remove_all(parent);
 }
 
+// A snapshot that cannot be written says so and why, in the log and on screen: a press of P that writes
+// nothing and says nothing reads as a snapshot taken.
+TEST_F(InstrumentTest, AFailedSnapshotSaysWhyOnScreen) {
+    const std::filesystem::path file =
+        std::filesystem::temp_directory_path() / ("dc-snapshot-file-" + std::to_string(::getpid()));
+    std::ofstream(file) << "a file where the snapshots' folder would go";
+    const auto dir = viewer_->saveSnapshot((file / "snapshots").string());
+    std::filesystem::remove(file);
+    ASSERT_FALSE(dir.ok());
+    frame(0.0);
+    std::size_t said = 0;
+    for (const LogEntry& e : viewer_->log().snapshot()) {
+        if (e.level != LogLevel::Error || e.message.find("snapshot not saved") == std::string::npos)
+            continue;
+        ++said;
+        EXPECT_NE(e.message.find(dir.error().message), std::string::npos) << e.message << " says why";
+        const ImGuiWindow* toast = ImGui::FindWindowByName((kToastPrefix + std::to_string(e.id)).c_str());
+        EXPECT_TRUE(toast && toast->Active) << e.message << " is shown as a toast";
+    }
+    EXPECT_EQ(said, 1u);
+}
+
 TEST_F(InstrumentTest, SnapshotWritesEveryPanelAndThePointCloud) {
     const std::filesystem::path parent =
         std::filesystem::temp_directory_path() / ("dc-snapshot-" + std::to_string(::getpid()));
