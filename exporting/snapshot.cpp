@@ -4,7 +4,7 @@
 #include "exporting/ply.h"
 #include "frame/image_io.h"
 #include "frame/jpeg_codec.h"
-#include "processing/camera_image.h"
+#include "frame/rgb_image.h"
 #include "processing/point_cloud.h"
 #include "processing/registration.h"
 
@@ -20,14 +20,14 @@ Status writeCameraPng(const frame::Frame& frame, const std::string& path) {
     const auto captured = frame::JpegDecoder().decode(frame.capturedImage);
     if (!captured)
         return Error{"cannot write camera.png: " + captured.error().message};
-    const processing::RgbImage image =
-        processing::cameraRgbImage(*captured, captured->width, captured->height);
-    if (image.empty())
+    // At its own size, converted as the Stray export converts it (resampling is cameraRgb's work).
+    const std::vector<std::uint8_t> rgb = frame::toRgb24(*captured);
+    if (rgb.empty())
         return Error{"cannot write camera.png: the camera image is malformed"};
-    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(image.width) * image.height * 4, 255);
+    std::vector<std::uint8_t> rgba(static_cast<std::size_t>(captured->width) * captured->height * 4, 255);
     for (std::size_t i = 0, n = rgba.size() / 4; i < n; ++i)
-        std::copy_n(&image.pixels[i * 3], 3, &rgba[i * 4]);
-    return frame::writeRgbaPng(path, image.width, image.height, rgba.data());
+        std::copy_n(&rgb[i * 3], 3, &rgba[i * 4]);
+    return frame::writeRgbaPng(path, captured->width, captured->height, rgba.data());
 }
 
 } // namespace
