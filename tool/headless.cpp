@@ -4,7 +4,7 @@
 #include "render/gl_context.h"
 #include "tool/options.h"
 #include "tool/summary.h"
-#include "ui/viewer.h"
+#include "ui/presenter.h"
 
 #include <cstdio>
 
@@ -63,42 +63,42 @@ private:
 
 // Waits for the next frame's result while Patience allows, in short slices so that the end of a recording
 // is noticed at once rather than after the whole timeout.
-bool waitForFrame(ui::Viewer& viewer, double timeSeconds) {
+bool waitForFrame(ui::Presenter& presenter, double timeSeconds) {
     constexpr std::chrono::milliseconds kSlice{50};
-    for (Patience patience(viewer.instrument()); patience.keepWaiting();) {
-        if (viewer.update(timeSeconds, kSlice))
+    for (Patience patience(presenter.instrument()); patience.keepWaiting();) {
+        if (presenter.update(timeSeconds, kSlice))
             return true;
         // The last frame may have arrived just before the end was flagged.
-        if (replayEnded(viewer.instrument()))
-            return viewer.update(timeSeconds, kSlice);
+        if (replayEnded(presenter.instrument()))
+            return presenter.update(timeSeconds, kSlice);
     }
     return false;
 }
 
 // Whether the frame shown has the camera's image, or the source has none to give.
-bool showsColour(ui::Viewer& viewer) {
-    const auto& shown = viewer.shown();
-    return !viewer.instrument().capabilities().color || (shown && !shown->frame->capturedImage.empty());
+bool showsColour(ui::Presenter& presenter) {
+    const auto& shown = presenter.shown();
+    return !presenter.instrument().capabilities().color || (shown && !shown->frame->capturedImage.empty());
 }
 
 // A colour sensor may start later than the depth sensor, and on a busy machine the frames asked for can all
 // come before its first image: the run goes on while Patience allows for one that has it, so camera.png
 // shows the camera. Returns whether one came; says so when none did.
-bool waitForColour(ui::Viewer& viewer, double timeSeconds) {
-    Patience patience(viewer.instrument());
-    while (!showsColour(viewer) && patience.keepWaiting()) {
-        if (viewer.update(timeSeconds, std::chrono::milliseconds(50)))
-            viewer.presented();
-        if (replayEnded(viewer.instrument()))
+bool waitForColour(ui::Presenter& presenter, double timeSeconds) {
+    Patience patience(presenter.instrument());
+    while (!showsColour(presenter) && patience.keepWaiting()) {
+        if (presenter.update(timeSeconds, std::chrono::milliseconds(50)))
+            presenter.presented();
+        if (replayEnded(presenter.instrument()))
             break;
     }
-    if (!showsColour(viewer))
+    if (!showsColour(presenter))
         std::fprintf(
             stderr,
             "depthcloud: note: no frame with the camera's image arrived in %lld s; camera.png is not "
             "written\n",
             patience.secondsWaited());
-    return showsColour(viewer);
+    return showsColour(presenter);
 }
 
 } // namespace
@@ -119,8 +119,8 @@ int runHeadless(const ViewerOptions& options) {
     auto settings = chosenSettings({}, options);
     if (!settings)
         return fail(settings.error().message);
-    ui::Viewer viewer(instrument, renderer, *settings);
-    viewer.resizeCloud(kCloudWidth, kCloudHeight);
+    ui::Presenter presenter(instrument, renderer, *settings);
+    presenter.resizeCloud(kCloudWidth, kCloudHeight);
     instrument.start();
     // A source that cannot start has said why already (the instrument logs it as an error, naming it).
     if (!instrument.status().running)
@@ -129,8 +129,8 @@ int runHeadless(const ViewerOptions& options) {
     const int frames = options.frames.value_or(60);
     int shown = 0;
     while (shown < frames) {
-        if (waitForFrame(viewer, shown * kHeadlessFrameSeconds)) {
-            viewer.presented();
+        if (waitForFrame(presenter, shown * kHeadlessFrameSeconds)) {
+            presenter.presented();
             ++shown;
             continue;
         }
@@ -144,12 +144,12 @@ int runHeadless(const ViewerOptions& options) {
         return fail("no frame from " + s.source + " for " + std::to_string(kFrameTimeout.count()) + " s" +
                     (s.message.empty() ? "" : ": " + s.message));
     }
-    if (!showsColour(viewer))
-        (void)waitForColour(viewer, shown * kHeadlessFrameSeconds);
-    auto written = viewer.savePanels(options.outDirectory);
+    if (!showsColour(presenter))
+        (void)waitForColour(presenter, shown * kHeadlessFrameSeconds);
+    auto written = presenter.savePanels(options.outDirectory);
     if (!written)
         return fail(written.error().message);
-    const std::string summary = summaryJson(viewer.summary(), context->rendererName(), "headless");
+    const std::string summary = summaryJson(presenter.summary(), context->rendererName(), "headless");
     if (Status s = base::writeTextFile(options.outDirectory + "/summary.json", summary); !s)
         return fail(s.error().message);
     written->emplace_back("summary.json");

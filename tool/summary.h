@@ -1,6 +1,6 @@
 #pragma once
 
-#include "ui/viewer.h"
+#include "ui/presenter.h"
 
 #include <string>
 

@@ -7,6 +7,7 @@
 #include "processing/pipeline.h"
 #include "processing/shown_frame.h"
 #include "render/render_target.h"
+#include "ui/depth_legend.h"
 #include "ui/file_picker.h"
 #include "ui/log_store.h"
 #include "ui/panel_image.h"
@@ -105,14 +106,6 @@ struct CloudPanelResult {
 CloudPanelResult drawCloudPanel(const render::RenderTarget& picture, CloudSettings& cloud,
                                 const CloudOverlay& overlay, const std::string& message, bool zoomed,
                                 bool* open);
-
-// How the depth panel maps meters to colour: the range actually used (fixed or automatic) and the ramp.
-struct DepthLegend {
-    float minMeters = 0.0f;
-    float maxMeters = 2.5f;
-    render::Colormap colormap = render::Colormap::Jet;
-    bool automatic = false;
-};
 
 // An image laid over a panel's own at an opacity (none: an empty image).
 struct PanelOverlay {

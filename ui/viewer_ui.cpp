@@ -316,7 +316,7 @@ void Viewer::drawUi() {
         if (!zoomed_.empty() && escape)
             setZoomedPanel({});
         if (ImGui::IsKeyPressed('Z', false))
-            anchors_.undo();
+            presenter_.anchors().undo();
         if (ImGui::IsKeyPressed('P', false))
             (void)saveSnapshot(kSnapshotDirectory);
     }
@@ -383,12 +383,12 @@ void Viewer::drawControls(float width, float height) {
     placePanel(kControlsTitle, 0, 0, width, height);
     const ControlsContext context{true,
                                   true,
-                                  anchors_.size(),
-                                  shown_ && shown_->frame->pose,
+                                  presenter_.anchors().size(),
+                                  shown() && shown()->frame->pose,
                                   instrument_.accumulation().size(),
                                   cloudPathText(),
-                                  shown_ ? shown_->cloud.factor : 1,
-                                  pointsShown(),
+                                  shown() ? shown()->cloud.factor : 1,
+                                  presenter_.pointsShown(),
                                   instrument_.recording(),
                                   &recordState_,
                                   infraredAvailable()};
@@ -402,9 +402,9 @@ void Viewer::drawControls(float width, float height) {
     if (r.clearAccumulation)
         instrument_.accumulation().clear();
     if (r.clearAnchors)
-        anchors_.clear();
+        presenter_.anchors().clear();
     if (r.undoAnchor)
-        anchors_.undo();
+        presenter_.anchors().undo();
 }
 
 void Viewer::drawCloud(float x, float y, float w, float h) {
@@ -440,13 +440,13 @@ void Viewer::drawSidePanels(float x, float w, float height) {
         place(kDepthTitle);
         const DepthView& view = settings_.depthView;
         const bool gpu = renderer_.colourOverDepthFromGpu();
-        const bool overlay = view.colourOverlay && shown_ && (shown_->colourOverDepth || gpu);
+        const bool overlay = view.colourOverlay && shown() && (shown()->colourOverDepth || gpu);
         const PanelImage colour = !overlay ? PanelImage{}
                                   : gpu    ? imageOf(renderer_.colourOverDepthTarget())
                                            : imageOf(renderer_.colourOverDepthTexture());
         afterDataPanel(kDepthTitle, drawDepthPanel(dataPanelImage(renderer_.depthTarget(), renderer_),
-                                                   {colour, view.overlayOpacity}, legend_, probe,
-                                                   roiOverlay(), &show.depth));
+                                                   {colour, view.overlayOpacity}, presenter_.depthLegend(),
+                                                   probe, roiOverlay(), &show.depth));
     }
     if (show.confidence) {
         place(kConfidenceTitle);
@@ -458,7 +458,7 @@ void Viewer::drawSidePanels(float x, float w, float height) {
     }
     if (show.camera) {
         place(kCameraTitle);
-        const bool aligned = shown_ && renderer_.alignsDepthOverCamera(demand_.gpuCameraColours);
+        const bool aligned = shown() && renderer_.alignsDepthOverCamera(presenter_.demand().gpuCameraColours);
         const PanelImage depth = aligned ? imageOf(renderer_.depthOverCameraTarget())
                                          : dataPanelImage(renderer_.depthTarget(), renderer_);
         const PanelResult r = drawCameraPanel(renderer_.cameraFromGpu() ? imageOf(renderer_.cameraTarget())
@@ -466,17 +466,17 @@ void Viewer::drawSidePanels(float x, float w, float height) {
                                               depth, settings_.camera, probe, &show.camera);
         afterPanel(kCameraTitle, r);
         if (r.shownWidth > 0)
-            cameraShownWidth_ = r.shownWidth;
+            presenter_.setCameraShownWidth(r.shownWidth);
         // A single camera's depth overlay is the depth panel's image, shown at the camera panel's size.
         if (!aligned && settings_.camera.depthOverlay)
             dataPanelsWidth = std::max(dataPanelsWidth, r.shownWidth);
     }
     if (dataPanelsWidth > 0)
-        dataPanelsShownWidth_ = dataPanelsWidth;
+        presenter_.setDataPanelsShownWidth(dataPanelsWidth);
     if (show.infrared && infraredAvailable()) {
         place(kInfraredTitle);
         const processing::IntensityRange range =
-            shown_ ? shown_->infraredRange : processing::IntensityRange{};
+            shown() ? shown()->infraredRange : processing::IntensityRange{};
         afterPanel(kInfraredTitle,
                    drawInfraredPanel(imageOf(renderer_.infraredTexture()), range, probe, &show.infrared));
     }
@@ -542,11 +542,12 @@ void Viewer::drawCameraControls(float x, float y) {
 // The region measured, outlined on the depth panel, which draws a new one while the Quality panel is shown.
 RoiOverlay Viewer::roiOverlay() const {
     RoiOverlay overlay;
-    overlay.drawable = settings_.panels.quality && shown_ && shown_->depth.data;
+    overlay.drawable = settings_.panels.quality && shown() && shown()->depth.data;
     const processing::ShownQuality* q = quality();
     if (!overlay.drawable || !q || q->roi.width <= 0)
         return overlay;
-    const float w = static_cast<float>(shown_->depth.width()), h = static_cast<float>(shown_->depth.height());
+    const float w = static_cast<float>(shown()->depth.width()),
+                h = static_cast<float>(shown()->depth.height());
     overlay.outline = ImVec4(static_cast<float>(q->roi.x) / w, static_cast<float>(q->roi.y) / h,
                              static_cast<float>(q->roi.x + q->roi.width) / w,
                              static_cast<float>(q->roi.y + q->roi.height) / h);
@@ -555,9 +556,10 @@ RoiOverlay Viewer::roiOverlay() const {
 
 // Every depth pixel the rectangle touches is in the region (at least one).
 void Viewer::setDrawnRoi(const ImVec4& f) {
-    if (!shown_ || !shown_->depth.data)
+    if (!shown() || !shown()->depth.data)
         return;
-    const float w = static_cast<float>(shown_->depth.width()), h = static_cast<float>(shown_->depth.height());
+    const float w = static_cast<float>(shown()->depth.width()),
+                h = static_cast<float>(shown()->depth.height());
     QualitySettings& q = settings_.quality;
     q.roiX = static_cast<int>(std::floor(f.x * w));
     q.roiY = static_cast<int>(std::floor(f.y * h));
@@ -613,10 +615,10 @@ void Viewer::startExport() {
         return;
     }
     // The files hold what the panels show, not the Quality panel's figures: none are measured for them.
-    engine::Demand shown = demand_;
-    shown.quality.reset();
+    engine::Demand demand = presenter_.demand();
+    demand.quality.reset();
     if (!instrument_.startExport(static_cast<exporting::ExportFormat>(timelineState_.format), *dir,
-                                 timelineState_.rangeStart, timelineState_.rangeEnd, shown)) {
+                                 timelineState_.rangeStart, timelineState_.rangeEnd, demand)) {
         std::error_code ec;
         std::filesystem::remove(*dir, ec); // still empty: nothing was started
     }
@@ -650,11 +652,11 @@ void Viewer::onCloudPointer(const CloudPanelResult& r) {
     const double now = ImGui::GetTime();
     if (r.doubleClicked && lastAnchorTime_ >= 0.0 &&
         now - lastAnchorTime_ <= ImGui::GetIO().MouseDoubleClickTime) {
-        anchors_.undo();
+        presenter_.anchors().undo();
         lastAnchorTime_ = -1.0;
     }
     render::PickQuery query;
-    query.viewProjection = cloudViewProjection_;
+    query.viewProjection = presenter_.cloudViewProjection();
     query.cursorPixels = {r.hoverPixels->x, r.hoverPixels->y};
     const render::RenderTarget& target = renderer_.cloudTarget();
     query.imageSize = {static_cast<float>(target.width()), static_cast<float>(target.height())};
@@ -666,7 +668,7 @@ void Viewer::onCloudPointer(const CloudPanelResult& r) {
         return;
     hoverProbe_ = probeAt(source, picked->u, picked->v);
     if (r.clickPixels && !r.doubleClicked) {
-        anchors_.add(picked->point, shown_->frame->pose);
+        presenter_.anchors().add(picked->point, shown()->frame->pose);
         lastAnchorTime_ = now;
     }
 }
@@ -685,21 +687,22 @@ std::string Viewer::cloudMessage() {
 
 CloudOverlay Viewer::cloudOverlay() const {
     CloudOverlay overlay;
-    if (anchors_.empty() || !shown_)
+    const Anchors& anchors = presenter_.anchors();
+    if (anchors.empty() || !shown())
         return overlay;
-    for (const glm::vec3& p : anchors_.inCameraFrame(shown_->frame->pose)) {
-        const glm::vec4 clip = cloudViewProjection_ * glm::vec4(p, 1.0f);
+    for (const glm::vec3& p : anchors.inCameraFrame(shown()->frame->pose)) {
+        const glm::vec4 clip = presenter_.cloudViewProjection() * glm::vec4(p, 1.0f);
         const float w = clip.w > 1e-6f ? clip.w : 1e-6f;
         overlay.anchors.emplace_back(0.5f * (clip.x / w + 1.0f), 0.5f * (1.0f - clip.y / w));
     }
-    for (std::size_t i = 0; i + 1 < anchors_.size(); ++i)
-        overlay.segments.emplace_back(static_cast<int>(i), formatLength(anchors_.segmentMeters(i)));
-    if (anchors_.size() >= 3) {
-        const std::size_t last = anchors_.size() - 1;
-        overlay.segments.emplace_back(static_cast<int>(last), formatLength(anchors_.closingMeters()));
+    for (std::size_t i = 0; i + 1 < anchors.size(); ++i)
+        overlay.segments.emplace_back(static_cast<int>(i), formatLength(anchors.segmentMeters(i)));
+    if (anchors.size() >= 3) {
+        const std::size_t last = anchors.size() - 1;
+        overlay.segments.emplace_back(static_cast<int>(last), formatLength(anchors.closingMeters()));
     }
-    if (anchors_.size() >= 3)
-        overlay.summary = "area " + formatArea(anchors_.areaSquareMeters());
+    if (anchors.size() >= 3)
+        overlay.summary = "area " + formatArea(anchors.areaSquareMeters());
     return overlay;
 }
 
