@@ -33,6 +33,9 @@ public:
 
     // States its demand at once: make the viewer before starting the instrument.
     Viewer(engine::Instrument& instrument, render::ViewRenderer& renderer, Settings settings);
+    // settings_ refers into presenter_: a copy would refer into the original's.
+    Viewer(const Viewer&) = delete;
+    Viewer& operator=(const Viewer&) = delete;
 
     // Once per UI frame, before drawUi() (Presenter::update).
     bool update(double timeSeconds, std::chrono::milliseconds wait = std::chrono::milliseconds(0)) {
