@@ -9,6 +9,7 @@
 #include "exporting/export.h"
 #include "frame/camera_model.h"
 #include "tests/recording/recording_test_support.h"
+#include "tests/ros/replay_test_pattern.h"
 
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
@@ -25,18 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using replay::ReplaySource;
 
-// make_test_bags.py's layout and formulas.
-constexpr std::size_t kFrames = 5;
-constexpr int kDepthW = 64, kDepthH = 48, kColorW = 80, kColorH = 60;
-constexpr std::int64_t kStartNs = 1000'000'000'000, kFrameNs = 33'333'333;
-int depthUnits(int x, int y, std::size_t i) {
-    return x + 100 * y + 1000 * static_cast<int>(i);
-}
-std::array<std::uint8_t, 3> colorRgb(int x, int y, std::size_t i) {
-    const int n = static_cast<int>(i);
-    return {static_cast<std::uint8_t>((3 * x + n) % 256), static_cast<std::uint8_t>((4 * y) % 256),
-            static_cast<std::uint8_t>((7 * n + x + y) % 256)};
-}
+using namespace pattern; // the writers' layout and formulas
 
 // The depth sensor's infrared: 8-bit, or the same values spread over 16 bits (the YUYV bag's mono16).
 std::uint16_t infraredValue(int x, int y, std::size_t i, bool wide) {

@@ -8,6 +8,7 @@
 #include "devices/ros/bag_source.h"
 #include "devices/ros/mcap_reader.h"
 #include "tests/recording/recording_test_support.h"
+#include "tests/ros/replay_test_pattern.h"
 
 #include <gtest/gtest.h>
 
@@ -22,18 +23,7 @@ namespace {
 namespace fs = std::filesystem;
 using replay::ReplaySource;
 
-// write_test_mcaps.js's layout and formulas.
-constexpr std::size_t kFrames = 5;
-constexpr int kDepthW = 64, kDepthH = 48, kColorW = 80, kColorH = 60;
-constexpr std::int64_t kStartNs = 1000'000'000'000, kFrameNs = 33'333'333;
-int depthUnits(int x, int y, std::size_t i) {
-    return x + 100 * y + 1000 * static_cast<int>(i);
-}
-std::array<std::uint8_t, 3> colorRgb(int x, int y, std::size_t i) {
-    const int n = static_cast<int>(i);
-    return {static_cast<std::uint8_t>((3 * x + n) % 256), static_cast<std::uint8_t>((4 * y) % 256),
-            static_cast<std::uint8_t>((7 * n + x + y) % 256)};
-}
+using namespace pattern; // the writers' layout and formulas
 
 std::uint16_t infraredValue(int x, int y, std::size_t i) {
     return static_cast<std::uint16_t>((x * 7 + y * 3 + static_cast<int>(i)) & 0xff);

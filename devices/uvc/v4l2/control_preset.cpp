@@ -93,15 +93,20 @@ SensorControl sensorControlOf(const V4l2Control& c) {
     return out;
 }
 
+// Opens the node at `path` into `node` and reads its controls.
+Expected<std::vector<V4l2Control>> openControls(V4l2Node& node, Syscalls& sys, const std::string& path) {
+    if (const int r = node.open(path); r < 0)
+        return Error{path + ": cannot open: " + std::strerror(-r)};
+    return queryControls(sys, node.fd(), path);
+}
+
 } // namespace
 
 Expected<std::vector<SensorControlNode>> V4l2SensorControls::read() {
     std::vector<SensorControlNode> nodes;
     for (const std::string& path : nodePaths_) {
         V4l2Node node(sys_);
-        if (const int r = node.open(path); r < 0)
-            return Error{path + ": cannot open: " + std::strerror(-r)};
-        auto controls = queryControls(sys_, node.fd(), path);
+        auto controls = openControls(node, sys_, path);
         if (!controls)
             return controls.error();
         SensorControlNode out{path, node.capability().card, {}};
@@ -114,9 +119,7 @@ Expected<std::vector<SensorControlNode>> V4l2SensorControls::read() {
 
 Status V4l2SensorControls::set(const std::string& path, std::uint32_t id, std::int64_t value) {
     V4l2Node node(sys_);
-    if (const int r = node.open(path); r < 0)
-        return Error{path + ": cannot open: " + std::strerror(-r)};
-    auto controls = queryControls(sys_, node.fd(), path);
+    auto controls = openControls(node, sys_, path);
     if (!controls)
         return controls.error();
     const auto control =
@@ -126,6 +129,26 @@ Status V4l2SensorControls::set(const std::string& path, std::uint32_t id, std::i
     if (Status s = checkControlValue(*control, value); !s)
         return Error{path + ": " + s.error().message};
     return setControl(sys_, node.fd(), path, *control, value);
+}
+
+std::vector<StreamMode> V4l2SensorControls::depthModes() {
+    for (const std::string& path : nodePaths_) {
+        V4l2Node node(sys_);
+        if (node.open(path) < 0)
+            continue;
+        std::vector<StreamMode> modes;
+        for (const std::uint32_t fourcc : node.formats()) {
+            if (fourcc != V4L2_PIX_FMT_Z16 && fourcc != V4L2_PIX_FMT_Y16)
+                continue;
+            const std::string format = fourcc == V4L2_PIX_FMT_Z16 ? "Z16" : "Y16";
+            for (const V4l2Mode& m : node.modes(fourcc))
+                for (const double fps : m.framesPerSecond)
+                    modes.push_back({format, m.width, m.height, fps});
+        }
+        if (!modes.empty())
+            return modes;
+    }
+    return {};
 }
 
 PresetNode presetNodeOf(const std::string& card, const std::vector<V4l2Control>& controls) {
