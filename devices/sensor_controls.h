@@ -34,6 +34,16 @@ struct SensorControlNode {
     std::vector<SensorControl> controls;
 };
 
+// One way a camera's depth node can stream: its pixel format ("Z16", "Y16"), size and rate.
+struct StreamMode {
+    std::string format;
+    int width = 0;
+    int height = 0;
+    double fps = 0.0;
+
+    bool operator==(const StreamMode&) const = default;
+};
+
 // What the window may do to a camera's controls. A device that has none gives no surface. Safe to use from
 // any thread while the device streams: an implementation holds only what does not change and opens the
 // camera's nodes for each call.
@@ -44,6 +54,8 @@ public:
     virtual Expected<std::vector<SensorControlNode>> read() = 0;
     // Sets one control; an error names the node, the control and the value.
     virtual Status set(const std::string& path, std::uint32_t id, std::int64_t value) = 0;
+    // Every depth format, size and rate the camera's depth node offers (none: it cannot say).
+    virtual std::vector<StreamMode> depthModes() { return {}; }
 };
 
 } // namespace dc::devices

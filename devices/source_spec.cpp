@@ -112,4 +112,10 @@ Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec) {
     return Error{"unknown source '" + spec + "' (expected " + kSourceSpecHelp + ")"};
 }
 
+Expected<std::string> specWithDepthMode(const std::string& spec, const StreamMode& mode) {
+    if (!isLiveSourceSpec(spec))
+        return Error{spec + " is not a live camera: its depth mode is its recording's"};
+    return withDepthMode(spec, mode);
+}
+
 } // namespace dc::devices

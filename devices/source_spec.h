@@ -18,5 +18,7 @@ inline constexpr const char* kSourceSpecHelp =
 
 // Parses a --source value and builds the device it names. Errors name the offending part.
 Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec);
+// A live camera's spec streaming its depth in `mode`, the rest as it was; an error for other sources.
+Expected<std::string> specWithDepthMode(const std::string& spec, const StreamMode& mode);
 
 } // namespace dc::devices

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace dc::ui {
 
@@ -106,6 +107,27 @@ void drawNode(CameraControlsState& state, const devices::SensorControlNode& node
     }
 }
 
+std::string modeText(const devices::StreamMode& m) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%dx%d @ %g Hz %s", m.width, m.height, m.fps, m.format.c_str());
+    return text;
+}
+
+void drawModes(CameraControlsState& state) {
+    if (!state.modes)
+        state.modes = state.controls->depthModes();
+    if (state.modes->empty())
+        return;
+    if (ImGui::BeginCombo("Depth mode", state.modeShown.empty() ? "as opened" : state.modeShown.c_str())) {
+        for (const devices::StreamMode& m : *state.modes)
+            if (ImGui::Selectable(modeText(m).c_str(), modeText(m) == state.modeShown)) {
+                state.chosenMode = m;
+                state.modeShown = modeText(m);
+            }
+        ImGui::EndCombo();
+    }
+}
+
 } // namespace
 
 void drawCameraControlsPanel(CameraControlsState& state, double nowSeconds, bool* open) {
@@ -126,6 +148,7 @@ void drawCameraControlsPanel(CameraControlsState& state, double nowSeconds, bool
             state.message = nodes.error().message;
         state.readAtSeconds = nowSeconds;
     }
+    drawModes(state);
     if (!state.message.empty())
         ImGui::TextColored(ImVec4(1.0f, 0.45f, 0.4f, 1.0f), "%s", state.message.c_str());
     for (const devices::SensorControlNode& node : state.nodes)

@@ -257,8 +257,7 @@ bool panelsSection(PanelVisibility& panels, bool infraredAvailable, ControlsResu
                                                      {"Source [O]", &panels.source},
                                                      {"Fog [F]", &panels.fog},
                                                      {"Aura [A]", &panels.aura},
-                                                     {kQualityTitle, &panels.quality},
-                                                     {kCameraControlsTitle, &panels.cameraControls}};
+                                                     {kQualityTitle, &panels.quality}};
     bool changed = false;
     for (std::size_t i = 0; i < std::size(toggles); ++i) {
         if (i % 2 == 1)

@@ -290,11 +290,15 @@ struct CameraControlsState {
     std::shared_ptr<devices::SensorControls> controls;
     std::vector<devices::SensorControlNode> nodes;
     double readAtSeconds = -1e9;
-    std::string message;              // the last refusal, shown until a value is set
-    std::vector<std::string> refused; // refusals not yet logged (the viewer takes them)
+    std::string message;                                   // the last refusal, shown until a value is set
+    std::vector<std::string> refused;                      // refusals not yet logged (the viewer takes them)
+    std::optional<std::vector<devices::StreamMode>> modes; // the depth node's, read once
+    std::optional<devices::StreamMode> chosenMode;         // chosen this frame: the viewer reopens the source
+    std::string modeShown;                                 // what the mode list shows as current
 };
 // Every control of each node with its type's widget: a change is set at once and read back; an inactive
-// control (an auto control decides it) is greyed; "Reset to defaults" per node.
+// control (an auto control decides it) is greyed; "Reset to defaults" per node. Above them, the depth
+// node's modes: one chosen is left in state.chosenMode.
 void drawCameraControlsPanel(CameraControlsState& state, double nowSeconds, bool* open);
 
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.

@@ -2,6 +2,7 @@
 
 #include "base/files.h"
 #include "base/log.h"
+#include "devices/source_spec.h"
 #include "render/cloud_pick.h"
 
 #include <imgui_internal.h>
@@ -11,6 +12,7 @@
 #include <filesystem>
 #include <string_view>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace dc::ui {
@@ -537,6 +539,18 @@ void Viewer::drawCameraControls(float x, float y) {
     for (const std::string& message : cameraControls_.refused)
         logWarning(message);
     cameraControls_.refused.clear();
+    if (const auto mode = std::exchange(cameraControls_.chosenMode, std::nullopt)) {
+        // The camera streams in the new mode without a restart: the source is opened again with it.
+        auto spec = devices::specWithDepthMode(instrument_.spec(), *mode);
+        const std::string shown = cameraControls_.modeShown;
+        if (spec && openSource(*spec)) {
+            cameraControlsSpec_ = instrument_.spec();
+            cameraControls_.controls = instrument_.sensorControls();
+            cameraControls_.modeShown = shown;
+        } else if (!spec) {
+            logWarning(spec.error().message);
+        }
+    }
 }
 
 // The region measured, outlined on the depth panel, which draws a new one while the Quality panel is shown.

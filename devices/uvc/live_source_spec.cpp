@@ -7,6 +7,7 @@
 #include <cctype>
 #include <cerrno>
 #include <charconv>
+#include <cstdio>
 #include <cstring>
 #include <linux/videodev2.h>
 #include <sstream>
@@ -136,23 +137,47 @@ bool isLiveSourceSpec(const std::string& spec) {
     return spec.rfind("v4l2:", 0) == 0 || spec.rfind("usb:", 0) == 0;
 }
 
+// Where a spec's options start: after v4l2:PATH, or after usb:VID:PID and the serial if one is given.
+std::size_t firstOption(const std::vector<std::string>& parts) {
+    if (parts.empty() || parts[0] != "usb")
+        return 2;
+    const bool hasSerial =
+        parts.size() >= 4 && parts[3].find('=') == std::string::npos && !looksLikeMode(parts[3]);
+    return hasSerial ? 4 : 3;
+}
+
+Expected<std::string> withDepthMode(const std::string& spec, const StreamMode& mode) {
+    if (auto config = parseLiveSourceSpec(spec); !config)
+        return config.error();
+    const std::vector<std::string> parts = splitColons(spec);
+    const std::size_t options = firstOption(parts);
+    char rate[32];
+    std::snprintf(rate, sizeof rate, "%g", mode.fps);
+    std::string out;
+    for (std::size_t i = 0; i < options; ++i)
+        out += (i ? ":" : "") + parts[i];
+    out += ":" + std::to_string(mode.width) + "x" + std::to_string(mode.height) + "@" + rate +
+           ":format=" + mode.format;
+    for (std::size_t i = options; i < parts.size(); ++i)
+        if (!looksLikeMode(parts[i]) && parts[i].rfind("format=", 0) != 0)
+            out += ":" + parts[i];
+    return out;
+}
+
 Expected<UvcConfig> parseLiveSourceSpec(const std::string& spec) {
     const std::vector<std::string> parts = splitColons(spec);
     UvcConfig config;
-    std::size_t options = 2;
+    const std::size_t options = firstOption(parts);
     if (parts.size() >= 2 && parts[0] == "v4l2") {
         if (parts[1].empty())
             return Error{"v4l2: needs a node, e.g. --source v4l2:/dev/video0"};
         config.depthNode = parts[1];
     } else if (parts.size() >= 3 && parts[0] == "usb") {
-        const bool hasSerial =
-            parts.size() >= 4 && parts[3].find('=') == std::string::npos && !looksLikeMode(parts[3]);
-        const std::string ids = parts[1] + ":" + parts[2] + (hasSerial ? ":" + parts[3] : "");
+        const std::string ids = parts[1] + ":" + parts[2] + (options == 4 ? ":" + parts[3] : "");
         config.usb = usb::UsbMatch::parse(ids);
         if (!config.usb)
             return Error{"malformed USB ids '" + ids +
                          "' in --source (expected VID:PID[:SERIAL] in hex, e.g. 8086:0b07)"};
-        options = hasSerial ? 4 : 3;
     } else {
         return Error{"malformed live source '" + spec + "' (expected " + kLiveSourceSpecHelp + ")"};
     }

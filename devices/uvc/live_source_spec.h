@@ -20,6 +20,8 @@ namespace dc::devices {
 inline constexpr const char* kLiveSourceSpecHelp = "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS]";
 
 bool isLiveSourceSpec(const std::string& spec);
+// `spec` streaming the depth in `mode` (its WxH@FPS and format= replaced or added), the rest as it was.
+Expected<std::string> withDepthMode(const std::string& spec, const StreamMode& mode);
 // The camera's capture nodes in the order a preset's nodes go to them: every node of the USB camera a usb:
 // source names (as `depthcloud devices` lists them), or a v4l2: source's depth node and its color= node.
 Expected<std::vector<std::string>> cameraNodePaths(const UvcConfig& config);

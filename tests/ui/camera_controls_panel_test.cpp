@@ -45,6 +45,9 @@ public:
     }
 
     Expected<std::vector<devices::SensorControlNode>> read() override { return std::vector{node_}; }
+    std::vector<devices::StreamMode> depthModes() override {
+        return {{"Z16", 640, 480, 30}, {"Z16", 848, 480, 15}};
+    }
     Status set(const std::string& path, std::uint32_t id, std::int64_t value) override {
         sets.emplace_back(path, id, value);
         if (id == refuse)
@@ -121,6 +124,16 @@ TEST_F(CameraControlsPanelTest, ResetToDefaultsSetsBackWhatChangedAndSaysWhatThe
     clickWidget(std::string("Reset to defaults##") + kPath + ":0");
     EXPECT_EQ(std::get<2>(camera_->sets.back()), 128);
     EXPECT_TRUE(state_.message.empty()) << "a value set clears the refusal";
+}
+
+TEST_F(CameraControlsPanelTest, ADepthModeChosenFromTheListIsHandedToTheViewer) {
+    clickWidget("Depth mode");
+    const auto entry = locate("##Combo_00", "848x480 @ 15 Hz Z16");
+    ASSERT_TRUE(entry) << "the depth node's modes are listed";
+    click(*entry);
+    ASSERT_TRUE(state_.chosenMode);
+    EXPECT_EQ(*state_.chosenMode, (devices::StreamMode{"Z16", 848, 480, 15}));
+    EXPECT_EQ(state_.modeShown, "848x480 @ 15 Hz Z16");
 }
 
 TEST_F(CameraControlsPanelTest, ASourceWithoutControlsSaysSo) {

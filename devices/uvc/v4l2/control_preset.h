@@ -50,6 +50,8 @@ public:
         : sys_(sys), nodePaths_(std::move(nodePaths)) {}
     Expected<std::vector<SensorControlNode>> read() override;
     Status set(const std::string& path, std::uint32_t id, std::int64_t value) override;
+    // The modes of the first node that offers Z16 or Y16 depth.
+    std::vector<StreamMode> depthModes() override;
 
 private:
     Syscalls& sys_;

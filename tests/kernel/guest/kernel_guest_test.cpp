@@ -5,6 +5,7 @@
 #include "base/files.h"
 #include "devices/frame_age.h"
 #include "devices/session.h"
+#include "devices/source_spec.h"
 #include "devices/uvc/live_device_watcher.h"
 #include "devices/uvc/live_devices.h"
 #include "devices/uvc/live_source_spec.h"
@@ -696,6 +697,35 @@ TEST(Vivid, TheCameraControlsOfTheWindowReadAndSetTheDriversValues) {
     EXPECT_NE(refused.error().message.find("'brightness' takes 0..255, not 300"), std::string::npos)
         << refused.error().message;
     EXPECT_EQ(vividValue("brightness"), 99);
+}
+
+// The Camera controls panel's mode list: what the driver enumerates, and a mode chosen from it streams
+// once the source is opened again with it.
+TEST(Vivid, ADepthModeFromTheListStreamsAtItsSize) {
+    ASSERT_FALSE(env("VIVID_NODE").empty());
+    const std::string spec = "v4l2:" + env("VIVID_NODE") + ":640x480:format=Y16:color=none";
+    auto device = openLiveSourceSpec(spec);
+    ASSERT_TRUE(device) << device.error().message;
+    const std::vector<StreamMode> modes = (*device)->sensorControls()->depthModes();
+    const auto other = std::find_if(modes.begin(), modes.end(), [](const StreamMode& m) {
+        return m.format == "Y16" && m.width != 640 && m.width <= 1280;
+    });
+    ASSERT_NE(other, modes.end()) << modes.size() << " modes listed, none Y16 of another size";
+    EXPECT_TRUE(std::any_of(modes.begin(), modes.end(),
+                            [](const StreamMode& m) { return m.width == 640 && m.height == 480; }));
+    const auto chosen = specWithDepthMode(spec, *other);
+    ASSERT_TRUE(chosen) << chosen.error().message;
+    auto reopened = openLiveSourceSpec(*chosen);
+    ASSERT_TRUE(reopened) << reopened.error().message;
+    ASSERT_TRUE((*reopened)->open());
+    ASSERT_TRUE((*reopened)->start());
+    CaptureResult r;
+    for (int i = 0; i < 5 && r.kind != CaptureResult::Kind::Frame; ++i)
+        r = (*reopened)->capture(5000ms);
+    ASSERT_EQ(r.kind, CaptureResult::Kind::Frame) << r.message;
+    EXPECT_EQ(r.frame->sceneDepth->depthMeters.width, other->width) << *chosen;
+    EXPECT_EQ(r.frame->sceneDepth->depthMeters.height, other->height) << *chosen;
+    (*reopened)->close();
 }
 
 // ---- cameras that are not on USB, seen by the picker through udev alone ----------------------------

@@ -375,6 +375,23 @@ std::string writeTemp(const std::string& name, const std::string& text) {
     return path.string();
 }
 
+// The window's mode list reopens the camera with its spec rewritten: the new mode and format replace the old
+// ones wherever they stood, every other option stays, and a spec that is no live camera is refused.
+TEST(LiveSourceSpec, ADepthModeChosenReplacesTheSpecsModeAndFormatOnly) {
+    const StreamMode mode{"Y16", 848, 480, 15};
+    EXPECT_EQ(*withDepthMode("v4l2:/dev/video3", mode), "v4l2:/dev/video3:848x480@15:format=Y16");
+    EXPECT_EQ(*withDepthMode("v4l2:/dev/video3:640x480@30:scale=0.0001:format=Z16:color=none", mode),
+              "v4l2:/dev/video3:848x480@15:format=Y16:scale=0.0001:color=none");
+    EXPECT_EQ(*withDepthMode("usb:8086:0b07:VDC0001:1280x720:watchdog=500", {"Z16", 640, 360, 29.97}),
+              "usb:8086:0b07:VDC0001:640x360@29.97:format=Z16:watchdog=500");
+    EXPECT_EQ(*withDepthMode("usb:8086:0b07", mode), "usb:8086:0b07:848x480@15:format=Y16");
+    const auto parsed = parseLiveSourceSpec(*withDepthMode("usb:8086:0b07:VDC0001:color=none", mode));
+    ASSERT_TRUE(parsed) << parsed.error().message;
+    EXPECT_EQ(parsed->width, 848);
+    EXPECT_EQ(parsed->fps, 15.0);
+    EXPECT_FALSE(withDepthMode("v4l2:", mode).ok());
+}
+
 TEST(LiveSourceSpec, TakesATwoSensorCalibration) {
     const std::string path = writeTemp("camchain.yaml", kRigCamchain);
     for (const std::string& spec :
