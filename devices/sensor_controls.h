@@ -54,6 +54,9 @@ public:
     virtual Expected<std::vector<SensorControlNode>> read() = 0;
     // Sets one control; an error names the node, the control and the value.
     virtual Status set(const std::string& path, std::uint32_t id, std::int64_t value) = 0;
+    // Whether a control changed (by this program, another such as v4l2-ctl, or the driver's auto controls)
+    // since the last call. The first call starts watching and says false.
+    virtual bool changed() { return false; }
     // Every depth format, size and rate the camera's depth node offers (none: it cannot say).
     virtual std::vector<StreamMode> depthModes() { return {}; }
 };

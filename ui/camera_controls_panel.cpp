@@ -140,7 +140,8 @@ void drawCameraControlsPanel(CameraControlsState& state, double nowSeconds, bool
         ImGui::End();
         return;
     }
-    if (nowSeconds - state.readAtSeconds >= kReadInterval) {
+    // changed() is asked every frame, so that it keeps watching and its events do not pile up.
+    if (state.controls->changed() || nowSeconds - state.readAtSeconds >= kReadInterval) {
         auto nodes = state.controls->read();
         if (nodes)
             state.nodes = std::move(*nodes);

@@ -131,6 +131,30 @@ Status V4l2SensorControls::set(const std::string& path, std::uint32_t id, std::i
     return setControl(sys_, node.fd(), path, *control, value);
 }
 
+bool V4l2SensorControls::changed() {
+    const base::MutexLock lock(mutex_);
+    if (!watched_) {
+        watched_.emplace();
+        for (const std::string& path : nodePaths_) {
+            V4l2Node node(sys_);
+            auto controls = openControls(node, sys_, path);
+            if (!controls)
+                continue;
+            std::vector<std::uint32_t> ids;
+            for (const V4l2Control& c : *controls)
+                if (!c.isClass())
+                    ids.push_back(c.id);
+            if (node.subscribeControlChanges(ids) == 0)
+                watched_->push_back(std::move(node));
+        }
+        return false;
+    }
+    bool any = false;
+    for (V4l2Node& node : *watched_)
+        any |= node.takeControlChanges();
+    return any;
+}
+
 std::vector<StreamMode> V4l2SensorControls::depthModes() {
     for (const std::string& path : nodePaths_) {
         V4l2Node node(sys_);

@@ -1,9 +1,12 @@
 #pragma once
 
 #include "base/expected.h"
+#include "base/mutex.h"
 #include "devices/sensor_controls.h"
 #include "devices/uvc/v4l2/controls.h"
+#include "devices/uvc/v4l2/v4l2_node.h"
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -52,10 +55,14 @@ public:
     Status set(const std::string& path, std::uint32_t id, std::int64_t value) override;
     // The modes of the first node that offers Z16 or Y16 depth.
     std::vector<StreamMode> depthModes() override;
+    // Through V4L2_EVENT_CTRL, subscribed on a node of its own for every control of each node.
+    bool changed() override;
 
 private:
     Syscalls& sys_;
     const std::vector<std::string> nodePaths_;
+    base::Mutex mutex_;
+    std::optional<std::vector<V4l2Node>> watched_ DC_GUARDED_BY(mutex_);
 };
 
 } // namespace dc::devices::v4l2

@@ -191,6 +191,28 @@ int V4l2Node::subscribeSourceChange() {
     return ioctl(VIDIOC_SUBSCRIBE_EVENT, &sub);
 }
 
+int V4l2Node::subscribeControlChanges(const std::vector<std::uint32_t>& ids) {
+    for (const std::uint32_t id : ids) {
+        v4l2_event_subscription sub{};
+        sub.type = V4L2_EVENT_CTRL;
+        sub.id = id;
+        if (const int r = ioctl(VIDIOC_SUBSCRIBE_EVENT, &sub); r < 0)
+            return r;
+    }
+    return 0;
+}
+
+bool V4l2Node::takeControlChanges() {
+    bool changed = false;
+    for (std::uint32_t i = 0; i < kMaxEnumerated; ++i) {
+        v4l2_event event{};
+        if (ioctl(VIDIOC_DQEVENT, &event) < 0)
+            break;
+        changed |= event.type == V4L2_EVENT_CTRL;
+    }
+    return changed;
+}
+
 bool V4l2Node::takeSourceChange() {
     bool changed = false;
     for (std::uint32_t i = 0; i < kMaxEnumerated; ++i) {

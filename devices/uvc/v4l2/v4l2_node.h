@@ -95,6 +95,10 @@ public:
     const V4l2Format& format() const { return format_; }
     // Subscribes to V4L2_EVENT_SOURCE_CHANGE (optional: many drivers have no events).
     int subscribeSourceChange();
+    // V4L2_EVENT_CTRL for each control in `ids`: a change of its value or flags by anyone becomes an event.
+    int subscribeControlChanges(const std::vector<std::uint32_t>& ids);
+    // Takes every pending control event; whether there was one.
+    bool takeControlChanges();
     // Dequeues pending events; true when one of them says the format changed under us.
     bool takeSourceChange();
 

@@ -697,6 +697,13 @@ TEST(Vivid, TheCameraControlsOfTheWindowReadAndSetTheDriversValues) {
     EXPECT_NE(refused.error().message.find("'brightness' takes 0..255, not 300"), std::string::npos)
         << refused.error().message;
     EXPECT_EQ(vividValue("brightness"), 99);
+
+    // The panel asks changed() every frame: a change by another program arrives as V4L2_EVENT_CTRL.
+    EXPECT_FALSE(controls->changed()) << "the first call starts watching";
+    EXPECT_FALSE(controls->changed()) << "nothing changed since";
+    setVivid(42, 43);
+    EXPECT_TRUE(waitFor([&] { return controls->changed(); }, 2s)) << "another program's change is an event";
+    EXPECT_FALSE(controls->changed()) << "each change is told once";
 }
 
 // The Camera controls panel's mode list: what the driver enumerates, and a mode chosen from it streams
