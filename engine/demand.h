@@ -28,7 +28,7 @@ struct QualityDemand {
 // and a source is told the part that concerns it (SourceDemand). Plain data, compared as a whole.
 struct Demand {
     bool cloud = true;       // the point-cloud panel is visible
-    bool pointColors = true; // its points take the camera's colour (rather than a depth or confidence map)
+    bool pointColours = true; // its points take the camera's colour (rather than a depth or confidence map)
     // The cloud's GL path colours camera-coloured points itself, from the camera image and the rig of
     // ShownFrame::frame: no colour per point is made for it here, unless the rig is one a shader cannot
     // register (processing::shaderCanColour). It makes the colour overlay and the depth over the camera
@@ -71,13 +71,13 @@ struct Demand {
                (fog && processing.fog.confidenceOverlay);
     }
     // Camera colours on points: the cloud's or accumulation's.
-    bool needsPointColors() const { return (cloud && pointColors) || accumulate; }
+    bool needsPointColours() const { return (cloud && pointColours) || accumulate; }
     // One colour for every shown depth sample, not only the drawn ones: accumulation and the depth panel's
     // colour overlay read them.
     bool needsSampleColors() const { return accumulate || colourOverDepth; }
     // The camera image, for any product above or as the guide of upsampling.
     bool needsCameraImage() const {
-        return needsPointColors() || cameraPanelWidth > 0 || colourOverDepth || fog || aura ||
+        return needsPointColours() || cameraPanelWidth > 0 || colourOverDepth || fog || aura ||
                (processing.upsampling && needsDepth());
     }
 };

@@ -14,7 +14,7 @@ std::function<frame::Frame(frame::Frame)> processedDepth(const Demand& demand) {
         return {};
     Demand depthOnly;
     depthOnly.processing = p;
-    depthOnly.pointColors = false;
+    depthOnly.pointColours = false;
     depthOnly.depthImage = false;
     depthOnly.confidencePanel = true; // exports carry confidence: estimate it where the source has none
     auto graph = std::make_shared<ProcessingGraph>();

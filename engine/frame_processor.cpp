@@ -182,7 +182,7 @@ void FrameProcessor::accumulate(const processing::ShownFrame& shown, const Deman
     if ((!fresh && accumulatedWith_ == with) || !shown.frame->pose || !shown.depth.data)
         return;
     accumulatedWith_ = with;
-    accumulation_.submit({shown.depth.data, shown.depth.intrinsics, shown.pointColors, *shown.frame->pose,
+    accumulation_.submit({shown.depth.data, shown.depth.intrinsics, shown.pointColours, *shown.frame->pose,
                           demand.minConfidence, demand.nearMeters, demand.accumulateBudget,
                           demand.accumulateVoxelMeters});
 }

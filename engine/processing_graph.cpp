@@ -75,7 +75,7 @@ void ProcessingGraph::reset() {
     pipeline_.reset();
     decoded_.clear();
     depth_.clear();
-    pointColors_.clear();
+    pointColours_.clear();
     cloudColours_.clear();
     colourOverlay_.clear();
     cameraImage_.clear();
@@ -199,33 +199,33 @@ void ProcessingGraph::addPointColours(processing::ShownFrame& shown, const frame
     const bool shaded = demand.gpuCameraColours && processing::shaderCanColour(frame.rig.get());
     // The GL path makes the colour overlay in a shader too, at the size the depth panel is drawn.
     const bool overlay = demand.colourOverDepth && !image.empty() && !shaded;
-    const bool cloudColours = demand.cloud && demand.pointColors && !shaded && shown.cloud.depth.data;
+    const bool cloudColours = demand.cloud && demand.pointColours && !shaded && shown.cloud.depth.data;
     const bool whole = shown.cloud.factor <= 1;
     if (demand.accumulate || overlay || (cloudColours && whole)) {
         const int w = shown.depth.width(), h = shown.depth.height();
         const ColoursKey key{ImageKey{image.bytes, w, h}, frame.rig ? shown.depth.data : nullptr};
-        const processing::PointColours& colours = cached(pointColors_, key, kPointColorsStage, [&] {
+        const processing::PointColours& colours = cached(pointColours_, key, kPointColoursStage, [&] {
             return processing::framePointColours(frame, shown.depth.data->depthMeters, colourTable_);
         });
-        shown.pointColors = colours.colors;
+        shown.pointColours = colours.colours;
         shown.pointSeen = colours.seen;
         if (overlay)
-            shown.colourOverDepth = cached(colourOverlay_, colours.colors, kColourOverlayStage, [&] {
+            shown.colourOverDepth = cached(colourOverlay_, colours.colours, kColourOverlayStage, [&] {
                 return std::make_shared<const processing::RgbaImage>(processing::seenColourOverlay(colours));
             });
     }
     if (!cloudColours)
         return;
     if (whole) {
-        shown.cloud.colors = shown.pointColors;
+        shown.cloud.colours = shown.pointColours;
         return;
     }
     const processing::ShownDepth& cloud = shown.cloud.depth;
     const ColoursKey key{ImageKey{image.bytes, cloud.width(), cloud.height()},
                          frame.rig ? cloud.data : nullptr};
-    shown.cloud.colors = cached(cloudColours_, key, kPointColorsStage, [&] {
+    shown.cloud.colours = cached(cloudColours_, key, kPointColoursStage, [&] {
         return processing::framePointColours(frame, cloud.data->depthMeters, cloud.intrinsics, colourTable_)
-            .colors;
+            .colours;
     });
 }
 

@@ -3,7 +3,7 @@
 #include "engine/demand.h"
 #include "frame/jpeg_codec.h"
 #include "processing/pipeline.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 #include "processing/registration.h"
 #include "processing/shown_frame.h"
 
@@ -19,7 +19,7 @@ namespace dc::engine {
 
 // Stage names beyond the pipeline's, as the stats show them.
 inline constexpr std::string_view kCameraDecodeStage = "camera decode";
-inline constexpr std::string_view kPointColorsStage = "point colours";
+inline constexpr std::string_view kPointColoursStage = "point colours";
 inline constexpr std::string_view kCameraImageStage = "camera image";
 inline constexpr std::string_view kInfraredImageStage = "infrared image";
 inline constexpr std::string_view kEffectsImageStage = "effects image";
@@ -142,11 +142,11 @@ private:
     measureQuality(const QualityKey& key, const frame::Intrinsics& intrinsics, const frame::Frame& frame);
 
     processing::Pipeline pipeline_;
-    processing::CameraColorTable colourTable_;
+    processing::CameraColourTable colourTable_;
     frame::JpegDecoder jpegDecoder_;
     Memo<frame::FramePtr, frame::FramePtr> decoded_;
     Memo<DepthKey, processing::ShownDepth> depth_;
-    Memo<ColoursKey, processing::PointColours> pointColors_;
+    Memo<ColoursKey, processing::PointColours> pointColours_;
     Memo<ColoursKey, std::shared_ptr<const processing::RgbImage>> cloudColours_; // of decimated samples
     Memo<std::shared_ptr<const processing::RgbImage>, std::shared_ptr<const processing::RgbaImage>>
         colourOverlay_;

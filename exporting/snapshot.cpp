@@ -36,10 +36,10 @@ Status writeSnapshotPly(const processing::ShownFrame& shown, const SnapshotCloud
                         const std::string& source, const std::string& path) {
     processing::CloudSamples samples = shown.samples();
     std::shared_ptr<const processing::RgbImage> colours;
-    if (!samples.colors && samples.depth && cloud.cameraColours) {
-        processing::CameraColorTable table;
-        colours = processing::framePointColours(*shown.frame, samples.depth->depthMeters, table).colors;
-        samples.colors = colours.get();
+    if (!samples.colours && samples.depth && cloud.cameraColours) {
+        processing::CameraColourTable table;
+        colours = processing::framePointColours(*shown.frame, samples.depth->depthMeters, table).colours;
+        samples.colours = colours.get();
     }
     const auto points = processing::buildPointCloud(samples, cloud.minConfidence, cloud.nearMeters);
     return base::writeFileAtomically(path, encodePly(points, {"depthcloud snapshot of " + source}));

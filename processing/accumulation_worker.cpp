@@ -90,7 +90,7 @@ void AccumulationWorker::add(const Request& request, std::uint64_t generation) {
             return; // cleared since this frame was taken: it belongs to what was cleared
     }
     accumulator_.configure(request.budget, request.voxelMeters);
-    accumulator_.add({request.depth.get(), request.intrinsics, request.colors.get()}, request.pose,
+    accumulator_.add({request.depth.get(), request.intrinsics, request.colours.get()}, request.pose,
                      request.minLevel, request.nearMeters);
     size_ = accumulator_.size();
     addMilliseconds_ =

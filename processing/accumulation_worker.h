@@ -23,7 +23,7 @@ public:
     struct Request {
         std::shared_ptr<const frame::DepthData> depth;
         frame::Intrinsics intrinsics;
-        std::shared_ptr<const RgbImage> colors;
+        std::shared_ptr<const RgbImage> colours;
         frame::Pose pose;
         frame::Confidence minLevel = frame::Confidence::Low;
         float nearMeters = 0.0f;

@@ -4,7 +4,7 @@
 #include "processing/confidence_filter.h"
 #include "processing/parallel.h"
 #include "processing/point_cloud.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 #include "processing/registration.h"
 
 #include <algorithm>
@@ -212,7 +212,7 @@ std::size_t PointAccumulator::insertCandidates(const CloudSamples& samples) {
             at = addBlock(at, c.blockKey);
         table_[at].bits |= bit;
         const std::uint8_t* rgb =
-            samples.colors ? &samples.colors->pixels[(static_cast<std::size_t>(c.v) * w + c.u) * 3] : gray;
+            samples.colours ? &samples.colours->pixels[(static_cast<std::size_t>(c.v) * w + c.u) * 3] : gray;
         store({c.point.x, c.point.y, c.point.z, packRgba(rgb)}, c.blockKey << 6 | c.bit);
         ++added;
     }
@@ -247,9 +247,9 @@ std::size_t PointAccumulator::add(const frame::Frame& frame, frame::Confidence m
     if (!frame.pose || !frame.sceneDepth)
         return 0;
     const auto& d = frame.sceneDepth->depthMeters;
-    CameraColorTable table;
-    const PointColours colors = framePointColours(frame, d, table);
-    return add({&*frame.sceneDepth, frame.depthIntrinsics(), colors.colors.get()}, *frame.pose, minLevel,
+    CameraColourTable table;
+    const PointColours colours = framePointColours(frame, d, table);
+    return add({&*frame.sceneDepth, frame.depthIntrinsics(), colours.colours.get()}, *frame.pose, minLevel,
                nearMeters);
 }
 

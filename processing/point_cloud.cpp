@@ -2,7 +2,7 @@
 
 #include "frame/color.h"
 #include "processing/confidence_filter.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 #include "processing/registration.h"
 
 namespace dc::processing {
@@ -12,7 +12,7 @@ bool CloudSamples::usable() const {
         return false;
     const auto& d = depth->depthMeters;
     return d.width > 0 && d.height > 0 && d.pixels.size() == static_cast<std::size_t>(d.width) * d.height &&
-           (!colors || (colors->width == d.width && colors->height == d.height));
+           (!colours || (colours->width == d.width && colours->height == d.height));
 }
 
 std::vector<CloudPoint> buildPointCloud(const CloudSamples& samples, frame::Confidence minLevel,
@@ -32,7 +32,7 @@ std::vector<CloudPoint> buildPointCloud(const CloudSamples& samples, frame::Conf
                 continue;
             const auto [x, y, zz] = unproject(u, v, z, samples.intrinsics);
             const std::uint8_t* rgb =
-                samples.colors ? &samples.colors->pixels[(static_cast<std::size_t>(v) * w + u) * 3] : nullptr;
+                samples.colours ? &samples.colours->pixels[(static_cast<std::size_t>(v) * w + u) * 3] : nullptr;
             points.push_back({x, y, zz, rgb ? rgb[0] : gray, rgb ? rgb[1] : gray, rgb ? rgb[2] : gray, c});
         }
     }
@@ -44,9 +44,9 @@ std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confid
     if (!frame.sceneDepth)
         return {};
     const auto& d = frame.sceneDepth->depthMeters;
-    CameraColorTable table;
-    const PointColours colors = framePointColours(frame, d, table);
-    return buildPointCloud({&*frame.sceneDepth, frame.depthIntrinsics(), colors.colors.get()}, minLevel,
+    CameraColourTable table;
+    const PointColours colours = framePointColours(frame, d, table);
+    return buildPointCloud({&*frame.sceneDepth, frame.depthIntrinsics(), colours.colours.get()}, minLevel,
                            nearMeters);
 }
 

@@ -39,7 +39,7 @@ inline std::array<int, 2> cameraPixelOf(int u, int v, int depthWidth, int depthH
 struct CloudSamples {
     const frame::DepthData* depth = nullptr;
     frame::Intrinsics intrinsics;     // of depth's resolution
-    const RgbImage* colors = nullptr; // depth's size; null: every point mid-gray
+    const RgbImage* colours = nullptr; // depth's size; null: every point mid-gray
     bool usable() const;
 };
 

@@ -348,7 +348,7 @@ bool shaderCanColour(const frame::RigCalibration* rig) {
 }
 
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
-                               CameraColorTable& table) {
+                               CameraColourTable& table) {
     if (!frame.rig)
         return framePointColours(frame, depth, {}, table);
     return framePointColours(frame, depth, frame.rig->depth.intrinsics.scaledTo(depth.width, depth.height),
@@ -356,10 +356,10 @@ PointColours framePointColours(const frame::Frame& frame, const frame::Plane<flo
 }
 
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
-                               const frame::Intrinsics& depthIntrinsics, CameraColorTable& table) {
+                               const frame::Intrinsics& depthIntrinsics, CameraColourTable& table) {
     const frame::CapturedImage& image = frame.capturedImage;
     if (!frame.rig || isSingleCamera(*frame.rig))
-        return {std::make_shared<const RgbImage>(pointColors(image, depth.width, depth.height, table)),
+        return {std::make_shared<const RgbImage>(pointColours(image, depth.width, depth.height, table)),
                 nullptr};
     auto colours = std::make_shared<RgbImage>(
         RgbImage{depth.width, depth.height, std::vector<std::uint8_t>(depth.pixels.size() * 3, kUnseenGray)});
@@ -420,7 +420,7 @@ bool sampleSeenByColour(const frame::Frame& frame, const frame::Plane<float>& de
 }
 
 RgbaImage seenColourOverlay(const PointColours& colours) {
-    const RgbImage& rgb = *colours.colors;
+    const RgbImage& rgb = *colours.colours;
     const std::size_t n = static_cast<std::size_t>(rgb.width) * static_cast<std::size_t>(rgb.height);
     RgbaImage out{rgb.width, rgb.height, std::vector<std::uint8_t>(n * 4, 0)};
     for (std::size_t i = 0; i < n; ++i) {
@@ -433,12 +433,12 @@ RgbaImage seenColourOverlay(const PointColours& colours) {
 }
 
 RgbImage colourAlignedToDepth(const frame::Frame& frame, const frame::Plane<float>& depth, int width,
-                              int height, CameraColorTable& table) {
+                              int height, CameraColourTable& table) {
     frame::Plane<float> nearest(width, height);
     for (int y = 0; y < height; ++y)
         for (int x = 0; x < width; ++x)
             nearest.at(x, y) = depth.at(x * depth.width / width, y * depth.height / height);
-    return *framePointColours(frame, nearest, table).colors;
+    return *framePointColours(frame, nearest, table).colours;
 }
 
 } // namespace dc::processing

@@ -3,7 +3,7 @@
 #include "frame/camera_model.h"
 #include "frame/frame.h"
 #include "processing/camera_image.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 
 #include <cstdint>
 #include <memory>
@@ -83,19 +83,19 @@ inline constexpr std::uint8_t kUnseenGray = 128;
 
 // Point colours with the mask of the points the colour camera sees.
 struct PointColours {
-    std::shared_ptr<const RgbImage> colors;
+    std::shared_ptr<const RgbImage> colours;
     // Null when every point is seen (one camera); else the depth map's size, 1 = seen.
     std::shared_ptr<const frame::Plane<std::uint8_t>> seen;
 };
 
-// The colours of a depth map's points for `frame`: the single-camera pointColors() when the frame has no
+// The colours of a depth map's points for `frame`: the single-camera pointColours() when the frame has no
 // rig (bit for bit today's colours), else each point coloured where registerDepth() puts it.
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
-                               CameraColorTable& table);
+                               CameraColourTable& table);
 // The same for a depth map whose intrinsics are given (a decimated map's cells sit at their centres, which
 // scaling the rig's intrinsics to its size would not give).
 PointColours framePointColours(const frame::Frame& frame, const frame::Plane<float>& depth,
-                               const frame::Intrinsics& depthIntrinsics, CameraColorTable& table);
+                               const frame::Intrinsics& depthIntrinsics, CameraColourTable& table);
 
 // Whether the colour camera sees sample (u, v) of `depth`, exactly as framePointColours decides it, for one
 // sample (the hover readout of a cloud whose colours the GPU made): one projection of every sample, no
@@ -111,8 +111,8 @@ RgbaImage seenColourOverlay(const PointColours& colours);
 // The colour image seen from the depth sensor, at width x height of the depth map's view: each pixel takes
 // the colour where the colour camera sees the depth sample nearest it (registerDepth on the depth map
 // resampled nearest), kUnseenGray where it sees none. The guide of upsampling on a two-sensor frame; a
-// frame without a rig gets its camera image resampled (pointColors).
+// frame without a rig gets its camera image resampled (pointColours).
 RgbImage colourAlignedToDepth(const frame::Frame& frame, const frame::Plane<float>& depth, int width,
-                              int height, CameraColorTable& table);
+                              int height, CameraColourTable& table);
 
 } // namespace dc::processing

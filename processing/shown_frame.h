@@ -31,12 +31,12 @@ struct ShownDepth {
 
 // The samples the cloud draws: the shown depth, or fewer of them (processing/decimation.h) when the panel
 // has fewer pixels than the map has samples or the user asks for a decimation. The very objects of
-// ShownFrame::depth and ::pointColors when nothing is decimated.
+// ShownFrame::depth and ::pointColours when nothing is decimated.
 struct ShownCloud {
     ShownDepth depth;
     // The camera's colour of each drawn sample, where it is drawn; null when the points are not coloured
     // by the camera or the GL path's shader colours them (engine::Demand::gpuCameraColours).
-    std::shared_ptr<const RgbImage> colors;
+    std::shared_ptr<const RgbImage> colours;
     int factor = 1;
 };
 
@@ -76,7 +76,7 @@ struct ShownFrame {
     ShownDepth depth;      // data null when the frame has no depth
     // One colour per shown depth sample, made only for a reader of every sample (accumulation, the depth
     // panel's colour overlay) or for a cloud that draws every sample with colours made on the CPU.
-    std::shared_ptr<const RgbImage> pointColors;
+    std::shared_ptr<const RgbImage> pointColours;
     // With a two-sensor camera, which of those points the colour camera sees (1) and which it cannot
     // (outside its view or hidden: they are gray); null when it sees them all.
     std::shared_ptr<const frame::Plane<std::uint8_t>> pointSeen;
@@ -101,7 +101,7 @@ struct ShownFrame {
     bool newFrame = false;                          // a device frame's first result (not a redo)
     std::vector<StageTiming> timings;               // the stages that ran for this result
 
-    CloudSamples samples() const { return {depth.data.get(), depth.intrinsics, pointColors.get()}; }
+    CloudSamples samples() const { return {depth.data.get(), depth.intrinsics, pointColours.get()}; }
 };
 
 using ShownFramePtr = std::shared_ptr<const ShownFrame>;

@@ -37,7 +37,7 @@ private:
     std::vector<std::uint8_t> lumaScratch_;
     GlobalSmoother smoother_;
     RgbScratch rgbScratch_;
-    CameraColorTable colourTable_;
+    CameraColourTable colourTable_;
 };
 
 // The output size `params` selects for a camera image of width x height.

@@ -233,11 +233,11 @@ std::size_t CloudSplatter::projectRow(const float* z, const std::uint8_t* levels
 }
 
 void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Intrinsics& k,
-                                 const processing::RgbImage* colors, const CloudParams& params, int width,
+                                 const processing::RgbImage* colours, const CloudParams& params, int width,
                                  int height) {
     const int w = depth.depthMeters.width;
     const int h = depth.depthMeters.height;
-    const bool hasColors = colors && colors->width == w && colors->height == h;
+    const bool hasColors = colours && colours->width == w && colours->height == h;
     const bool hasConfidence = !depth.confidence.empty();
     if (params.coloring == PointColoring::Depth)
         for (std::size_t i = 0; i < colormapTable_.size(); ++i) {
@@ -252,8 +252,8 @@ void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Int
     const auto colorOf = [&](std::size_t i, float z, std::uint8_t level) -> std::uint32_t {
         switch (params.coloring) {
         case PointColoring::Camera:
-            return hasColors ? colors->pixels[i * 3] | colors->pixels[i * 3 + 1] << 8 |
-                                   static_cast<std::uint32_t>(colors->pixels[i * 3 + 2]) << 16
+            return hasColors ? colours->pixels[i * 3] | colours->pixels[i * 3 + 1] << 8 |
+                                   static_cast<std::uint32_t>(colours->pixels[i * 3 + 2]) << 16
                              : kMidGray;
         case PointColoring::Depth: {
             const float n = (z - rangeMin) * inverseRange;

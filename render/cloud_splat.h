@@ -37,7 +37,7 @@ public:
     // The frame's samples placed through their intrinsics and coloured as `params` says (point colours:
     // one RGB per sample, or null for mid-gray). Pixels of `width` x `height`.
     void splatSamples(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
-                      const processing::RgbImage* colors, const CloudParams& params, int width, int height);
+                      const processing::RgbImage* colours, const CloudParams& params, int width, int height);
     // Accumulated world points (the first `count` of `points`) through params.worldToClip.
     void splatWorld(const std::vector<processing::WorldPoint>& points, std::size_t count,
                     const CloudParams& params, int width, int height);

@@ -57,11 +57,11 @@ void FrameTextures::uploadDepth(const processing::ShownDepth& shown) {
     uploadPlane(confidence_, kConfidenceFormat, width, height, confidenceScratch_.data());
 }
 
-void FrameTextures::uploadColors(const processing::RgbImage* colors) {
+void FrameTextures::uploadColours(const processing::RgbImage* colours) {
     glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
     const int width = std::max(depth_.width, 1), height = std::max(depth_.height, 1);
-    if (colors && colors->width == depth_.width && colors->height == depth_.height && !colors->empty()) {
-        uploadPlane(color_, kColorFormat, width, height, colors->pixels.data());
+    if (colours && colours->width == depth_.width && colours->height == depth_.height && !colours->empty()) {
+        uploadPlane(color_, kColorFormat, width, height, colours->pixels.data());
         return;
     }
     grayScratch_.assign(static_cast<std::size_t>(width) * height * 3, kMidGray);

@@ -30,7 +30,7 @@ public:
     // gets all High, so nothing is filtered.
     void uploadDepth(const processing::ShownDepth& depth);
     // One colour per depth sample; null or of another size: mid-gray, as a frame without an image.
-    void uploadColors(const processing::RgbImage* colors);
+    void uploadColours(const processing::RgbImage* colours);
     // Binds the three textures to their units.
     void bind() const;
     // Sets the program's depthMap/confidenceMap/colorMap samplers to the units above; leaves the program

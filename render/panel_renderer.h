@@ -27,7 +27,7 @@ public:
     // drawn where there is no measurement.
     void renderDepth(RenderTarget& target, const FrameTextures& textures, float minMeters, float maxMeters,
                      Colormap colormap = Colormap::Jet, DepthHoles holes = DepthHoles::Black);
-    // Low red, medium green, high blue (the sample's colors); black without depth.
+    // Low red, medium green, high blue (the sample's colours); black without depth.
     void renderConfidence(RenderTarget& target, const FrameTextures& textures);
 
 private:

@@ -60,7 +60,7 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     if (colourOverDepthFromEngine_)
         colourOverDepthFromGpu_ = false;
     depthOverCamera_ = shown.depthOverCamera;
-    pointColors_ = shown.pointColors;
+    pointColours_ = shown.pointColours;
     cloud_ = shown.cloud;
     frame_ = shown.frame;
     cameraFromEngine_ = shown.cameraImage != nullptr;
@@ -82,25 +82,25 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
 }
 
 const FrameTextures& ViewRenderer::texturesFor(UploadedDepth& uploaded, const processing::ShownDepth& depth,
-                                               const std::shared_ptr<const processing::RgbImage>& colors,
-                                               bool withColors) {
+                                               const std::shared_ptr<const processing::RgbImage>& colours,
+                                               bool withColours) {
     if (depth.data != uploaded.depth) {
         uploaded.textures.uploadDepth(depth);
         uploaded.depth = depth.data;
-        uploaded.colorsUploaded = false; // the colour texture follows the depth map's size
+        uploaded.coloursUploaded = false; // the colour texture follows the depth map's size
         ++uploads_;
     }
-    if (withColors && (!uploaded.colorsUploaded || colors != uploaded.colors)) {
-        uploaded.textures.uploadColors(colors.get());
-        uploaded.colors = colors;
-        uploaded.colorsUploaded = true;
+    if (withColours && (!uploaded.coloursUploaded || colours != uploaded.colours)) {
+        uploaded.textures.uploadColours(colours.get());
+        uploaded.colours = colours;
+        uploaded.coloursUploaded = true;
         ++uploads_;
     }
     return uploaded.textures;
 }
 
 const FrameTextures& ViewRenderer::textures() {
-    return texturesFor(panelDepth_, depth_, pointColors_, true);
+    return texturesFor(panelDepth_, depth_, pointColours_, true);
 }
 
 void ViewRenderer::syncAccumulated(processing::AccumulationWorker& worker) {
@@ -150,7 +150,7 @@ Expected<std::vector<processing::PanelPicture>> ViewRenderer::panelPictures() {
 
 const FrameTextures& ViewRenderer::panelTextures(int step) {
     if (step <= 1)
-        return texturesFor(panelDepth_, depth_, pointColors_, false);
+        return texturesFor(panelDepth_, depth_, pointColours_, false);
     if (panelSampledFrom_ != depth_.data || panelStep_ != step) {
         processing::ShownDepth sampled;
         sampled.data =
@@ -193,7 +193,7 @@ void ViewRenderer::drawDepthOverCamera(const PanelParams& params) {
             processing::cameraPanelImageSize(frame_->capturedImage, params.cameraShownWidth);
         prepareCameraColours();
         cameraColours_.renderAlignedDepth(depthOverCameraTarget_,
-                                          texturesFor(panelDepth_, depth_, pointColors_, false), width,
+                                          texturesFor(panelDepth_, depth_, pointColours_, false), width,
                                           height, {params.minMeters, params.maxMeters, params.colormap});
         overlayDrawnWith_ = params;
         ++overlayRenders_;
@@ -214,7 +214,7 @@ void ViewRenderer::drawDepthOverCamera(const PanelParams& params) {
 void ViewRenderer::drawColourOverDepth(int step) {
     prepareCameraColours();
     cameraColours_.renderSeenColours(colourOverDepthTarget_,
-                                     texturesFor(panelDepth_, depth_, pointColors_, false), step);
+                                     texturesFor(panelDepth_, depth_, pointColours_, false), step);
 }
 
 bool ViewRenderer::alignsOnGpu() const {
@@ -254,7 +254,7 @@ void ViewRenderer::renderCloud(CloudParams params, bool accumulated) {
     const bool shaded = shaderColours(params, accumulated);
     CloudDrawing drawing{params,
                          accumulated ? nullptr : cloud_.depth.data,
-                         accumulated ? nullptr : cloud_.colors,
+                         accumulated ? nullptr : cloud_.colours,
                          shaded ? frame_->capturedImage.bytes : nullptr,
                          accumulated ? accumulated_.version() : 0,
                          path_,
@@ -281,7 +281,7 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
         const FrameTextures& textures =
             accumulated || !cloud_.depth.data
                 ? panelDepth_.textures
-                : texturesFor(uploaded, cloud_.depth, cloud_.colors, camera && !shaded);
+                : texturesFor(uploaded, cloud_.depth, cloud_.colours, camera && !shaded);
         if (shaded) {
             prepareCameraColours();
             cameraColours_.renderNearest(textures);
@@ -294,7 +294,7 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
     if (accumulated)
         splatter_.splatWorld(accumulated_.cpuCopy(), accumulated_.pointCount(), params, width, height);
     else if (cloud_.depth.data && cloud_.depth.intrinsics.valid())
-        splatter_.splatSamples(*cloud_.depth.data, cloud_.depth.intrinsics, cloud_.colors.get(), params,
+        splatter_.splatSamples(*cloud_.depth.data, cloud_.depth.intrinsics, cloud_.colours.get(), params,
                                width, height);
     else
         splatter_.splatWorld({}, 0, params, width, height);
@@ -303,7 +303,7 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
 
 bool ViewRenderer::shaderColours(const CloudParams& params, bool accumulated) const {
     return path_ == CloudPath::Points && params.coloring == PointColoring::Camera && !accumulated && frame_ &&
-           cloud_.depth.data && !cloud_.colors;
+           cloud_.depth.data && !cloud_.colours;
 }
 
 void ViewRenderer::resizeCloud(int width, int height) {

@@ -140,14 +140,14 @@ private:
     struct UploadedDepth {
         FrameTextures textures;
         std::shared_ptr<const frame::DepthData> depth;
-        std::shared_ptr<const processing::RgbImage> colors;
-        bool colorsUploaded = false;
+        std::shared_ptr<const processing::RgbImage> colours;
+        bool coloursUploaded = false;
     };
     // What the last cloud drawing showed: the same again is not drawn again.
     struct CloudDrawing {
         CloudParams params;
         std::shared_ptr<const frame::DepthData> depth;
-        std::shared_ptr<const processing::RgbImage> colors;
+        std::shared_ptr<const processing::RgbImage> colours;
         std::shared_ptr<const std::vector<std::uint8_t>> cameraBytes; // the image the shader colours from
         std::uint64_t accumulatedVersion = 0;
         CloudPath path = CloudPath::Points;
@@ -160,10 +160,10 @@ private:
     template <class T, class Upload>
     void uploadOnce(const std::shared_ptr<const T>& product, std::shared_ptr<const T>& uploaded,
                     Upload&& upload);
-    // Brings `uploaded` to `depth` (and `colors` when the points read them).
+    // Brings `uploaded` to `depth` (and `colours` when the points read them).
     const FrameTextures& texturesFor(UploadedDepth& uploaded, const processing::ShownDepth& depth,
-                                     const std::shared_ptr<const processing::RgbImage>& colors,
-                                     bool withColors);
+                                     const std::shared_ptr<const processing::RgbImage>& colours,
+                                     bool withColours);
     void drawCloud(const CloudParams& params, bool accumulated);
     // Whether the points' camera colours are made by the shader: GL points coloured by the camera with no
     // colours from the engine (engine::Demand::gpuCameraColours).
@@ -187,7 +187,7 @@ private:
     std::pair<int, int> panelsMap_{0, 0};
     std::shared_ptr<const frame::DepthData> depthOverCamera_;
     processing::ShownDepth depth_;
-    std::shared_ptr<const processing::RgbImage> pointColors_;
+    std::shared_ptr<const processing::RgbImage> pointColours_;
     processing::ShownCloud cloud_;
     frame::FramePtr frame_; // the shown frame: its camera image and rig, for the shader's colours
     PointCloudRenderer cloudRenderer_;

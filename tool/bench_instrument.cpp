@@ -7,7 +7,7 @@
 #include "frame/image_io.h"
 #include "processing/accumulation_worker.h"
 #include "processing/point_accumulator.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 #include "render/accumulated_points.h"
 #include "render/gl_context.h"
 #include "tool/options.h"
@@ -64,7 +64,7 @@ std::vector<processing::AccumulationWorker::Request> requestsFor(const BenchInst
         const auto& d = f->sceneDepth->depthMeters;
         requests.push_back({std::shared_ptr<const frame::DepthData>(f, &*f->sceneDepth), f->depthIntrinsics(),
                             std::make_shared<const processing::RgbImage>(
-                                processing::pointColors(f->capturedImage, d.width, d.height)),
+                                processing::pointColours(f->capturedImage, d.width, d.height)),
                             *f->pose, frame::Confidence::Low, 0.1f,
                             static_cast<std::size_t>(o.budgetThousands) * 1000,
                             static_cast<float>(o.voxelMillimetres * 1e-3)});

@@ -3,7 +3,7 @@
 #include "base/files.h"
 #include "base/log.h"
 #include "devices/synthetic/synthetic_device.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 #include "processing/registration.h"
 #include "tool/bench_median.h"
 #include "tool/options.h"
@@ -48,7 +48,7 @@ int runBenchRegistration(const BenchRegistrationOptions& o) {
     const frame::Plane<float>& depth = frame->sceneDepth->depthMeters;
     frame::Frame oneCamera = *frame;
     oneCamera.rig = nullptr;
-    processing::CameraColorTable table;
+    processing::CameraColourTable table;
     const std::vector<Case> cases{
         {"registration",
          [&] {

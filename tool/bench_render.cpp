@@ -149,7 +149,7 @@ GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int heigh
     if (!renderer.init() || !target.resize(width, height) || !shown.depth.data)
         return {};
     textures.uploadDepth(shown.depth);
-    textures.uploadColors(shown.pointColors.get());
+    textures.uploadColours(shown.pointColours.get());
     render::CloudParams params;
     const float fov = render::verticalFovRadians(shown.depth.intrinsics);
     return timeFrames(frames,

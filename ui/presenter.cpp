@@ -59,7 +59,7 @@ engine::Demand Presenter::demandOf() const {
     const CloudSettings& cloud = settings_.cloud;
     engine::Demand d;
     d.cloud = show.cloud;
-    d.pointColors = cloud.coloring == render::PointColoring::Camera;
+    d.pointColours = cloud.coloring == render::PointColoring::Camera;
     d.gpuCameraColours = cloudPath() == render::CloudPath::Points;
     d.depthImage = show.depth || (show.camera && settings_.camera.depthOverlay);
     d.confidencePanel = show.confidence;

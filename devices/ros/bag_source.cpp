@@ -193,7 +193,7 @@ Status BagSource::chooseTopics() {
             return 1;
         return topic.find(depth ? "depth" : "color") != std::string::npos ? 2 : 3;
     };
-    std::vector<std::pair<int, std::string>> depths, colors;
+    std::vector<std::pair<int, std::string>> depths, colours;
     for (const MessageStore::Topic& t : bag_->topics()) {
         if (t.type != kImageType)
             continue;
@@ -201,14 +201,14 @@ Status BagSource::chooseTopics() {
         if (kind == ImageKind::Depth)
             depths.emplace_back(rank(t.name, kind), t.name);
         else if (kind == ImageKind::Color)
-            colors.emplace_back(rank(t.name, kind), t.name);
+            colours.emplace_back(rank(t.name, kind), t.name);
     }
     std::sort(depths.begin(), depths.end());
-    std::sort(colors.begin(), colors.end());
+    std::sort(colours.begin(), colours.end());
     // Topics the user names are all there is: a depth topic alone replays without colour.
     const bool chosen = !options_.depthTopic.empty();
     depthTopic_ = chosen || depths.empty() ? options_.depthTopic : depths.front().second;
-    colorTopic_ = chosen || colors.empty() ? options_.colorTopic : colors.front().second;
+    colorTopic_ = chosen || colours.empty() ? options_.colorTopic : colours.front().second;
     if (depthTopic_.empty())
         return Error{path_ + " has no depth image topic (sensor_msgs/Image in 16UC1, mono16 or 32FC1)"};
     if (Status s = checkTopic(depthTopic_, ImageKind::Depth, "depth"); !s)

@@ -33,7 +33,7 @@ std::vector<Demand> demands() {
     out[1].processing.upsampling = true;
     out[2].fog = true;
     out[2].cameraPanelWidth = 200;
-    out[3].pointColors = false;
+    out[3].pointColours = false;
     out[3].confidencePanel = false;
     out[3].aura = true;
     return out;
@@ -104,7 +104,7 @@ TEST(EngineStressTest, DemandsSeeksAndFramesAtOnceKeepEveryResultConsistent) {
         EXPECT_EQ(r.fog != nullptr, a.demand.fog);
         EXPECT_EQ(r.aura != nullptr, a.demand.aura);
         EXPECT_EQ(r.cameraImage != nullptr, a.demand.cameraPanelWidth > 0);
-        EXPECT_EQ(r.cloud.colors != nullptr, a.demand.cloud && a.demand.pointColors);
+        EXPECT_EQ(r.cloud.colours != nullptr, a.demand.cloud && a.demand.pointColours);
     };
 
     // The clock starts once frames flow.

@@ -35,7 +35,7 @@ Demand everything() {
 // Only the cloud, coloured by depth: nothing reads confidence or the camera.
 Demand cloudOnly() {
     Demand d;
-    d.pointColors = false;
+    d.pointColours = false;
     d.depthImage = false;
     d.confidencePanel = false;
     return d;
@@ -79,7 +79,7 @@ TEST_F(ProcessingGraphTest, EveryStageRunsOnceForANewFrameWithEverythingShown) {
     const Runs expected{{std::string(processing::kConfidenceEstimateStage), 1},
                         {std::string(processing::kSmoothingStage), 1},
                         {std::string(processing::kUpsamplingStage), 1},
-                        {std::string(kPointColorsStage), 1},
+                        {std::string(kPointColoursStage), 1},
                         {std::string(kCameraImageStage), 1},
                         {std::string(kEffectsImageStage), 1},
                         {std::string(kFogStage), 1},
@@ -90,7 +90,7 @@ TEST_F(ProcessingGraphTest, EveryStageRunsOnceForANewFrameWithEverythingShown) {
     ASSERT_TRUE(last_->depth.data);
     EXPECT_TRUE(last_->depth.upsampled);
     EXPECT_TRUE(last_->depth.smoothed);
-    EXPECT_TRUE(last_->pointColors && last_->cameraImage && last_->fog && last_->aura);
+    EXPECT_TRUE(last_->pointColours && last_->cameraImage && last_->fog && last_->aura);
     EXPECT_TRUE(last_->automaticRange);
     EXPECT_GT(last_->pointCount, 0u);
 }
@@ -101,7 +101,7 @@ TEST_F(ProcessingGraphTest, TheSameFrameAndDemandRunNothingAgainAndShareEveryPro
     const processing::ShownFramePtr first = last_;
     EXPECT_EQ(runOn(0, everything()), Runs{});
     EXPECT_EQ(last_->depth.data, first->depth.data);
-    EXPECT_EQ(last_->pointColors, first->pointColors);
+    EXPECT_EQ(last_->pointColours, first->pointColours);
     EXPECT_EQ(last_->cameraImage, first->cameraImage);
     EXPECT_EQ(last_->fog, first->fog);
     EXPECT_EQ(last_->aura, first->aura);
@@ -134,7 +134,7 @@ TEST_F(ProcessingGraphTest, UpsamplingOffRerunsTheDepthAndItsReadersButNotTheCam
     // everything read from the shown depth follows; the camera's own images stay.
     const Runs expected{{std::string(processing::kConfidenceEstimateStage), 1},
                         {std::string(processing::kSmoothingStage), 1},
-                        {std::string(kPointColorsStage), 1},
+                        {std::string(kPointColoursStage), 1},
                         {std::string(kFogStage), 1},
                         {std::string(kAuraStage), 1},
                         {std::string(kDepthRangeStage), 1},
@@ -159,7 +159,7 @@ TEST_F(ProcessingGraphTest, AStageWhoseOutputNobodyReadsNeverRuns) {
     for (std::size_t i = 0; i < frames_.size(); ++i) {
         const Runs ran = runOn(i, cloudOnly(), true);
         EXPECT_EQ(ran, (Runs{{std::string(kPointCountStage), 1}})) << "frame " << i;
-        EXPECT_FALSE(last_->pointColors || last_->cameraImage || last_->fog || last_->aura);
+        EXPECT_FALSE(last_->pointColours || last_->cameraImage || last_->fog || last_->aura);
         EXPECT_FALSE(last_->automaticRange);
         EXPECT_GT(last_->pointCount, 0u);
     }
@@ -206,10 +206,10 @@ TEST_F(ProcessingGraphTest, ACameraJpegIsDecodedOnceAndOnlyWhenSomethingShowsThe
 
     const Runs more = runOn(0, everything());
     EXPECT_EQ(more.count(kCameraDecodeStage), 0u) << "decoded once per frame, whatever reads it next";
-    ASSERT_TRUE(last_->pointColors);
-    const processing::RgbImage colors =
-        processing::pointColors(*expected, last_->depth.width(), last_->depth.height());
-    EXPECT_EQ(last_->pointColors->pixels, colors.pixels);
+    ASSERT_TRUE(last_->pointColours);
+    const processing::RgbImage colours =
+        processing::pointColours(*expected, last_->depth.width(), last_->depth.height());
+    EXPECT_EQ(last_->pointColours->pixels, colours.pixels);
 }
 
 TEST_F(ProcessingGraphTest, ANewFrameRerunsWhatItFeedsAndResetStartsOver) {
@@ -270,17 +270,17 @@ TEST(ProcessingGraphRig, PointsOfATwoSensorFrameAreRegisteredAndCarryTheSeenMask
     ProcessingGraph graph;
     Demand demand;
     const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
-    ASSERT_TRUE(shown->pointColors && shown->pointSeen);
+    ASSERT_TRUE(shown->pointColours && shown->pointSeen);
     EXPECT_EQ(shown->depth.intrinsics, frame->rig->depth.intrinsics.scaledTo(212, 120));
-    processing::CameraColorTable table;
+    processing::CameraColourTable table;
     const processing::PointColours expected =
         processing::framePointColours(*frame, frame->sceneDepth->depthMeters, table);
-    EXPECT_EQ(shown->pointColors->pixels, expected.colors->pixels);
+    EXPECT_EQ(shown->pointColours->pixels, expected.colours->pixels);
     EXPECT_EQ(shown->pointSeen->pixels, expected.seen->pixels);
     // The depth sensor sees more than the colour sensor: its margins are unseen, its centre seen.
     EXPECT_EQ(shown->pointSeen->at(0, 60), 0);
     EXPECT_EQ(shown->pointSeen->at(106, 60), 1);
-    EXPECT_NE(shown->pointColors->pixels, processing::pointColors(frame->capturedImage, 212, 120).pixels);
+    EXPECT_NE(shown->pointColours->pixels, processing::pointColours(frame->capturedImage, 212, 120).pixels);
 }
 
 // Fog and aura of a two-sensor frame are made from the depth as the colour sensor sees it, aligned once at
@@ -374,14 +374,14 @@ TEST(ProcessingGraphRig, ColourOverDepthIsTheRegisteredColourAndTransparentWhere
     const processing::ShownFramePtr off = graph.run(frame, demand, 1, true);
     EXPECT_FALSE(off->colourOverDepth);
     EXPECT_EQ(graph.runs(kColourOverlayStage), 0u);
-    EXPECT_EQ(graph.runs(kPointColorsStage), 0u) << "no colour is made for a cloud coloured by depth";
+    EXPECT_EQ(graph.runs(kPointColoursStage), 0u) << "no colour is made for a cloud coloured by depth";
 
     demand.colourOverDepth = true;
     const processing::ShownFramePtr shown = graph.run(frame, demand, 2, false);
     ASSERT_TRUE(shown->colourOverDepth && shown->depth.data);
-    EXPECT_FALSE(shown->cloud.colors) << "the points do not take the camera's colour";
+    EXPECT_FALSE(shown->cloud.colours) << "the points do not take the camera's colour";
     EXPECT_EQ(graph.runs(kColourOverlayStage), 1u);
-    processing::CameraColorTable table;
+    processing::CameraColourTable table;
     const processing::PointColours expected =
         processing::framePointColours(*frame, shown->depth.data->depthMeters, table);
     ASSERT_TRUE(expected.seen);
@@ -399,7 +399,7 @@ TEST(ProcessingGraphRig, ColourOverDepthIsTheRegisteredColourAndTransparentWhere
         ++seen;
         ASSERT_EQ(rgba[3], 255) << "sample " << i;
         for (std::size_t c = 0; c < 3; ++c)
-            ASSERT_EQ(rgba[c], expected.colors->pixels[i * 3 + c]) << "sample " << i << " channel " << c;
+            ASSERT_EQ(rgba[c], expected.colours->pixels[i * 3 + c]) << "sample " << i << " channel " << c;
     }
     EXPECT_GT(seen, 0u);
     EXPECT_GT(unseen, 0u);
@@ -420,7 +420,7 @@ TEST(ProcessingGraphRig, ColourOverDepthOfASingleCameraIsTheCameraImageAtTheDept
     const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
     ASSERT_TRUE(shown->colourOverDepth && shown->depth.data);
     const processing::RgbImage camera =
-        processing::pointColors(frame->capturedImage, shown->depth.width(), shown->depth.height());
+        processing::pointColours(frame->capturedImage, shown->depth.width(), shown->depth.height());
     const processing::RgbaImage& overlay = *shown->colourOverDepth;
     ASSERT_EQ(overlay.pixels.size(), camera.pixels.size() / 3 * 4);
     for (std::size_t i = 0; i < camera.pixels.size() / 3; ++i) {
@@ -456,22 +456,22 @@ TEST(ProcessingGraphShaderColours, NoColourIsMadeForPointsTheShaderColours) {
         ASSERT_TRUE(frame);
         ProcessingGraph graph;
         Demand demand = cloudOnly();
-        demand.pointColors = true;
+        demand.pointColours = true;
         demand.gpuCameraColours = true;
         demand.cameraPanelWidth = 320;
         const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
         ASSERT_TRUE(shown->cloud.depth.data);
-        EXPECT_FALSE(shown->cloud.colors);
-        EXPECT_FALSE(shown->pointColors);
+        EXPECT_FALSE(shown->cloud.colours);
+        EXPECT_FALSE(shown->pointColours);
         EXPECT_FALSE(shown->cameraImage) << "the GL path draws the camera panel from the planes too";
-        EXPECT_EQ(graph.runs(kPointColorsStage), 0u);
+        EXPECT_EQ(graph.runs(kPointColoursStage), 0u);
         EXPECT_EQ(graph.runs(kCameraImageStage), 0u) << "no camera conversion on the CPU";
         EXPECT_TRUE(shown->frame->capturedImage.raw() && !shown->frame->capturedImage.empty());
 
         demand.gpuCameraColours = false; // the splat path
         const processing::ShownFramePtr cpu = graph.run(frame, demand, 2, false);
-        EXPECT_TRUE(cpu->cloud.colors && cpu->cameraImage);
-        EXPECT_EQ(graph.runs(kPointColorsStage), 1u);
+        EXPECT_TRUE(cpu->cloud.colours && cpu->cameraImage);
+        EXPECT_EQ(graph.runs(kPointColoursStage), 1u);
         EXPECT_EQ(graph.runs(kCameraImageStage), 1u);
     }
 }
@@ -493,10 +493,10 @@ TEST(ProcessingGraphShaderColours, TheGlPathsOverlaysAreNotMadeOnTheCpu) {
     ASSERT_TRUE(gpu->depth.data);
     EXPECT_FALSE(gpu->colourOverDepth);
     EXPECT_FALSE(gpu->depthOverCamera);
-    EXPECT_FALSE(gpu->pointColors);
+    EXPECT_FALSE(gpu->pointColours);
     EXPECT_EQ(graph.runs(kColourOverlayStage), 0u);
     EXPECT_EQ(graph.runs(kAlignedDepthStage), 0u);
-    EXPECT_EQ(graph.runs(kPointColorsStage), 0u);
+    EXPECT_EQ(graph.runs(kPointColoursStage), 0u);
 
     demand.gpuCameraColours = false; // the splat path
     const processing::ShownFramePtr cpu = graph.run(frame, demand, 2, false);
@@ -521,18 +521,18 @@ TEST(ProcessingGraphShaderColours, ADecimatedCloudIsColouredOnlyWhereItsPointsAr
     ASSERT_TRUE(frame && frame->rig);
     ProcessingGraph graph;
     Demand demand = cloudOnly();
-    demand.pointColors = true;
+    demand.pointColours = true;
     demand.cloudDecimation = 2;
     const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
     const processing::ShownDepth& cloud = shown->cloud.depth;
-    ASSERT_TRUE(cloud.data && shown->cloud.colors);
+    ASSERT_TRUE(cloud.data && shown->cloud.colours);
     EXPECT_EQ(cloud.width(), 106);
-    EXPECT_FALSE(shown->pointColors) << "no colour for samples the cloud does not draw";
-    processing::CameraColorTable table;
+    EXPECT_FALSE(shown->pointColours) << "no colour for samples the cloud does not draw";
+    processing::CameraColourTable table;
     const auto expected =
-        processing::framePointColours(*frame, cloud.data->depthMeters, cloud.intrinsics, table).colors;
-    EXPECT_EQ(shown->cloud.colors->pixels, expected->pixels);
-    EXPECT_EQ(graph.runs(kPointColorsStage), 1u);
+        processing::framePointColours(*frame, cloud.data->depthMeters, cloud.intrinsics, table).colours;
+    EXPECT_EQ(shown->cloud.colours->pixels, expected->pixels);
+    EXPECT_EQ(graph.runs(kPointColoursStage), 1u);
 }
 
 } // namespace

@@ -59,12 +59,12 @@ protected:
     // Draws the samples of `depth` seen straight from the depth camera (sample (u, v) on target pixel
     // (u, v)), coloured on the CPU and by the shader, and compares the two pictures.
     Comparison drawBoth(const frame::Frame& frame, const processing::ShownDepth& depth) {
-        processing::CameraColorTable table;
+        processing::CameraColourTable table;
         const auto colours =
-            processing::framePointColours(frame, depth.data->depthMeters, depth.intrinsics, table).colors;
+            processing::framePointColours(frame, depth.data->depthMeters, depth.intrinsics, table).colours;
         EXPECT_TRUE(target_.resize(depth.width(), depth.height()).ok());
         textures_.uploadDepth(depth);
-        textures_.uploadColors(colours.get());
+        textures_.uploadColours(colours.get());
         CloudParams params;
         params.viewProjection = pinholeViewProjection(depth.intrinsics, depth.width(), depth.height());
         params.pointSizePixels = 1.0f;
@@ -162,9 +162,9 @@ TEST_F(CameraColoursTest, TheRigIsRegisteredThroughItsLensWithItsOcclusions) {
 TEST_F(CameraColoursTest, TheSplatPathShowsTheShadersColours) {
     const frame::FramePtr frame = rigFrame();
     const processing::ShownDepth depth = shownDepth(frame);
-    processing::CameraColorTable table;
+    processing::CameraColourTable table;
     const auto colours =
-        processing::framePointColours(*frame, depth.data->depthMeters, depth.intrinsics, table).colors;
+        processing::framePointColours(*frame, depth.data->depthMeters, depth.intrinsics, table).colours;
     ASSERT_TRUE(target_.resize(depth.width(), depth.height()).ok());
     CloudParams params;
     params.viewProjection = pinholeViewProjection(depth.intrinsics, depth.width(), depth.height());

@@ -4,7 +4,7 @@
 #include "gl_test_support.h"
 
 #include "devices/synthetic/synthetic_device.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 #include "render/cloud_splat.h"
 #include "render/frame_textures.h"
 #include "render/orbit_camera.h"
@@ -30,7 +30,7 @@ protected:
         frame_ = devices::SyntheticDevice{}.makeFrame(0, 0.0);
         uploadFrame(textures_, *frame_);
         const frame::Intrinsics k = frame_->depthIntrinsics();
-        colors_ = processing::pointColors(frame_->capturedImage, k.width, k.height);
+        colours_ = processing::pointColours(frame_->capturedImage, k.width, k.height);
         // An oblique view, so that points overlap and the depth test decides.
         params_.viewProjection = cloudViewProjection({0.5f, 0.3f, 1.2f, {0.02f, -0.01f}}, 1.2f,
                                                      verticalFovRadians(k), float(kWidth) / kHeight);
@@ -43,7 +43,7 @@ protected:
         return target_.readRgba();
     }
     std::vector<std::uint8_t> drawSplat() {
-        splatter_.splatSamples(*frame_->sceneDepth, frame_->depthIntrinsics(), &colors_, params_, kWidth,
+        splatter_.splatSamples(*frame_->sceneDepth, frame_->depthIntrinsics(), &colours_, params_, kWidth,
                                kHeight);
         renderer_.renderSplat(target_, splatter_, params_);
         return target_.readRgba();
@@ -54,7 +54,7 @@ protected:
     FrameTextures textures_;
     RenderTarget target_;
     frame::FramePtr frame_;
-    processing::RgbImage colors_;
+    processing::RgbImage colours_;
     CloudParams params_;
 };
 
@@ -102,7 +102,7 @@ TEST_P(CloudSplatTest, FillingGapsLeavesNoBackgroundInsideASurfaceOnEitherPath) 
     frame_ = devices::SyntheticDevice{devices::SyntheticConfig{.noise = false}}.makeFrame(0, 0.0);
     uploadFrame(textures_, *frame_);
     const frame::Intrinsics k = frame_->depthIntrinsics();
-    colors_ = processing::pointColors(frame_->capturedImage, k.width, k.height);
+    colours_ = processing::pointColours(frame_->capturedImage, k.width, k.height);
     params_.viewProjection = cloudViewProjection({}, 1.2f, verticalFovRadians(k), float(kWidth) / kHeight);
     const auto holes = [](const std::vector<std::uint8_t>& rgba) {
         int background = 0;

@@ -1,6 +1,6 @@
 #include "gl_test_support.h"
 
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 
 #include <algorithm>
 #include <cstdlib>
@@ -53,7 +53,7 @@ Rgba toRgba(const std::array<float, 3>& c) {
 ColorFunction blockColors(int blockPixels) {
     return [blockPixels](int x, int y) {
         const int bx = x / blockPixels, by = y / blockPixels;
-        // Small co-prime cycles give neighbouring blocks different colors in every channel.
+        // Small co-prime cycles give neighbouring blocks different colours in every channel.
         return frame::Rgb{0.1f + 0.8f * static_cast<float>((bx * 3 + by) % 5) / 4.0f,
                           0.1f + 0.8f * static_cast<float>((bx + 2 * by) % 4) / 3.0f,
                           0.1f + 0.8f * static_cast<float>((2 * bx + by) % 3) / 2.0f};
@@ -151,12 +151,12 @@ void uploadFrame(FrameTextures& textures, const frame::Frame& frame) {
     }
     textures.uploadDepth(shown);
     if (!shown.data) {
-        textures.uploadColors(nullptr);
+        textures.uploadColours(nullptr);
         return;
     }
-    const processing::RgbImage colors =
-        processing::pointColors(frame.capturedImage, shown.width(), shown.height());
-    textures.uploadColors(&colors);
+    const processing::RgbImage colours =
+        processing::pointColours(frame.capturedImage, shown.width(), shown.height());
+    textures.uploadColours(&colours);
 }
 
 } // namespace dc::render::test

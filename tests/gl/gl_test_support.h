@@ -46,7 +46,7 @@ Rgba toRgba(const std::array<float, 3>& c);
 ::testing::AssertionResult near(Rgba actual, Rgba expected, int tolerance);
 
 using ColorFunction = std::function<frame::Rgb(int x, int y)>;
-// Distinct colors, constant over `blockPixels`-wide squares aligned to multiples of the block size, so
+// Distinct colours, constant over `blockPixels`-wide squares aligned to multiples of the block size, so
 // that 2x2 chroma subsampling and bilinear sampling at block interiors reproduce them exactly.
 ColorFunction blockColors(int blockPixels);
 
@@ -60,7 +60,7 @@ frame::Frame makeFrame(frame::DepthData depth, frame::CapturedImage image,
                        const frame::Intrinsics& cameraIntrinsics);
 
 // Uploads the frame as the engine shows a raw frame: sceneDepth with Frame::depthIntrinsics(), and the
-// colour of each point (processing::pointColors of the camera image).
+// colour of each point (processing::pointColours of the camera image).
 void uploadFrame(FrameTextures& textures, const frame::Frame& frame);
 
 // A pinhole projection through `k` into a `width` x `height` target: the centre of depth pixel (u, v)

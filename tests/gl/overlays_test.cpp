@@ -84,7 +84,7 @@ protected:
     // read at the same cells (processing::sampleCellCentres' choice).
     OverlayComparison compareColours(const frame::FramePtr& frame, int step) {
         const processing::ShownDepth depth = shownDepth(frame);
-        processing::CameraColorTable table;
+        processing::CameraColourTable table;
         const processing::RgbaImage cpu = processing::seenColourOverlay(
             processing::framePointColours(*frame, depth.data->depthMeters, table));
         textures_.uploadDepth(depth);

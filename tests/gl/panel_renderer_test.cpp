@@ -171,10 +171,10 @@ TEST_F(PanelRendererTest, ConfidencePanelIsRedGreenBlue) {
     renderer_.renderConfidence(target_, textures_);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
-    const Rgba colors[] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, kBlack};
+    const Rgba colours[] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, kBlack};
     for (int v = 0; v < kHeight; ++v)
         for (int u = 0; u < kWidth; ++u)
-            ASSERT_EQ(pixelAt(rgba, kWidth, u, v), colors[depth.confidence.at(u, v)])
+            ASSERT_EQ(pixelAt(rgba, kWidth, u, v), colours[depth.confidence.at(u, v)])
                 << "at " << u << ", " << v;
 }
 

@@ -51,8 +51,8 @@ TEST_F(RobustnessTest, OnePixelFrame) {
 }
 
 TEST_F(RobustnessTest, OddSizedCameraImages) {
-    const ColorFunction colors = blockColors(2);
-    for (const auto& image : {nv12Image(5, 3, colors), yuyvImage(5, 3, colors), rgb24Image(5, 3, colors)})
+    const ColorFunction colours = blockColors(2);
+    for (const auto& image : {nv12Image(5, 3, colours), yuyvImage(5, 3, colours), rgb24Image(5, 3, colours)})
         EXPECT_TRUE(renderAll(makeFrame(depthOf(3, 3, 1.0f), image, kIntrinsics), 7, 5));
 }
 
@@ -86,10 +86,10 @@ TEST_F(RobustnessTest, MalformedInputsAreTreatedAsMissing) {
 }
 
 TEST_F(RobustnessTest, TexturesFollowChangingFrameSizes) {
-    const ColorFunction colors = blockColors(4);
-    EXPECT_TRUE(renderAll(makeFrame(depthOf(8, 6, 1.0f), nv12Image(16, 12, colors), kIntrinsics), 16, 12));
-    EXPECT_TRUE(renderAll(makeFrame(depthOf(3, 2, 1.0f), nv12Image(6, 4, colors), kIntrinsics), 3, 2));
-    EXPECT_TRUE(renderAll(makeFrame(depthOf(8, 6, 1.0f), nv12Image(16, 12, colors), kIntrinsics), 40, 30));
+    const ColorFunction colours = blockColors(4);
+    EXPECT_TRUE(renderAll(makeFrame(depthOf(8, 6, 1.0f), nv12Image(16, 12, colours), kIntrinsics), 16, 12));
+    EXPECT_TRUE(renderAll(makeFrame(depthOf(3, 2, 1.0f), nv12Image(6, 4, colours), kIntrinsics), 3, 2));
+    EXPECT_TRUE(renderAll(makeFrame(depthOf(8, 6, 1.0f), nv12Image(16, 12, colours), kIntrinsics), 40, 30));
     EXPECT_EQ(textures_.depthWidth(), 8);
 }
 

@@ -442,6 +442,9 @@ TEST(CaptureKind, ACaptureIsKnownByItsContentOrItsExtensionInAnyCase) {
     EXPECT_EQ(classifyCapture(write("X.BAG", "not yet a bag")), CaptureKind::RosBag);
     EXPECT_EQ(classifyCapture(write("x.Bag", "not yet a bag")), CaptureKind::RosBag);
     EXPECT_EQ(classifyCapture(write("take-without-a-name", "#ROSBAG V2.0\n")), CaptureKind::RosBag);
+    EXPECT_EQ(classifyCapture(write("X.MCAP", "not yet an mcap")), CaptureKind::Mcap);
+    EXPECT_EQ(classifyCapture(write("x.Mcap", "not yet an mcap")), CaptureKind::Mcap);
+    EXPECT_EQ(classifyCapture(write("unnamed-mcap", std::string("\x89MCAP0\r\n", 8) + "rest")), CaptureKind::Mcap);
     EXPECT_EQ(classifyCapture(write("TAKE.DCREC", "short")), CaptureKind::DcRecording);
     EXPECT_EQ(classifyCapture(write("take.Dcrec", "short")), CaptureKind::DcRecording);
     EXPECT_EQ(classifyCapture(write("renamed.bin", recordingMagic + "rest")), CaptureKind::DcRecording);

@@ -343,14 +343,14 @@ TEST_F(EngineUiTest, OnTheGlPointsPathTheOverlaysAreMadeOnlyOnTheGpu) {
     ASSERT_TRUE(frameUntil(
         [&] { return renderer_.colourOverDepthFromGpu() && renderer_.cameraColours().alignedPasses() > 0; }));
     const engine::FrameProcessor& processor = instrument_->processor();
-    const std::uint64_t colourRuns = processor.stageRuns(engine::kPointColorsStage);
+    const std::uint64_t colourRuns = processor.stageRuns(engine::kPointColoursStage);
     const std::uint64_t seenPasses = renderer_.cameraColours().seenPasses();
     const std::uint64_t alignedPasses = renderer_.cameraColours().alignedPasses();
     for (int i = 0; i < 3; ++i)
         ASSERT_TRUE(nextFrame(0.0));
     EXPECT_EQ(processor.stageRuns(engine::kColourOverlayStage), 0u) << "no colour overlay on the CPU";
     EXPECT_EQ(processor.stageRuns(engine::kAlignedDepthStage), 0u) << "no aligned depth on the CPU";
-    EXPECT_EQ(processor.stageRuns(engine::kPointColorsStage), colourRuns) << "no sample colours on the CPU";
+    EXPECT_EQ(processor.stageRuns(engine::kPointColoursStage), colourRuns) << "no sample colours on the CPU";
     EXPECT_FALSE(shown().colourOverDepth);
     EXPECT_FALSE(shown().depthOverCamera);
     EXPECT_GE(renderer_.cameraColours().seenPasses(), seenPasses + 3) << "each new frame's colour overlay";
@@ -375,11 +375,11 @@ TEST_F(EngineUiTest, OnTheGlPointsPathTheCameraIsConvertedOnlyOnTheGpu) {
     ASSERT_TRUE(frameUntil([&] { return renderer_.cameraFromGpu() && !shown().cameraImage; }));
     // Counted from here: the frames before the switch were drawn on the splat path.
     const engine::FrameProcessor& processor = instrument_->processor();
-    const std::uint64_t colourRuns = processor.stageRuns(engine::kPointColorsStage);
+    const std::uint64_t colourRuns = processor.stageRuns(engine::kPointColoursStage);
     const std::uint64_t conversions = processor.stageRuns(engine::kCameraImageStage);
     for (int i = 0; i < 3; ++i)
         nextFrame(0.0);
-    EXPECT_EQ(processor.stageRuns(engine::kPointColorsStage), colourRuns) << "no point colour on the CPU";
+    EXPECT_EQ(processor.stageRuns(engine::kPointColoursStage), colourRuns) << "no point colour on the CPU";
     EXPECT_EQ(processor.stageRuns(engine::kCameraImageStage), conversions)
         << "no camera conversion on the CPU";
     EXPECT_GT(renderer_.cameraColours().imagePasses(), 0u);
@@ -391,9 +391,9 @@ TEST_F(EngineUiTest, OnTheGlPointsPathTheCameraIsConvertedOnlyOnTheGpu) {
     const auto dir = viewer_->saveSnapshot((dir_ / "gpu").string());
     ASSERT_TRUE(dir.ok()) << dir.error().message;
     const std::vector<PlyPoint> ply = readPly(fs::path(*dir) / "cloud.ply");
-    processing::CameraColorTable table;
+    processing::CameraColourTable table;
     const processing::ShownDepth& depth = shown().depth;
-    const auto colours = processing::framePointColours(*shown().frame, depth.data->depthMeters, table).colors;
+    const auto colours = processing::framePointColours(*shown().frame, depth.data->depthMeters, table).colours;
     const auto expected = processing::buildPointCloud({depth.data.get(), depth.intrinsics, colours.get()},
                                                       viewer_->settings().cloud.minConfidence,
                                                       viewer_->settings().cloud.nearMeters);

@@ -518,7 +518,7 @@ TEST_F(InstrumentTest, DepthOverlayAndFillChangeTheCameraPanel) {
     ASSERT_TRUE(viewer_->settings().camera.depthOverlay);
     gui_.io().MousePos = {0.0f, 0.0f};
     frame(0.0);
-    EXPECT_NE(pixelAt(c), plain) << "the depth colors tint the camera image";
+    EXPECT_NE(pixelAt(c), plain) << "the depth colours tint the camera image";
     const auto fill = locate(kControlsTitle, "Fill camera panel");
     ASSERT_TRUE(fill.has_value());
     clickAt(*fill);

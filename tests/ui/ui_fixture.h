@@ -26,7 +26,7 @@ namespace dc::ui::test {
 
 inline devices::SyntheticConfig smallScene() {
     devices::SyntheticConfig c;
-    c.cameraWidth = 640; // the image only colors points here; a small one keeps the suite fast
+    c.cameraWidth = 640; // the image only colours points here; a small one keeps the suite fast
     c.cameraHeight = 480;
     c.fps = 120.0;
     return c;

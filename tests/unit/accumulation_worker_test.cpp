@@ -1,5 +1,5 @@
 #include "processing/accumulation_worker.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 
 #include <gtest/gtest.h>
 
@@ -28,7 +28,7 @@ frame::FramePtr wallAt(double x, float depth, int w = 16, int h = 12) {
 AccumulationWorker::Request requestFor(const frame::FramePtr& frame, std::size_t budget = 1000) {
     const auto& d = frame->sceneDepth->depthMeters;
     return {std::shared_ptr<const frame::DepthData>(frame, &*frame->sceneDepth), frame->depthIntrinsics(),
-            std::make_shared<const RgbImage>(pointColors(frame->capturedImage, d.width, d.height)),
+            std::make_shared<const RgbImage>(pointColours(frame->capturedImage, d.width, d.height)),
             *frame->pose, frame::Confidence::Low, 0.0f, budget, 0.001f};
 }
 

@@ -6,7 +6,7 @@
 namespace dc::devices {
 namespace {
 
-// Full-range BT.601 codes of known colors, from the standard's definition (Y = 0.299 R + 0.587 G + 0.114 B,
+// Full-range BT.601 codes of known colours, from the standard's definition (Y = 0.299 R + 0.587 G + 0.114 B,
 // Cb = (B - Y) / 1.772, Cr = (R - Y) / 1.402), with chroma centred on 0.5 of full scale as in the sample.
 struct Known {
     const char* name;

@@ -1,5 +1,5 @@
 #include "processing/point_accumulator.h"
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 
 #include "devices/synthetic/synthetic_scene.h"
 #include "frame/color.h"
@@ -281,9 +281,9 @@ std::uint32_t packedPixelRgb(const frame::CapturedImage& image, int x, int y) {
            static_cast<std::uint32_t>(frame::toByte(c.b)) << 16 | 0xff000000u;
 }
 
-TEST(CameraColorTable, GivesExactlyWhatPixelRgbGivesInEveryFormat) {
+TEST(CameraColourTable, GivesExactlyWhatPixelRgbGivesInEveryFormat) {
     std::mt19937 rng(3);
-    CameraColorTable table;
+    CameraColourTable table;
     for (const auto format :
          {frame::PixelFormat::Nv12, frame::PixelFormat::Yuyv, frame::PixelFormat::Rgb24}) {
         const frame::CapturedImage image = randomImage(format, 61, 47, rng);
@@ -295,10 +295,10 @@ TEST(CameraColorTable, GivesExactlyWhatPixelRgbGivesInEveryFormat) {
     }
 }
 
-TEST(CameraColorTable, GivesExactlyWhatPixelRgbGivesForEveryYCbCrTriplet) {
+TEST(CameraColourTable, GivesExactlyWhatPixelRgbGivesForEveryYCbCrTriplet) {
     // YUYV, 256 pairs a row and a row per Cb: pair (cr, cb) holds lumas l and l + 128, so 128 images cover
     // all 2^24 triplets, the rounding of every channel at every value included.
-    CameraColorTable table;
+    CameraColourTable table;
     constexpr int kPairs = 256, kRows = 256;
     auto bytes = std::make_shared<std::vector<std::uint8_t>>(std::size_t{kPairs} * kRows * 4);
     for (int luma = 0; luma < 128; ++luma) {
@@ -318,9 +318,9 @@ TEST(CameraColorTable, GivesExactlyWhatPixelRgbGivesForEveryYCbCrTriplet) {
     }
 }
 
-TEST(CameraColorTable, FilledRgbaGivesNothingUntilAColourIsInTheTableThenWhatRgbaGives) {
+TEST(CameraColourTable, FilledRgbaGivesNothingUntilAColourIsInTheTableThenWhatRgbaGives) {
     std::mt19937 rng(7);
-    CameraColorTable table;
+    CameraColourTable table;
     for (const auto format : {frame::PixelFormat::Nv12, frame::PixelFormat::Yuyv}) {
         const frame::CapturedImage image = randomImage(format, 33, 21, rng);
         ASSERT_TRUE(table.use(image));
@@ -342,8 +342,8 @@ TEST(CameraColorTable, FilledRgbaGivesNothingUntilAColourIsInTheTableThenWhatRgb
     EXPECT_EQ(table.filledRgba(3, 2), packedPixelRgb(rgb, 3, 2)) << "RGB needs no table";
 }
 
-TEST(CameraColorTable, RefusesEmptyAndTruncatedImages) {
-    CameraColorTable table;
+TEST(CameraColourTable, RefusesEmptyAndTruncatedImages) {
+    CameraColourTable table;
     EXPECT_FALSE(table.use({}));
     EXPECT_FALSE(
         table.use({frame::PixelFormat::Nv12, 4, 4, std::make_shared<const std::vector<std::uint8_t>>(10)}));

@@ -130,7 +130,7 @@ struct OccludedWall {
 
 TEST(Registration, WallHiddenByAForegroundObjectIsFlaggedUnseenAndNeverTakesItsColour) {
     const OccludedWall scene;
-    CameraColorTable table;
+    CameraColourTable table;
     const PointColours colours = framePointColours(scene.frame, scene.frame.sceneDepth->depthMeters, table);
     ASSERT_TRUE(colours.seen);
     // 0: wall seen, 1: wall hidden, 2: the square itself.
@@ -140,7 +140,7 @@ TEST(Registration, WallHiddenByAForegroundObjectIsFlaggedUnseenAndNeverTakesItsC
     int hidden = 0, compared = 0;
     for (int v = 1; v < 119; ++v)
         for (int u = 1; u < 159; ++u) {
-            const std::uint8_t* rgb = &colours.colors->pixels[(static_cast<std::size_t>(v) * 160 + u) * 3];
+            const std::uint8_t* rgb = &colours.colours->pixels[(static_cast<std::size_t>(v) * 160 + u) * 3];
             const bool seen = colours.seen->at(u, v) != 0;
             const int s = status(u, v);
             if (s == 2) {
@@ -169,7 +169,7 @@ TEST(Registration, WallHiddenByAForegroundObjectIsFlaggedUnseenAndNeverTakesItsC
 // hidden wall and square alike.
 TEST(Registration, OneSamplesVisibilityIsTheSeenMasks) {
     const OccludedWall scene;
-    CameraColorTable table;
+    CameraColourTable table;
     const frame::Plane<float>& depth = scene.frame.sceneDepth->depthMeters;
     const PointColours colours = framePointColours(scene.frame, depth, table);
     int hidden = 0;
@@ -215,11 +215,11 @@ TEST(Registration, SingleCameraColoursAreTodaysPointColorsBitForBit) {
     ASSERT_TRUE(device.open());
     const frame::FramePtr frame = device.makeFrame(0, 0.0);
     const frame::Plane<float>& depth = frame->sceneDepth->depthMeters;
-    const RgbImage today = pointColors(frame->capturedImage, depth.width, depth.height);
+    const RgbImage today = pointColours(frame->capturedImage, depth.width, depth.height);
 
-    CameraColorTable table;
+    CameraColourTable table;
     const PointColours none = framePointColours(*frame, depth, table);
-    EXPECT_EQ(none.colors->pixels, today.pixels);
+    EXPECT_EQ(none.colours->pixels, today.pixels);
     EXPECT_FALSE(none.seen);
 
     // The same camera written as a rig: R = I, t = 0, one lens, the depth intrinsics the image's scaled.
@@ -230,7 +230,7 @@ TEST(Registration, SingleCameraColoursAreTodaysPointColorsBitForBit) {
     asRig.rig = std::make_shared<const frame::RigCalibration>(rig);
     EXPECT_TRUE(isSingleCamera(rig));
     const PointColours identity = framePointColours(asRig, depth, table);
-    EXPECT_EQ(identity.colors->pixels, today.pixels);
+    EXPECT_EQ(identity.colours->pixels, today.pixels);
     EXPECT_FALSE(identity.seen);
     EXPECT_EQ(asRig.depthIntrinsics().fx, frame->depthIntrinsics().fx);
 
@@ -302,11 +302,11 @@ TEST(Registration, TheRawFramesCloudOfATwoSensorFrameTakesTheRegisteredColours) 
     devices::SyntheticDevice device(dc::test::smallRigConfig());
     ASSERT_TRUE(device.open());
     const frame::FramePtr frame = device.makeFrame(0, 0.0);
-    CameraColorTable table;
+    CameraColourTable table;
     const PointColours colours = framePointColours(*frame, frame->sceneDepth->depthMeters, table);
     const auto fromFrame = buildPointCloud(*frame, frame::Confidence::Low, 0.0f);
     const auto registered = buildPointCloud(
-        {&*frame->sceneDepth, frame->depthIntrinsics(), colours.colors.get()}, frame::Confidence::Low, 0.0f);
+        {&*frame->sceneDepth, frame->depthIntrinsics(), colours.colours.get()}, frame::Confidence::Low, 0.0f);
     ASSERT_EQ(fromFrame.size(), registered.size());
     ASSERT_FALSE(fromFrame.empty());
     for (std::size_t i = 0; i < fromFrame.size(); ++i)

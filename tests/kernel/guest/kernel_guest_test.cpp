@@ -281,9 +281,9 @@ int expectRegisteredAsPredicted(const frame::Frame& f) {
 // The colour the points get (the cloud's, fog's and upsampling's source) is the predicted pixel's.
 void expectPointColoursFromThePredictedPixels(const frame::Frame& f) {
     const frame::Plane<float>& depth = f.sceneDepth->depthMeters;
-    processing::CameraColorTable table;
+    processing::CameraColourTable table;
     const processing::PointColours colours = processing::framePointColours(f, depth, table);
-    ASSERT_TRUE(colours.colors && colours.seen) << "colours registered from a second sensor";
+    ASSERT_TRUE(colours.colours && colours.seen) << "colours registered from a second sensor";
     ASSERT_TRUE(table.use(f.capturedImage));
     int compared = 0;
     for (int y = 20; y < kHeight; y += 40)
@@ -294,7 +294,7 @@ void expectPointColoursFromThePredictedPixels(const frame::Frame& f) {
             const std::size_t i = static_cast<std::size_t>(y) * kWidth + x;
             const std::uint32_t expected =
                 table.rgba(static_cast<int>(std::lround(u)), static_cast<int>(std::lround(v)));
-            EXPECT_EQ(processing::packRgba(&colours.colors->pixels[3 * i]), expected) << x << "," << y;
+            EXPECT_EQ(processing::packRgba(&colours.colours->pixels[3 * i]), expected) << x << "," << y;
             ++compared;
         }
     EXPECT_GT(compared, 50);

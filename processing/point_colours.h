@@ -15,9 +15,9 @@ namespace dc::processing {
 // at the cost of a table look-up: the table holds pixelRgb's own results for every YCbCr triplet, filled
 // one chroma pair (256 lumas) at a time when a pair is first met, so only the colours a scene uses take
 // memory.
-class CameraColorTable {
+class CameraColourTable {
 public:
-    CameraColorTable();
+    CameraColourTable();
     // Prepares for the pixels of `image`; false when the image is empty or malformed.
     bool use(const frame::CapturedImage& image);
     // The colour of pixel (x, y), which must lie inside the image last passed to use().
@@ -44,8 +44,8 @@ private:
 // The colour of each point of a width x height depth map: the camera-image pixel whose area matches the
 // depth pixel's centre (cameraPixelOf), converted exactly as frame::pixelRgb does. Depth and image cover the
 // same field of view at their own resolutions. Without a usable image every point is pixelRgb's mid-gray.
-RgbImage pointColors(const frame::CapturedImage& image, int width, int height, CameraColorTable& table);
-RgbImage pointColors(const frame::CapturedImage& image, int width, int height);
+RgbImage pointColours(const frame::CapturedImage& image, int width, int height, CameraColourTable& table);
+RgbImage pointColours(const frame::CapturedImage& image, int width, int height);
 
 // R, G, B as the low three bytes of a little-endian RGBA8 word with alpha 255, as the GPU reads it.
 inline std::uint32_t packRgba(const std::uint8_t* rgb) {

@@ -1,4 +1,4 @@
-#include "processing/point_colors.h"
+#include "processing/point_colours.h"
 
 #include "frame/color.h"
 #include "processing/point_cloud.h"
@@ -27,7 +27,7 @@ void storeRgb(std::uint32_t rgba, std::uint8_t* out) {
 
 } // namespace
 
-CameraColorTable::CameraColorTable()
+CameraColourTable::CameraColourTable()
     : ycbcr_(new std::uint32_t[std::size_t{1} << 24]), pairsFilled_((std::size_t{1} << 16) / 64) {
     for (int v = 0; v < 256; ++v) {
         const auto b = static_cast<std::uint8_t>(v);
@@ -36,7 +36,7 @@ CameraColorTable::CameraColorTable()
     }
 }
 
-bool CameraColorTable::use(const frame::CapturedImage& image) {
+bool CameraColourTable::use(const frame::CapturedImage& image) {
     if (image.empty() || !image.raw() || image.width <= 0 || image.height <= 0 ||
         image.bytes->size() < frame::CapturedImage::byteSize(image.format, image.width, image.height))
         return false;
@@ -48,7 +48,7 @@ bool CameraColorTable::use(const frame::CapturedImage& image) {
 }
 
 // The same addressing as frame::pixelRgb; the conversion itself is pixelRgb's, through the table.
-template <class Convert> std::uint32_t CameraColorTable::colourAt(int xi, int yi, Convert&& convert) const {
+template <class Convert> std::uint32_t CameraColourTable::colourAt(int xi, int yi, Convert&& convert) const {
     const auto x = static_cast<std::size_t>(xi), y = static_cast<std::size_t>(yi);
     switch (format_) {
     case frame::PixelFormat::Nv12: {
@@ -69,12 +69,12 @@ template <class Convert> std::uint32_t CameraColorTable::colourAt(int xi, int yi
     return 0xff808080u;
 }
 
-std::uint32_t CameraColorTable::rgba(int x, int y) {
+std::uint32_t CameraColourTable::rgba(int x, int y) {
     return colourAt(x, y,
                     [this](std::uint8_t l, std::uint8_t cb, std::uint8_t cr) { return ycbcr(l, cb, cr); });
 }
 
-std::optional<std::uint32_t> CameraColorTable::filledRgba(int x, int y) const {
+std::optional<std::uint32_t> CameraColourTable::filledRgba(int x, int y) const {
     bool missing = false;
     const std::uint32_t rgba = colourAt(x, y, [&](std::uint8_t l, std::uint8_t cb, std::uint8_t cr) {
         const std::uint32_t pair = static_cast<std::uint32_t>(cb) << 8 | cr;
@@ -84,7 +84,7 @@ std::optional<std::uint32_t> CameraColorTable::filledRgba(int x, int y) const {
     return missing ? std::nullopt : std::optional<std::uint32_t>(rgba);
 }
 
-std::uint32_t CameraColorTable::ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr) {
+std::uint32_t CameraColourTable::ycbcr(std::uint8_t y, std::uint8_t cb, std::uint8_t cr) {
     const std::uint32_t pair = static_cast<std::uint32_t>(cb) << 8 | cr;
     if (!filled(pair))
         fillPair(pair);
@@ -92,7 +92,7 @@ std::uint32_t CameraColorTable::ycbcr(std::uint8_t y, std::uint8_t cb, std::uint
 }
 
 // pixelRgb of a 2x1 NV12 image for each luma, so the table holds exactly what pixelRgb computes.
-void CameraColorTable::fillPair(std::uint32_t pair) {
+void CameraColourTable::fillPair(std::uint32_t pair) {
     auto bytes = std::make_shared<std::vector<std::uint8_t>>(4);
     (*bytes)[2] = static_cast<std::uint8_t>(pair >> 8);
     (*bytes)[3] = static_cast<std::uint8_t>(pair & 0xff);
@@ -104,7 +104,7 @@ void CameraColorTable::fillPair(std::uint32_t pair) {
     pairsFilled_[pair / 64] |= std::uint64_t{1} << (pair % 64);
 }
 
-RgbImage pointColors(const frame::CapturedImage& image, int width, int height, CameraColorTable& table) {
+RgbImage pointColours(const frame::CapturedImage& image, int width, int height, CameraColourTable& table) {
     RgbImage out{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 3)};
     if (!table.use(image)) {
         const std::uint32_t gray = packRgba(frame::pixelRgb(image, 0, 0));
@@ -123,9 +123,9 @@ RgbImage pointColors(const frame::CapturedImage& image, int width, int height, C
     return out;
 }
 
-RgbImage pointColors(const frame::CapturedImage& image, int width, int height) {
-    CameraColorTable table;
-    return pointColors(image, width, height, table);
+RgbImage pointColours(const frame::CapturedImage& image, int width, int height) {
+    CameraColourTable table;
+    return pointColours(image, width, height, table);
 }
 
 } // namespace dc::processing
