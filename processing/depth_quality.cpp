@@ -96,13 +96,6 @@ std::vector<Point3d> select(std::span<const Point3d> points, const std::vector<s
     return out;
 }
 
-double rmsDistance(std::span<const Point3d> points, const PlaneModel& plane) {
-    double sum = 0.0;
-    for (const Point3d& p : points)
-        sum += plane.signedDistance(p) * plane.signedDistance(p);
-    return points.empty() ? 0.0 : std::sqrt(sum / static_cast<double>(points.size()));
-}
-
 // The plane through three points; none when they are (nearly) collinear.
 std::optional<PlaneModel> planeThrough(const Point3d& a, const Point3d& b, const Point3d& c) {
     const std::array<double, 3> u{b.x - a.x, b.y - a.y, b.z - a.z};
@@ -170,49 +163,9 @@ std::optional<RandomPlane> bestRandomPlane(std::span<const Point3d> points, cons
     return best;
 }
 
-bool finite(const Point3d& p) {
-    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
-
-} // namespace
-
-Roi centredRoi(int imageWidth, int imageHeight, double percent) {
-    const double f = std::clamp(percent, 0.0, 100.0) / 100.0;
-    const int w = std::clamp(static_cast<int>(std::lround(imageWidth * f)), 1, std::max(1, imageWidth));
-    const int h = std::clamp(static_cast<int>(std::lround(imageHeight * f)), 1, std::max(1, imageHeight));
-    return {(imageWidth - w) / 2, (imageHeight - h) / 2, w, h};
-}
-
-bool roiInside(const Roi& roi, int imageWidth, int imageHeight) {
-    return roi.width > 0 && roi.height > 0 && roi.x >= 0 && roi.y >= 0 && roi.x <= imageWidth - roi.width &&
-           roi.y <= imageHeight - roi.height;
-}
-
-Expected<PlaneModel> fitPlaneLeastSquares(std::span<const Point3d> points) {
-    if (points.size() < 3)
-        return notEnough(std::to_string(points.size()) + " points, a plane needs 3");
-    // One pass of sums about the first point: the offsets are as small as the region, so the covariance
-    // S2 - S1 S1' / n keeps its precision however far the plane is.
-    const Point3d o = points.front();
-    std::array<double, 3> s1{};
-    std::array<double, 6> s2{}; // xx xy xz yy yz zz
-    bool allFinite = true;
-    for (const Point3d& p : points) {
-        allFinite &= finite(p);
-        const double x = p.x - o.x, y = p.y - o.y, z = p.z - o.z;
-        s1[0] += x;
-        s1[1] += y;
-        s1[2] += z;
-        s2[0] += x * x;
-        s2[1] += x * y;
-        s2[2] += x * z;
-        s2[3] += y * y;
-        s2[4] += y * z;
-        s2[5] += z * z;
-    }
-    if (!allFinite)
-        return Error{"a point of the plane fit is not finite"};
-    const double n = static_cast<double>(points.size());
+// The least-squares plane of n points whose sums about `o` are s1 (x y z) and s2 (xx xy xz yy yz zz).
+Expected<PlaneModel> planeOfSums(const Point3d& o, const std::array<double, 3>& s1,
+                                 const std::array<double, 6>& s2, double n) {
     const Point3d c{o.x + s1[0] / n, o.y + s1[1] / n, o.z + s1[2] / n};
     const auto covariance = [&](int i, int j, int k) {
         return s2[static_cast<std::size_t>(k)] - s1[i] * s1[j] / n;
@@ -231,6 +184,146 @@ Expected<PlaneModel> fitPlaneLeastSquares(std::span<const Point3d> points) {
     return orientedPlane({vectors[0][k], vectors[1][k], vectors[2][k]}, c);
 }
 
+// Where a rank falls among many values without sorting them: the values counted into equal bins between
+// their lowest and highest. Only the values of the bins that hold the ranks asked for are then put in
+// order (a full selection over every residual or pixel was most of the quality figures' cost).
+class RankBins {
+public:
+    explicit RankBins(std::span<const double> values) : counts_(kBins, 0) {
+        const auto [lowest, highest] = std::minmax_element(values.begin(), values.end());
+        low_ = *lowest;
+        const double span = *highest - low_;
+        scale_ = span > 0.0 ? static_cast<double>(kBins) / span : 0.0;
+        for (double v : values)
+            ++counts_[binOf(v)];
+    }
+    std::size_t binOf(double v) const {
+        return std::min(static_cast<std::size_t>((v - low_) * scale_), kBins - 1);
+    }
+    // The bin holding the value of 0-based `rank` in ascending order, and how many values lie below it.
+    std::pair<std::size_t, std::size_t> binOfRank(std::size_t rank) const {
+        std::size_t bin = 0, below = 0;
+        while (below + counts_[bin] <= rank)
+            below += counts_[bin++];
+        return {bin, below};
+    }
+    std::size_t count(std::size_t bin) const { return counts_[bin]; }
+
+private:
+    static constexpr std::size_t kBins = 4096;
+    std::vector<std::size_t> counts_;
+    double low_ = 0.0, scale_ = 0.0;
+};
+
+// The sum of the squares of `values` without the `trim` smallest and the `trim` largest, as sorting them and
+// dropping both ends gives it, in linear time.
+double sumOfSquaresTrimmed(std::span<const double> values, std::size_t trim) {
+    const RankBins bins(values);
+    // The bins of the first and the last value kept; every value below the first or above the last goes.
+    const auto [lowBin, below] = bins.binOfRank(trim);
+    const auto [highBin, belowHigh] = bins.binOfRank(values.size() - 1 - trim);
+    const std::size_t above = values.size() - belowHigh - bins.count(highBin);
+    double sum = 0.0;
+    std::vector<double> edge;
+    for (double v : values) {
+        const std::size_t bin = bins.binOf(v);
+        if (bin > lowBin && bin < highBin)
+            sum += v * v;
+        else if (bin == lowBin || bin == highBin)
+            edge.push_back(v);
+    }
+    // The edge bins' values: what the trim leaves of each end goes, the middle stays.
+    const auto first = edge.begin() + static_cast<std::ptrdiff_t>(trim - below);
+    const auto last = edge.end() - static_cast<std::ptrdiff_t>(trim - above);
+    std::nth_element(edge.begin(), first, edge.end());
+    if (last != edge.end())
+        std::nth_element(first, last, edge.end());
+    for (auto it = first; it != last; ++it)
+        sum += *it * *it;
+    return sum;
+}
+
+// The median of many values (as median() gives it) through RankBins: only the middle bin is ordered.
+double medianOfMany(std::span<const double> values) {
+    const RankBins bins(values);
+    const std::size_t mid = values.size() / 2;
+    const auto [bin, below] = bins.binOfRank(mid);
+    std::vector<double> middle;
+    middle.reserve(bins.count(bin));
+    for (double v : values)
+        if (bins.binOf(v) == bin)
+            middle.push_back(v);
+    const auto at = middle.begin() + static_cast<std::ptrdiff_t>(mid - below);
+    std::nth_element(middle.begin(), at, middle.end());
+    if (values.size() % 2 == 1)
+        return *at;
+    // The value ranked just below the middle: the largest below it in this bin, or else the largest value
+    // of the bins below.
+    if (at != middle.begin())
+        return 0.5 * (*at + *std::max_element(middle.begin(), at));
+    double lower = -std::numeric_limits<double>::infinity();
+    for (double v : values)
+        if (bins.binOf(v) < bin)
+            lower = std::max(lower, v);
+    return 0.5 * (*at + lower);
+}
+
+bool finite(const Point3d& p) {
+    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
+}
+
+// The plane of the points for which keep(p) holds, by total least squares, without copying them: one pass
+// of sums about the first kept point (the offsets are as small as the region, so the covariance
+// S2 - S1 S1' / n keeps its precision however far the plane is), then the covariance's smallest eigenvector.
+template <class Keep> Expected<PlaneModel> leastSquaresWhere(std::span<const Point3d> points, Keep&& keep) {
+    std::optional<Point3d> origin;
+    std::array<double, 3> s1{};
+    std::array<double, 6> s2{}; // xx xy xz yy yz zz
+    std::size_t count = 0;
+    bool allFinite = true;
+    for (const Point3d& p : points) {
+        if (!keep(p))
+            continue;
+        allFinite &= finite(p);
+        if (!origin)
+            origin = p;
+        const double x = p.x - origin->x, y = p.y - origin->y, z = p.z - origin->z;
+        s1[0] += x;
+        s1[1] += y;
+        s1[2] += z;
+        s2[0] += x * x;
+        s2[1] += x * y;
+        s2[2] += x * z;
+        s2[3] += y * y;
+        s2[4] += y * z;
+        s2[5] += z * z;
+        ++count;
+    }
+    if (count < 3)
+        return notEnough(std::to_string(count) + " points, a plane needs 3");
+    if (!allFinite)
+        return Error{"a point of the plane fit is not finite"};
+    return planeOfSums(*origin, s1, s2, static_cast<double>(count));
+}
+
+} // namespace
+
+Roi centredRoi(int imageWidth, int imageHeight, double percent) {
+    const double f = std::clamp(percent, 0.0, 100.0) / 100.0;
+    const int w = std::clamp(static_cast<int>(std::lround(imageWidth * f)), 1, std::max(1, imageWidth));
+    const int h = std::clamp(static_cast<int>(std::lround(imageHeight * f)), 1, std::max(1, imageHeight));
+    return {(imageWidth - w) / 2, (imageHeight - h) / 2, w, h};
+}
+
+bool roiInside(const Roi& roi, int imageWidth, int imageHeight) {
+    return roi.width > 0 && roi.height > 0 && roi.x >= 0 && roi.y >= 0 && roi.x <= imageWidth - roi.width &&
+           roi.y <= imageHeight - roi.height;
+}
+
+Expected<PlaneModel> fitPlaneLeastSquares(std::span<const Point3d> points) {
+    return leastSquaresWhere(points, [](const Point3d&) { return true; });
+}
+
 Expected<RobustPlaneFit> fitPlaneRobust(std::span<const Point3d> points, const RobustFitParams& params) {
     if (points.size() < 3)
         return notEnough(std::to_string(points.size()) + " points, a plane needs 3");
@@ -239,29 +332,33 @@ Expected<RobustPlaneFit> fitPlaneRobust(std::span<const Point3d> points, const R
         return notEnough("no three points span a plane");
     const double threshold = params.inlierThresholdMeters.value_or(
         std::max(3.0 * kMadToSigma * best->medianResidual, kMinInlierThresholdMeters));
-    PlaneModel plane = best->plane;
-    std::vector<Point3d> chosen;
-    std::vector<std::size_t> inliers;
-    chosen.reserve(points.size());
+    // Least squares on the inliers of the random plane, then on the inliers of that plane: the points are
+    // chosen by their distance as they are summed, never copied.
+    // The RMS is over the points of the last fit, against the plane they gave.
+    PlaneModel chooser = best->plane, plane = best->plane;
     for (int pass = 0; pass < 2; ++pass) {
-        chosen.clear();
-        inliers.clear();
-        for (std::size_t i = 0; i < points.size(); ++i)
-            if (std::abs(plane.signedDistance(points[i])) <= threshold) {
-                chosen.push_back(points[i]);
-                inliers.push_back(i);
-            }
-        const auto fit = fitPlaneLeastSquares(chosen);
+        chooser = plane;
+        const auto fit = leastSquaresWhere(
+            points, [&](const Point3d& p) { return std::abs(chooser.signedDistance(p)) <= threshold; });
         if (!fit)
             return fit.error();
         plane = *fit;
     }
     RobustPlaneFit result;
+    result.inliers.reserve(points.size());
     result.plane = plane;
-    result.rmsMeters = rmsDistance(chosen, plane);
-    result.inlierFraction = static_cast<double>(inliers.size()) / static_cast<double>(points.size());
+    double sum = 0.0;
+    for (std::size_t i = 0; i < points.size(); ++i) {
+        if (std::abs(chooser.signedDistance(points[i])) <= threshold) {
+            const double r = plane.signedDistance(points[i]);
+            sum += r * r;
+            result.inliers.push_back(i);
+        }
+    }
+    const double inliers = static_cast<double>(result.inliers.size());
+    result.rmsMeters = result.inliers.empty() ? 0.0 : std::sqrt(sum / inliers);
+    result.inlierFraction = inliers / static_cast<double>(points.size());
     result.inlierThresholdMeters = threshold;
-    result.inliers = std::move(inliers);
     return result;
 }
 
@@ -275,15 +372,7 @@ Expected<double> dqtPlaneFitRms(std::span<const Point3d> points) {
         residuals.push_back(plane->signedDistance(p));
     const auto trim =
         static_cast<std::size_t>(std::floor(kDqtTrimFraction * static_cast<double>(points.size())));
-    // The trimmed ends by rank, as a sort would leave them, in linear time: the `trim` smallest first, then
-    // the `trim` largest of the rest last.
-    const auto lowEnd = residuals.begin() + static_cast<std::ptrdiff_t>(trim);
-    std::nth_element(residuals.begin(), lowEnd, residuals.end());
-    std::nth_element(lowEnd, residuals.end() - static_cast<std::ptrdiff_t>(trim), residuals.end());
-    double sum = 0.0;
-    for (std::size_t i = trim; i < residuals.size() - trim; ++i)
-        sum += residuals[i] * residuals[i];
-    return std::sqrt(sum / static_cast<double>(residuals.size() - 2 * trim));
+    return std::sqrt(sumOfSquaresTrimmed(residuals, trim) / static_cast<double>(residuals.size() - 2 * trim));
 }
 
 Expected<double> distanceAlongOpticalAxis(const PlaneModel& plane) {
@@ -551,7 +640,7 @@ Expected<double> NoiseWindow::temporalNoiseMm() const {
     }
     if (deviations.empty())
         return notEnough("no pixel is valid in every frame of the window");
-    return median(std::move(deviations));
+    return medianOfMany(deviations);
 }
 
 Expected<double> NoiseWindow::spatialNoiseMm() const {

@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -83,6 +84,47 @@ TEST(DepthQuality, DqtRmsTrimsHalfAPercentFromEachEnd) {
     const auto dqt = dqtPlaneFitRms(points);
     ASSERT_TRUE(dqt.ok());
     EXPECT_NEAR(*dqt, 0.001, 1e-9);
+}
+
+// DQT's trimmed RMS by its definition: every residual sorted, both ends dropped, the rest's RMS.
+double sortedTrimRms(const std::vector<Point3d>& points) {
+    const auto plane = fitPlaneLeastSquares(points);
+    std::vector<double> residuals;
+    for (const Point3d& p : points)
+        residuals.push_back(plane->signedDistance(p));
+    std::sort(residuals.begin(), residuals.end());
+    const auto trim = static_cast<std::size_t>(std::floor(0.005 * static_cast<double>(points.size())));
+    double sum = 0.0;
+    for (std::size_t i = trim; i < residuals.size() - trim; ++i)
+        sum += residuals[i] * residuals[i];
+    return std::sqrt(sum / static_cast<double>(residuals.size() - 2 * trim));
+}
+
+// The trim finds its ends without sorting every residual; layouts that stress that search give the sorted
+// definition's answer: far outliers that squeeze the inliers into a few of its bins, ties across the
+// trim's edge, every residual on one side of the plane but one, and a noise-free plane.
+TEST(DepthQuality, DqtRmsEqualsTheSortedDefinitionOnHardLayouts) {
+    std::mt19937_64 random(7);
+    std::normal_distribution<double> noise(0.0, 0.001);
+    const auto grid = [&](const std::function<double(int, int)>& z) {
+        std::vector<Point3d> points;
+        for (int j = 0; j < 300; ++j)
+            for (int i = 0; i < 400; ++i)
+                points.push_back({0.001 * i, 0.001 * j, z(i, j)});
+        return points;
+    };
+    const std::vector<std::vector<Point3d>> layouts{
+        grid([&](int i, int) { return 1.0 + noise(random) + (i % 5 == 0 ? 3.0 : 0.0); }),
+        grid([&](int i, int j) { return 1.0 + 0.002 * ((i * 7 + j * 3) % 4); }),
+        grid([&](int i, int j) { return 1.0 + (i == 17 && j == 5 ? 100.0 : 1e-6 * ((i + j) % 2)); }),
+        grid([&](int i, int j) { return 1.0 + 0.01 * i + 0.02 * j; }),
+        grid([&](int, int) { return 2.0 + noise(random); })};
+    for (std::size_t k = 0; k < layouts.size(); ++k) {
+        const auto dqt = dqtPlaneFitRms(layouts[k]);
+        ASSERT_TRUE(dqt.ok()) << "layout " << k;
+        const double expected = sortedTrimRms(layouts[k]);
+        EXPECT_NEAR(*dqt, expected, 1e-9 * std::max(expected, 1e-6)) << "layout " << k;
+    }
 }
 
 TEST(DepthQuality, ZAccuracyIsTheRelativeErrorOfTheDistance) {
@@ -303,6 +345,43 @@ TEST(DepthQuality, TemporalNoiseIsEachPixelsDeviationOverTheWindow) {
     const auto spatial = window.spatialNoiseMm();
     ASSERT_TRUE(spatial.ok());
     EXPECT_DOUBLE_EQ(*spatial, 24.5); // the median of 10 .. 39
+}
+
+// Two frames, pixel i at 1 m and 1 m + a_i: its deviation is a_i / sqrt(2). The a_i are a shuffled ramp
+// (the middle two known exactly), plus one pixel 10 m apart and one tie with the middle, which crowd the
+// middle ranks into few bins of the median's search. Both parities of the pixel count.
+TEST(DepthQuality, TemporalNoiseIsTheExactMedianOfManyPixels) {
+    for (const int width : {200, 199}) {
+        QualityParams params;
+        params.roi = {0, 0, width, 51};
+        params.flyingThresholdMeters = 100.0f;
+        const int n = width * 51;
+        std::vector<float> offsets(static_cast<std::size_t>(n));
+        for (int i = 0; i < n; ++i)
+            offsets[static_cast<std::size_t>(i)] = 1e-5f * static_cast<float>(i + 1);
+        offsets[0] = 10.0f;
+        offsets[1] = offsets[static_cast<std::size_t>(n / 2)];
+        std::vector<float> sorted = offsets;
+        std::sort(sorted.begin(), sorted.end());
+        std::shuffle(offsets.begin(), offsets.end(), std::mt19937(3));
+        NoiseWindow window(params, 2);
+        frame::DepthData d = flat(width, 51, 1.0f);
+        window.add(d, std::nullopt);
+        for (int i = 0; i < n; ++i)
+            d.depthMeters.pixels[static_cast<std::size_t>(i)] = 1.0f + offsets[static_cast<std::size_t>(i)];
+        window.add(d, std::nullopt);
+        std::vector<double> deviations;
+        for (int i = 0; i < n; ++i) {
+            const double a = static_cast<double>(d.depthMeters.pixels[static_cast<std::size_t>(i)]) - 1.0;
+            deviations.push_back(std::abs(a) / std::sqrt(2.0) * 1000.0);
+        }
+        std::sort(deviations.begin(), deviations.end());
+        const auto mid = static_cast<std::size_t>(n / 2);
+        const double expected = n % 2 ? deviations[mid] : 0.5 * (deviations[mid - 1] + deviations[mid]);
+        const auto temporal = window.temporalNoiseMm();
+        ASSERT_TRUE(temporal.ok());
+        EXPECT_NEAR(*temporal, expected, 1e-9) << n << " pixels";
+    }
 }
 
 TEST(DepthQuality, TemporalNoiseNeedsAPixelValidInEveryFrame) {
