@@ -3,7 +3,7 @@
 namespace dc::ui {
 
 PanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay, const CameraView& view,
-                            const ProbeSource& probe, bool* open) {
+                            const ProbeSource& probe, const RoiOverlay& roi, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kCameraTitle, open, result)) {
         endImagePanel({});
@@ -13,7 +13,7 @@ PanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOver
         drawImage(image, view.fill ? ImageFit::Fill : ImageFit::Fit, "No camera image yet.");
     if (view.depthOverlay)
         drawOverlay(depthOverlay, shown, view.overlayOpacity);
-    interactWithImage(shown, probe, result);
+    interactWithImage(shown, probe, result, roi);
     endImagePanel(shown);
     return result;
 }

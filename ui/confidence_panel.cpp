@@ -14,7 +14,7 @@ void legendEntry(const char* label, ImVec4 color) {
 } // namespace
 
 PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool estimated,
-                                const ProbeSource& probe, bool* open) {
+                                const ProbeSource& probe, const RoiOverlay& roi, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kConfidenceTitle, open, result)) {
         endImagePanel({});
@@ -29,7 +29,7 @@ PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool es
     ImageRect shown;
     if (ImGui::BeginChild("##confidence", ImVec2(0.0f, -legendHeight))) {
         shown = drawImage(image, ImageFit::Fit, "No confidence yet.");
-        interactWithImage(shown, probe, result);
+        interactWithImage(shown, probe, result, roi);
     }
     ImGui::EndChild();
     legendEntry("low", ImVec4(1, 0, 0, 1));

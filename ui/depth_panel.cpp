@@ -50,9 +50,7 @@ PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, 
     if (ImGui::BeginChild("##depth", ImVec2(0.0f, -legendHeight))) {
         shown = drawImage(image, ImageFit::Fit, "No depth yet.");
         drawOverlay(colour.image, shown, colour.opacity);
-        if (roi.outline && shown.max.x > shown.min.x)
-            outlineImageRect(shown, *roi.outline, IM_COL32(255, 255, 0, 255));
-        interactWithImage(shown, probe, result, roi.drawable && shown.max.x > shown.min.x);
+        interactWithImage(shown, probe, result, roi);
     }
     ImGui::EndChild();
     drawLegend(legend);

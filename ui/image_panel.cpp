@@ -94,6 +94,14 @@ void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelR
         result.toggleZoom = true;
 }
 
+void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result,
+                       const RoiOverlay& roi) {
+    const bool shownAtAll = shown.max.x > shown.min.x;
+    if (roi.outline && shownAtAll)
+        outlineImageRect(shown, *roi.outline, IM_COL32(255, 255, 0, 255));
+    interactWithImage(shown, source, result, roi.drawable && shownAtAll);
+}
+
 void outlineImageRect(const ImageRect& shown, ImVec4 fractions, ImU32 colour) {
     ImDrawList* draw = ImGui::GetWindowDrawList();
     draw->PushClipRect(shown.min, shown.max, true);

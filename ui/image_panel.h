@@ -24,4 +24,9 @@ void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelR
 // Outlines a rectangle of the image (fractions: left, top, right, bottom), clipped to the part shown.
 void outlineImageRect(const ImageRect& shown, ImVec4 fractions, ImU32 colour);
 
+// interactWithImage() on a panel that shows the Quality panel's region: outlined over the image, and a
+// left drag draws a new one while it can be drawn.
+void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result,
+                       const RoiOverlay& roi);
+
 } // namespace dc::ui

@@ -26,7 +26,7 @@ void drawStretchLegend(const processing::IntensityRange& range) {
 } // namespace
 
 PanelResult drawInfraredPanel(const PanelImage& image, const processing::IntensityRange& range,
-                              const ProbeSource& probe, bool* open) {
+                              const ProbeSource& probe, const RoiOverlay& roi, bool* open) {
     PanelResult result;
     if (!beginImagePanel(kInfraredTitle, open, result)) {
         endImagePanel({});
@@ -39,7 +39,7 @@ PanelResult drawInfraredPanel(const PanelImage& image, const processing::Intensi
         // The depth sensor's own view: its pixels are the depth map's, so the hover reads the depth (and
         // the raw intensity) there.
         shown = drawImage(image, ImageFit::Fit, "No infrared image yet.");
-        interactWithImage(shown, probe, result);
+        interactWithImage(shown, probe, result, roi);
     }
     ImGui::EndChild();
     drawStretchLegend(range);

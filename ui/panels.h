@@ -60,7 +60,8 @@ struct PanelResult {
     std::optional<ImVec4> drawnRect;
 };
 
-// The Quality panel's region on the depth panel: outlined there and, while it can be drawn, a left drag
+// The Quality panel's region on an image panel that covers the depth map's field of view (depth,
+// confidence, infrared, a single camera's image): outlined there and, while it can be drawn, a left drag
 // across the image draws a new one (a click that does not drag still zooms).
 struct RoiOverlay {
     bool drawable = false;
@@ -121,17 +122,18 @@ PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, 
 // Confidence as red (low), green (medium), blue (high); `available` false says the source has none,
 // `estimated` that it was estimated from the depth because the camera reports none.
 PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool estimated,
-                                const ProbeSource& probe, bool* open);
+                                const ProbeSource& probe, const RoiOverlay& roi, bool* open);
 
 // The depth sensor's infrared image in gray, contrast-stretched (the engine's 1st-99th percentile).
 // The infrared image with the stretch it was drawn with (raw intensities to black..white) as a legend.
 PanelResult drawInfraredPanel(const PanelImage& image, const processing::IntensityRange& range,
-                              const ProbeSource& probe, bool* open);
+                              const ProbeSource& probe, const RoiOverlay& roi, bool* open);
 
 // The camera image, fitted or filling the panel, optionally with the depth laid over it: the depth panel's
 // image for a single camera, the depth aligned to the colour image for two sensors.
+// A two-sensor camera's image does not share the depth map's field of view: it gets no region (`roi` empty).
 PanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay, const CameraView& view,
-                            const ProbeSource& probe, bool* open);
+                            const ProbeSource& probe, const RoiOverlay& roi, bool* open);
 
 // The folder field's text while it is edited (RecordSettings::directory follows it).
 struct RecordPanelState {

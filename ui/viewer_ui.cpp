@@ -456,16 +456,18 @@ void Viewer::drawSidePanels(float x, float w, float height) {
         const bool available = instrument_.capabilities().confidence || estimated;
         afterDataPanel(kConfidenceTitle,
                        drawConfidencePanel(dataPanelImage(renderer_.confidenceTarget(), renderer_), available,
-                                           estimated, probe, &show.confidence));
+                                           estimated, probe, roiOverlay(), &show.confidence));
     }
     if (show.camera) {
         place(kCameraTitle);
         const bool aligned = shown() && renderer_.alignsDepthOverCamera(presenter_.demand().gpuCameraColours);
         const PanelImage depth = aligned ? imageOf(renderer_.depthOverCameraTarget())
                                          : dataPanelImage(renderer_.depthTarget(), renderer_);
-        const PanelResult r = drawCameraPanel(renderer_.cameraFromGpu() ? imageOf(renderer_.cameraTarget())
-                                                                        : imageOf(renderer_.cameraTexture()),
-                                              depth, settings_.camera, probe, &show.camera);
+        const PanelResult r = drawCameraPanel(
+            renderer_.cameraFromGpu() ? imageOf(renderer_.cameraTarget())
+                                      : imageOf(renderer_.cameraTexture()),
+            depth, settings_.camera, probe,
+            shown() && shown()->frame && !shown()->frame->rig ? roiOverlay() : RoiOverlay{}, &show.camera);
         afterPanel(kCameraTitle, r);
         if (r.shownWidth > 0)
             presenter_.setCameraShownWidth(r.shownWidth);
@@ -479,8 +481,8 @@ void Viewer::drawSidePanels(float x, float w, float height) {
         place(kInfraredTitle);
         const processing::IntensityRange range =
             shown() ? shown()->infraredRange : processing::IntensityRange{};
-        afterPanel(kInfraredTitle,
-                   drawInfraredPanel(imageOf(renderer_.infraredTexture()), range, probe, &show.infrared));
+        afterPanel(kInfraredTitle, drawInfraredPanel(imageOf(renderer_.infraredTexture()), range, probe,
+                                                     roiOverlay(), &show.infrared));
     }
     if (show.fog) {
         place(kFogTitle);
@@ -553,7 +555,8 @@ void Viewer::drawCameraControls(float x, float y) {
     }
 }
 
-// The region measured, outlined on the depth panel, which draws a new one while the Quality panel is shown.
+// The region measured, outlined on the image panels of the depth's field of view, on which a drag draws a
+// new one while the Quality panel is shown.
 RoiOverlay Viewer::roiOverlay() const {
     RoiOverlay overlay;
     overlay.drawable = settings_.panels.quality && shown() && shown()->depth.data;

@@ -49,7 +49,7 @@ TEST_F(PanelTest, AnImagePanelFillsItsBackgroundAroundTheImageAndNotUnderIt) {
     draw_ = [&] {
         ImGui::SetNextWindowPos(pos);
         ImGui::SetNextWindowSize(size);
-        drawCameraPanel(image, {}, CameraView{}, ProbeSource{}, nullptr);
+        drawCameraPanel(image, {}, CameraView{}, ProbeSource{}, RoiOverlay{}, nullptr);
     };
     frame();
     frame();

@@ -164,6 +164,56 @@ TEST_F(QualityPanelTest, ARegionDrawnOnTheDepthPanelIsMeasuredInTheNextFrameAndW
     EXPECT_EQ(viewer_->quality()->sequence, sequence);
 }
 
+// Pure yellow pixels (the region's outline) inside a panel's window, in the picture last composited.
+int outlinePixelsIn(const char* title, const std::vector<std::uint8_t>& rgba, int width) {
+    const ImGuiWindow* w = ImGui::FindWindowByName(title);
+    if (!w)
+        return -1;
+    int count = 0;
+    for (int y = static_cast<int>(w->Pos.y); y < static_cast<int>(w->Pos.y + w->Size.y); ++y)
+        for (int x = static_cast<int>(w->Pos.x); x < static_cast<int>(w->Pos.x + w->Size.x); ++x) {
+            const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 4;
+            count += i + 2 < rgba.size() && rgba[i] == 255 && rgba[i + 1] == 255 && rgba[i + 2] == 0;
+        }
+    return count;
+}
+
+// The confidence and the (single) camera panel cover the depth map's field of view: the region is outlined
+// on them too, and a drag across the confidence panel draws one as on the depth panel.
+TEST_F(QualityPanelTest, TheRegionIsOutlinedAndDrawnOnEveryPanelOfTheDepthsView) {
+    Settings settings = qualityShown();
+    settings.panels.camera = true;
+    settings.panels.confidence = true;
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), settings));
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    ASSERT_TRUE(figuresShown());
+    frame(0.0);
+    const int width = gui_.target().width();
+    std::vector<std::uint8_t> picture = gui_.target().readRgba();
+    EXPECT_GT(outlinePixelsIn(kConfidenceTitle, picture, width), 40);
+    EXPECT_GT(outlinePixelsIn(kCameraTitle, picture, width), 40);
+
+    const ImGuiWindow* panel = ImGui::FindWindowByName(kConfidenceTitle);
+    ASSERT_NE(panel, nullptr);
+    const ImVec2 centre{panel->Pos.x + panel->Size.x * 0.5f, panel->Pos.y + panel->Size.y * 0.5f};
+    drag({centre.x - 30.0f, centre.y - 20.0f}, {centre.x + 10.0f, centre.y + 15.0f});
+    const QualitySettings& s = viewer_->settings().quality;
+    EXPECT_EQ(s.roiPercent, 0) << "the drag on the confidence panel drew a region";
+    const processing::Roi drawn{s.roiX, s.roiY, s.roiWidth, s.roiHeight};
+    EXPECT_GT(drawn.width, 3);
+    frame(0.0);
+    ASSERT_NE(viewer_->quality(), nullptr);
+    EXPECT_EQ(viewer_->quality()->roi, drawn) << "measured in the next frame";
+
+    // Without the Quality panel there is no region: the yellow counted above was its outline.
+    viewer_->settings().panels.quality = false;
+    frame(0.0);
+    frame(0.0);
+    picture = gui_.target().readRgba();
+    EXPECT_EQ(outlinePixelsIn(kConfidenceTitle, picture, width), 0);
+    EXPECT_EQ(outlinePixelsIn(kCameraTitle, picture, width), 0);
+}
+
 TEST_F(QualityPanelTest, WithThePanelHiddenNothingIsMeasured) {
     ASSERT_NO_FATAL_FAILURE(startViewer(wallScene()));
     for (int i = 0; i < 5; ++i)
