@@ -3,6 +3,7 @@
 #include "base/files.h"
 
 #include "base/log.h"
+#include "exporting/mcap_export.h"
 #include "exporting/ply.h"
 #include "exporting/stray_writer.h"
 #include "frame/image_io.h"
@@ -65,6 +66,42 @@ double meanFps(const devices::replay::ReplaySource& source, const FrameRange& ra
     return std::clamp(fps, 1.0, 240.0);
 }
 
+// Where the directory formats write, made when missing; for MCAP the file's directory.
+Status createDestination(const ExportOptions& options) {
+    const std::string directory = options.format == ExportFormat::Mcap
+                                      ? std::filesystem::path(options.outDirectory).parent_path().string()
+                                  : options.format == ExportFormat::Png16 ? options.outDirectory + "/depth"
+                                                                          : options.outDirectory;
+    std::error_code ec;
+    if (!directory.empty())
+        std::filesystem::create_directories(directory, ec);
+    if (ec)
+        return Error{"cannot create " + directory + ": " + ec.message()};
+    return {};
+}
+
+// The writers of the formats that gather frames into one output.
+struct Writers {
+    StrayWriter stray;
+    std::unique_ptr<McapFrameWriter> mcap;
+};
+
+Status writeFrame(const frame::Frame& frame, std::size_t index, const ExportOptions& options,
+                  Writers& writers) {
+    switch (options.format) {
+    case ExportFormat::Ply:
+        return writePlyFrame(frame, index, options);
+    case ExportFormat::Stray:
+        return writers.stray.add(frame);
+    case ExportFormat::Png16:
+        return writeDepthPng16(options.outDirectory + "/depth/" + numberedName(index, "png"),
+                               frame.sceneDepth->depthMeters);
+    case ExportFormat::Mcap:
+        return writers.mcap->add(frame);
+    }
+    return Error{"unknown export format"};
+}
+
 } // namespace
 
 const char* toString(ExportFormat format) {
@@ -75,6 +112,8 @@ const char* toString(ExportFormat format) {
         return "stray";
     case ExportFormat::Png16:
         return "png16";
+    case ExportFormat::Mcap:
+        return "mcap";
     }
     return "unknown";
 }
@@ -104,14 +143,17 @@ Expected<ExportResult> exportFrames(devices::replay::ReplaySource& source, const
     if (range.first >= range.end || range.end > source.frameCount())
         return Error{"frames " + std::to_string(range.first) + ":" + std::to_string(range.end) +
                      " are not within the source's " + std::to_string(source.frameCount()) + " frames"};
-    std::error_code ec;
-    std::filesystem::create_directories(
-        options.outDirectory + (options.format == ExportFormat::Png16 ? "/depth" : ""), ec);
-    if (ec)
-        return Error{"cannot create " + options.outDirectory + ": " + ec.message()};
+    if (Status s = createDestination(options); !s)
+        return s.error();
     // Processing may need the colour even for depth-only output (upsampling is guided by it).
     source.setDecodeColor(options.format != ExportFormat::Png16 || options.transform);
-    StrayWriter stray(options.outDirectory, meanFps(source, range));
+    Writers writers{StrayWriter(options.outDirectory, meanFps(source, range)), nullptr};
+    if (options.format == ExportFormat::Mcap) {
+        auto mcap = McapFrameWriter::create(options.outDirectory, options.overwrite);
+        if (!mcap)
+            return mcap.error();
+        writers.mcap = std::move(*mcap);
+    }
     ExportResult result;
     const std::size_t total = range.end - range.first;
     for (std::size_t i = range.first; i < range.end; ++i) {
@@ -124,21 +166,18 @@ Expected<ExportResult> exportFrames(devices::replay::ReplaySource& source, const
             ++result.framesSkipped;
         } else {
             const std::size_t out = options.format == ExportFormat::Stray ? result.framesWritten : i;
-            Status s = options.format == ExportFormat::Ply ? writePlyFrame(*frame, out, options)
-                       : options.format == ExportFormat::Stray
-                           ? stray.add(*frame)
-                           : writeDepthPng16(options.outDirectory + "/depth/" + numberedName(out, "png"),
-                                             frame->sceneDepth->depthMeters);
-            if (!s)
+            if (Status s = writeFrame(*frame, out, options, writers); !s)
                 return s.error();
             ++result.framesWritten;
         }
         if (progress && !progress(i - range.first + 1, total))
             return Error{"export cancelled after " + std::to_string(result.framesWritten) + " frames"};
     }
-    if (options.format == ExportFormat::Stray)
-        if (Status s = stray.finish(); !s)
-            return s.error();
+    Status finished = options.format == ExportFormat::Stray ? writers.stray.finish()
+                      : writers.mcap                        ? writers.mcap->finish()
+                                                            : Status{};
+    if (!finished)
+        return finished.error();
     return result;
 }
 

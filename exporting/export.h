@@ -13,6 +13,7 @@ enum class ExportFormat {
     Ply,   // one binary PLY per frame: x y z (meters, camera frame) red green blue confidence
     Stray, // the Stray Scanner layout, which our importer (and Stray's tools) read back
     Png16, // depth/NNNNNN.png, 16-bit millimetres, 0 = no measurement
+    Mcap,  // one MCAP file of ROS 2 messages (exporting/mcap_export.h), for Foxglove, rerun, ros2 bag
 };
 
 const char* toString(ExportFormat format);
@@ -28,12 +29,13 @@ Expected<FrameRange> parseFrameRange(const std::string& text, std::size_t count)
 
 struct ExportOptions {
     ExportFormat format = ExportFormat::Ply;
-    std::string outDirectory;
+    std::string outDirectory;      // Mcap: the file to write
     FrameRange frames;             // end == 0: to the last frame
     bool worldCoordinates = false; // PLY: points through the frame's pose (when it has one)
     // Applied to each frame before it is written, in order (the instrument's processing: smoothing and
     // upsampling make the depth that was shown, which then replaces sceneDepth). None: frames as recorded.
     std::function<frame::Frame(frame::Frame)> transform;
+    bool overwrite = false; // Mcap: replace an existing file (the directory formats replace their files)
 };
 
 struct ExportResult {
@@ -44,7 +46,8 @@ struct ExportResult {
 // Called after each frame with (frames done, frames in the range); returning false cancels the export.
 using ExportProgress = std::function<bool(std::size_t done, std::size_t total)>;
 
-// Writes the frames of `source` to options.outDirectory (created when missing), every file atomically.
+// Writes the frames of `source` to options.outDirectory (created when missing), every file atomically (an
+// MCAP file appears only once complete, and never replaces one unless options.overwrite).
 // Runs on the calling thread (the UI calls it from a worker with a source of its own: sources are not
 // thread-safe). Unreadable frames are skipped with a warning; a write failure ends the export.
 Expected<ExportResult> exportFrames(devices::replay::ReplaySource& source, const ExportOptions& options,

@@ -1,4 +1,4 @@
-// depthcloud export: a recording or capture to PLY clouds, the Stray layout or 16-bit depth PNGs.
+// depthcloud export: a recording or capture to PLY clouds, the Stray layout, 16-bit depth PNGs or MCAP.
 
 #include "base/log.h"
 #include "devices/replay/replay_spec.h"
@@ -9,6 +9,7 @@
 #include "tool/recording_commands.h"
 
 #include <cstdio>
+#include <filesystem>
 #include <functional>
 
 namespace dc::tool {
@@ -61,13 +62,28 @@ exporting::ExportFormat formatOf(const std::string& name) {
         return exporting::ExportFormat::Stray;
     if (name == "png16")
         return exporting::ExportFormat::Png16;
+    if (name == "mcap")
+        return exporting::ExportFormat::Mcap;
     return exporting::ExportFormat::Ply;
+}
+
+// An MCAP destination that is a directory, or a file that --overwrite does not allow replacing.
+std::string mcapDestinationProblem(const ExportOptionsCli& o) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(o.out, ec))
+        return o.out + " is a directory (mcap writes one file)";
+    if (!o.overwrite && std::filesystem::exists(o.out, ec))
+        return o.out + " already exists (pass --overwrite to replace it)";
+    return {};
 }
 
 } // namespace
 
 int runExport(const ExportOptionsCli& o) {
     setLogQuiet(true);
+    if (o.format == "mcap")
+        if (const std::string problem = mcapDestinationProblem(o); !problem.empty())
+            return fail("--out: " + problem, kExitBadArguments);
     auto source = devices::replay::openReplaySpecSource(o.source);
     if (!source)
         return fail("--source: " + source.error().message,
@@ -76,6 +92,7 @@ int runExport(const ExportOptionsCli& o) {
     options.format = formatOf(o.format);
     options.outDirectory = o.out;
     options.worldCoordinates = o.world;
+    options.overwrite = o.overwrite;
     options.transform = upsamplingOf(o.upsample);
     if (!o.frames.empty()) {
         auto range = exporting::parseFrameRange(o.frames, (*source)->frameCount());

@@ -1,15 +1,21 @@
-// depthcloud record: any source to a depthcloud recording, through the same Session as the viewer.
+// depthcloud record: any source to a depthcloud recording, through the same Session as the viewer; to an
+// MCAP file of ROS 2 messages when OUT ends in .mcap.
 
 #include "base/log.h"
 #include "devices/recording/session_recording.h"
+#include "devices/replay/replay_spec.h"
 #include "devices/source_spec.h"
+#include "exporting/export.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
 
+#include <algorithm>
 #include <atomic>
+#include <cctype>
 #include <chrono>
 #include <csignal>
 #include <cstdio>
+#include <filesystem>
 #include <thread>
 
 namespace dc::tool {
@@ -73,12 +79,57 @@ std::string waitForEnd(devices::Session& session, const devices::recording::Sess
     }
 }
 
+bool isMcap(const std::string& path) {
+    std::string extension = std::filesystem::path(path).extension().string();
+    std::transform(extension.begin(), extension.end(), extension.begin(),
+                   [](unsigned char c) { return std::tolower(c); });
+    return extension == ".mcap";
+}
+
+// An MCAP is recorded as a .dcrec beside it first: the recorder never blocks capture and drops rather than
+// falls behind, which a writer serialising ROS messages on the capture's heels could not promise. The
+// .dcrec (OUT.dcrec) is converted once the recording stops and removed once the MCAP is whole.
+std::string recordingPathFor(const RecordOptions& o) {
+    return isMcap(o.out) ? o.out + ".dcrec" : o.out;
+}
+
+Status checkMcapDestination(const RecordOptions& o) {
+    std::error_code ec;
+    if (std::filesystem::is_directory(o.out, ec))
+        return Error{o.out + " is a directory"};
+    if (!o.overwrite && std::filesystem::exists(o.out, ec))
+        return Error{o.out + " already exists (pass --overwrite to replace it)"};
+    // The intermediate recording is never replaced: one left there is a take that did not convert.
+    return devices::recording::RecordingWriter::checkDestination(recordingPathFor(o), false);
+}
+
+// The finished recording as OUT.mcap; the recording is removed once the MCAP is written, kept otherwise.
+int convertToMcap(const std::string& recording, const RecordOptions& o) {
+    auto source = devices::replay::openReplaySpecSource("replay:" + recording);
+    exporting::ExportOptions options;
+    options.format = exporting::ExportFormat::Mcap;
+    options.outDirectory = o.out;
+    options.overwrite = o.overwrite;
+    auto result = source ? exporting::exportFrames(**source, options)
+                         : Expected<exporting::ExportResult>(source.error());
+    if (!result)
+        return fail("converting to MCAP: " + result.error().message + " (the frames are kept in " +
+                    recording + ")");
+    std::error_code ec;
+    std::filesystem::remove(recording, ec);
+    std::printf("depthcloud record: converted %zu frames to %s\n", result->framesWritten, o.out.c_str());
+    return kExitOk;
+}
+
 } // namespace
 
 int runRecord(const RecordOptions& o) {
     setLogQuiet(true);
-    if (Status s = devices::recording::RecordingWriter::checkDestination(o.out, o.overwrite); !s)
-        return fail(s.error().message, kExitBadArguments);
+    const std::string path = recordingPathFor(o);
+    if (Status s = isMcap(o.out) ? checkMcapDestination(o)
+                                 : devices::recording::RecordingWriter::checkDestination(o.out, o.overwrite);
+        !s)
+        return fail("OUT: " + s.error().message, kExitBadArguments);
     auto device = devices::openSourceSpec(o.source);
     if (!device)
         return fail("--source: " + device.error().message, kExitBadArguments);
@@ -86,7 +137,7 @@ int runRecord(const RecordOptions& o) {
     std::optional<std::uint64_t> limit;
     if (o.frames)
         limit = static_cast<std::uint64_t>(*o.frames);
-    auto recording = devices::recording::SessionRecording::start(session, o.out, recordingOptions(o), limit);
+    auto recording = devices::recording::SessionRecording::start(session, path, recordingOptions(o), limit);
     if (!recording)
         return fail(recording.error().message);
     std::signal(SIGINT, requestStop);
@@ -108,10 +159,11 @@ int runRecord(const RecordOptions& o) {
     std::printf("depthcloud record: wrote %llu frames (%llu dropped, %.1f MB) to %s\n",
                 static_cast<unsigned long long>(stats.framesWritten),
                 static_cast<unsigned long long>(stats.framesDropped),
-                static_cast<double>(stats.bytesWritten) / 1e6, o.out.c_str());
+                static_cast<double>(stats.bytesWritten) / 1e6, path.c_str());
+    const int converted = isMcap(o.out) ? convertToMcap(path, o) : kExitOk;
     if (!problem.empty())
         return fail(problem + " (the frames before it are recorded)");
-    return kExitOk;
+    return converted;
 }
 
 } // namespace dc::tool

@@ -38,14 +38,21 @@ void addRecord(CLI::App& app, RecordOptions& o, RecordingCommands& c) {
 
 void addExport(CLI::App& app, ExportOptionsCli& o, RecordingCommands& c) {
     c.exportCmd = app.add_subcommand(
-        "export", "export a recording or capture as PLY clouds, Stray layout or depth PNGs");
-    c.exportCmd->add_option("--source", o.source, "replay:PATH (a recording, Stray or TUM directory)")
+        "export",
+        "export a recording or capture as PLY clouds, Stray layout, depth PNGs or a ROS 2 MCAP file");
+    c.exportCmd->add_option("--source", o.source, "replay:PATH (a recording, Stray or TUM directory, a bag)")
         ->required();
-    c.exportCmd->add_option("--out", o.out, "output directory")->required();
+    c.exportCmd->add_option("--out", o.out, "output directory (mcap: the .mcap file)")->required();
     c.exportCmd->add_option("--frames", o.frames, "frames A:B (B excluded; A: and :B too)");
-    c.exportCmd->add_option("--format", o.format, "ply | stray | png16")
-        ->check(CLI::IsMember({"ply", "stray", "png16"}))
+    c.exportCmd
+        ->add_option("--format", o.format,
+                     "ply | stray | png16 | mcap (ROS 2 messages as the RealSense wrapper names them, zstd "
+                     "chunks, indexed: depth 16UC1 in millimetres where every sample of a frame is a whole "
+                     "millimetre, else 32FC1 in meters; colour rgb8; infrared mono8/mono16; camera_info; the "
+                     "pose on /tf)")
+        ->check(CLI::IsMember({"ply", "stray", "png16", "mcap"}))
         ->capture_default_str();
+    c.exportCmd->add_flag("--overwrite", o.overwrite, "mcap: replace OUT if it exists");
     c.exportCmd->add_flag("--world", o.world, "PLY points in world coordinates (through each frame's pose)");
     c.exportCmd
         ->add_option(

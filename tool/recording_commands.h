@@ -29,6 +29,7 @@ struct ExportOptionsCli {
     std::string format = "ply";
     bool world = false;
     std::string upsample = "none"; // none | fast | full | global | quality
+    bool overwrite = false;        // mcap: replace an existing file
 };
 
 struct BenchReplayOptions {
