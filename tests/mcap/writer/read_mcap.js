@@ -5,8 +5,10 @@
 // decoded through its own schema by @foxglove/rosmsg + @foxglove/rosmsg2-serialization (Foxglove's
 // ros2msg parser and CDR reader). The data section's and summary's CRCs are checked with node's zlib.
 //
-// Usage: node read_mcap.js FILE.mcap. Prints {records, chunkCompressions, crcs, summary, schemas, channels,
-// messages: {topic: [...]}}; image data as base64. Exits 1 with the reason on stderr when a reader fails.
+// Usage: node read_mcap.js FILE.mcap [--no-data]. Prints {records, chunkCompressions, crcs, summary, schemas,
+// channels, messages: {topic: [...]}}; image data as base64, or as its byte count with --no-data (a long
+// recording's base64 outgrows the longest string V8 can make). Exits 1 with the reason on stderr when a
+// reader fails.
 "use strict";
 
 const fs = require("fs");
@@ -54,10 +56,12 @@ function readable(bytes) {
   };
 }
 
+const withData = process.argv[3] !== "--no-data";
+
 function decoded(message) {
   const out = {};
   for (const [key, value] of Object.entries(message)) {
-    if (value instanceof Uint8Array) out[key] = Buffer.from(value).toString("base64");
+    if (value instanceof Uint8Array) out[key] = withData ? Buffer.from(value).toString("base64") : value.length;
     else if (value instanceof Float64Array) out[key] = Array.from(value);
     else if (Array.isArray(value)) out[key] = value.map((v) => (typeof v === "object" ? decoded(v) : v));
     else if (value && typeof value === "object") out[key] = decoded(value);
