@@ -11,7 +11,7 @@ packages=(
     libopencv-dev libopencv-contrib-dev libusb-1.0-0-dev libv4l-dev
     libgtest-dev libgmock-dev libbenchmark-dev
     libcli11-dev nlohmann-json3-dev libyaml-cpp-dev
-    libzstd-dev liblz4-dev libxxhash-dev libturbojpeg0-dev libpng-dev libudev-dev clang libclang-rt-14-dev
+    libzstd-dev liblz4-dev libxxhash-dev libsqlite3-dev libturbojpeg0-dev libpng-dev libudev-dev clang libclang-rt-14-dev
     xvfb xauth xdotool x11-apps openbox wmctrl python3-open3d
     qemu-system-x86 busybox-static cpio kmod v4l-utils xz-utils patch
     librosbag-storage-dev libsensor-msgs-dev libgeometry-msgs-dev libstd-msgs-dev

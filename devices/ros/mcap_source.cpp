@@ -1,6 +1,7 @@
 #include "devices/ros/mcap_source.h"
 
 #include "devices/ros/cdr.h"
+#include "devices/ros/db3_store.h"
 #include "devices/ros/mcap_reader.h"
 #include "devices/ros/message_store.h"
 
@@ -119,24 +120,26 @@ std::vector<std::string> yamlValues(std::istream& in, const std::string& key) {
 
 } // namespace
 
-Expected<std::string> rosbag2McapFile(const std::string& directory) {
+Expected<std::string> rosbag2File(const std::string& directory) {
     namespace fs = std::filesystem;
     const fs::path metadata = fs::path(directory) / "metadata.yaml";
     std::ifstream in(metadata);
     if (!in)
         return Error{directory + ": no metadata.yaml (not a rosbag2 folder)"};
     const auto storage = yamlValues(in, "storage_identifier");
-    if (storage.empty() || storage.front() != "mcap")
-        return Error{directory + ": a rosbag2 folder stored as '" + (storage.empty() ? "" : storage.front()) +
-                     "'; only MCAP storage is supported so far"};
+    const std::string kind = storage.empty() ? "" : storage.front();
+    const std::string extension = kind == "mcap" ? ".mcap" : kind == "sqlite3" ? ".db3" : "";
+    if (extension.empty())
+        return Error{directory + ": a rosbag2 folder stored as '" + kind +
+                     "'; only MCAP and sqlite3 storage are supported"};
     std::vector<fs::path> files;
     std::error_code ec;
     for (const auto& entry : fs::directory_iterator(directory, ec))
-        if (entry.path().extension() == ".mcap")
+        if (entry.path().extension() == extension)
             files.push_back(entry.path());
     if (files.size() != 1)
-        return Error{directory + ": " + std::to_string(files.size()) +
-                     " .mcap files; a rosbag2 folder split over several files is not supported yet"};
+        return Error{directory + ": " + std::to_string(files.size()) + " " + extension +
+                     " files; a rosbag2 folder split over several files is not supported yet"};
     return files.front().string();
 }
 
@@ -144,10 +147,16 @@ Expected<std::unique_ptr<replay::ReplaySource>> openMcapSource(const std::string
                                                                const BagOptions& options) {
     std::string file = path;
     if (std::filesystem::is_directory(path)) {
-        auto inFolder = rosbag2McapFile(path);
+        auto inFolder = rosbag2File(path);
         if (!inFolder)
             return inFolder.error();
         file = *inFolder;
+    }
+    if (std::filesystem::path(file).extension() == ".db3") {
+        auto db3 = openDb3Store(file);
+        if (!db3)
+            return db3.error();
+        return openMessageSource(std::move(*db3), file, options);
     }
     auto mcap = McapReader::open(file);
     if (!mcap)

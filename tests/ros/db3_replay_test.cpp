@@ -1,0 +1,88 @@
+// rosbag2 sqlite3 recordings (`replay:DIR` whose metadata.yaml says sqlite3): a .db3 written by an
+// independent helper (make_test_db3.py: Python's sqlite3 and its own CDR packing) replayed pixel for pixel,
+// stamp for stamp and with its camera_info; broken folders and files are one-line errors.
+
+#include "devices/recording/frame_codec.h"
+#include "devices/replay/replay_spec.h"
+#include "devices/ros/bag_source.h"
+#include "tests/recording/recording_test_support.h"
+#include "tests/ros/replay_test_pattern.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+namespace dc::devices::ros {
+namespace {
+
+namespace fs = std::filesystem;
+using namespace pattern;
+
+class Db3Replay : public ::testing::Test {
+protected:
+    static void SetUpTestSuite() {
+        dir_ = new test::TempDir;
+        const std::string command = std::string("/usr/bin/python3 ") + DC_DB3_WRITER_SCRIPT + " " + bag();
+        if (std::system(command.c_str()) != 0)
+            problem_ = "the .db3 writer failed (" + command + ")";
+    }
+    static void TearDownTestSuite() { delete dir_; }
+    void SetUp() override { ASSERT_TRUE(problem_.empty()) << problem_; }
+    static std::string bag() { return dir_->path("bag"); }
+
+    static inline test::TempDir* dir_ = nullptr;
+    static inline std::string problem_;
+};
+
+TEST_F(Db3Replay, EveryFrameEqualsWhatWasWrittenWithItsStampAndCalibration) {
+    auto source = replay::openReplaySpecSource("replay:" + bag());
+    ASSERT_TRUE(source) << source.error().message;
+    ASSERT_EQ((*source)->frameCount(), kFrames);
+    EXPECT_NE((*source)->description().find("/camera/camera/depth/image_rect_raw"), std::string::npos);
+    for (std::size_t i = kFrames; i-- > 0;) {
+        auto f = (*source)->frame(i);
+        ASSERT_TRUE(f) << f.error().message;
+        EXPECT_EQ(f->timestampNs, kStartNs + static_cast<std::int64_t>(i) * kFrameNs); // the stamp
+        const auto& d = f->sceneDepth->depthMeters;
+        ASSERT_EQ(d.width, kDepthW);
+        ASSERT_EQ(d.height, kDepthH);
+        for (int y = 0; y < kDepthH; ++y)
+            for (int x = 0; x < kDepthW; ++x)
+                ASSERT_EQ(d.at(x, y), recording::depthFromUnits(depthUnits(x, y, i), 0.001))
+                    << "frame " << i << " at " << x << "," << y;
+        ASSERT_EQ(f->capturedImage.width, kColorW);
+        ASSERT_EQ(f->capturedImage.format, frame::PixelFormat::Rgb24);
+        for (int y = 0; y < kColorH; ++y)
+            for (int x = 0; x < kColorW; ++x)
+                for (int c = 0; c < 3; ++c)
+                    ASSERT_EQ((*f->capturedImage.bytes)[(y * kColorW + x) * 3 + c], colorRgb(x, y, i)[c]);
+    }
+    const BagRig* rig = bagRig(**source);
+    ASSERT_TRUE(rig && rig->depth && rig->color);
+    EXPECT_EQ(rig->depth->intrinsics.fx, 50.0);
+    EXPECT_EQ(rig->depth->intrinsics.fy, 51.0);
+    EXPECT_EQ(rig->color->intrinsics.cx, 40.0);
+    EXPECT_EQ(rig->depth->distortion, (std::vector<double>{0.1, -0.2, 0.001, 0.002, 0.05}));
+    EXPECT_TRUE((*source)->warnings().empty());
+}
+
+TEST_F(Db3Replay, BrokenFoldersAndFilesAreOneLineErrors) {
+    const std::string empty = dir_->path("empty");
+    fs::create_directories(empty);
+    std::ofstream(empty + "/metadata.yaml")
+        << "rosbag2_bagfile_information:\n  storage_identifier: sqlite3\n";
+    auto none = replay::openReplaySpecSource("replay:" + empty);
+    ASSERT_FALSE(none);
+    EXPECT_NE(none.error().message.find("0 .db3 files"), std::string::npos) << none.error().message;
+
+    std::ofstream(empty + "/garbage.db3") << "this is not an sqlite database, just text of some length......";
+    auto garbage = replay::openReplaySpecSource("replay:" + empty);
+    ASSERT_FALSE(garbage);
+    EXPECT_NE(garbage.error().message.find("garbage.db3"), std::string::npos) << garbage.error().message;
+    EXPECT_EQ(garbage.error().message.find('\n'), std::string::npos);
+}
+
+} // namespace
+} // namespace dc::devices::ros

@@ -1,0 +1,135 @@
+#!/usr/bin/python3
+"""Writes a rosbag2 sqlite3 recording (metadata.yaml + .db3) for db3_replay_test.cpp, independently of
+depthcloud's code: Python's sqlite3 module with Humble's rosbag2 schema, and messages serialised here as
+little-endian XCDR1 by struct. Frames follow tests/ros/replay_test_pattern.h (the MCAP writer's formulas).
+
+Usage: make_test_db3.py OUT_DIR  (writes OUT_DIR/metadata.yaml and OUT_DIR/rosbag2_0.db3)
+"""
+import os
+import sqlite3
+import struct
+import sys
+
+FRAMES = 5
+DEPTH_W, DEPTH_H, COLOR_W, COLOR_H = 64, 48, 80, 60
+START_NS, FRAME_NS = 1000 * 1000000000, 33333333
+COLOR_OFFSET_NS = 2000000  # colour is stamped 2 ms after its depth image
+LOG_DELAY_NS = 5000000  # received 5 ms after the stamp: replay must use the stamp
+
+
+def depth_units(x, y, i):
+    return x + 100 * y + 1000 * i
+
+
+def color_rgb(x, y, i):
+    return ((3 * x + i) % 256, (4 * y) % 256, (7 * i + x + y) % 256)
+
+
+class Cdr:
+    """Little-endian XCDR1: 4-byte encapsulation header, primitives aligned to their size after it."""
+
+    def __init__(self):
+        self.out = bytearray(b"\x00\x01\x00\x00")
+
+    def put(self, fmt, value):
+        size = struct.calcsize("<" + fmt)
+        self.out += b"\x00" * ((size - (len(self.out) - 4) % size) % size)
+        self.out += struct.pack("<" + fmt, value)
+
+    def string(self, s):
+        self.put("I", len(s) + 1)
+        self.out += s.encode() + b"\x00"
+
+    def header(self, stamp_ns, frame_id):
+        self.put("i", stamp_ns // 1000000000)
+        self.put("I", stamp_ns % 1000000000)
+        self.string(frame_id)
+
+
+def image(stamp_ns, encoding, width, height, step, data):
+    w = Cdr()
+    w.header(stamp_ns, "camera_optical_frame")
+    w.put("I", height)
+    w.put("I", width)
+    w.string(encoding)
+    w.put("B", 0)
+    w.put("I", step)
+    w.put("I", len(data))
+    w.out += data
+    return bytes(w.out)
+
+
+def camera_info(stamp_ns, width, height, k, d):
+    w = Cdr()
+    w.header(stamp_ns, "camera_optical_frame")
+    w.put("I", height)
+    w.put("I", width)
+    w.string("plumb_bob")
+    w.put("I", len(d))
+    for v in d + k + [1, 0, 0, 0, 1, 0, 0, 0, 1] + k[:3] + [0] + k[3:6] + [0] + k[6:] + [0]:
+        w.put("d", float(v))
+    for _ in range(6):  # binning_x, binning_y, roi x_offset y_offset height width
+        w.put("I", 0)
+    w.put("B", 0)  # roi.do_rectify
+    return bytes(w.out)
+
+
+def depth_image(i, stamp_ns):
+    data = b"".join(struct.pack("<H", depth_units(x, y, i)) for y in range(DEPTH_H) for x in range(DEPTH_W))
+    return image(stamp_ns, "16UC1", DEPTH_W, DEPTH_H, 2 * DEPTH_W, data)
+
+
+def color_image(i, stamp_ns):
+    data = bytes(c for y in range(COLOR_H) for x in range(COLOR_W) for c in color_rgb(x, y, i))
+    return image(stamp_ns, "rgb8", COLOR_W, COLOR_H, 3 * COLOR_W, data)
+
+
+DEPTH_K = [50, 0, 32, 0, 51, 24, 0, 0, 1]
+COLOR_K = [60, 0, 40, 0, 61, 30, 0, 0, 1]
+LENS = [0.1, -0.2, 0.001, 0.002, 0.05]  # plumb_bob k1 k2 p1 p2 k3
+TOPICS = [  # id, name, type
+    (1, "/camera/camera/depth/image_rect_raw", "sensor_msgs/msg/Image"),
+    (2, "/camera/camera/depth/camera_info", "sensor_msgs/msg/CameraInfo"),
+    (3, "/camera/camera/color/image_raw", "sensor_msgs/msg/Image"),
+    (4, "/camera/camera/color/camera_info", "sensor_msgs/msg/CameraInfo"),
+]
+
+
+def write(directory):
+    os.makedirs(directory, exist_ok=True)
+    path = os.path.join(directory, "rosbag2_0.db3")
+    if os.path.exists(path):
+        os.remove(path)
+    db = sqlite3.connect(path)
+    db.executescript("""
+        CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);
+        CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL,
+                              metadata TEXT NOT NULL);
+        CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL,
+                            serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);
+        CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL,
+                              data BLOB NOT NULL);
+        CREATE INDEX timestamp_idx ON messages (timestamp ASC);
+        INSERT INTO schema VALUES (3, 'humble');
+    """)
+    db.executemany("INSERT INTO topics VALUES (?, ?, ?, 'cdr', '')", TOPICS)
+    rows = []
+    for i in range(FRAMES):
+        depth_ns = START_NS + i * FRAME_NS
+        color_ns = depth_ns + COLOR_OFFSET_NS
+        # Colour rows first: the store must order by receive time, not by row.
+        rows.append((3, color_ns + LOG_DELAY_NS, color_image(i, color_ns)))
+        rows.append((4, color_ns + LOG_DELAY_NS, camera_info(color_ns, COLOR_W, COLOR_H, COLOR_K, LENS)))
+        rows.append((1, depth_ns + LOG_DELAY_NS, depth_image(i, depth_ns)))
+        rows.append((2, depth_ns + LOG_DELAY_NS, camera_info(depth_ns, DEPTH_W, DEPTH_H, DEPTH_K, LENS)))
+    db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (?, ?, ?)", rows)
+    db.commit()
+    db.close()
+    with open(os.path.join(directory, "metadata.yaml"), "w") as f:
+        f.write("rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
+                "  relative_file_paths:\n    - rosbag2_0.db3\n"
+                f"  message_count: {len(rows)}\n")
+
+
+if __name__ == "__main__":
+    write(sys.argv[1])
