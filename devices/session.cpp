@@ -1,5 +1,6 @@
 #include "devices/session.h"
 
+#include "base/clock.h"
 #include "base/log.h"
 
 namespace dc::devices {
@@ -137,7 +138,12 @@ void Session::onFrame(frame::FramePtr frame) {
         state_ = DeviceState::Streaming;
         push({SessionEvent::Kind::StateChanged, DeviceState::Streaming, "frames flow again"});
     }
-    frames_.put(std::move(frame));
+    const std::int64_t arrivalNs = base::monotonicNowNs();
+    record({FrameRecord::Kind::Delivered, frame->sequence, frame->timestampNs, frame->timing, arrivalNs});
+    frames_.put(std::move(frame), [this, arrivalNs](const frame::FramePtr& unseen, const frame::FramePtr&) {
+        record(
+            {FrameRecord::Kind::Replaced, unseen->sequence, unseen->timestampNs, unseen->timing, arrivalNs});
+    });
     deliveries_.tick();
     deviceFps_ = deliveries_.perSecond();
     base::MutexLock lock(tapMutex_);
@@ -150,6 +156,28 @@ void Session::push(SessionEvent event) {
         logError(description_ + ": " + event.message);
     base::MutexLock lock(eventsMutex_);
     events_.push_back(std::move(event));
+}
+
+void Session::record(FrameRecord record) {
+    base::MutexLock lock(recordsMutex_);
+    if (records_.size() == kMaxFrameRecords) {
+        records_.pop_front();
+        ++recordsLost_;
+    }
+    records_.push_back(std::move(record));
+}
+
+std::vector<FrameRecord> Session::drainFrameRecords() {
+    base::MutexLock lock(recordsMutex_);
+    std::vector<FrameRecord> out(std::make_move_iterator(records_.begin()),
+                                 std::make_move_iterator(records_.end()));
+    records_.clear();
+    return out;
+}
+
+std::uint64_t Session::frameRecordsLost() const {
+    base::MutexLock lock(recordsMutex_);
+    return recordsLost_;
 }
 
 std::vector<SessionEvent> Session::drainEvents() {

@@ -10,6 +10,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <string>
@@ -36,6 +37,17 @@ struct SessionStats {
     double latencyMs = 0.0;
 };
 
+// One frame's passage through the session, for the timing view (engine::TimingModel): delivered by the
+// device, or replaced in the latest-wins slot by a newer frame before any consumer took it.
+struct FrameRecord {
+    enum class Kind { Delivered, Replaced };
+    Kind kind = Kind::Delivered;
+    std::uint64_t sequence = 0;   // Frame::sequence
+    std::int64_t timestampNs = 0; // Frame::timestampNs
+    frame::FrameTiming timing;
+    std::int64_t atNs = 0; // CLOCK_MONOTONIC when it happened: for Delivered, the frame's arrival
+};
+
 // Runs one device on its own capture thread. The thread only captures and posts: frames reach consumers
 // through a latest-wins slot, state changes and errors through an event queue.
 class Session {
@@ -57,6 +69,11 @@ public:
         return noteAge(frames_.waitTake(timeout));
     }
     std::vector<SessionEvent> drainEvents();
+    // What happened to each frame since the last call, in order. At most kMaxFrameRecords are kept: a
+    // session nobody drains (a headless recording) keeps the newest, and frameRecordsLost() counts the rest.
+    std::vector<FrameRecord> drainFrameRecords();
+    std::uint64_t frameRecordsLost() const;
+    static constexpr std::size_t kMaxFrameRecords = 4096;
 
     SessionStats stats() const;
     // Called on the capture thread with every frame before it is posted (a recorder's push). The tap
@@ -81,6 +98,7 @@ private:
     bool waitForReconnect();
     std::optional<frame::FramePtr> noteAge(std::optional<frame::FramePtr> frame);
     void push(SessionEvent event);
+    void record(FrameRecord record);
 
     std::unique_ptr<Device> device_;
     std::string description_;
@@ -99,6 +117,9 @@ private:
     std::function<void()> listener_ DC_GUARDED_BY(tapMutex_);
     mutable base::Mutex eventsMutex_;
     std::vector<SessionEvent> events_ DC_GUARDED_BY(eventsMutex_);
+    mutable base::Mutex recordsMutex_;
+    std::deque<FrameRecord> records_ DC_GUARDED_BY(recordsMutex_);
+    std::uint64_t recordsLost_ DC_GUARDED_BY(recordsMutex_) = 0;
 };
 
 } // namespace dc::devices

@@ -45,6 +45,7 @@ void FrameProcessor::setSession(std::shared_ptr<devices::Session> session) {
         results_.reset();
         // The counts are the source's: another source's frames were neither shown nor dropped by this one.
         counts_ = {};
+        records_.clear();
     }
     // Once setFrameListener returns, the old session's capture thread no longer calls into us.
     if (old)
@@ -102,8 +103,12 @@ void FrameProcessor::run() {
                         arrival_};
         lock.unlock();
         const double cpuStart = base::threadCpuMs();
+        const std::int64_t startNs = base::monotonicNowNs();
         std::optional<processing::ShownFramePtr> result = processGuarded(work);
         const double cpuMs = base::threadCpuMs() - cpuStart;
+        if (result && (*result)->newFrame)
+            pending_.push_back({ProcessorRecord::Kind::Processed, (*result)->frame->sequence, startNs,
+                                base::monotonicNowNs()});
         lock.lock();
         if (result && (*result)->newFrame)
             cpuMs_.add(cpuMs);
@@ -112,9 +117,12 @@ void FrameProcessor::run() {
         if (work.epoch == epoch_) {
             counts_.framesSkipped = skipped_;
             counts_.failures = failed_;
+            for (const ProcessorRecord& r : pending_)
+                addRecord(r);
             if (result)
                 publish(std::move(*result), work);
         }
+        pending_.clear();
     }
 }
 
@@ -147,17 +155,22 @@ std::optional<processing::ShownFramePtr> FrameProcessor::process(const Work& wor
         skipped_ = 0;
         failed_ = 0;
         lastFailure_.clear();
+        pending_.clear();
     }
     if (work.frameSignal && work.session) {
         std::optional<frame::FramePtr> next = work.session->takeLatest();
         const bool got = next && *next; // before the frame is moved into current_
+        const std::uint64_t sequence = got ? (*next)->sequence : 0;
         if (got && !decodedBeforeSeek(**next, work.awaitedSeek)) {
             // The same capture delivered again (a replay re-decoding it with its colour) is no new frame.
             fresh = !current_ || (*next)->timestampNs != current_->timestampNs;
             current_ = std::move(*next);
             taken = true;
         }
-        skipped_ += got && !fresh ? 1 : 0;
+        if (got && !fresh) {
+            ++skipped_;
+            pending_.push_back({ProcessorRecord::Kind::Skipped, sequence, 0, 0});
+        }
     }
     const bool changed = taken || work.reset || work.generation != lastGeneration_;
     if (!current_ || !changed)
@@ -195,13 +208,13 @@ void FrameProcessor::publish(processing::ShownFramePtr result, const Work& work)
     } else {
         ++counts_.redone;
     }
-    bool unshown = false;
+    std::optional<std::uint64_t> unshown;
     results_.put(std::move(result),
                  [&unshown](const processing::ShownFramePtr& unseen, processing::ShownFramePtr& next) {
                      if (!unseen->newFrame)
                          return;
                      if (unseen->frame->timestampNs != next->frame->timestampNs) {
-                         unshown = true;
+                         unshown = unseen->frame->sequence;
                      } else if (!next->newFrame) {
                          // A redo of a frame not yet taken: it is still that frame's first showing.
                          auto carried = std::make_shared<processing::ShownFrame>(*next);
@@ -209,8 +222,23 @@ void FrameProcessor::publish(processing::ShownFramePtr result, const Work& work)
                          next = std::move(carried);
                      }
                  });
-    if (unshown)
+    if (unshown) {
         ++counts_.framesUnshown;
+        addRecord({ProcessorRecord::Kind::Unshown, *unshown, 0, 0});
+    }
+}
+
+void FrameProcessor::addRecord(ProcessorRecord record) {
+    if (records_.size() == kMaxRecords)
+        records_.pop_front();
+    records_.push_back(record);
+}
+
+std::vector<ProcessorRecord> FrameProcessor::drainRecords() {
+    base::MutexLock lock(mutex_);
+    std::vector<ProcessorRecord> out(records_.begin(), records_.end());
+    records_.clear();
+    return out;
 }
 
 std::optional<processing::ShownFramePtr> FrameProcessor::take() {

@@ -13,6 +13,7 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <deque>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -30,6 +31,19 @@ struct ProcessorCounts {
         0; // taken from the source but not new: decoded before a seek, or re-delivered
     std::uint64_t resultsTaken = 0;
     std::uint64_t failures = 0; // frames or redos whose processing threw: logged, skipped, and gone on from
+};
+
+// One frame's passage through the processor, for the timing view (TimingModel).
+struct ProcessorRecord {
+    enum class Kind {
+        Processed, // a new frame made into a result, from startNs to endNs (CLOCK_MONOTONIC)
+        Unshown,   // its result was replaced by a newer frame's before the GL thread took it
+        Skipped,   // taken from the session but not new: decoded before a seek, or re-delivered
+    };
+    Kind kind = Kind::Processed;
+    std::uint64_t sequence = 0; // Frame::sequence
+    std::int64_t startNs = 0;
+    std::int64_t endNs = 0;
 };
 
 // The frame processor: its own thread takes the newest frame from the session (latest wins: it never
@@ -64,6 +78,10 @@ public:
             const std::function<bool(const processing::ShownFrame&)>& ready);
 
     ProcessorCounts counts() const;
+    // What happened to each frame of the current source since the last call, in order: the frames counts()
+    // counts. At most kMaxRecords are kept, the newest, for a processor nobody drains.
+    std::vector<ProcessorRecord> drainRecords();
+    static constexpr std::size_t kMaxRecords = 4096;
     // Frame arrival to result ready, milliseconds, for new frames (median and percentiles in the stats).
     base::RollingStats latencyMs() const;
     // The processor thread's CPU time per new frame made into a result, milliseconds (the last ones).
@@ -89,6 +107,7 @@ private:
     std::optional<processing::ShownFramePtr> processGuarded(const Work& work);
     void accumulate(const processing::ShownFrame& shown, const Demand& demand, bool fresh);
     void publish(processing::ShownFramePtr result, const Work& work) DC_REQUIRES(mutex_);
+    void addRecord(ProcessorRecord record) DC_REQUIRES(mutex_);
     void onFrame();
 
     StageStats& stages_;
@@ -100,6 +119,8 @@ private:
     std::uint64_t countedEpoch_ = 0;   // processor thread only: the session skipped_ counts for
     std::uint64_t failed_ = 0;         // processor thread only; copied to counts_ under mutex_
     std::string lastFailure_;          // processor thread only: the last failure logged
+    // Processor thread only: records of the work in progress, moved to records_ with its counts.
+    std::vector<ProcessorRecord> pending_;
     // Processor thread only: the budget and voxel size accumulation last added with; none while it is off.
     std::optional<std::pair<std::size_t, float>> accumulatedWith_;
 
@@ -121,6 +142,7 @@ private:
     // taken without it, so the GL thread never waits for the processor's bookkeeping.
     base::LatestSlot<processing::ShownFramePtr> results_;
     ProcessorCounts counts_ DC_GUARDED_BY(mutex_); // but resultsTaken, which is results_'s count
+    std::deque<ProcessorRecord> records_ DC_GUARDED_BY(mutex_);
     base::RollingStats latencyMs_ DC_GUARDED_BY(mutex_);
     base::RollingStats cpuMs_ DC_GUARDED_BY(mutex_);
     std::map<std::string, std::uint64_t, std::less<>>

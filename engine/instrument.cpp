@@ -94,6 +94,7 @@ void Instrument::switchSource(std::unique_ptr<devices::Device> device, std::stri
     accumulation_.clear();
     stages_.clear();
     latencyMs_ = base::RollingStats();
+    timing_.reset();
     shown_ = 0;
     handedOut_.reset();
     countHistory_.clear();
@@ -112,6 +113,7 @@ std::uint64_t Instrument::setDemand(const Demand& demand) {
 
 std::optional<processing::ShownFramePtr> Instrument::update() {
     drainEvents();
+    drainTiming();
     return handOut(processor_->take());
 }
 
@@ -139,9 +141,29 @@ void Instrument::presented(const processing::ShownFrame& shown) {
         return;
     ++shown_;
     lastShownTimestampNs_ = static_cast<std::uint64_t>(shown.frame->timestampNs);
+    // The records of the frame shown were made before its result could be taken: all are here now.
+    drainTiming();
+    timing_.shown(shown.frame->sequence, base::monotonicNowNs());
     // Only sources stamping frames with a clock of this machine have a latency; a recording's clock has none.
     if (const auto now = devices::nowOnFrameClockNs(session_->capabilities()))
         latencyMs_.add(devices::frameAgeMs(*shown.frame, *now));
+}
+
+void Instrument::drainTiming() {
+    // The processor's first: every frame they name was delivered before they were drained, so the session's
+    // records, drained after, hold its delivery, which the model must see first.
+    const std::vector<ProcessorRecord> processed = processor_->drainRecords();
+    for (const devices::FrameRecord& r : session_->drainFrameRecords())
+        timing_.add(r);
+    for (const ProcessorRecord& r : processed)
+        timing_.add(r);
+}
+
+TimingSummary Instrument::timing() {
+    drainTiming();
+    TimingSummary t = timing_.summary();
+    t.recordsLost = session_->frameRecordsLost();
+    return t;
 }
 
 void Instrument::drainEvents() {

@@ -9,6 +9,7 @@
 #include "engine/export_job.h"
 #include "engine/frame_processor.h"
 #include "engine/stage_stats.h"
+#include "engine/timing_model.h"
 #include "processing/accumulation_worker.h"
 
 #include <chrono>
@@ -105,6 +106,8 @@ public:
     void recordStage(std::string_view stage, double milliseconds) { stages_.add(stage, milliseconds); }
 
     InstrumentStatus status();
+    // The timing view of the current source: intervals, latencies, and where each lost frame was lost.
+    TimingSummary timing();
     const StageStats& stages() const { return stages_; }
     const FrameProcessor& processor() const { return *processor_; }
     processing::AccumulationWorker& accumulation() { return accumulation_; }
@@ -137,6 +140,8 @@ private:
     void startSession();
     void drainEvents();
     FrameCounts countFrames();
+    // Moves what the session and the processor recorded about each frame into timing_.
+    void drainTiming();
     std::optional<processing::ShownFramePtr> handOut(std::optional<processing::ShownFramePtr> result);
     void adoptReplay(devices::Device& device);
 
@@ -157,6 +162,7 @@ private:
     // UI may still hold, and present, a result of the source it switched away from).
     processing::ShownFramePtr handedOut_;
     base::RollingStats latencyMs_;
+    TimingModel timing_;
     struct CountSample {
         std::chrono::steady_clock::time_point at;
         std::uint64_t delivered;

@@ -95,6 +95,34 @@ struct ReplayPosition {
     std::uint64_t seekGeneration = 0;
 };
 
+// Which instant of a capture a timestamp marks (V4L2_BUF_FLAG_TSTAMP_SRC_*), so that a latency "from
+// exposure" says what it measures.
+enum class TimestampSource : std::uint8_t {
+    Unknown,         // the source does not say (recordings, synthetic scenes, ROS)
+    StartOfExposure, // V4L2_BUF_FLAG_TSTAMP_SRC_SOE: uvcvideo stamps the first packet of the frame
+    EndOfFrame,      // V4L2_BUF_FLAG_TSTAMP_SRC_EOF: the driver had the whole frame (vivid, most drivers)
+    Arrival,         // the application's clock at dequeue: the driver's stamp was not CLOCK_MONOTONIC
+};
+
+// One stream's view of a capture as its driver reported it.
+struct StreamTiming {
+    // v4l2_buffer.sequence, counting every frame the driver saw (it wraps at 2^32): a gap between two
+    // frames the application got is frames lost before it, in the camera, on the USB link or in the driver.
+    std::optional<std::uint32_t> driverSequence;
+    std::int64_t sensorNs = 0; // the buffer's timestamp; 0: none
+    TimestampSource source = TimestampSource::Unknown;
+    // sensorNs is CLOCK_MONOTONIC of this machine: comparable with arrival and display times.
+    bool monotonic = false;
+};
+
+// Per-frame metadata for the timing view: what the drivers said about the depth capture and, from a
+// separate colour node, the image paired with it. Times the application adds later (arrival, processing,
+// display) are recorded beside the frame, by the session and the engine.
+struct FrameTiming {
+    StreamTiming depth;
+    std::optional<StreamTiming> colour;
+};
+
 struct RigCalibration; // frame/camera_model.h
 
 // One capture: an immutable value handed between threads as FramePtr (ARFrame, made explicit).
@@ -107,6 +135,7 @@ struct Frame {
     std::optional<DepthData> smoothedSceneDepth;
     std::optional<Pose> pose;
     std::optional<ReplayPosition> replay; // set by replay sources only
+    FrameTiming timing;
     // Depth and colour from two sensors (RealSense, Orbbec, Kinect): each sensor's own intrinsics and lens
     // and the transform between them. Null for one camera whose image covers the depth map's field of
     // view (ARKit, TUM, the default synthetic scene): then cameraIntrinsics serves both.

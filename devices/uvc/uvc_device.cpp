@@ -27,6 +27,13 @@ bool meansUnplugged(int error) {
     return error == -ENODEV || error == -EIO || error == -ENXIO || error == -ESHUTDOWN;
 }
 
+// What a buffer's timestamp marks; `driverStamp`: the driver's own monotonic stamp is used, not ours.
+frame::TimestampSource stampSource(const v4l2::V4l2Buffer& b, bool driverStamp) {
+    if (!driverStamp)
+        return frame::TimestampSource::Arrival;
+    return b.startOfExposure ? frame::TimestampSource::StartOfExposure : frame::TimestampSource::EndOfFrame;
+}
+
 std::string formatText(const v4l2::V4l2Format& f) {
     return std::to_string(f.width) + "x" + std::to_string(f.height) + " '" + v4l2::fourccToString(f.fourcc) +
            "'";
@@ -440,8 +447,9 @@ std::optional<CaptureResult> UvcDevice::takeBuffer(v4l2::V4l2Node& node, bool is
         break;
     }
     const v4l2::V4l2Buffer& b = d.buffer;
-    const std::int64_t stamp =
-        b.monotonicTimestamp && b.timestampNs > 0 ? b.timestampNs : base::monotonicNowNs();
+    const bool driverStamp = b.monotonicTimestamp && b.timestampNs > 0;
+    const std::int64_t stamp = driverStamp ? b.timestampNs : base::monotonicNowNs();
+    (isDepth ? depthStampSource_ : colorStampSource_) = stampSource(b, driverStamp);
     std::optional<CaptureResult> problem;
     if (isDepth) {
         StampedDepth depth{b.sequence, stamp, {}};
@@ -483,7 +491,12 @@ frame::FramePtr UvcDevice::makeFrame(PairedCapture capture) {
     frame->sequence = sequence_++;
     frame->timestampNs = capture.depth.timestampNs;
     frame->cameraIntrinsics = depthIntrinsics_;
+    // Stamped captures carry the driver's v4l2_buffer.sequence, which is 32 bits wide.
+    frame->timing.depth = {static_cast<std::uint32_t>(capture.depth.sequence), capture.depth.timestampNs,
+                           depthStampSource_, true};
     if (capture.color) {
+        frame->timing.colour = frame::StreamTiming{static_cast<std::uint32_t>(capture.color->sequence),
+                                                   capture.color->timestampNs, colorStampSource_, true};
         frame->capturedImage = std::move(capture.color->image);
         const int w = frame->capturedImage.width, h = frame->capturedImage.height;
         if (rig_) {

@@ -116,6 +116,9 @@ private:
     std::optional<StampedDepth> depthOnly_; // the newest depth frame when there is no color to pair with
     std::vector<v4l2::NodeReadiness> ready_;
     std::uint64_t sequence_ = 0;
+    // What each node's timestamps mark, as its last buffer said (a driver stamps all its buffers alike).
+    frame::TimestampSource depthStampSource_ = frame::TimestampSource::Unknown;
+    frame::TimestampSource colorStampSource_ = frame::TimestampSource::Unknown;
     std::chrono::steady_clock::time_point lastFrame_{};
     bool stalled_ = false;
 };

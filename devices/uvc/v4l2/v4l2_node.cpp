@@ -329,6 +329,8 @@ DequeueResult V4l2Node::dequeue() {
     result.buffer.timestampNs = timestampNs(b.timestamp);
     result.buffer.monotonicTimestamp =
         (b.flags & V4L2_BUF_FLAG_TIMESTAMP_MASK) == V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC;
+    // V4L2_BUF_FLAG_TSTAMP_SRC_EOF is 0: a driver that says nothing stamps the end of the frame.
+    result.buffer.startOfExposure = (b.flags & V4L2_BUF_FLAG_TSTAMP_SRC_MASK) == V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
     return result;
 }
 

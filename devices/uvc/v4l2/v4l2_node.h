@@ -45,6 +45,7 @@ struct V4l2Buffer {
     std::uint32_t sequence = 0;
     std::int64_t timestampNs = 0;    // as the driver stamped it
     bool monotonicTimestamp = false; // CLOCK_MONOTONIC (V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC)
+    bool startOfExposure = false;    // V4L2_BUF_FLAG_TSTAMP_SRC_SOE; otherwise the end of the frame (EOF)
 };
 
 struct DequeueResult {
