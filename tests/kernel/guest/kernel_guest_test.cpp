@@ -15,6 +15,7 @@
 #include "devices/uvc/v4l2/control_preset.h"
 #include "devices/uvc/v4l2/controls.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
+#include "engine/timing_model.h"
 #include "frame/calibration.h"
 #include "processing/registration.h"
 #include "tests/kernel/vmkit/src/test_pattern.h"
@@ -31,6 +32,7 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <regex>
 #include <thread>
@@ -454,6 +456,95 @@ TEST(Uvc, AStalledFeederShowsStalledThenStreamsAgain) {
     ASSERT_EQ(::kill(feeder, SIGUSR2), 0) << "resuming it";
     EXPECT_TRUE(waitFor([&] { return session.state() == DeviceState::Streaming; }, 20s));
     EXPECT_TRUE(session.waitForFrame(10s));
+}
+
+// The feeder's number of a frame, from the pattern's first two pixels.
+long feederNumber(const frame::Frame& f) {
+    const auto& m = f.sceneDepth->depthMeters;
+    return std::lround(m.at(0, 0) / kD435Scale) | (std::lround(m.at(1, 0) / kD435Scale) << 16);
+}
+
+// While it lives, the depth feeder sends every FEEDER_SKIP_EVERY-th frame short (uvcfeeder -k): the host's
+// uvcvideo drops it as corrupt and its sequence counter counts it.
+struct FeederSkipping {
+    explicit FeederSkipping(pid_t feeder) : pid(feeder) { ok = ::kill(pid, SIGRTMIN) == 0; }
+    ~FeederSkipping() { ::kill(pid, SIGRTMIN + 1); }
+    pid_t pid;
+    bool ok = false;
+};
+
+struct Tapped {
+    long number = 0; // the feeder's
+    frame::FrameTiming timing;
+    std::int64_t timestampNs = 0;
+};
+
+// The frames the feeder skipped are exactly the gaps in the driver's sequence of the frames that arrived,
+// and exactly what the Timing model counts as lost in the camera/USB; the driver stamps the start of
+// exposure on CLOCK_MONOTONIC, and the stamps rise.
+TEST(Uvc, FramesTheFeederSkipsAreTheTimingModelsCameraLossesExactly) {
+    const pid_t feeder = static_cast<pid_t>(std::atoi(env("FEEDER_PID").c_str()));
+    const long every = std::atol(env("FEEDER_SKIP_EVERY").c_str());
+    ASSERT_GT(feeder, 0);
+    ASSERT_GT(every, 1);
+    auto device = openLiveSourceSpec("usb:8086:0b07:color=none");
+    ASSERT_TRUE(device) << device.error().message;
+    Session session(std::move(*device));
+    std::mutex tappedMutex;
+    std::vector<Tapped> tapped;
+    session.setFrameTap([&](const frame::FramePtr& f) {
+        std::lock_guard lock(tappedMutex);
+        tapped.push_back({feederNumber(*f), f->timing, f->timestampNs});
+    });
+    ASSERT_TRUE(session.start());
+    ASSERT_TRUE(session.waitForFrame(10s));
+    const auto count = [&] {
+        std::lock_guard lock(tappedMutex);
+        return static_cast<long>(tapped.size());
+    };
+    {
+        FeederSkipping skipping(feeder);
+        ASSERT_TRUE(skipping.ok) << "signalling the feeder";
+        const long before = count();
+        ASSERT_TRUE(waitFor([&] { return count() >= before + 6 * every; }, 60s)) << count() << " frames";
+    }
+    session.stop();
+    engine::TimingModel model;
+    for (const FrameRecord& r : session.drainFrameRecords())
+        model.add(r);
+    const engine::TimingSummary t = model.summary();
+
+    std::lock_guard lock(tappedMutex);
+    std::vector<long> missing;
+    for (std::size_t i = 1; i < tapped.size(); ++i) {
+        const Tapped &a = tapped[i - 1], &b = tapped[i];
+        ASSERT_TRUE(a.timing.depth.driverSequence && b.timing.depth.driverSequence);
+        EXPECT_EQ(static_cast<long>(*b.timing.depth.driverSequence - *a.timing.depth.driverSequence),
+                  b.number - a.number)
+            << "the driver counted every frame the feeder sent, frame " << b.number;
+        EXPECT_GT(b.timestampNs, a.timestampNs) << "timestamps rise, frame " << b.number;
+        EXPECT_EQ(b.timing.depth.source, frame::TimestampSource::StartOfExposure);
+        EXPECT_TRUE(b.timing.depth.monotonic);
+        for (long n = a.number + 1; n < b.number; ++n)
+            missing.push_back(n);
+    }
+    std::printf("feeder frames %ld..%ld arrived but for", tapped.front().number, tapped.back().number);
+    for (const long n : missing)
+        std::printf(" %ld", n);
+    std::printf("; driver sequence %u..%u\n", *tapped.front().timing.depth.driverSequence,
+                *tapped.back().timing.depth.driverSequence);
+    ASSERT_GE(missing.size(), 4u) << "the feeder skipped frames while asked to";
+    for (const long n : missing)
+        EXPECT_EQ(n % every, 0) << "frame " << n << " was lost though the feeder sent it whole";
+    // Skipping stayed on from the first frame skipped: every multiple after it up to the last arrived frame
+    // (the last arrivals may come after skipping ended) was lost.
+    for (long n = missing.front(); n <= missing.back(); n += every)
+        EXPECT_NE(std::find(missing.begin(), missing.end(), n), missing.end()) << "frame " << n << " arrived";
+    EXPECT_EQ(t.drops.cameraUsb, missing.size()) << "the Timing model counts exactly those";
+    EXPECT_EQ(t.delivered, tapped.size());
+    EXPECT_EQ(t.depth.source, frame::TimestampSource::StartOfExposure);
+    EXPECT_TRUE(t.depth.monotonic);
+    EXPECT_GT(t.depth.intervals.count, 0u);
 }
 
 // ---- v4l2loopback Z16 and vivid Y16 --------------------------------------------------------------

@@ -22,6 +22,7 @@ UDEV=$(arg dcudev)
 EXPORTS=$(arg dcexport)
 SCRATCH=/run/depthcloud-kernel
 VID=8086 PID=0b07
+SKIP_EVERY=5 # while the guest test asks, the depth feeder sends every 5th frame short (uvcfeeder -k)
 echo "=== guest up at $(up)s, kernel $(uname -r), tests: $TESTS"
 FAILS=0
 result() { echo "RESULT $1 $2 (t=$(up)s)"; [ "$2" = PASS ] || FAILS=$((FAILS+1)); }
@@ -114,8 +115,9 @@ start_uvc() {
 	echo "--- UVC gadget on dummy_hcd -> uvcvideo"
 	setup_uvc_gadget || { dmesg | tail -20; result uvc-gadget FAIL; return 1; }
 	modprobe uvcvideo || { result uvc-gadget FAIL; return 1; }
+	echo "uvcvideo nodrop=$(cat /sys/module/uvcvideo/parameters/nodrop 2>/dev/null)" # how it treats a short frame
 	# The gadget connects once every function's node is open: both feeders first.
-	uvcfeeder -n 0 -s 1 -r 10 > /tmp/feeder.log 2>&1 &
+	uvcfeeder -n 0 -s 1 -r 10 -k $SKIP_EVERY > /tmp/feeder.log 2>&1 &
 	FEEDER=$!
 	uvcfeeder -n 1 -s 3 -c -w 320 -h 240 -r 10 > /tmp/colour-feeder.log 2>&1 &
 	i=0; while ! { UVC_NODE=$(find_node uvcvideo 0 00) && COLOUR_NODE=$(find_node uvcvideo 0 02); } &&
@@ -124,7 +126,7 @@ start_uvc() {
 		{ cat /tmp/feeder.log /tmp/colour-feeder.log; dmesg | tail -30; result uvc-gadget FAIL; return 1; }
 	result uvc-gadget PASS
 	ENV="$ENV VIDEO=$UVC_NODE COLOUR_VIDEO=$COLOUR_NODE UDC_FILE=/sys/kernel/config/usb_gadget/depthcam/UDC"
-	ENV="$ENV UDC_NAME=$UDC FEEDER_PID=$FEEDER"
+	ENV="$ENV UDC_NAME=$UDC FEEDER_PID=$FEEDER FEEDER_SKIP_EVERY=$SKIP_EVERY"
 	FILTER="$FILTER:Uvc.*"
 }
 

@@ -219,6 +219,49 @@ TEST_F(UvcDeviceTest, DepthAndColorNodesArePairedByTimestamp) {
     EXPECT_EQ((*r.frame->capturedImage.bytes)[0], 0x55);
     EXPECT_EQ(r.frame->timestampNs, t0);
     EXPECT_EQ(d.pairer().paired(), 1u);
+    // Each stream's own driver sequence and stamp; the fake driver marks the end of the frame (EOF).
+    EXPECT_EQ(r.frame->timing.depth.sensorNs, t0);
+    ASSERT_TRUE(r.frame->timing.colour);
+    EXPECT_EQ(r.frame->timing.colour->driverSequence, 0u);
+    EXPECT_EQ(r.frame->timing.colour->sensorNs, t0 + 2'000'000);
+    EXPECT_EQ(r.frame->timing.colour->source, frame::TimestampSource::EndOfFrame);
+}
+
+// The driver's sequence counts the buffer it returned marked corrupted too, so the frames after it show
+// the gap; the timestamp's source is what the buffer's flags say.
+TEST_F(UvcDeviceTest, EachFrameCarriesTheDriversSequenceAndWhatItsTimestampMarks) {
+    UvcDevice d(config(), fake_);
+    ASSERT_TRUE(d.open());
+    ASSERT_TRUE(d.start());
+    const std::int64_t t0 = base::monotonicNowNs() / 1000 * 1000; // V4L2 timestamps have microseconds
+    FakeFrame first = depthFrame(0);
+    first.flags = V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
+    first.timestampNs = t0;
+    FakeFrame corrupt = depthFrame(1);
+    corrupt.flags = V4L2_BUF_FLAG_ERROR | V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
+    FakeFrame third = depthFrame(2);
+    third.flags = V4L2_BUF_FLAG_TSTAMP_SRC_SOE;
+    third.timestampNs = t0 + 66'000'000;
+    FakeFrame endOfFrame = depthFrame(3);
+    for (const FakeFrame& f : {first, corrupt, third, endOfFrame})
+        fake_.pushFrame(kDepth, f);
+    std::vector<frame::FramePtr> frames;
+    for (int i = 0; i < 8 && frames.size() < 3; ++i)
+        if (CaptureResult r = next(d); r.kind == CaptureResult::Kind::Frame)
+            frames.push_back(r.frame);
+    ASSERT_EQ(frames.size(), 3u);
+    EXPECT_EQ(frames[0]->timing.depth.driverSequence, 0u);
+    EXPECT_EQ(frames[1]->timing.depth.driverSequence, 2u) << "the corrupted buffer was sequence 1";
+    EXPECT_EQ(frames[2]->timing.depth.driverSequence, 3u);
+    EXPECT_EQ(frames[0]->timing.depth.sensorNs, t0);
+    EXPECT_EQ(frames[1]->timing.depth.sensorNs, t0 + 66'000'000);
+    EXPECT_EQ(frames[0]->timing.depth.source, frame::TimestampSource::StartOfExposure);
+    EXPECT_EQ(frames[1]->timing.depth.source, frame::TimestampSource::StartOfExposure);
+    EXPECT_EQ(frames[2]->timing.depth.source, frame::TimestampSource::EndOfFrame);
+    for (const frame::FramePtr& f : frames) {
+        EXPECT_TRUE(f->timing.depth.monotonic);
+        EXPECT_FALSE(f->timing.colour) << "no colour node";
+    }
 }
 
 TEST_F(UvcDeviceTest, ASessionReconnectsByItselfAndReportsEachState) {

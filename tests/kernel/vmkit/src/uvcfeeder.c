@@ -5,12 +5,16 @@
  * and serves it again, so an unplug/replug test needs no restart.
  *
  * usage: uvcfeeder [-d /dev/videoN | -n INDEX] [-c] [-s INTERFACE] [-w W] [-h H] [-m maxpayload]
- *                  [-r fps (default 10)] [-v]
+ *                  [-r fps (default 10)] [-k N] [-v]
  *   Without -d it serves the INDEX-th (default 0) video node whose driver is "g_uvc": one per UVC function,
  *   numbered in the order the gadget binds them, also after an unbind. -c sends the YUYV colour pattern
  *   of test_pattern.h instead of the depth pattern; -s is the function's VideoStreaming interface number
  *   (default 1, the first function's). Frames go out on a grid of the period on CLOCK_MONOTONIC, so that
  *   feeders of two functions at one rate send each frame together, as a camera's two sensors would.
+ *   -k N: while skipping is on (SIGRTMIN turns it on, SIGRTMIN+1 off), every frame whose number is a
+ *   multiple of N goes out short, half its bytes: uvcvideo drops a frame shorter than the committed size
+ *   as corrupt, yet its sequence counter counts it, so the host's v4l2 sequence has a gap exactly there
+ *   (frames a camera lost on the way, as the host sees them).
  * It answers the UVC class requests that the host (uvcvideo) sends
  * (VS PROBE/COMMIT; everything else is stalled), and once the host starts
  * streaming (UVC_EVENT_STREAMON) it queues frames.  On the original kernel 6.1
@@ -48,6 +52,8 @@ static void *mem[8];
 static size_t memlen[8];
 static unsigned seq;
 static volatile sig_atomic_t paused, resumed;
+static volatile sig_atomic_t skipping; /* SIGRTMIN / SIGRTMIN+1 */
+static unsigned skip_every;            /* -k */
 static int holding;          /* paused: sent buffers are kept back */
 static unsigned held[8], nheld; /* sent buffers waiting for their next frame's time */
 static double period_s = 1.0 / 10; /* -r: frames per second (TCG has no time to spare for more) */
@@ -90,15 +96,23 @@ static void on_signal(int sig)
 {
 	if (sig == SIGUSR1)
 		paused = 1;
-	else
+	else if (sig == SIGUSR2)
 		resumed = 1;
+	else
+		skipping = sig == SIGRTMIN;
 }
 
 static void queue_frame(unsigned index)
 {
 	struct v4l2_buffer b = {.index = index, .type = V4L2_BUF_TYPE_VIDEO_OUTPUT, .memory = V4L2_MEMORY_MMAP};
+	const unsigned number = seq;
 	fill_frame(mem[index], memlen[index]);
-	b.bytesused = W * H * 2;
+	const int skip = skipping && skip_every && number % skip_every == 0;
+	b.bytesused = skip ? W * H : W * H * 2;
+	if (skip) {
+		printf("feeder: frame %u sent short (skipped)\n", number);
+		fflush(stdout);
+	}
 	if (ioctl(fd, VIDIOC_QBUF, &b) < 0)
 		perror("feeder: QBUF");
 }
@@ -275,7 +289,7 @@ int main(int argc, char **argv)
 {
 	char dev[32] = "";
 	int opt;
-	while ((opt = getopt(argc, argv, "d:n:cs:w:h:m:r:v")) != -1) {
+	while ((opt = getopt(argc, argv, "d:n:cs:w:h:m:r:k:v")) != -1) {
 		switch (opt) {
 		case 'd': snprintf(dev, sizeof dev, "%s", optarg); break;
 		case 'n': node_index = (unsigned)atoi(optarg); break;
@@ -285,6 +299,7 @@ int main(int argc, char **argv)
 		case 'h': H = atoi(optarg); break;
 		case 'm': MAXPAYLOAD = atoi(optarg); break;
 		case 'r': period_s = 1.0 / atof(optarg); break;
+		case 'k': skip_every = (unsigned)atoi(optarg); break;
 		case 'v': verbose = 1; break;
 		default: return 2;
 		}
@@ -297,6 +312,8 @@ int main(int argc, char **argv)
 	fill_ctrl(&commit);
 	signal(SIGUSR1, on_signal);
 	signal(SIGUSR2, on_signal);
+	signal(SIGRTMIN, on_signal);
+	signal(SIGRTMIN + 1, on_signal);
 	for (;;) {
 		serve(dev);
 		/* the gadget went away (UDC unbound): wait for it to be bound again */
@@ -326,14 +343,18 @@ static void serve(const char *dev)
 	printf("feeder: serving %s (%ux%u)\n", dev, W, H);
 	fflush(stdout);
 	signal(SIGPIPE, SIG_IGN);
-	/* pause/resume signals are only let in while waiting in pselect, so none is missed */
+	/* pause/resume and skip signals are only let in while waiting in pselect, so none is missed */
 	sigset_t block, waitmask;
 	sigemptyset(&block);
 	sigaddset(&block, SIGUSR1);
 	sigaddset(&block, SIGUSR2);
+	sigaddset(&block, SIGRTMIN);
+	sigaddset(&block, SIGRTMIN + 1);
 	sigprocmask(SIG_BLOCK, &block, &waitmask);
 	sigdelset(&waitmask, SIGUSR1);
 	sigdelset(&waitmask, SIGUSR2);
+	sigdelset(&waitmask, SIGRTMIN);
+	sigdelset(&waitmask, SIGRTMIN + 1);
 	for (;;) {
 		if (paused) {
 			paused = 0;
