@@ -42,6 +42,7 @@ inline constexpr const char* kFogTitle = "Fog";
 inline constexpr const char* kAuraTitle = "Aura";
 inline constexpr const char* kQualityTitle = "Quality";
 inline constexpr const char* kCameraControlsTitle = "Camera controls";
+inline constexpr const char* kTimingTitle = "Timing";
 
 // What every image panel reports back: the window's place (to restore it after a zoom), a request to
 // open it large or bring it back (a click on a 2D panel, the zoom button on the cloud), and the depth
@@ -302,6 +303,11 @@ struct CameraControlsState {
 // control (an auto control decides it) is greyed; "Reset to defaults" per node. Above them, the depth
 // node's modes: one chosen is left in state.chosenMode.
 void drawCameraControlsPanel(CameraControlsState& state, double nowSeconds, bool* open);
+
+// Per stream the frame intervals' histogram and the timestamps' source, the latency from arrival (and
+// from the sensor, where its clock is this machine's) to the screen, and every lost frame counted where it
+// was lost.
+void drawTimingPanel(const engine::TimingSummary& timing, bool* open);
 
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.
 float drawStatusBar(const StatusLine& status);

@@ -27,6 +27,7 @@ struct PanelVisibility {
     bool infrared = false;       // drawn only while the source delivers infrared
     bool quality = false;        // the depth-quality figures (measured only while it is shown)
     bool cameraControls = false; // a live camera's V4L2 controls
+    bool timing = false;         // frame intervals, latencies and where lost frames were lost
 };
 
 // Which cloud path draws (render::CloudPath): automatic picks the CPU splat on software GL.

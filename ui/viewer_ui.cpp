@@ -202,9 +202,9 @@ void Viewer::resetLayout() {
     restoring_.clear();
     panelPlaces_.clear();
     // Each panel goes back to its default place the next time it is drawn, whenever that is.
-    layoutResets_ = {kCloudTitle,    kDepthTitle,   kConfidenceTitle,    kCameraTitle, kControlsTitle,
-                     kStatsTitle,    kLogTitle,     kSourceTitle,        kFogTitle,    kAuraTitle,
-                     kInfraredTitle, kQualityTitle, kCameraControlsTitle};
+    layoutResets_ = {kCloudTitle,    kDepthTitle,   kConfidenceTitle,     kCameraTitle, kControlsTitle,
+                     kStatsTitle,    kLogTitle,     kSourceTitle,         kFogTitle,    kAuraTitle,
+                     kInfraredTitle, kQualityTitle, kCameraControlsTitle, kTimingTitle};
 }
 
 // File: what a person opens and saves, each also a shortcut or a button elsewhere.
@@ -285,7 +285,8 @@ float Viewer::drawMenuBar() {
             {kFogTitle, "F", &show.fog},
             {kAuraTitle, "A", &show.aura},
             {kQualityTitle, nullptr, &show.quality},
-            {kCameraControlsTitle, nullptr, &show.cameraControls}};
+            {kCameraControlsTitle, nullptr, &show.cameraControls},
+            {kTimingTitle, nullptr, &show.timing}};
         for (const auto& [title, key, shown] : panels)
             ImGui::MenuItem(title, key, shown, shown != &show.infrared || infraredAvailable());
         ImGui::Separator();
@@ -353,6 +354,10 @@ void Viewer::drawUi() {
         drawQuality(l.leftWidth + 20.0f, 20.0f);
     if (show.cameraControls)
         drawCameraControls(l.leftWidth + 60.0f, 60.0f);
+    if (show.timing) {
+        placePanel(kTimingTitle, l.leftWidth + 80.0f, 80.0f, 440.0f, 560.0f);
+        drawTimingPanel(instrument_.timing(), &show.timing);
+    }
     if (timeline)
         drawTimeline(*replay, {l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});
     if (replay)
