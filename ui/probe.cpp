@@ -32,6 +32,10 @@ std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
     if (const frame::Plane<std::uint16_t>* ir = source.infrared; ir && !ir->empty())
         probe.infrared =
             ir->at(u * ir->width / depth.depthMeters.width, v * ir->height / depth.depthMeters.height);
+    if (source.frame) {
+        probe.frameSequence = source.frame->sequence;
+        probe.driverSequence = source.frame->timing.depth.driverSequence;
+    }
     if (probe.depthMeters > 0.0f && source.intrinsics.valid())
         probe.point = processing::unproject(u, v, probe.depthMeters, source.intrinsics);
     return probe;
@@ -72,6 +76,11 @@ const char* confidenceName(frame::Confidence level) {
 void showProbeTooltip(const Probe& p) {
     ImGui::BeginTooltip();
     ImGui::Text("pixel %d, %d", p.u, p.v);
+    if (p.frameSequence && p.driverSequence)
+        ImGui::Text("frame %llu (driver sequence %u)", static_cast<unsigned long long>(*p.frameSequence),
+                    *p.driverSequence);
+    else if (p.frameSequence)
+        ImGui::Text("frame %llu", static_cast<unsigned long long>(*p.frameSequence));
     ImGui::Text("depth %s", formatDepth(p.depthMeters).c_str());
     ImGui::Text("confidence %s", p.confidence ? confidenceName(*p.confidence) : "none (source has none)");
     if (p.depthMeters > 0.0f)

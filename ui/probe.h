@@ -22,6 +22,10 @@ struct Probe {
     // The raw infrared intensity at the sample (the infrared image scaled to the depth map where their
     // sizes differ); none without an infrared image.
     std::optional<std::uint16_t> infrared;
+    // The frame sampled, so a stutter seen in the Timing panel can be matched to it: its number in the
+    // source and, from a live camera, the driver's sequence number.
+    std::optional<std::uint64_t> frameSequence;
+    std::optional<std::uint32_t> driverSequence;
 };
 
 // The depth the panels show, with the intrinsics that place it.

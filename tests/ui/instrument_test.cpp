@@ -130,6 +130,10 @@ TEST_F(InstrumentTest, HoverOnTheDepthPanelReadsTheKnownDepthAtAKnownPixel) {
     EXPECT_EQ(*p.confidence, frame::Confidence::High);
     for (int i = 0; i < 3; ++i)
         EXPECT_NEAR(p.point[static_cast<std::size_t>(i)], truth[i], 1e-5) << "axis " << i;
+    // The readout names the frame sampled: the one shown then, no newer than the one shown now.
+    ASSERT_TRUE(p.frameSequence);
+    EXPECT_LE(*p.frameSequence, shown().frame->sequence);
+    EXPECT_FALSE(p.driverSequence) << "a synthetic source has no driver";
     EXPECT_EQ(formatDepth(0.734f), "734 mm");
     EXPECT_EQ(formatDepth(1.2344f), "1.234 m") << "meters above one meter";
 }

@@ -26,6 +26,21 @@ TEST(Probe, APointTheColourCameraCannotSeeIsReadOutAsNotSeen) {
     EXPECT_STREQ(kNotSeenByColour, "not seen by the colour camera");
 }
 
+// The readout names the frame sampled: its sequence, and the driver's where a live camera gave one.
+TEST(Probe, TheReadoutNamesTheFramesSequenceAndTheDriversWhereKnown) {
+    auto f = std::make_shared<frame::Frame>();
+    f->sequence = 42;
+    f->sceneDepth = frame::DepthData{frame::Plane<float>(4, 2, 1.5f), {}};
+    const frame::Intrinsics intrinsics{100.0, 100.0, 2.0, 1.0, 4, 2};
+    const ProbeSource replayed{&*f->sceneDepth, intrinsics, nullptr, f.get()};
+    EXPECT_EQ(probeAt(replayed, 1, 1)->frameSequence, 42u);
+    EXPECT_FALSE(probeAt(replayed, 1, 1)->driverSequence);
+    f->timing.depth.driverSequence = 1234u;
+    EXPECT_EQ(probeAt(replayed, 1, 1)->driverSequence, 1234u);
+    const ProbeSource noFrame{&*f->sceneDepth, intrinsics, nullptr};
+    EXPECT_FALSE(probeAt(noFrame, 1, 1)->frameSequence);
+}
+
 // Points the GPU coloured come with no seen mask: the probe asks the frame's rig about the one sample.
 TEST(Probe, WithoutAMaskTheRigDecidesForTheProbedSample) {
     devices::SyntheticDevice device(dc::test::smallRigConfig());
