@@ -3,6 +3,7 @@
 #include "base/unique_fd.h"
 
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
 #include <fcntl.h>
 #include <filesystem>
@@ -110,6 +111,21 @@ Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t
 
 Status writeTextFile(const std::string& path, const std::string& text) {
     return writeFileAtomically(path, {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()});
+}
+
+Status renameInto(const std::string& from, const std::string& to, bool overwrite,
+                  const std::string& existsMessage) {
+    const unsigned flags = overwrite ? 0u : RENAME_NOREPLACE;
+    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), flags) == 0)
+        return {};
+    // Some filesystems refuse the flag (EINVAL); link() gives the same no-replace guarantee there.
+    if (errno == EINVAL && flags != 0 && ::link(from.c_str(), to.c_str()) == 0) {
+        ::unlink(from.c_str());
+        return {};
+    }
+    if (errno == EEXIST)
+        return Error{existsMessage};
+    return Error{"cannot rename " + from + " to " + to + ": " + std::strerror(errno)};
 }
 
 Expected<std::vector<std::uint8_t>> readFile(const std::string& path) {

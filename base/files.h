@@ -28,6 +28,11 @@ using AtomicWriteFault = std::function<int(AtomicWriteStep)>;
 Status writeFileAtomically(const std::string& path, std::span<const std::uint8_t> bytes,
                            const AtomicWriteFault& fault = {});
 Status writeTextFile(const std::string& path, const std::string& text);
+// Renames `from` to `to`; unless `overwrite`, an existing `to` is not replaced (RENAME_NOREPLACE, or link()
+// where the filesystem refuses the flag), so the existence check made when `from` was created holds at the
+// rename too. An existing `to` is the error `existsMessage`; another failure names both paths.
+Status renameInto(const std::string& from, const std::string& to, bool overwrite,
+                  const std::string& existsMessage);
 // Every byte of a file; an error names the file and the reason.
 Expected<std::vector<std::uint8_t>> readFile(const std::string& path);
 

@@ -89,21 +89,6 @@ constexpr std::array<std::uint32_t, 256> kCrcTable = [] {
     return table;
 }();
 
-// RENAME_NOREPLACE makes the existence check at create() hold at the rename too.
-Status renameInto(const std::string& from, const std::string& to, bool overwrite) {
-    const unsigned flags = overwrite ? 0u : RENAME_NOREPLACE;
-    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), flags) == 0)
-        return {};
-    // Some filesystems refuse the flag (EINVAL); link() gives the same no-replace guarantee there.
-    if (errno == EINVAL && flags != 0 && ::link(from.c_str(), to.c_str()) == 0) {
-        ::unlink(from.c_str());
-        return {};
-    }
-    if (errno == EEXIST)
-        return Error{to + " appeared while it was written (pass --overwrite to replace it)"};
-    return Error{"cannot rename " + from + " to " + to + ": " + std::strerror(errno)};
-}
-
 } // namespace
 
 std::uint32_t crc32(std::span<const std::uint8_t> bytes, std::uint32_t crc) {
@@ -318,7 +303,10 @@ Status McapWriter::finish() {
     if (::fsync(file_.get()) != 0)
         return error("flush", errno);
     file_.reset();
-    if (Status s = renameInto(temporary_, path_, options_.overwrite); !s)
+    if (Status s =
+            base::renameInto(temporary_, path_, options_.overwrite,
+                             path_ + " appeared while it was written (pass --overwrite to replace it)");
+        !s)
         return s;
     finished_ = true;
     return {};

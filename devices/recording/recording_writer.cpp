@@ -20,21 +20,6 @@ std::int64_t unixNowNs() {
         .count();
 }
 
-Status renameInto(const std::string& from, const std::string& to, bool overwrite) {
-    // RENAME_NOREPLACE closes the window between the existence check at create() and now.
-    const unsigned flags = overwrite ? 0u : RENAME_NOREPLACE;
-    if (::renameat2(AT_FDCWD, from.c_str(), AT_FDCWD, to.c_str(), flags) == 0)
-        return {};
-    // Some filesystems refuse the flag (EINVAL); link() gives the same no-replace guarantee there.
-    if (errno == EINVAL && flags != 0 && ::link(from.c_str(), to.c_str()) == 0) {
-        ::unlink(from.c_str());
-        return {};
-    }
-    if (errno == EEXIST)
-        return Error{to + " appeared while recording; the recording is kept at " + from};
-    return Error{"cannot rename " + from + " to " + to + ": " + std::strerror(errno)};
-}
-
 } // namespace
 
 Status RecordingWriter::checkDestination(const std::string& path, bool overwrite) {
@@ -141,7 +126,8 @@ Status RecordingWriter::finish() {
     if (Status s = syncIfDue(true); !s)
         return s;
     file_.reset();
-    return renameInto(partialPath(), path_, options_.overwrite);
+    return base::renameInto(partialPath(), path_, options_.overwrite,
+                            path_ + " appeared while recording; the recording is kept at " + partialPath());
 }
 
 } // namespace dc::devices::recording
