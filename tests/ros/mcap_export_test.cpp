@@ -9,6 +9,7 @@
 #include "exporting/export.h"
 #include "frame/rgb_image.h"
 #include "tests/recording/recording_test_support.h"
+#include "tests/ros/shell_run.h"
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -27,28 +28,12 @@ namespace {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
+using test::readText;
+using test::runIn;
+using test::RunResult;
 
 constexpr int kFrames = 4;
 constexpr int kTopics = 7; // depth, colour, infrared, their camera_info, /tf
-
-std::string readText(const std::string& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-struct RunResult {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
-
-// `command` run by the shell in `dir`, its output kept.
-RunResult run(const std::string& dir, const std::string& command) {
-    const std::string full = "cd '" + dir + "' && " + command + " > out.txt 2> err.txt";
-    const int status = std::system(full.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readText(dir + "/out.txt"),
-            readText(dir + "/err.txt")};
-}
 
 std::vector<std::uint8_t> base64(const std::string& text) {
     static const std::string kAlphabet = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -116,12 +101,13 @@ protected:
         return frames;
     }
     RunResult exportMcap(const std::string& source, const std::string& out, const std::string& extra = "") {
-        return run(dir_.path(), std::string(DEPTHCLOUD_BINARY) + " export --format mcap --source replay:" +
-                                    source + " --out " + out + " " + extra);
+        return runIn(dir_.path(), std::string(DEPTHCLOUD_BINARY) + " export --format mcap --source replay:" +
+                                      source + " --out " + out + " " + extra);
     }
     // What Foxglove's readers find in the file; fails the test when they cannot read it.
     json readBack(const std::string& file) {
-        const RunResult r = run(dir_.path(), std::string(DC_NODE) + " " + DC_MCAP_READER_SCRIPT + " " + file);
+        const RunResult r =
+            runIn(dir_.path(), std::string(DC_NODE) + " " + DC_MCAP_READER_SCRIPT + " " + file);
         EXPECT_EQ(r.exitCode, 0) << r.err << " (run scripts/setup.sh for node and its packages)";
         return r.exitCode == 0 ? json::parse(r.out) : json::object();
     }
@@ -310,8 +296,8 @@ TEST_F(McapExport, ACancelledExportLeavesNoFile) {
 
 // `record` to a .mcap: the take is recorded, converted, and only the MCAP remains.
 TEST_F(McapExport, RecordToMcapLeavesOneIndexedFile) {
-    const RunResult r =
-        run(dir_.path(), std::string(DEPTHCLOUD_BINARY) + " record --source synthetic --frames 5 take.mcap");
+    const RunResult r = runIn(dir_.path(), std::string(DEPTHCLOUD_BINARY) +
+                                               " record --source synthetic --frames 5 take.mcap");
     ASSERT_EQ(r.exitCode, 0) << r.err;
     EXPECT_FALSE(fs::exists(dir_.path("take.mcap.dcrec")));
     const json j = readBack(dir_.path("take.mcap"));
@@ -320,8 +306,8 @@ TEST_F(McapExport, RecordToMcapLeavesOneIndexedFile) {
     EXPECT_EQ(j["messages"]["/camera/camera/depth/image_rect_raw"].size(), 5u);
     EXPECT_EQ(j["messages"]["/camera/camera/color/image_raw"].size(), 5u);
 
-    const RunResult again =
-        run(dir_.path(), std::string(DEPTHCLOUD_BINARY) + " record --source synthetic --frames 5 take.mcap");
+    const RunResult again = runIn(dir_.path(), std::string(DEPTHCLOUD_BINARY) +
+                                                   " record --source synthetic --frames 5 take.mcap");
     EXPECT_EQ(again.exitCode, 2);
     EXPECT_NE(again.err.find("take.mcap already exists"), std::string::npos) << again.err;
 }

@@ -12,6 +12,7 @@
 #include "devices/source_spec.h"
 #include "tests/recording/recording_test_support.h"
 #include "tests/ros/ros_processes.h"
+#include "tests/ros/shell_run.h"
 
 #include <gtest/gtest.h>
 
@@ -36,6 +37,9 @@ namespace {
 
 using namespace std::chrono_literals;
 using Clock = std::chrono::steady_clock;
+using test::readText;
+using test::runIn;
+using test::RunResult;
 namespace fs = std::filesystem;
 
 // publish_camera.py's defaults and formulas.
@@ -62,25 +66,10 @@ std::optional<std::int64_t> frameIndex(std::int64_t stampNs) {
     return i;
 }
 
-std::string readFile(const std::string& path) {
-    std::ifstream in(path);
-    return {std::istreambuf_iterator<char>(in), {}};
-}
-
-struct RunResult {
-    int exitCode = -1;
-    std::string out;
-    std::string err;
-};
-
 // The depthcloud binary, run in `dir` with `environment` (VAR=value ...) before it.
 RunResult runDepthcloud(const std::string& dir, const std::string& environment,
                         const std::string& arguments) {
-    const std::string command = "cd '" + dir + "' && " + environment + " " + DEPTHCLOUD_BINARY + " " +
-                                arguments + " > out.txt 2> err.txt";
-    const int status = std::system(command.c_str());
-    return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, readFile(dir + "/out.txt"),
-            readFile(dir + "/err.txt")};
+    return runIn(dir, environment + " " + DEPTHCLOUD_BINARY + " " + arguments);
 }
 
 std::size_t lines(const std::string& text) {
@@ -95,7 +84,7 @@ protected:
         dir_ = new test::TempDir;
         core_ = new test::RosCore(test::freeLocalPort(), dir_->path());
         test::useLocalRosMaster(core_->uri(), dir_->path());
-        ASSERT_TRUE(core_->start()) << "roscore did not come up: " << readFile(core_->logFile());
+        ASSERT_TRUE(core_->start()) << "roscore did not come up: " << readText(core_->logFile());
     }
     static void TearDownTestSuite() {
         delete core_;
@@ -140,7 +129,7 @@ protected:
         }
         return out;
     }
-    std::string publisherLog() const { return readFile(dir_->path("publisher.log")); }
+    std::string publisherLog() const { return readText(dir_->path("publisher.log")); }
 
     static void expectDepth(const frame::Frame& f, std::int64_t i, bool meters) {
         ASSERT_TRUE(f.sceneDepth);
@@ -537,7 +526,7 @@ TEST_F(RosLive, BagRecordedWithRosbagFromTheLiveTopicsReplaysAsSeenLive) {
     ASSERT_EQ(live.frames.size(), 8u) << publisherLog();
     device.reset();
     recorder.stop();
-    ASSERT_TRUE(fs::exists(bagPath)) << readFile(dir_->path("rosbag.log"));
+    ASSERT_TRUE(fs::exists(bagPath)) << readText(dir_->path("rosbag.log"));
 
     auto bag = replay::openReplaySpecSource(bagPath);
     ASSERT_TRUE(bag) << bag.error().message;
