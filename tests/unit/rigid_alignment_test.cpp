@@ -113,10 +113,16 @@ const frame::RigidTransform kPerturbation = motion({1.0, 2.0, -1.0}, 3.0, {0.02,
 TEST(RigidAlignment, TheTrueTransformAgreesWithinTheScenesNoise) {
     const TwoCameras& c = twoCameras();
     const double noiseMm = overlapNoiseMm(c);
+    // Both maps are noisy, so the distance between them holds two samples' noise (seen along B's normal,
+    // which shortens it on surfaces seen obliquely): about the noise of one sample when all is well.
+    const auto start = std::chrono::steady_clock::now();
     const OverlapFigure figure = overlapConsistency(c.cloudA(), c.cloudB(), c.aToB);
-    std::printf(
-        "noise %.2f mm (median |sensor - true| over the overlap); figure %.2f mm over %zu of %zu (%.0f %%)\n",
-        noiseMm, figure.medianMm, figure.count, figure.candidates, 100.0 * figure.overlapFraction);
+    const double ms =
+        std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    std::printf("noise %.2f mm (median |sensor - true| over the overlap); figure %.2f mm over %zu of %zu "
+                "(%.0f %%) in %.1f ms\n",
+                noiseMm, figure.medianMm, figure.count, figure.candidates, 100.0 * figure.overlapFraction,
+                ms);
     EXPECT_GT(figure.medianMm, 0.0);
     EXPECT_LE(figure.medianMm, 1.5 * noiseMm);
     EXPECT_GT(figure.overlapFraction, 0.6);
@@ -188,7 +194,7 @@ TEST(RigidAlignment, OneFlatPlaneIsDegenerateAndDoesNotSlide) {
                 result.aToB.translationMeters[2] * 1e3);
     EXPECT_EQ(result.status, IcpStatus::Degenerate);
     EXPECT_EQ(result.constrainedDirections, 3);
-    EXPECT_LT(result.conditionRatio, 0.1 * IcpParams{}.minConditionRatio);
+    EXPECT_LT(result.conditionRatio, IcpParams{}.minConditionRatio);
     // Along the wall it stays where it was seeded; across it, it lands on the wall.
     EXPECT_NEAR(result.aToB.translationMeters[0], 0.04, 0.002);
     EXPECT_NEAR(result.aToB.translationMeters[1], -0.03, 0.002);
