@@ -3,6 +3,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <vector>
@@ -67,6 +68,11 @@ struct CapturedImage {
     // whose size varies per frame.
     static std::size_t byteSize(PixelFormat format, int width, int height);
 };
+
+// A depth sample that holds a measurement: positive and finite (0, NaN and inf are "none").
+inline bool isMeasured(float depthMeters) {
+    return depthMeters > 0.0f && depthMeters < std::numeric_limits<float>::infinity(); // NaN fails both
+}
 
 // ARConfidenceLevel: how much the sensor trusts each depth sample.
 enum class Confidence : std::uint8_t { Low = 0, Medium = 1, High = 2 };

@@ -31,10 +31,6 @@ constexpr int kBorderPixels = 2;
 // what depth cameras have (ARKit's LiDAR 64, RealSense D435 87, Kinect v1 57).
 constexpr double kFallbackTanHalfFov = 0.57735026918962576;
 
-bool measured(float d) {
-    return std::isfinite(d) && d > 0.0f;
-}
-
 frame::Plane<float> matteDepth(const frame::Plane<float>& depth) {
     if (depth.width <= kMaxMatteWidth)
         return depth;
@@ -47,7 +43,7 @@ frame::Plane<float> matteDepth(const frame::Plane<float>& depth) {
 void nearRange(const frame::Plane<float>& depth, const AuraSettings& s, frame::Plane<std::uint8_t>& matte) {
     for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
         const float d = depth.pixels[i];
-        matte.pixels[i] = measured(d) && d >= s.nearMeters && d <= s.farMeters;
+        matte.pixels[i] = frame::isMeasured(d) && d >= s.nearMeters && d <= s.farMeters;
     }
 }
 
@@ -67,7 +63,7 @@ std::vector<int> nearestFirst(const frame::Plane<float>& depth) {
     std::vector<std::uint32_t> keys;
     std::vector<int> order;
     for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
-        if (measured(depth.pixels[i])) {
+        if (frame::isMeasured(depth.pixels[i])) {
             keys.push_back(std::bit_cast<std::uint32_t>(depth.pixels[i]));
             order.push_back(static_cast<int>(i));
         }
@@ -175,7 +171,7 @@ Region fill(const frame::Plane<float>& depth, int seed, float limitMeters, doubl
                 continue;
             const int n = ny * depth.width + nx;
             const float d = depth.pixels[n];
-            if (matte.pixels[n] || !measured(d) || d >= limitMeters)
+            if (matte.pixels[n] || !frame::isMeasured(d) || d >= limitMeters)
                 continue;
             matte.pixels[n] = 1;
             stack.push_back(n);

@@ -13,10 +13,6 @@ namespace {
 
 using frame::Confidence;
 
-bool measured(float d) {
-    return d > 0.0f && d < std::numeric_limits<float>::infinity(); // also rejects NaN
-}
-
 // Mirrored index (the image edge is not a hole): -1 -> 1, size -> size - 2.
 int mirror(int i, int size) {
     if (size == 1)
@@ -36,7 +32,7 @@ void horizontalSums(const float* row, int w, std::vector<double>& scratch, RowSu
     double* s = c + w;
     double* q = s + w;
     for (int x = 0; x < w; ++x) {
-        const bool m = measured(row[x]);
+        const bool m = frame::isMeasured(row[x]);
         c[x] = m ? 1.0 : 0.0;
         s[x] = m ? row[x] : 0.0;
         q[x] = s[x] * s[x];
@@ -60,7 +56,7 @@ void classifyRow(const float* depth, const float* before, const RowSums* const r
                  const ConfidenceEstimatorParams& params, std::uint8_t* levels) {
     for (int x = 0; x < w; ++x) {
         const double centre = depth[x];
-        if (!measured(depth[x]))
+        if (!frame::isMeasured(depth[x]))
             continue;
         const double n = rows[0]->count[x] + rows[1]->count[x] + rows[2]->count[x]; // >= 1: the pixel itself
         const double sum = rows[0]->sum[x] + rows[1]->sum[x] + rows[2]->sum[x];
@@ -68,7 +64,7 @@ void classifyRow(const float* depth, const float* before, const RowSums* const r
         const double scatter = std::max(0.0, n * squares - sum * sum); // n^2 times the variance
         const int invalid = 9 - static_cast<int>(n + 0.5);
         // Unknown on a first frame or where the previous one had no measurement: then it does not count.
-        const double change = before && measured(before[x]) ? std::abs(centre - before[x]) : 0.0;
+        const double change = before && frame::isMeasured(before[x]) ? std::abs(centre - before[x]) : 0.0;
         const auto within = [&](int maxInvalid, float maxSpread, float maxChange) {
             const double limit = n * maxSpread * centre;
             return invalid <= maxInvalid && scatter <= limit * limit && change <= maxChange * centre;

@@ -413,12 +413,8 @@ Expected<double> subpixelRms(std::span<const Point3d> points, const PlaneModel& 
 
 namespace {
 
-bool measured(float d) {
-    return d > 0.0f && d < std::numeric_limits<float>::infinity(); // NaN fails both
-}
-
 bool differsSameSense(float d, float a, float b, float threshold) {
-    return measured(a) && measured(b) &&
+    return frame::isMeasured(a) && frame::isMeasured(b) &&
            ((a - d > threshold && b - d > threshold) || (d - a > threshold && d - b > threshold));
 }
 
@@ -434,7 +430,7 @@ struct RowView {
 
 SampleCause classify(const RowView& v, int x, const QualityParams& params) {
     const float d = v.row[x];
-    if (!measured(d))
+    if (!frame::isMeasured(d))
         return SampleCause::NoMeasurement;
     if (d < params.nearMeters || d > params.farMeters)
         return SampleCause::OutOfRange;

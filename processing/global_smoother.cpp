@@ -29,10 +29,6 @@ constexpr float kMinSolvedWeight = 1e-6f;
 constexpr float kConfidenceWeight[3] = {0.0f, 0.5f, 1.0f};
 constexpr int kRowsPerPiece = 16;
 
-bool measured(float depth) {
-    return std::isfinite(depth) && depth > 0.0f;
-}
-
 int roundUp(int n, int multiple) {
     return (n + multiple - 1) / multiple * multiple;
 }
@@ -417,7 +413,7 @@ bool GlobalSmoother::Buffers::prepareSensor(const frame::DepthData& depth) {
     sensorValid.assign(d.pixels.size(), 0);
     double sum = 0.0, total = 0.0, validSum = 0.0, validCount = 0.0;
     for (std::size_t i = 0; i < d.pixels.size(); ++i) {
-        if (!measured(d.pixels[i]))
+        if (!frame::isMeasured(d.pixels[i]))
             continue;
         sensorValid[i] = 1;
         const float w =

@@ -23,12 +23,8 @@ constexpr float kMinWeight = 1e-3f;
 // A window whose fit is hopeless still counts a little, so a node with data never ends up without a model.
 constexpr float kMinFitWeight = 1e-30f;
 constexpr int kRowsPerPiece = 16;
-// measured() as two comparisons, which vectorise (isfinite does not): NaN fails both.
+// frame::isMeasured() as two comparisons, which vectorise (isfinite does not): NaN fails both.
 constexpr float kFarthest = std::numeric_limits<float>::max();
-
-bool measured(float depth) {
-    return std::isfinite(depth) && depth > 0.0f;
-}
 
 // Sums of K per-pixel quantities over every window [x-r, x+r] x [y-r, y+r] clipped to the w x h image,
 // for rows [y0, y1). Column sums slide down and a row sum slides across, both in double: a window costs
@@ -96,7 +92,7 @@ CentredDepth centre(const Plane<float>& depth, const Plane<float>* weight) {
     double sum = 0.0, total = 0.0;
     for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
         const float w = weight ? std::clamp(weight->pixels[i], 0.0f, 1.0f) : 1.0f;
-        if (!measured(depth.pixels[i]) || !(w >= kMinWeight))
+        if (!frame::isMeasured(depth.pixels[i]) || !(w >= kMinWeight))
             continue;
         c.weight.pixels[i] = w;
         sum += static_cast<double>(w) * depth.pixels[i];
@@ -181,10 +177,10 @@ float outputDepth(double filtered, bool hasModel, float ownCentred, float ownWei
     if (!(ownWeight >= 0.5f))
         return 0.0f;
     const auto q = static_cast<float>(filtered + offset);
-    if (hasModel && measured(q))
+    if (hasModel && frame::isMeasured(q))
         return q;
     const auto own = static_cast<float>(ownCentred + offset);
-    return measured(own) ? own : 0.0f;
+    return frame::isMeasured(own) ? own : 0.0f;
 }
 
 // The full filter on one grid, `d` already centred and on the guide's grid.
@@ -283,7 +279,7 @@ float ownDepth(const CentredDepth& sensor, int x, int y, int width, int height) 
         w += f * sensor.weight.at(px, py);
     }
     const auto own = static_cast<float>(w > 0.0 ? wz / w + sensor.offset : 0.0);
-    return measured(own) ? own : 0.0f;
+    return frame::isMeasured(own) ? own : 0.0f;
 }
 
 // One output row: a * guide + b + offset where the pixel was measured, else 0. Returns how many measured
@@ -319,7 +315,7 @@ void applyGridModels(const GridModels& g, const cv::Mat& guide8, const CentredDe
             const int unusable =
                 applyRow(ab.ptr<float>(y), w, guide8.ptr<std::uint8_t>(y), row, out.width, offset);
             for (int x = 0; unusable > 0 && x < out.width; ++x)
-                if (w[x] >= 0.5f && !measured(row[x]))
+                if (w[x] >= 0.5f && !frame::isMeasured(row[x]))
                     row[x] = ownDepth(sensor, x, y, out.width, out.height);
         }
     });

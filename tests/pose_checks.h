@@ -5,9 +5,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <numbers>
 #include <string>
 
 namespace dc::test {
+
+inline constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 // Whether a camera-to-world pose is rigid: its rotation part orthonormal (R^T R = I) with determinant +1,
 // not a reflection, and its bottom row (0, 0, 0, 1). Every source that gives poses must pass this.

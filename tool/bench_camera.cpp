@@ -7,6 +7,7 @@
 #include "render/gl_context.h"
 #include "tool/bench_frames.h"
 #include "tool/bench_gl_points.h"
+#include "tool/bench_median.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"
@@ -62,20 +63,6 @@ std::vector<CameraCase> cameraCases() {
 std::vector<frame::FramePtr> makeFrames(devices::SyntheticConfig config) {
     config.motion = true;
     return syntheticFrames(config, 8);
-}
-
-struct Spread {
-    double median = 0.0;
-    double p99 = 0.0;
-};
-
-Spread spreadOf(std::vector<double> samples) {
-    if (samples.empty())
-        return {};
-    std::sort(samples.begin(), samples.end());
-    const std::size_t n = samples.size();
-    const auto p99 = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1;
-    return {samples[n / 2], samples[std::min(p99, n - 1)]};
 }
 
 struct CaseResult {

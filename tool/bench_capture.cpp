@@ -19,7 +19,7 @@ namespace dc::tool {
 
 namespace {
 
-constexpr int kWarmupFrames = 10;
+constexpr int kCaptureWarmupFrames = 10;
 
 // A Z16 frame as a sensor sends it: a slanted plane in millimeters with a few holes (0 = no measurement).
 std::vector<std::uint8_t> z16Frame(int w, int h, int frame) {
@@ -73,7 +73,7 @@ int runBenchCapture(const BenchCaptureOptions& o) {
         totalMs(static_cast<std::size_t>(o.frames)), estimateMs(static_cast<std::size_t>(o.frames));
     std::uint64_t checksum = 0;
     frame::FramePtr last;
-    for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
+    for (int i = 0; i < kCaptureWarmupFrames + o.frames; ++i) {
         // Exactly the capture thread's work per depth+color pair (UvcDevice::takeBuffer, makeFrame).
         const double t0 = base::threadCpuMs();
         frame::Plane<float> meters;
@@ -86,7 +86,7 @@ int runBenchCapture(const BenchCaptureOptions& o) {
         frame->sceneDepth = frame::DepthData{std::move(meters), {}};
         last = frame;
         const double t3 = base::threadCpuMs();
-        if (i < kWarmupFrames)
+        if (i < kCaptureWarmupFrames)
             continue;
         depthMs.add(t1 - t0);
         colorMs.add(t2 - t1);
@@ -95,13 +95,13 @@ int runBenchCapture(const BenchCaptureOptions& o) {
     }
     // Separately, as it runs on the render thread: the confidence estimate such a camera gets.
     processing::ConfidenceEstimatorStage estimator;
-    for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
+    for (int i = 0; i < kCaptureWarmupFrames + o.frames; ++i) {
         const double t0 = base::threadCpuMs();
         const frame::FramePtr estimated = estimator.process(last, {});
         const double t1 = base::threadCpuMs();
         checksum += estimated->sceneDepth->confidence
                         .pixels[static_cast<std::size_t>(i) % (static_cast<std::size_t>(w) * h)];
-        if (i >= kWarmupFrames)
+        if (i >= kCaptureWarmupFrames)
             estimateMs.add(t1 - t0);
     }
     const Medians m{depthMs.median(), colorMs.median(), frameMs.median(), totalMs.median(),

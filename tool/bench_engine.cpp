@@ -9,6 +9,7 @@
 #include "engine/processing_graph.h"
 #include "render/gl_context.h"
 #include "render/view_renderer.h"
+#include "tool/bench_median.h"
 #include "tool/bench_settings.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
@@ -28,27 +29,8 @@ namespace dc::tool {
 namespace {
 
 using Clock = std::chrono::steady_clock;
-constexpr int kWarmupFrames = 30;
-constexpr int kDistinctFrames = 8;
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
-struct Spread {
-    double median = 0.0;
-    double p99 = 0.0;
-};
-
-Spread spreadOf(std::vector<double> samples) {
-    if (samples.empty())
-        return {};
-    std::sort(samples.begin(), samples.end());
-    const std::size_t n = samples.size();
-    const double median = n % 2 ? samples[n / 2] : 0.5 * (samples[n / 2 - 1] + samples[n / 2]);
-    const auto p99 = static_cast<std::size_t>(std::ceil(0.99 * static_cast<double>(n))) - 1;
-    return {median, samples[std::min(p99, n - 1)]};
-}
+constexpr int kEngineWarmupFrames = 30;
+constexpr int kEngineDistinctFrames = 8;
 
 nlohmann::json toJson(const Spread& s) {
     return {{"median", s.median}, {"p99", s.p99}};
@@ -63,7 +45,7 @@ std::vector<frame::FramePtr> benchFrames() {
     std::vector<frame::FramePtr> frames;
     if (!device.open())
         return frames;
-    for (int i = 0; i < kDistinctFrames; ++i) {
+    for (int i = 0; i < kEngineDistinctFrames; ++i) {
         auto f = std::make_shared<frame::Frame>(*device.makeFrame(static_cast<std::uint64_t>(i), i / 60.0));
         f->sceneDepth->confidence = {};
         frames.push_back(std::move(f));
@@ -98,8 +80,8 @@ Expected<EngineResult> runEngine(const BenchEngineOptions& o, std::vector<frame:
     auto due = Clock::now();
     engine::FrameCounts framesBefore;
     engine::ProcessorCounts before;
-    for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
-        if (i == kWarmupFrames) {
+    for (int i = 0; i < kEngineWarmupFrames + o.frames; ++i) {
+        if (i == kEngineWarmupFrames) {
             framesBefore = instrument.status().frames;
             before = instrument.processor().counts();
         }
@@ -115,7 +97,7 @@ Expected<EngineResult> runEngine(const BenchEngineOptions& o, std::vector<frame:
         gui.render();
         glFinish();
         viewer.presented();
-        if (i >= kWarmupFrames) {
+        if (i >= kEngineWarmupFrames) {
             r.glCpuMs.push_back(glCpu);
             r.updateCpuMs.push_back(updated - cpu);
             r.uiCpuMs.push_back(cpu + glCpu - updated);
@@ -147,14 +129,14 @@ InlineResult runInline(const BenchEngineOptions& o, const std::vector<frame::Fra
                        const engine::Demand& demand) {
     engine::ProcessingGraph graph;
     InlineResult r;
-    for (int i = 0; i < kWarmupFrames + o.frames; ++i) {
+    for (int i = 0; i < kEngineWarmupFrames + o.frames; ++i) {
         auto f = std::make_shared<frame::Frame>(*frames[static_cast<std::size_t>(i) % frames.size()]);
         f->sequence = static_cast<std::uint64_t>(i);
         f->timestampNs = static_cast<std::int64_t>(i + 1) * 16'666'667;
         const auto wall = Clock::now();
         const double cpu = base::threadCpuMs();
         const processing::ShownFramePtr shown = graph.run(f, demand, 1, true);
-        if (i >= kWarmupFrames) {
+        if (i >= kEngineWarmupFrames) {
             r.cpuMs.push_back(base::threadCpuMs() - cpu);
             r.wallMs.push_back(msSince(wall));
         }

@@ -10,6 +10,7 @@
 #include "processing/point_colours.h"
 #include "render/accumulated_points.h"
 #include "render/gl_context.h"
+#include "tool/bench_median.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"
@@ -27,10 +28,6 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 constexpr double kTargetMs = 1.0;
-
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
 
 // Frames of the swaying synthetic camera, a quarter second apart, so consecutive poses differ.
 std::vector<frame::FramePtr> movingFrames(int count) {

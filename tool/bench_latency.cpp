@@ -18,18 +18,13 @@ namespace {
 
 using namespace std::chrono_literals;
 
-constexpr int kWarmupFrames = 10;     // the first frames include connecting and subscribing
-constexpr auto kFirstFrameWait = 10s; // a source that delivers nothing in this long is a failure
+constexpr int kLatencyWarmupFrames = 10; // the first frames include connecting and subscribing
+constexpr auto kFirstFrameWait = 10s;    // a source that delivers nothing in this long is a failure
 
 double percentile(std::vector<double> values, double p) {
     std::sort(values.begin(), values.end());
     const auto at = static_cast<std::size_t>(p * static_cast<double>(values.size() - 1) + 0.5);
     return values[std::min(at, values.size() - 1)];
-}
-
-int fail(const std::string& message, int code = kExitFailure) {
-    std::fprintf(stderr, "depthcloud bench latency: error: %s\n", message.c_str());
-    return code;
 }
 
 } // namespace
@@ -52,14 +47,15 @@ CLI::App* addBenchLatencyCommand(CLI::App& bench, BenchLatencyOptions& o) {
 int runBenchLatency(const BenchLatencyOptions& o) {
     auto device = devices::openSourceSpec(o.source);
     if (!device)
-        return fail("--source: " + device.error().message, kExitBadArguments);
+        return commandFailed("bench latency", "--source: " + device.error().message, kExitBadArguments);
     const devices::Capabilities capabilities = (*device)->capabilities();
     if (!devices::nowOnFrameClockNs(capabilities))
-        return fail("--source: " + o.source + " is not live: its frames carry no capture time",
-                    kExitBadArguments);
+        return commandFailed("bench latency",
+                             "--source: " + o.source + " is not live: its frames carry no capture time",
+                             kExitBadArguments);
     devices::Session session(std::move(*device));
     if (Status s = session.start(); !s)
-        return fail(s.error().message);
+        return commandFailed("bench latency", s.error().message);
     std::vector<double> agesMs;
     int seen = 0;
     const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(o.seconds);
@@ -67,15 +63,16 @@ int runBenchLatency(const BenchLatencyOptions& o) {
         auto frame = session.waitForFrame(seen == 0 ? std::chrono::milliseconds(kFirstFrameWait) : 1000ms);
         const std::int64_t now = *devices::nowOnFrameClockNs(capabilities);
         if (!frame && seen == 0)
-            return fail(session.description() + " delivered no frame in " +
-                        std::to_string(kFirstFrameWait.count()) + " s");
-        if (frame && ++seen > kWarmupFrames)
+            return commandFailed("bench latency", session.description() + " delivered no frame in " +
+                                                      std::to_string(kFirstFrameWait.count()) + " s");
+        if (frame && ++seen > kLatencyWarmupFrames)
             agesMs.push_back(devices::frameAgeMs(**frame, now));
     }
     const devices::SessionStats stats = session.stats();
     session.stop();
     if (agesMs.empty())
-        return fail("no frame after the first " + std::to_string(kWarmupFrames));
+        return commandFailed("bench latency",
+                             "no frame after the first " + std::to_string(kLatencyWarmupFrames));
     const double median = percentile(agesMs, 0.5), p99 = percentile(agesMs, 0.99),
                  worst = percentile(agesMs, 1.0);
     std::printf("%s: %zu frames, %s -> delivered: median %.2f ms, p99 %.2f ms, max %.2f ms; %llu dropped\n",
@@ -87,7 +84,7 @@ int runBenchLatency(const BenchLatencyOptions& o) {
                                {"medianMs", median}, {"p99Ms", p99},
                                {"maxMs", worst},     {"dropped", stats.framesDropped}};
         if (Status s = base::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s)
-            return fail(s.error().message);
+            return commandFailed("bench latency", s.error().message);
     }
     return kExitOk;
 }

@@ -21,7 +21,7 @@ namespace {
 
 constexpr int kDepthWidth = 1280;
 constexpr int kDepthHeight = 720;
-constexpr int kDistinctFrames = 8;
+constexpr int kQualityDistinctFrames = 8;
 constexpr int kNoiseWindowFrames = 30;
 
 // What the figures are made for: the synthetic camera's flat target (synthetic:plane=1.5,10,1), a wall
@@ -121,7 +121,7 @@ int runBenchQuality(const BenchQualityOptions& o) {
     devices::SyntheticConfig config;
     config.depthWidth = kDepthWidth;
     config.depthHeight = kDepthHeight;
-    const std::vector<frame::FramePtr> sceneFrames = syntheticFrames(config, kDistinctFrames);
+    const std::vector<frame::FramePtr> sceneFrames = syntheticFrames(config, kQualityDistinctFrames);
     if (sceneFrames.empty() || !sceneFrames.front()->sceneDepth) {
         std::fprintf(stderr, "depthcloud: error: cannot make synthetic frames\n");
         return kExitFailure;
@@ -130,9 +130,9 @@ int runBenchQuality(const BenchQualityOptions& o) {
     std::vector<frame::DepthData> scene;
     for (const frame::FramePtr& f : sceneFrames)
         scene.push_back(*f->sceneDepth);
-    const std::vector<frame::DepthData> flat = flatTarget(k, kDistinctFrames);
+    const std::vector<frame::DepthData> flat = flatTarget(k, kQualityDistinctFrames);
     std::printf("depthcloud bench quality --frames %d: %d distinct frames of each scene\n", o.frames,
-                kDistinctFrames);
+                kQualityDistinctFrames);
     nlohmann::json results = nlohmann::json::array();
     results.push_back(runCase("flat target", flat, k, 40.0, o.frames));
     results.push_back(runCase("flat target", flat, k, 100.0, o.frames));

@@ -10,6 +10,7 @@
 #include "devices/source_spec.h"
 #include "devices/synthetic/synthetic_device.h"
 #include "frame/rgb_image.h"
+#include "tool/bench_frames.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
 
@@ -68,21 +69,6 @@ double decodeAll(const std::string& name, devices::replay::ReplaySource& source,
     return median;
 }
 
-// Frames of a synthetic camera, generated as fast as it can.
-std::vector<frame::FramePtr> syntheticFrames(devices::SyntheticConfig config, int count) {
-    config.paced = false;
-    devices::SyntheticDevice device(config);
-    std::vector<frame::FramePtr> frames;
-    if (!device.open() || !device.start())
-        return frames;
-    while (static_cast<int>(frames.size()) < count) {
-        auto r = device.capture(std::chrono::milliseconds(1000));
-        if (r.kind == devices::CaptureResult::Kind::Frame)
-            frames.push_back(r.frame);
-    }
-    return frames;
-}
-
 // What a case records: a few distinct frames of one source, replayed at the source's own rate.
 struct BenchFrames {
     std::vector<frame::FramePtr> frames;
@@ -90,7 +76,7 @@ struct BenchFrames {
     std::string description;
 };
 
-constexpr int kDistinctFrames = 30;
+constexpr int kRecordingDistinctFrames = 30;
 
 std::string describe(const frame::Frame& f, double fps, const std::string& source) {
     char text[160];
@@ -108,7 +94,7 @@ BenchFrames defaultFrames() {
     config.depthWidth = config.cameraWidth = 1280;
     config.depthHeight = config.cameraHeight = 720;
     config.motion = true;
-    BenchFrames b{syntheticFrames(config, kDistinctFrames), 30.0, {}};
+    BenchFrames b{syntheticFrames(config, kRecordingDistinctFrames), 30.0, {}};
     if (!b.frames.empty())
         b.description = describe(*b.frames.front(), b.fps, "synthetic");
     return b;
@@ -122,7 +108,7 @@ Expected<BenchFrames> sourceFrames(devices::Device& device, const std::string& s
         return s.error();
     BenchFrames b;
     b.fps = device.capabilities().nominalFps > 0.0 ? device.capabilities().nominalFps : 30.0;
-    for (int misses = 0; static_cast<int>(b.frames.size()) < kDistinctFrames && misses < 5;) {
+    for (int misses = 0; static_cast<int>(b.frames.size()) < kRecordingDistinctFrames && misses < 5;) {
         auto r = device.capture(std::chrono::milliseconds(1000));
         if (r.kind == devices::CaptureResult::Kind::Frame)
             b.frames.push_back(r.frame);

@@ -8,6 +8,7 @@
 #include "render/orbit_camera.h"
 #include "tool/bench_frames.h"
 #include "tool/bench_gl_points.h"
+#include "tool/bench_median.h"
 #include "tool/gpu_clock.h"
 #include "tool/options.h"
 #include "ui/headless_ui.h"
@@ -28,7 +29,7 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-constexpr int kWarmupFrames = 20;
+constexpr int kRenderWarmupFrames = 20;
 
 struct BenchCase {
     const char* name;
@@ -69,10 +70,6 @@ double percentile(const base::RollingStats& stats, double fraction) {
     return sorted[static_cast<std::size_t>(fraction * static_cast<double>(sorted.size() - 1))];
 }
 
-double msSince(Clock::time_point start) {
-    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
-}
-
 // Eight distinct noisy frames, made before timing starts so the capture thread costs nothing while the
 // viewer is measured. They arrive at the camera's rate (--source-fps): each timed frame waits for the next
 // one, and the wait is not counted.
@@ -97,7 +94,7 @@ template <class Before, class Draw> FrameTimes timeFrames(int frames, Before&& b
     const auto n = static_cast<std::size_t>(frames);
     FrameTimes t{base::RollingStats(n), base::RollingStats(n), base::RollingStats(n), base::RollingStats(n)};
     const render::gl::Query query = render::gl::Query::create();
-    for (int i = 0; i < kWarmupFrames + frames; ++i) {
+    for (int i = 0; i < kRenderWarmupFrames + frames; ++i) {
         before(i);
         const auto start = Clock::now();
         const double cpuStart = base::threadCpuMs();
@@ -108,7 +105,7 @@ template <class Before, class Draw> FrameTimes timeFrames(int frames, Before&& b
         glFinish();
         GLuint64 gpuNs = 0;
         glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &gpuNs);
-        if (i < kWarmupFrames)
+        if (i < kRenderWarmupFrames)
             continue;
         t.wall.add(msSince(start));
         t.cpu.add(cpuMs);
@@ -245,7 +242,7 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
                              viewer.update(i / 60.0);
                              viewer.drawUi();
                              result.stillDrawn +=
-                                 gui.renderIfChanged(renderer.contentVersion()) && i >= kWarmupFrames;
+                                 gui.renderIfChanged(renderer.contentVersion()) && i >= kRenderWarmupFrames;
                          }).wall.median();
         result.cloudWidth = renderer.cloudTarget().width();
         result.cloudHeight = renderer.cloudTarget().height();

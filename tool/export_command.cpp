@@ -16,11 +16,6 @@ namespace dc::tool {
 
 namespace {
 
-int fail(const std::string& message, int code) {
-    std::fprintf(stderr, "depthcloud export: error: %s\n", message.c_str());
-    return code;
-}
-
 // A one-line progress bar on stderr, redrawn when the percentage changes.
 class ProgressBar {
 public:
@@ -83,11 +78,12 @@ int runExport(const ExportOptionsCli& o) {
     setLogQuiet(true);
     if (o.format == "mcap")
         if (const std::string problem = mcapDestinationProblem(o); !problem.empty())
-            return fail("--out: " + problem, kExitBadArguments);
+            return commandFailed("export", "--out: " + problem, kExitBadArguments);
     auto source = devices::replay::openReplaySpecSource(o.source);
     if (!source)
-        return fail("--source: " + source.error().message,
-                    devices::video::isVideoSupportMissing(source.error()) ? kExitFailure : kExitBadArguments);
+        return commandFailed("export", "--source: " + source.error().message,
+                             devices::video::isVideoSupportMissing(source.error()) ? kExitFailure
+                                                                                   : kExitBadArguments);
     exporting::ExportOptions options;
     options.format = formatOf(o.format);
     options.outDirectory = o.out;
@@ -97,14 +93,14 @@ int runExport(const ExportOptionsCli& o) {
     if (!o.frames.empty()) {
         auto range = exporting::parseFrameRange(o.frames, (*source)->frameCount());
         if (!range)
-            return fail("--frames: " + range.error().message, kExitBadArguments);
+            return commandFailed("export", "--frames: " + range.error().message, kExitBadArguments);
         options.frames = *range;
     }
     ProgressBar bar;
     auto result = exporting::exportFrames(
         **source, options, [&bar](std::size_t done, std::size_t total) { return bar.update(done, total); });
     if (!result)
-        return fail(result.error().message, kExitFailure);
+        return commandFailed("export", result.error().message, kExitFailure);
     std::printf("depthcloud export: wrote %zu frames as %s%s to %s%s\n", result->framesWritten,
                 exporting::toString(options.format),
                 options.transform ? (", depth upsampled (" + o.upsample + ")").c_str() : "", o.out.c_str(),

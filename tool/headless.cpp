@@ -22,11 +22,6 @@ constexpr std::chrono::seconds kLongestWait{60};
 // Headless runs animate on a fixed clock so that the same command writes the same cloud.png.
 constexpr double kHeadlessFrameSeconds = 1.0 / 60.0;
 
-int fail(const std::string& message) {
-    std::fprintf(stderr, "depthcloud: error: %s\n", message.c_str());
-    return kExitFailure;
-}
-
 bool replayEnded(const engine::Instrument& instrument) {
     const auto& replay = instrument.replay();
     return replay && replay->status().atEnd && !replay->status().loop;
@@ -107,18 +102,18 @@ int runHeadless(const ViewerOptions& options) {
     setLogQuiet(true);
     auto context = render::EglContext::createHeadless();
     if (!context)
-        return fail(context.error().message);
+        return commandFailed("", context.error().message);
     auto device = devices::openSourceSpec(options.source);
     if (!device)
-        return fail(device.error().message);
+        return commandFailed("", device.error().message);
     render::ViewRenderer renderer;
     if (Status s = renderer.init(); !s)
-        return fail(s.error().message);
+        return commandFailed("", s.error().message);
     engine::Instrument instrument(std::move(*device), options.source);
     // Headless snapshots start from the defaults, never a user's saved view; --settings and --set choose.
     auto settings = chosenSettings({}, options);
     if (!settings)
-        return fail(settings.error().message);
+        return commandFailed("", settings.error().message);
     ui::Presenter presenter(instrument, renderer, *settings);
     presenter.resizeCloud(kCloudWidth, kCloudHeight);
     instrument.start();
@@ -141,17 +136,18 @@ int runHeadless(const ViewerOptions& options) {
             break;
         }
         const engine::InstrumentStatus s = instrument.status();
-        return fail("no frame from " + s.source + " for " + std::to_string(kFrameTimeout.count()) + " s" +
-                    (s.message.empty() ? "" : ": " + s.message));
+        return commandFailed("", "no frame from " + s.source + " for " +
+                                     std::to_string(kFrameTimeout.count()) + " s" +
+                                     (s.message.empty() ? "" : ": " + s.message));
     }
     if (!showsColour(presenter))
         (void)waitForColour(presenter, shown * kHeadlessFrameSeconds);
     auto written = presenter.savePanels(options.outDirectory);
     if (!written)
-        return fail(written.error().message);
+        return commandFailed("", written.error().message);
     const std::string summary = summaryJson(presenter.summary(), context->rendererName(), "headless");
     if (Status s = base::writeTextFile(options.outDirectory + "/summary.json", summary); !s)
-        return fail(s.error().message);
+        return commandFailed("", s.error().message);
     written->emplace_back("summary.json");
     std::string names;
     for (const std::string& name : *written)

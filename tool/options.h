@@ -4,6 +4,7 @@
 #include "frame/frame.h"
 #include "ui/settings.h"
 
+#include <cstdio>
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +15,13 @@ namespace dc::tool {
 inline constexpr int kExitOk = 0;
 inline constexpr int kExitFailure = 1; // something went wrong while running
 inline constexpr int kExitBadArguments = 2;
+
+// A command's one-line error on stderr, "depthcloud COMMAND: error: MESSAGE" ("depthcloud: error: ..." for
+// the viewer itself), and the exit code to return with it.
+inline int commandFailed(const char* command, const std::string& message, int code = kExitFailure) {
+    std::fprintf(stderr, "depthcloud%s%s: error: %s\n", *command ? " " : "", command, message.c_str());
+    return code;
+}
 
 struct ViewerOptions {
     std::string source = "synthetic";

@@ -40,11 +40,6 @@ struct Expectation {
     double value = 0.0;
 };
 
-int fail(const std::string& message, int code = kExitFailure) {
-    std::fprintf(stderr, "depthcloud quality: error: %s\n", message.c_str());
-    return code;
-}
-
 std::vector<std::string> split(const std::string& text, char separator) {
     std::vector<std::string> parts;
     std::stringstream in(text);
@@ -266,9 +261,11 @@ int checkExpectations(const json& j, const std::vector<Expectation>& expectation
     for (const Expectation& e : expectations) {
         const json& got = j[e.key];
         if (!got.is_number())
-            return fail("expectation " + e.text + " failed: " + e.key + " was not measured");
+            return commandFailed("quality",
+                                 "expectation " + e.text + " failed: " + e.key + " was not measured");
         if (!holds(got.get<double>(), e))
-            return fail("expectation " + e.text + " failed: " + e.key + " = " + got.dump());
+            return commandFailed("quality",
+                                 "expectation " + e.text + " failed: " + e.key + " = " + got.dump());
     }
     return kExitOk;
 }
@@ -323,25 +320,26 @@ int runQuality(const QualityOptions& o) {
     if (problem.empty())
         problem = qualityParams(o, params);
     if (!problem.empty())
-        return fail(problem, kExitBadArguments);
+        return commandFailed("quality", problem, kExitBadArguments);
     auto device = devices::openSourceSpec(o.source);
     if (!device)
-        return fail("--source: " + device.error().message, kExitBadArguments);
+        return commandFailed("quality", "--source: " + device.error().message, kExitBadArguments);
     if (Status s = (*device)->open(); !s)
-        return fail(s.error().message);
+        return commandFailed("quality", s.error().message);
     if (Status s = (*device)->start(); !s)
-        return fail(s.error().message);
+        return commandFailed("quality", s.error().message);
     Capture c;
     problem = capture(**device, o, params, c);
     (void)(*device)->stop();
     (*device)->close();
     if (!problem.empty())
-        return fail(problem, problem.rfind("--", 0) == 0 ? kExitBadArguments : kExitFailure);
+        return commandFailed("quality", problem,
+                             problem.rfind("--", 0) == 0 ? kExitBadArguments : kExitFailure);
     const json j = report(c.collected, *c.noise, c.roi);
     print(j);
     if (!o.jsonPath.empty()) {
         if (Status s = base::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s)
-            return fail("--json " + o.jsonPath + ": " + s.error().message);
+            return commandFailed("quality", "--json " + o.jsonPath + ": " + s.error().message);
     }
     return checkExpectations(j, expectations);
 }

@@ -28,11 +28,6 @@ void requestStop(int) {
     gStopRequested = 1;
 }
 
-int fail(const std::string& message, int code = kExitFailure) {
-    std::fprintf(stderr, "depthcloud record: error: %s\n", message.c_str());
-    return code;
-}
-
 devices::recording::RecordingOptions recordingOptions(const RecordOptions& o) {
     devices::recording::RecordingOptions r;
     r.color = o.color == "jpeg" ? devices::recording::ColorStorage::Jpeg
@@ -113,8 +108,8 @@ int convertToMcap(const std::string& recording, const RecordOptions& o) {
     auto result = source ? exporting::exportFrames(**source, options)
                          : Expected<exporting::ExportResult>(source.error());
     if (!result)
-        return fail("converting to MCAP: " + result.error().message + " (the frames are kept in " +
-                    recording + ")");
+        return commandFailed("record", "converting to MCAP: " + result.error().message +
+                                           " (the frames are kept in " + recording + ")");
     std::error_code ec;
     std::filesystem::remove(recording, ec);
     std::printf("depthcloud record: converted %zu frames to %s\n", result->framesWritten, o.out.c_str());
@@ -129,22 +124,22 @@ int runRecord(const RecordOptions& o) {
     if (Status s = isMcap(o.out) ? checkMcapDestination(o)
                                  : devices::recording::RecordingWriter::checkDestination(o.out, o.overwrite);
         !s)
-        return fail("OUT: " + s.error().message, kExitBadArguments);
+        return commandFailed("record", "OUT: " + s.error().message, kExitBadArguments);
     auto device = devices::openSourceSpec(o.source);
     if (!device)
-        return fail("--source: " + device.error().message, kExitBadArguments);
+        return commandFailed("record", "--source: " + device.error().message, kExitBadArguments);
     devices::Session session(std::move(*device));
     std::optional<std::uint64_t> limit;
     if (o.frames)
         limit = static_cast<std::uint64_t>(*o.frames);
     auto recording = devices::recording::SessionRecording::start(session, path, recordingOptions(o), limit);
     if (!recording)
-        return fail(recording.error().message);
+        return commandFailed("record", recording.error().message);
     std::signal(SIGINT, requestStop);
     std::signal(SIGTERM, requestStop);
     if (Status s = session.start(); !s) {
         (void)(*recording)->stop();
-        return fail(s.error().message);
+        return commandFailed("record", s.error().message);
     }
     const auto start = std::chrono::steady_clock::now();
     const std::string problem = waitForEnd(session, **recording, o);
@@ -155,14 +150,14 @@ int runRecord(const RecordOptions& o) {
     printProgress(stats, seconds);
     std::fprintf(stderr, "\n");
     if (!closed)
-        return fail(closed.error().message);
+        return commandFailed("record", closed.error().message);
     std::printf("depthcloud record: wrote %llu frames (%llu dropped, %.1f MB) to %s\n",
                 static_cast<unsigned long long>(stats.framesWritten),
                 static_cast<unsigned long long>(stats.framesDropped),
                 static_cast<double>(stats.bytesWritten) / 1e6, path.c_str());
     const int converted = isMcap(o.out) ? convertToMcap(path, o) : kExitOk;
     if (!problem.empty())
-        return fail(problem + " (the frames before it are recorded)");
+        return commandFailed("record", problem + " (the frames before it are recorded)");
     return converted;
 }
 

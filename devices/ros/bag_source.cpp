@@ -13,10 +13,6 @@ namespace dc::devices::ros {
 
 namespace {
 
-constexpr const char* kImageType = "sensor_msgs/Image";
-// Without camera_info the cloud still has a shape: RealSense depth's field of view, flagged approximate.
-constexpr double kFallbackFovDegrees = 87.0;
-
 // A RealSense stream's topics share a prefix: <prefix>/image/data, <prefix>/info/camera_info, <prefix>/tf/N.
 std::optional<std::string> realsensePrefix(const std::string& imageTopic) {
     const std::string suffix = "/image/data";
@@ -173,8 +169,8 @@ Status BagSource::checkTopic(const std::string& topic, ImageKind want, const cha
                                     [&](const MessageStore::Topic& t) { return t.name == topic; });
     if (found == topics.end())
         return Error{path_ + " has no topic " + topic};
-    if (found->type != kImageType)
-        return Error{path_ + ": topic " + topic + " is " + found->type + ", not " + kImageType};
+    if (found->type != kRosImageType)
+        return Error{path_ + ": topic " + topic + " is " + found->type + ", not " + kRosImageType};
     if (const auto image = bag_->firstImage(topic); !image || imageKind(image->encoding) != want)
         return Error{path_ + ": topic " + topic + " is not a " + what + " image (encoding '" +
                      (image ? image->encoding : "unreadable") + "')"};
@@ -195,7 +191,7 @@ Status BagSource::chooseTopics() {
     };
     std::vector<std::pair<int, std::string>> depths, colours;
     for (const MessageStore::Topic& t : bag_->topics()) {
-        if (t.type != kImageType)
+        if (t.type != kRosImageType)
             continue;
         const ImageKind kind = kindOf(*bag_, t.name);
         if (kind == ImageKind::Depth)
@@ -280,7 +276,7 @@ void BagSource::chooseInfrared() {
     int best = 2;
     for (const MessageStore::Topic& t : bag_->topics()) {
         const int rank = infraredRank(t.name);
-        if (t.type != kImageType || t.name == depthTopic_ || rank < 0 || rank >= best)
+        if (t.type != kRosImageType || t.name == depthTopic_ || rank < 0 || rank >= best)
             continue;
         if (const auto image = bag_->firstImage(t.name); image && isInfraredEncoding(image->encoding)) {
             infraredTopic_ = t.name;
@@ -349,7 +345,7 @@ Expected<frame::Frame> BagSource::frame(std::size_t i) {
     frame.rig = rigCalibration_;
     const frame::Intrinsics depthK =
         rig_.depth ? rig_.depth->intrinsics
-                   : frame::intrinsicsFromFieldOfView(depth->width, depth->height, kFallbackFovDegrees);
+                   : frame::intrinsicsFromFieldOfView(depth->width, depth->height, kRosFallbackFovDegrees);
     frame.cameraIntrinsics = depthK.scaledTo(depth->width, depth->height);
     frame.sceneDepth = frame::DepthData{std::move(*depth), {}};
     if (decodeColor_ && colorOf_[i]) {

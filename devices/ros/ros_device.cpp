@@ -15,12 +15,10 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-constexpr auto kProbeTimeout = 1000ms;       // a master that does not answer in this long is away
-constexpr auto kMasterCheckInterval = 1s;    // how soon a vanished master shows as Disconnected
-constexpr auto kInfoGrace = 1s;              // depth waits this long for camera_info before a guessed lens
-constexpr std::size_t kMaxInbox = 8;         // messages the capture thread has not taken yet; oldest dropped
-constexpr double kFallbackFovDegrees = 87.0; // RealSense depth's, as for bags without camera_info
-constexpr const char* kImageType = "sensor_msgs/Image";
+constexpr auto kProbeTimeout = 1000ms;    // a master that does not answer in this long is away
+constexpr auto kMasterCheckInterval = 1s; // how soon a vanished master shows as Disconnected
+constexpr auto kInfoGrace = 1s;           // depth waits this long for camera_info before a guessed lens
+constexpr std::size_t kMaxInbox = 8;      // messages the capture thread has not taken yet; oldest dropped
 constexpr const char* kCameraInfoType = "sensor_msgs/CameraInfo";
 
 std::string seconds(std::chrono::milliseconds ms) {
@@ -76,8 +74,8 @@ Status RosDevice::checkTopicTypes() {
     auto topics = advertisedTopics();
     if (!topics)
         return topics.error();
-    const std::pair<const std::string*, const char*> expected[] = {{&config_.depthTopic, kImageType},
-                                                                   {&config_.colorTopic, kImageType},
+    const std::pair<const std::string*, const char*> expected[] = {{&config_.depthTopic, kRosImageType},
+                                                                   {&config_.colorTopic, kRosImageType},
                                                                    {&config_.infoTopic, kCameraInfoType}};
     for (const auto& [name, type] : expected)
         for (const TopicInfo& t : *topics)
@@ -248,7 +246,7 @@ std::optional<frame::Intrinsics> RosDevice::intrinsicsFor(int width, int height)
         logWarning(description() + ": no camera_info on " + config_.infoTopic +
                    "; approximate geometry from a default field of view");
     }
-    return frame::intrinsicsFromFieldOfView(width, height, kFallbackFovDegrees);
+    return frame::intrinsicsFromFieldOfView(width, height, kRosFallbackFovDegrees);
 }
 
 // The camera's pose from /tf when a fixed frame was asked for; a missing transform is said once and the

@@ -11,6 +11,12 @@
 // sensor_msgs images and camera_info as depthcloud frames: shared by bag replay and the live ROS source.
 namespace dc::devices::ros {
 
+// The message type of image topics, in ROS 1 spelling (message stores give ROS 2's in it too).
+inline constexpr const char* kRosImageType = "sensor_msgs/Image";
+// A depth stream without camera_info is placed with this horizontal field of view: a RealSense depth
+// sensor's, the camera ROS users record most.
+inline constexpr double kRosFallbackFovDegrees = 87.0;
+
 // What an image topic carries, from its encoding.
 enum class ImageKind { Depth, Color, Other };
 ImageKind imageKind(const std::string& encoding);

@@ -1,5 +1,6 @@
 #include "devices/ros/ros_listing.h"
 
+#include "devices/ros/ros_image.h"
 #include "devices/ros/ros_master.h"
 #include "devices/ros/ros_node.h"
 
@@ -28,7 +29,7 @@ RosListing listRosImageTopics() {
         return listing;
     }
     for (const TopicInfo& t : *topics)
-        if (t.type == "sensor_msgs/Image")
+        if (t.type == kRosImageType)
             listing.imageTopics.push_back(t.name);
     return listing;
 }

@@ -6,6 +6,7 @@
 #include "devices/device.h"
 #include "devices/frame_pacer.h"
 #include "devices/synthetic/synthetic_device.h"
+#include "engine/demand.h"
 
 #include <chrono>
 #include <condition_variable>
@@ -17,6 +18,13 @@
 #include <vector>
 
 namespace dc::engine::test {
+
+// The cloud and every depth panel, without the camera panel's resampled image.
+inline Demand cloudAndPanels() {
+    Demand d;
+    d.cameraPanelWidth = 0;
+    return d;
+}
 
 // 256x192 depth with a small camera image: every stage runs, but quickly.
 inline devices::SyntheticConfig smallScene() {

@@ -20,12 +20,6 @@ namespace {
 
 using namespace std::chrono_literals;
 
-Demand cloudAndPanels() {
-    Demand d;
-    d.cameraPanelWidth = 0;
-    return d;
-}
-
 bool any(const processing::ShownFrame&) {
     return true;
 }

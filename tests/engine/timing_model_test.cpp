@@ -18,12 +18,6 @@ using devices::FrameRecord;
 
 constexpr std::int64_t kMs = 1'000'000;
 
-Demand cloudAndPanels() {
-    Demand d;
-    d.cameraPanelWidth = 0;
-    return d;
-}
-
 frame::FrameTiming driverTiming(std::uint32_t sequence, std::int64_t sensorNs,
                                 frame::TimestampSource source = frame::TimestampSource::StartOfExposure) {
     frame::FrameTiming t;

@@ -23,7 +23,6 @@
 namespace dc::render::test {
 namespace {
 
-const glm::vec3 kBackground{1.0f, 0.0f, 1.0f}; // magenta: no colour of the synthetic scene
 constexpr std::uint8_t kGray = processing::kUnseenGray;
 
 struct Comparison {
@@ -34,7 +33,8 @@ struct Comparison {
 
 Comparison compare(const std::vector<std::uint8_t>& cpu, const std::vector<std::uint8_t>& other) {
     Comparison c;
-    const Rgba background = toRgba(frame::Rgb{kBackground.r, kBackground.g, kBackground.b});
+    const Rgba background =
+        toRgba(frame::Rgb{kMagentaBackground.r, kMagentaBackground.g, kMagentaBackground.b});
     for (std::size_t i = 0; i + 3 < cpu.size(); i += 4) {
         const Rgba a{cpu[i], cpu[i + 1], cpu[i + 2], cpu[i + 3]};
         if (a == background)
@@ -68,7 +68,7 @@ protected:
         CloudParams params;
         params.viewProjection = pinholeViewProjection(depth.intrinsics, depth.width(), depth.height());
         params.pointSizePixels = 1.0f;
-        params.background = kBackground;
+        params.background = kMagentaBackground;
         params.nearMeters = 0.0f;
         renderer_.render(target_, textures_, params);
         const std::vector<std::uint8_t> cpu = target_.readRgba();
@@ -169,7 +169,7 @@ TEST_F(CameraColoursTest, TheSplatPathShowsTheShadersColours) {
     CloudParams params;
     params.viewProjection = pinholeViewProjection(depth.intrinsics, depth.width(), depth.height());
     params.pointSizePixels = 1.0f;
-    params.background = kBackground;
+    params.background = kMagentaBackground;
     params.nearMeters = 0.0f;
     CloudSplatter splatter;
     splatter.splatSamples(*depth.data, depth.intrinsics, colours.get(), params, depth.width(),

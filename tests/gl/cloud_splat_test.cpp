@@ -16,9 +16,8 @@
 namespace dc::render::test {
 namespace {
 
-constexpr int kWidth = 480;
-constexpr int kHeight = 360;
-const glm::vec3 kBackground{1.0f, 0.0f, 1.0f}; // magenta: no colour of the synthetic scene
+constexpr int kSplatWidth = 480;
+constexpr int kSplatHeight = 360;
 
 class CloudSplatTest : public GlTest, public ::testing::WithParamInterface<float> {
 protected:
@@ -26,16 +25,17 @@ protected:
         GlTest::SetUp();
         ASSERT_FALSE(HasFatalFailure());
         ASSERT_TRUE(renderer_.init().ok());
-        ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+        ASSERT_TRUE(target_.resize(kSplatWidth, kSplatHeight).ok());
         frame_ = devices::SyntheticDevice{}.makeFrame(0, 0.0);
         uploadFrame(textures_, *frame_);
         const frame::Intrinsics k = frame_->depthIntrinsics();
         colours_ = processing::pointColours(frame_->capturedImage, k.width, k.height);
         // An oblique view, so that points overlap and the depth test decides.
-        params_.viewProjection = cloudViewProjection({0.5f, 0.3f, 1.2f, {0.02f, -0.01f}}, 1.2f,
-                                                     verticalFovRadians(k), float(kWidth) / kHeight);
+        params_.viewProjection =
+            cloudViewProjection({0.5f, 0.3f, 1.2f, {0.02f, -0.01f}}, 1.2f, verticalFovRadians(k),
+                                float(kSplatWidth) / kSplatHeight);
         params_.pointSizePixels = GetParam();
-        params_.background = kBackground;
+        params_.background = kMagentaBackground;
     }
 
     std::vector<std::uint8_t> drawPoints() {
@@ -43,8 +43,8 @@ protected:
         return target_.readRgba();
     }
     std::vector<std::uint8_t> drawSplat() {
-        splatter_.splatSamples(*frame_->sceneDepth, frame_->depthIntrinsics(), &colours_, params_, kWidth,
-                               kHeight);
+        splatter_.splatSamples(*frame_->sceneDepth, frame_->depthIntrinsics(), &colours_, params_,
+                               kSplatWidth, kSplatHeight);
         renderer_.renderSplat(target_, splatter_, params_);
         return target_.readRgba();
     }
@@ -59,7 +59,7 @@ protected:
 };
 
 bool covered(const std::vector<std::uint8_t>& rgba, int x, int y) {
-    return !(pixelAt(rgba, kWidth, x, y) == Rgba{255, 0, 255, 255});
+    return !(pixelAt(rgba, kSplatWidth, x, y) == Rgba{255, 0, 255, 255});
 }
 
 // Whether a pixel within one of (x, y) is covered: the masks may differ by a pixel at the silhouettes,
@@ -67,7 +67,7 @@ bool covered(const std::vector<std::uint8_t>& rgba, int x, int y) {
 bool coveredNear(const std::vector<std::uint8_t>& rgba, int x, int y) {
     for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx)
-            if (x + dx >= 0 && x + dx < kWidth && y + dy >= 0 && y + dy < kHeight &&
+            if (x + dx >= 0 && x + dx < kSplatWidth && y + dy >= 0 && y + dy < kSplatHeight &&
                 covered(rgba, x + dx, y + dy))
                 return true;
     return false;
@@ -78,8 +78,8 @@ TEST_P(CloudSplatTest, SplatAndGlPointsAgree) {
     const std::vector<std::uint8_t> splat = drawSplat();
     ASSERT_TRUE(noGlError());
     int coveredBoth = 0, agreeing = 0, onlyOne = 0, coveredPoints = 0;
-    for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < kWidth; ++x) {
+    for (int y = 0; y < kSplatHeight; ++y)
+        for (int x = 0; x < kSplatWidth; ++x) {
             const bool p = covered(points, x, y);
             const bool s = covered(splat, x, y);
             coveredPoints += p;
@@ -87,11 +87,11 @@ TEST_P(CloudSplatTest, SplatAndGlPointsAgree) {
                 ++onlyOne;
             if (p && s) {
                 ++coveredBoth;
-                agreeing +=
-                    static_cast<bool>(near(pixelAt(points, kWidth, x, y), pixelAt(splat, kWidth, x, y), 6));
+                agreeing += static_cast<bool>(
+                    near(pixelAt(points, kSplatWidth, x, y), pixelAt(splat, kSplatWidth, x, y), 6));
             }
         }
-    ASSERT_GT(coveredPoints, kWidth * kHeight / 10) << "the scene fills the view";
+    ASSERT_GT(coveredPoints, kSplatWidth * kSplatHeight / 10) << "the scene fills the view";
     EXPECT_EQ(onlyOne, 0) << "coverage differs beyond a one-pixel border";
     EXPECT_GE(agreeing, coveredBoth * 99 / 100) << agreeing << " of " << coveredBoth << " pixels agree";
 }
@@ -103,17 +103,19 @@ TEST_P(CloudSplatTest, FillingGapsLeavesNoBackgroundInsideASurfaceOnEitherPath) 
     uploadFrame(textures_, *frame_);
     const frame::Intrinsics k = frame_->depthIntrinsics();
     colours_ = processing::pointColours(frame_->capturedImage, k.width, k.height);
-    params_.viewProjection = cloudViewProjection({}, 1.2f, verticalFovRadians(k), float(kWidth) / kHeight);
+    params_.viewProjection =
+        cloudViewProjection({}, 1.2f, verticalFovRadians(k), float(kSplatWidth) / kSplatHeight);
     const auto holes = [](const std::vector<std::uint8_t>& rgba) {
         int background = 0;
-        for (int y = kHeight / 4; y < 3 * kHeight / 4; ++y)
-            for (int x = kWidth / 4; x < 3 * kWidth / 4; ++x)
+        for (int y = kSplatHeight / 4; y < 3 * kSplatHeight / 4; ++y)
+            for (int x = kSplatWidth / 4; x < 3 * kSplatWidth / 4; ++x)
                 background += !covered(rgba, x, y);
         return background;
     };
     if (GetParam() < 2.0f) {
-        EXPECT_GT(holes(drawPoints()), kWidth * kHeight / 40) << "without filling, the samples stand apart";
-        EXPECT_GT(holes(drawSplat()), kWidth * kHeight / 40);
+        EXPECT_GT(holes(drawPoints()), kSplatWidth * kSplatHeight / 40)
+            << "without filling, the samples stand apart";
+        EXPECT_GT(holes(drawSplat()), kSplatWidth * kSplatHeight / 40);
     }
     params_.fillGaps = true;
     const std::vector<std::uint8_t> points = drawPoints();
@@ -122,10 +124,10 @@ TEST_P(CloudSplatTest, FillingGapsLeavesNoBackgroundInsideASurfaceOnEitherPath) 
     EXPECT_EQ(holes(points), 0);
     EXPECT_EQ(holes(splat), 0);
     int differing = 0;
-    for (int y = kHeight / 4; y < 3 * kHeight / 4; ++y)
-        for (int x = kWidth / 4; x < 3 * kWidth / 4; ++x)
-            differing += !near(pixelAt(points, kWidth, x, y), pixelAt(splat, kWidth, x, y), 6);
-    EXPECT_LT(differing, kWidth * kHeight / 400) << "where a footprint rounds up on one path only";
+    for (int y = kSplatHeight / 4; y < 3 * kSplatHeight / 4; ++y)
+        for (int x = kSplatWidth / 4; x < 3 * kSplatWidth / 4; ++x)
+            differing += !near(pixelAt(points, kSplatWidth, x, y), pixelAt(splat, kSplatWidth, x, y), 6);
+    EXPECT_LT(differing, kSplatWidth * kSplatHeight / 400) << "where a footprint rounds up on one path only";
 }
 
 // Without anchors the splat finishes the picture on the CPU; with one the keys go through a GL pass. An
@@ -140,22 +142,22 @@ TEST_P(CloudSplatTest, TheFinishedPictureIsTheImageTheKeysPassDraws) {
     ASSERT_TRUE(noGlError());
     ASSERT_EQ(picture.size(), keys.size());
     int differing = 0, background = 0;
-    for (int y = 0; y < kHeight; ++y)
-        for (int x = 0; x < kWidth; ++x) {
-            differing += !(pixelAt(picture, kWidth, x, y) == pixelAt(keys, kWidth, x, y));
+    for (int y = 0; y < kSplatHeight; ++y)
+        for (int x = 0; x < kSplatWidth; ++x) {
+            differing += !(pixelAt(picture, kSplatWidth, x, y) == pixelAt(keys, kSplatWidth, x, y));
             background += !covered(picture, x, y);
         }
     EXPECT_EQ(differing, 0);
     EXPECT_GT(background, 0) << "the background shows where no point landed";
-    EXPECT_LT(background, kWidth * kHeight) << "points landed";
+    EXPECT_LT(background, kSplatWidth * kSplatHeight) << "points landed";
 }
 
 // The pixel (top row first, as readRgba returns them) a point of the depth camera's frame lands on.
 std::pair<int, int> pixelOf(const glm::mat4& viewProjection, const glm::vec3& point) {
     const glm::vec4 clip = viewProjection * glm::vec4(point, 1.0f);
-    const int x = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * kWidth);
-    const int y = static_cast<int>((clip.y / clip.w * 0.5f + 0.5f) * kHeight);
-    return {x, kHeight - 1 - y};
+    const int x = static_cast<int>((clip.x / clip.w * 0.5f + 0.5f) * kSplatWidth);
+    const int y = static_cast<int>((clip.y / clip.w * 0.5f + 0.5f) * kSplatHeight);
+    return {x, kSplatHeight - 1 - y};
 }
 
 TEST_P(CloudSplatTest, AnchorsHideBehindNearerPointsOnBothPaths) {
@@ -178,21 +180,22 @@ TEST_P(CloudSplatTest, AnchorsHideBehindNearerPointsOnBothPaths) {
     const glm::vec3 behind = onRay(ndc.z + 0.5f * (1.0f - ndc.z));
     params_.anchorSizeMeters = 0.05f;
     const auto [x, y] = pixelOf(params_.viewProjection, sample);
-    ASSERT_TRUE(x >= 0 && x < kWidth && y >= 0 && y < kHeight);
+    ASSERT_TRUE(x >= 0 && x < kSplatWidth && y >= 0 && y < kSplatHeight);
     ASSERT_TRUE(covered(pointsAlone, x, y));
 
     params_.anchors = {front};
     const std::vector<std::uint8_t> pointsFront = drawPoints();
     const std::vector<std::uint8_t> splatFront = drawSplat();
-    EXPECT_NE(pixelAt(pointsFront, kWidth, x, y), pixelAt(pointsAlone, kWidth, x, y)) << "the anchor shows";
-    EXPECT_TRUE(near(pixelAt(splatFront, kWidth, x, y), pixelAt(pointsFront, kWidth, x, y), 2));
+    EXPECT_NE(pixelAt(pointsFront, kSplatWidth, x, y), pixelAt(pointsAlone, kSplatWidth, x, y))
+        << "the anchor shows";
+    EXPECT_TRUE(near(pixelAt(splatFront, kSplatWidth, x, y), pixelAt(pointsFront, kSplatWidth, x, y), 2));
 
     params_.anchors = {behind};
     const std::vector<std::uint8_t> pointsBehind = drawPoints();
     const std::vector<std::uint8_t> splatBehind = drawSplat();
     ASSERT_TRUE(noGlError());
-    EXPECT_EQ(pixelAt(pointsBehind, kWidth, x, y), pixelAt(pointsAlone, kWidth, x, y)) << "hidden";
-    EXPECT_EQ(pixelAt(splatBehind, kWidth, x, y), pixelAt(splatAlone, kWidth, x, y)) << "hidden";
+    EXPECT_EQ(pixelAt(pointsBehind, kSplatWidth, x, y), pixelAt(pointsAlone, kSplatWidth, x, y)) << "hidden";
+    EXPECT_EQ(pixelAt(splatBehind, kSplatWidth, x, y), pixelAt(splatAlone, kSplatWidth, x, y)) << "hidden";
 }
 
 INSTANTIATE_TEST_SUITE_P(PointSizes, CloudSplatTest, ::testing::Values(1.0f, 2.0f, 5.0f));

@@ -18,6 +18,10 @@
 
 namespace dc::render::test {
 
+// A clear colour that no surface of the synthetic scene has, so a background pixel is never mistaken for
+// a drawn one.
+inline const glm::vec3 kMagentaBackground{1.0f, 0.0f, 1.0f};
+
 // Gives every test a real context (Mesa llvmpipe through EGL). Missing GL fails the test rather than
 // skipping it: the gl tier must not pass silently on a machine that cannot run it. The context is made
 // before and destroyed after everything the test body owns, so no GL object outlives it.

@@ -10,11 +10,11 @@
 namespace dc::render::test {
 namespace {
 
-constexpr int kWidth = 32;
-constexpr int kHeight = 8;
+constexpr int kPanelWidth = 32;
+constexpr int kPanelHeight = 8;
 constexpr float kMinMeters = 1.0f;
 constexpr float kMaxMeters = 4.0f;
-const frame::Intrinsics kIntrinsics{30.0, 30.0, 16.0, 4.0, kWidth, kHeight};
+const frame::Intrinsics kIntrinsics{30.0, 30.0, 16.0, 4.0, kPanelWidth, kPanelHeight};
 const Rgba kBlack{0, 0, 0, 255};
 
 class PanelRendererTest : public GlTest {
@@ -33,12 +33,12 @@ protected:
 
 // Depth rising from 0.5 m to 4.5 m in reading order, so rows differ and an upside-down panel shows.
 frame::DepthData rampDepth() {
-    frame::DepthData depth{frame::Plane<float>(kWidth, kHeight),
-                           frame::Plane<std::uint8_t>(kWidth, kHeight, 2)};
-    for (int v = 0; v < kHeight; ++v)
-        for (int u = 0; u < kWidth; ++u)
+    frame::DepthData depth{frame::Plane<float>(kPanelWidth, kPanelHeight),
+                           frame::Plane<std::uint8_t>(kPanelWidth, kPanelHeight, 2)};
+    for (int v = 0; v < kPanelHeight; ++v)
+        for (int u = 0; u < kPanelWidth; ++u)
             depth.depthMeters.at(u, v) =
-                0.5f + 4.0f * static_cast<float>(v * kWidth + u) / (kWidth * kHeight);
+                0.5f + 4.0f * static_cast<float>(v * kPanelWidth + u) / (kPanelWidth * kPanelHeight);
     return depth;
 }
 
@@ -55,17 +55,17 @@ TEST_F(PanelRendererTest, DepthPanelIsTheJetColormapOfEachSample) {
     depth.depthMeters.at(5, 4) = -1.0f;
     depth.depthMeters.at(6, 7) = std::numeric_limits<float>::infinity();
     uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
-    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    ASSERT_TRUE(target_.resize(kPanelWidth, kPanelHeight).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
-    for (int v = 0; v < kHeight; ++v) {
-        for (int u = 0; u < kWidth; ++u) {
+    for (int v = 0; v < kPanelHeight; ++v) {
+        for (int u = 0; u < kPanelWidth; ++u) {
             const Rgba expected = expectedDepthColor(depth.depthMeters.at(u, v));
-            ASSERT_TRUE(near(pixelAt(rgba, kWidth, u, v), expected, 1)) << "at " << u << ", " << v;
+            ASSERT_TRUE(near(pixelAt(rgba, kPanelWidth, u, v), expected, 1)) << "at " << u << ", " << v;
         }
     }
-    EXPECT_EQ(pixelAt(rgba, kWidth, 4, 2), kBlack); // NaN
+    EXPECT_EQ(pixelAt(rgba, kPanelWidth, 4, 2), kBlack); // NaN
 }
 
 // As an overlay the depth panel keeps its colours and lets the image beneath show where there is no depth.
@@ -75,15 +75,15 @@ TEST_F(PanelRendererTest, DepthOverlayHasTheSameColoursAndTransparentHoles) {
     depth.depthMeters.at(4, 2) = std::numeric_limits<float>::quiet_NaN();
     depth.depthMeters.at(5, 4) = -1.0f;
     uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
-    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    ASSERT_TRUE(target_.resize(kPanelWidth, kPanelHeight).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters, Colormap::Jet, DepthHoles::Transparent);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
-    for (int v = 0; v < kHeight; ++v) {
-        for (int u = 0; u < kWidth; ++u) {
+    for (int v = 0; v < kPanelHeight; ++v) {
+        for (int u = 0; u < kPanelWidth; ++u) {
             const float d = depth.depthMeters.at(u, v);
             const Rgba expected = d > 0.0f ? expectedDepthColor(d) : Rgba{0, 0, 0, 0};
-            ASSERT_TRUE(near(pixelAt(rgba, kWidth, u, v), expected, 1)) << "at " << u << ", " << v;
+            ASSERT_TRUE(near(pixelAt(rgba, kPanelWidth, u, v), expected, 1)) << "at " << u << ", " << v;
         }
     }
 }
@@ -93,14 +93,14 @@ class DepthColormapTest : public PanelRendererTest, public ::testing::WithParamI
 TEST_P(DepthColormapTest, DepthPanelFollowsTheChosenColormap) {
     const frame::DepthData depth = rampDepth();
     uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
-    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    ASSERT_TRUE(target_.resize(kPanelWidth, kPanelHeight).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters, GetParam());
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
-    for (int v = 0; v < kHeight; ++v) {
-        for (int u = 0; u < kWidth; ++u) {
+    for (int v = 0; v < kPanelHeight; ++v) {
+        for (int u = 0; u < kPanelWidth; ++u) {
             const float t = (depth.depthMeters.at(u, v) - kMinMeters) / (kMaxMeters - kMinMeters);
-            ASSERT_TRUE(near(pixelAt(rgba, kWidth, u, v), toRgba(colormapColor(GetParam(), t)), 1))
+            ASSERT_TRUE(near(pixelAt(rgba, kPanelWidth, u, v), toRgba(colormapColor(GetParam(), t)), 1))
                 << "at " << u << ", " << v;
         }
     }
@@ -139,7 +139,7 @@ TEST(Colormap, RampsRunTheirWholeRangeAndClampOutside) {
 TEST_F(PanelRendererTest, LargerDepthPanelRepeatsEachSampleWithoutBlending) {
     const frame::DepthData depth = rampDepth();
     uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
-    ASSERT_TRUE(target_.resize(kWidth * 3, kHeight * 3).ok());
+    ASSERT_TRUE(target_.resize(kPanelWidth * 3, kPanelHeight * 3).ok());
     renderer_.renderDepth(target_, textures_, kMinMeters, kMaxMeters);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
@@ -153,28 +153,29 @@ TEST_F(PanelRendererTest, LargerDepthPanelRepeatsEachSampleWithoutBlending) {
 
 TEST_F(PanelRendererTest, CollapsedDepthRangeDoesNotBreakTheShader) {
     uploadFrame(textures_, makeFrame(rampDepth(), {}, kIntrinsics));
-    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    ASSERT_TRUE(target_.resize(kPanelWidth, kPanelHeight).ok());
     renderer_.renderDepth(target_, textures_, 2.0f, 2.0f);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
-    EXPECT_EQ(pixelAt(rgba, kWidth, 0, 0), toRgba(jetColor(0.0f))); // 0.5 m, below the range
-    EXPECT_EQ(pixelAt(rgba, kWidth, kWidth - 1, kHeight - 1), toRgba(jetColor(1.0f))); // ~4.5 m, above it
+    EXPECT_EQ(pixelAt(rgba, kPanelWidth, 0, 0), toRgba(jetColor(0.0f))); // 0.5 m, below the range
+    EXPECT_EQ(pixelAt(rgba, kPanelWidth, kPanelWidth - 1, kPanelHeight - 1),
+              toRgba(jetColor(1.0f))); // ~4.5 m, above it
 }
 
 TEST_F(PanelRendererTest, ConfidencePanelIsRedGreenBlue) {
     frame::DepthData depth = rampDepth();
-    for (int v = 0; v < kHeight; ++v)
-        for (int u = 0; u < kWidth; ++u)
+    for (int v = 0; v < kPanelHeight; ++v)
+        for (int u = 0; u < kPanelWidth; ++u)
             depth.confidence.at(u, v) = static_cast<std::uint8_t>((u + 2 * v) % 4); // 3 is out of range
     uploadFrame(textures_, makeFrame(depth, {}, kIntrinsics));
-    ASSERT_TRUE(target_.resize(kWidth, kHeight).ok());
+    ASSERT_TRUE(target_.resize(kPanelWidth, kPanelHeight).ok());
     renderer_.renderConfidence(target_, textures_);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
     const Rgba colours[] = {{255, 0, 0, 255}, {0, 255, 0, 255}, {0, 0, 255, 255}, kBlack};
-    for (int v = 0; v < kHeight; ++v)
-        for (int u = 0; u < kWidth; ++u)
-            ASSERT_EQ(pixelAt(rgba, kWidth, u, v), colours[depth.confidence.at(u, v)])
+    for (int v = 0; v < kPanelHeight; ++v)
+        for (int u = 0; u < kPanelWidth; ++u)
+            ASSERT_EQ(pixelAt(rgba, kPanelWidth, u, v), colours[depth.confidence.at(u, v)])
                 << "at " << u << ", " << v;
 }
 

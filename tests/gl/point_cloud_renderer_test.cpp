@@ -21,7 +21,7 @@ constexpr int kCameraScale = 2;
 // Depth intrinsics fx = fy = 60, cx = 32, cy = 24 after scaling to the depth resolution.
 const frame::Intrinsics kCameraIntrinsics{
     120.0, 120.0, 64.0, 48.0, kDepthWidth* kCameraScale, kDepthHeight* kCameraScale};
-const glm::vec3 kBackground{0.2f, 0.4f, 0.6f};
+const glm::vec3 kRendererBackground{0.2f, 0.4f, 0.6f};
 
 class PointCloudRendererTest : public GlTest {
 protected:
@@ -42,12 +42,14 @@ protected:
         params.viewProjection = pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight);
         params.minConfidence = minConfidence;
         params.pointSizePixels = 1.0f;
-        params.background = kBackground;
+        params.background = kRendererBackground;
         renderer_.render(target_, textures_, params);
         return target_.readRgba();
     }
 
-    Rgba background() const { return toRgba(frame::Rgb{kBackground.r, kBackground.g, kBackground.b}); }
+    Rgba background() const {
+        return toRgba(frame::Rgb{kRendererBackground.r, kRendererBackground.g, kRendererBackground.b});
+    }
     // The camera color at the centre of depth pixel (u, v); blocks are even-aligned, so any of the four
     // camera pixels under it has the same color.
     Rgba cameraColor(int u, int v) const {
@@ -104,7 +106,7 @@ TEST_F(PointCloudRendererTest, PointsAreUnprojectedWithTheirDepth) {
             pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight) *
             glm::translate(glm::mat4(1.0f), glm::vec3(1.0f / 6.0f, 0.0f, 0.0f));
         params.pointSizePixels = 1.0f;
-        params.background = kBackground;
+        params.background = kRendererBackground;
         renderer_.render(target_, textures_, params);
         const std::vector<std::uint8_t> rgba = target_.readRgba();
         ASSERT_TRUE(noGlError());
@@ -161,7 +163,7 @@ TEST_F(PointCloudRendererTest, WithoutDepthOnlyTheBackgroundIsDrawn) {
     frame.sceneDepth.reset();
     uploadFrame(textures_, frame);
     CloudParams params;
-    params.background = kBackground;
+    params.background = kRendererBackground;
     renderer_.render(target_, textures_, params);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());
@@ -179,7 +181,7 @@ TEST_F(PointCloudRendererTest, LargerPointsCoverTheirNeighbourhood) {
     CloudParams params;
     params.viewProjection = pinholeViewProjection(textures_.depthIntrinsics(), kDepthWidth, kDepthHeight);
     params.pointSizePixels = 3.0f;
-    params.background = kBackground;
+    params.background = kRendererBackground;
     renderer_.render(target_, textures_, params);
     const std::vector<std::uint8_t> rgba = target_.readRgba();
     ASSERT_TRUE(noGlError());

@@ -3,6 +3,7 @@
 // a missing sample counted exactly; extreme and empty input gives finite figures or a clear error.
 
 #include "processing/depth_quality.h"
+#include "tests/pose_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -17,13 +18,11 @@
 namespace dc::processing {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-
 // A plane crossing the optical axis at distanceMeters, its normal tilted by angleDeg about the y axis,
 // sampled uniformly across +-0.3 distance sideways, each point moved along the normal by N(0, sigma).
 std::vector<Point3d> noisyPlane(double distanceMeters, double angleDeg, double sigmaMeters, int count,
                                 unsigned seed) {
-    const double s = std::sin(angleDeg * kDegToRad), c = std::cos(angleDeg * kDegToRad);
+    const double s = std::sin(angleDeg * test::kDegToRad), c = std::cos(angleDeg * test::kDegToRad);
     std::mt19937 random(seed);
     std::uniform_real_distribution<double> side(-0.3 * distanceMeters, 0.3 * distanceMeters);
     std::normal_distribution<double> noise(0.0, sigmaMeters);
@@ -225,7 +224,7 @@ TEST(DepthQuality, ASlantedSurfaceIsNotFlying) {
 // The depth a camera with intrinsics k sees of a plane crossing its axis at distance, tilted by angleDeg:
 // 0 where the pixel's ray misses the plane in front.
 frame::DepthData planeDepth(const frame::Intrinsics& k, double distance, double angleDeg) {
-    const double s = std::sin(angleDeg * kDegToRad), c = std::cos(angleDeg * kDegToRad);
+    const double s = std::sin(angleDeg * test::kDegToRad), c = std::cos(angleDeg * test::kDegToRad);
     frame::DepthData d = flat(k.width, k.height, 0.0f);
     for (int y = 0; y < k.height; ++y) {
         for (int x = 0; x < k.width; ++x) {

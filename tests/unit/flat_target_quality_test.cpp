@@ -4,6 +4,7 @@
 
 #include "devices/synthetic/synthetic_device.h"
 #include "processing/depth_quality.h"
+#include "tests/pose_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -13,8 +14,6 @@
 
 namespace dc::processing {
 namespace {
-
-constexpr double kDegToRad = std::numbers::pi / 180.0;
 
 devices::SyntheticDevice openTarget(const devices::FlatTarget& target, bool noise = true) {
     devices::SyntheticConfig config;
@@ -30,7 +29,7 @@ devices::SyntheticDevice openTarget(const devices::FlatTarget& target, bool nois
 // by e along its ray (x', y', 1) moves e (n . ray) off the plane. The robust fit keeps what lies within 3
 // sigma, which leaves a Gaussian's deviation times 0.9866.
 double expectedPlaneRmsMeters(const frame::Intrinsics& k, const Roi& roi, double tiltDeg, double sigma) {
-    const double nx = std::sin(tiltDeg * kDegToRad), nz = std::cos(tiltDeg * kDegToRad);
+    const double nx = std::sin(tiltDeg * test::kDegToRad), nz = std::cos(tiltDeg * test::kDegToRad);
     double sum = 0.0;
     for (int y = roi.y; y < roi.y + roi.height; ++y)
         for (int x = roi.x; x < roi.x + roi.width; ++x) {
@@ -73,7 +72,8 @@ TEST(FlatTarget, AWallPartlyBeyondTheRangeFillsExactlyWhatItsGeometryGives) {
     ASSERT_TRUE(device.open());
     const frame::FramePtr f = device.makeFrame(0, 0.0);
     const frame::Intrinsics k = f->depthIntrinsics();
-    const double nx = std::sin(target.tiltDegrees * kDegToRad), nz = std::cos(target.tiltDegrees * kDegToRad);
+    const double nx = std::sin(target.tiltDegrees * test::kDegToRad),
+                 nz = std::cos(target.tiltDegrees * test::kDegToRad);
     std::size_t inRange = 0;
     for (int y = 0; y < k.height; ++y)
         for (int x = 0; x < k.width; ++x) {

@@ -7,6 +7,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "tests/unit/reference_depth.h"
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -23,10 +25,6 @@ struct Image {
 
 inline Image image(int w, int h, double fill = 0.0) {
     return {w, h, std::vector<double>(static_cast<std::size_t>(w) * h, fill)};
-}
-
-inline bool measured(double d) {
-    return std::isfinite(d) && d > 0.0;
 }
 
 // (I + L) x = r on a path with edge weights e[i] between i and i + 1, by textbook elimination: rows

@@ -19,7 +19,7 @@ namespace {
 
 using frame::Plane;
 
-struct Case {
+struct SmootherCase {
     frame::DepthData depth;
     std::vector<std::uint8_t> guide; // packed RGB, width x height
     int width = 0, height = 0;
@@ -29,11 +29,12 @@ struct Case {
 
 // A colour guide with texture and an edge at x = width / 2, and a depth that slopes, steps at the same edge
 // and carries noise, at the sensor's size.
-Case texturedCase(int sensorWidth, int sensorHeight, int factor, double base, double variation,
-                  std::uint64_t seed = 7) {
+SmootherCase texturedCase(int sensorWidth, int sensorHeight, int factor, double base, double variation,
+                          std::uint64_t seed = 7) {
     std::mt19937_64 rng(seed);
     std::normal_distribution<double> noise(0.0, 1.0);
-    Case c{{Plane<float>(sensorWidth, sensorHeight), {}}, {}, sensorWidth * factor, sensorHeight * factor};
+    SmootherCase c{
+        {Plane<float>(sensorWidth, sensorHeight), {}}, {}, sensorWidth * factor, sensorHeight * factor};
     c.guide.resize(static_cast<std::size_t>(c.width) * c.height * 3);
     for (int y = 0; y < c.height; ++y)
         for (int x = 0; x < c.width; ++x) {
@@ -52,7 +53,7 @@ Case texturedCase(int sensorWidth, int sensorHeight, int factor, double base, do
     return c;
 }
 
-GlobalSmootherParams paramsFor(const Case& c, double noise, float smoothness = 1.0f) {
+GlobalSmootherParams paramsFor(const SmootherCase& c, double noise, float smoothness = 1.0f) {
     UpsamplingParams up;
     up.method = UpsamplingMethod::Global;
     up.smoothness = smoothness;
@@ -60,14 +61,14 @@ GlobalSmootherParams paramsFor(const Case& c, double noise, float smoothness = 1
                                 static_cast<float>(noise));
 }
 
-Plane<float> run(const Case& c, const GlobalSmootherParams& p) {
+Plane<float> run(const SmootherCase& c, const GlobalSmootherParams& p) {
     GlobalSmoother smoother;
     return smoother.upsample(c.depth, c.view(), p).depthMeters;
 }
 
 // Every output pixel finite, 0 exactly where the reference has no depth, and within `relative` of the
 // reference elsewhere (and within `absolute`, when given).
-void expectMatchesReference(const Case& c, const GlobalSmootherParams& p, double relative = 1e-4,
+void expectMatchesReference(const SmootherCase& c, const GlobalSmootherParams& p, double relative = 1e-4,
                             double absolute = std::numeric_limits<double>::infinity()) {
     const Plane<float> out = run(c, p);
     const Plane<double> ref = reference::upsample(c.depth, c.view(), p);
@@ -91,7 +92,7 @@ TEST(GlobalSmoother, MatchesTheDoubleReferenceOnATexturedScene) {
 }
 
 TEST(GlobalSmoother, MatchesTheReferenceWithConfidence) {
-    Case c = texturedCase(32, 24, 4, 1.5, 0.3);
+    SmootherCase c = texturedCase(32, 24, 4, 1.5, 0.3);
     c.depth.confidence = Plane<std::uint8_t>(32, 24);
     for (std::size_t i = 0; i < c.depth.confidence.pixels.size(); ++i)
         c.depth.confidence.pixels[i] = static_cast<std::uint8_t>((i * 7) % 3);
@@ -99,14 +100,14 @@ TEST(GlobalSmoother, MatchesTheReferenceWithConfidence) {
 }
 
 TEST(GlobalSmoother, QualityModeMatchesTheReference) {
-    const Case c = texturedCase(24, 18, 4, 2.0, 0.3);
+    const SmootherCase c = texturedCase(24, 18, 4, 2.0, 0.3);
     UpsamplingParams up;
     up.method = UpsamplingMethod::Quality;
     expectMatchesReference(c, globalSmootherParams(up, 4.0, 0.005f));
 }
 
 TEST(GlobalSmoother, MatchesTheReferenceAtXEight) {
-    const Case c = texturedCase(16, 12, 8, 2.0, 0.3);
+    const SmootherCase c = texturedCase(16, 12, 8, 2.0, 0.3);
     expectMatchesReference(c, paramsFor(c, 0.005));
 }
 
@@ -115,8 +116,8 @@ TEST(GlobalSmoother, MatchesTheReferenceAtXEight) {
 // rows (run in pieces on the thread pool) and with one sensor row (whose every output row reads it).
 TEST(GlobalSmoother, AReusedSmootherForgetsTheLastFrame) {
     for (const int rows : {30, 1}) {
-        const Case first = texturedCase(40, rows, 3, 2.0, 0.3, 1);
-        const Case second = texturedCase(40, rows, 3, 1.0, 0.5, 2);
+        const SmootherCase first = texturedCase(40, rows, 3, 2.0, 0.3, 1);
+        const SmootherCase second = texturedCase(40, rows, 3, 1.0, 0.5, 2);
         GlobalSmoother reused;
         reused.upsample(first.depth, first.view(), paramsFor(first, 0.005));
         const Plane<float> out =
@@ -133,7 +134,7 @@ TEST(GlobalSmoother, AReusedSmootherForgetsTheLastFrame) {
 // quality mode's last step) moves each pixel whose 3 x 3 neighbourhood spans the range to the nearer end,
 // which steepens the ramp: fewer pixels are left in between.
 TEST(GlobalSmoother, EdgeSnapSteepensABlurredStep) {
-    Case c = texturedCase(20, 10, 4, 1.0, 0.0);
+    SmootherCase c = texturedCase(20, 10, 4, 1.0, 0.0);
     for (int y = 0; y < 10; ++y)
         for (int x = 0; x < 20; ++x)
             c.depth.depthMeters.at(x, y) = x < 10 ? 1.0f : 1.5f;
@@ -152,7 +153,7 @@ TEST(GlobalSmoother, EdgeSnapSteepensABlurredStep) {
 }
 
 TEST(GlobalSmoother, ConstantDepthStaysExactlyConstant) {
-    Case c = texturedCase(33, 21, 3, 1.0, 0.0);
+    SmootherCase c = texturedCase(33, 21, 3, 1.0, 0.0);
     for (float& d : c.depth.depthMeters.pixels)
         d = 1.2345f;
     for (float d : run(c, paramsFor(c, 0.005)).pixels)
@@ -160,20 +161,20 @@ TEST(GlobalSmoother, ConstantDepthStaysExactlyConstant) {
 }
 
 TEST(GlobalSmoother, TinyDepthsAroundATenthOfAMillimetre) {
-    const Case c = texturedCase(30, 20, 3, 1e-4, 1e-5);
+    const SmootherCase c = texturedCase(30, 20, 3, 1e-4, 1e-5);
     expectMatchesReference(c, paramsFor(c, 1e-6));
 }
 
 TEST(GlobalSmoother, KilometreDepthsWithMillimetreVariation) {
     // Float resolves 1000 m to 6.1e-5 m: the result must stay within a few of those steps of the reference,
     // which needs the depths centred on their mean before any smoothing sums them.
-    const Case c = texturedCase(30, 20, 3, 1000.0, 1e-3);
+    const SmootherCase c = texturedCase(30, 20, 3, 1000.0, 1e-3);
     expectMatchesReference(c, paramsFor(c, 1e-5), 1e-4, 2.5e-4);
 }
 
 TEST(GlobalSmoother, AThousandMetreOffsetOnlyShiftsTheResult) {
-    const Case near = texturedCase(30, 20, 3, 1.5, 0.2);
-    Case far = near;
+    const SmootherCase near = texturedCase(30, 20, 3, 1.5, 0.2);
+    SmootherCase far = near;
     for (float& d : far.depth.depthMeters.pixels)
         d += 1000.0f;
     const Plane<float> a = run(near, paramsFor(near, 0.005)), b = run(far, paramsFor(far, 0.005));
@@ -182,7 +183,7 @@ TEST(GlobalSmoother, AThousandMetreOffsetOnlyShiftsTheResult) {
 }
 
 TEST(GlobalSmoother, NonFiniteAndNegativeDepthIsNeverAnOutput) {
-    Case c = texturedCase(25, 19, 3, 2.0, 0.3);
+    SmootherCase c = texturedCase(25, 19, 3, 2.0, 0.3);
     const float bad[] = {std::numeric_limits<float>::quiet_NaN(),
                          std::numeric_limits<float>::infinity(),
                          -std::numeric_limits<float>::infinity(),
@@ -203,7 +204,7 @@ TEST(GlobalSmoother, NonFiniteAndNegativeDepthIsNeverAnOutput) {
 }
 
 TEST(GlobalSmoother, AllInvalidGivesAllZero) {
-    Case c = texturedCase(12, 9, 2, 2.0, 0.3);
+    SmootherCase c = texturedCase(12, 9, 2, 2.0, 0.3);
     for (std::size_t i = 0; i < c.depth.depthMeters.pixels.size(); ++i)
         c.depth.depthMeters.pixels[i] = i % 2 ? std::numeric_limits<float>::quiet_NaN() : 0.0f;
     for (float d : run(c, paramsFor(c, 0.005)).pixels)
@@ -211,10 +212,10 @@ TEST(GlobalSmoother, AllInvalidGivesAllZero) {
 }
 
 TEST(GlobalSmoother, OnePixelKeepsItsDepth) {
-    Case c = texturedCase(1, 1, 1, 2.5, 0.0);
+    SmootherCase c = texturedCase(1, 1, 1, 2.5, 0.0);
     c.depth.depthMeters.pixels[0] = 2.5f;
     EXPECT_FLOAT_EQ(run(c, paramsFor(c, 0.005)).pixels[0], 2.5f);
-    Case wide = texturedCase(1, 1, 5, 2.5, 0.0);
+    SmootherCase wide = texturedCase(1, 1, 5, 2.5, 0.0);
     wide.depth.depthMeters.pixels[0] = 2.5f;
     for (float d : run(wide, paramsFor(wide, 0.005)).pixels)
         ASSERT_FLOAT_EQ(d, 2.5f);
@@ -222,24 +223,24 @@ TEST(GlobalSmoother, OnePixelKeepsItsDepth) {
 
 TEST(GlobalSmoother, OneRowAndOneColumn) {
     for (const auto& [w, h] : {std::pair{17, 1}, std::pair{1, 17}}) {
-        Case c = texturedCase(w, h, 3, 2.0, 0.3);
+        SmootherCase c = texturedCase(w, h, 3, 2.0, 0.3);
         expectMatchesReference(c, paramsFor(c, 0.005));
     }
 }
 
 TEST(GlobalSmoother, SmoothnessReachingFarBeyondTheImage) {
-    const Case c = texturedCase(9, 6, 3, 2.0, 0.3);
+    const SmootherCase c = texturedCase(9, 6, 3, 2.0, 0.3);
     expectMatchesReference(c, paramsFor(c, 0.005, 1e4f));
 }
 
 TEST(GlobalSmoother, SingleColourGuide) {
-    Case c = texturedCase(30, 20, 3, 2.0, 0.3);
+    SmootherCase c = texturedCase(30, 20, 3, 2.0, 0.3);
     std::fill(c.guide.begin(), c.guide.end(), std::uint8_t{97});
     expectMatchesReference(c, paramsFor(c, 0.005));
 }
 
 TEST(GlobalSmoother, LowConfidenceSamplesCarryNoWeight) {
-    Case c = texturedCase(40, 30, 2, 2.0, 0.0);
+    SmootherCase c = texturedCase(40, 30, 2, 2.0, 0.0);
     c.depth.confidence = Plane<std::uint8_t>(40, 30, 2);
     for (int y = 10; y < 14; ++y)
         for (int x = 5; x < 9; ++x) { // far outliers, flagged low confidence, on the guide's left surface
@@ -257,10 +258,10 @@ TEST(GlobalSmoother, LowConfidenceSamplesCarryNoWeight) {
 // over 33 million pixels or uncentred depths at 1000 m would be far off.
 TEST(GlobalSmoother, EightKOutputOfAKilometrePlaneStaysExact) {
     constexpr int kW = 480, kH = 270, kOutW = 7680, kOutH = 4320;
-    Case c{{Plane<float>(kW, kH), {}},
-           std::vector<std::uint8_t>(static_cast<std::size_t>(kOutW) * kOutH * 3, 100),
-           kOutW,
-           kOutH};
+    SmootherCase c{{Plane<float>(kW, kH), {}},
+                   std::vector<std::uint8_t>(static_cast<std::size_t>(kOutW) * kOutH * 3, 100),
+                   kOutW,
+                   kOutH};
     for (int y = 0; y < kH; ++y)
         for (int x = 0; x < kW; ++x)
             c.depth.depthMeters.at(x, y) = 1000.0f + 0.001f * static_cast<float>(x);

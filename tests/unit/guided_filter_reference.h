@@ -7,15 +7,13 @@
 #include "frame/frame.h"
 #include "processing/guided_filter.h"
 
+#include "tests/unit/reference_depth.h"
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
 
 namespace dc::processing::reference {
-
-inline bool measured(double d) {
-    return std::isfinite(d) && d > 0.0;
-}
 
 struct Window {
     bool has = false;

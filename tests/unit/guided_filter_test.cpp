@@ -17,15 +17,15 @@ namespace {
 
 using frame::Plane;
 
-struct Case {
+struct GuidedCase {
     Plane<float> guide, depth, weight;
 };
 
 // A textured guide in [0, 1] and a depth that follows it in places and jumps at an edge, plus noise.
-Case texturedCase(int w, int h, double base, double variation, std::uint64_t seed = 7) {
+GuidedCase texturedCase(int w, int h, double base, double variation, std::uint64_t seed = 7) {
     std::mt19937_64 rng(seed);
     std::uniform_real_distribution<double> unit(0.0, 1.0);
-    Case c{Plane<float>(w, h), Plane<float>(w, h), Plane<float>(w, h, 1.0f)};
+    GuidedCase c{Plane<float>(w, h), Plane<float>(w, h), Plane<float>(w, h, 1.0f)};
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x) {
             const double g = 0.5 + 0.3 * std::sin(0.7 * x) * std::cos(0.4 * y) + 0.1 * unit(rng);
@@ -45,7 +45,7 @@ GuidedFilterParams params(int radius, double depthScale) {
 }
 
 // Every output pixel within `tolerance` of the reference, and finite.
-void expectMatchesReference(const Case& c, const GuidedFilterParams& p, double tolerance) {
+void expectMatchesReference(const GuidedCase& c, const GuidedFilterParams& p, double tolerance) {
     const Plane<float> out = maskedGuidedFilter(c.guide, c.depth, c.weight, p);
     const std::vector<double> ref = reference::filter(c.guide, c.depth, c.weight, p);
     ASSERT_EQ(out.pixels.size(), ref.size());
@@ -66,7 +66,7 @@ TEST(GuidedFilter, MatchesTheDoubleReferenceOnATexturedScene) {
 }
 
 TEST(GuidedFilter, ConstantDepthStaysExactlyConstant) {
-    Case c = texturedCase(33, 21, 1.0, 0.0);
+    GuidedCase c = texturedCase(33, 21, 1.0, 0.0);
     for (float& d : c.depth.pixels)
         d = 1.2345f;
     const Plane<float> out = maskedGuidedFilter(c.guide, c.depth, c.weight, params(4, 1.0));
@@ -85,8 +85,8 @@ TEST(GuidedFilter, KilometreDepthsWithMillimetreVariation) {
 }
 
 TEST(GuidedFilter, AThousandMetreOffsetOnlyShiftsTheResult) {
-    const Case near = texturedCase(30, 20, 1.5, 0.2);
-    Case far = near;
+    const GuidedCase near = texturedCase(30, 20, 1.5, 0.2);
+    GuidedCase far = near;
     for (float& d : far.depth.pixels)
         d += 1000.0f;
     const GuidedFilterParams p = params(3, 0.2);
@@ -98,7 +98,7 @@ TEST(GuidedFilter, AThousandMetreOffsetOnlyShiftsTheResult) {
 }
 
 TEST(GuidedFilter, NonFiniteAndNegativeDepthIsAHoleNeverAnOutput) {
-    Case c = texturedCase(25, 19, 2.0, 0.3);
+    GuidedCase c = texturedCase(25, 19, 2.0, 0.3);
     const float bad[] = {std::numeric_limits<float>::quiet_NaN(),
                          std::numeric_limits<float>::infinity(),
                          -std::numeric_limits<float>::infinity(),
@@ -119,7 +119,7 @@ TEST(GuidedFilter, NonFiniteAndNegativeDepthIsAHoleNeverAnOutput) {
 }
 
 TEST(GuidedFilter, AllInvalidGivesAllZero) {
-    Case c = texturedCase(12, 9, 2.0, 0.3);
+    GuidedCase c = texturedCase(12, 9, 2.0, 0.3);
     for (std::size_t i = 0; i < c.depth.pixels.size(); ++i)
         c.depth.pixels[i] = i % 2 ? std::numeric_limits<float>::quiet_NaN() : 0.0f;
     for (float d : maskedGuidedFilter(c.guide, c.depth, c.weight, params(2, 1.0)).pixels)
@@ -127,7 +127,7 @@ TEST(GuidedFilter, AllInvalidGivesAllZero) {
 }
 
 TEST(GuidedFilter, OnePixelImageKeepsItsDepth) {
-    const Case c{Plane<float>(1, 1, 0.3f), Plane<float>(1, 1, 2.5f), Plane<float>(1, 1, 1.0f)};
+    const GuidedCase c{Plane<float>(1, 1, 0.3f), Plane<float>(1, 1, 2.5f), Plane<float>(1, 1, 1.0f)};
     EXPECT_FLOAT_EQ(maskedGuidedFilter(c.guide, c.depth, c.weight, params(5, 1.0)).pixels[0], 2.5f);
 }
 
@@ -141,14 +141,14 @@ TEST(GuidedFilter, RadiusLargerThanTheImage) {
 }
 
 TEST(GuidedFilter, SingleColourGuideAveragesDepth) {
-    Case c = texturedCase(30, 20, 2.0, 0.3);
+    GuidedCase c = texturedCase(30, 20, 2.0, 0.3);
     for (float& g : c.guide.pixels)
         g = 0.42f; // variance exactly 0: a = cov / epsilon = 0, no division by zero
     expectMatchesReference(c, params(3, 0.3), 5e-7);
 }
 
 TEST(GuidedFilter, FractionalWeightsFromInterpolation) {
-    Case c = texturedCase(30, 20, 2.0, 0.3);
+    GuidedCase c = texturedCase(30, 20, 2.0, 0.3);
     for (std::size_t i = 0; i < c.weight.pixels.size(); ++i)
         c.weight.pixels[i] = static_cast<float>((i * 37 % 11) / 10.0);
     expectMatchesReference(c, params(3, 0.3), 5e-7);

@@ -5,6 +5,7 @@
 
 #include "devices/synthetic/synthetic_scene.h"
 #include "processing/rigid_alignment.h"
+#include "tests/pose_checks.h"
 
 #include <gtest/gtest.h>
 
@@ -18,14 +19,12 @@
 namespace dc::processing {
 namespace {
 
-constexpr double kDegToRad = std::numbers::pi / 180.0;
-
 // Turned by `degrees` about the unit `axis`, then moved by `translation`.
 frame::RigidTransform motion(std::array<double, 3> axis, double degrees, std::array<double, 3> translation) {
     const double length = std::sqrt(axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]);
     for (double& a : axis)
         a /= length;
-    const double angle = degrees * kDegToRad;
+    const double angle = degrees * test::kDegToRad;
     const double c = std::cos(angle), s = std::sin(angle), t = 1.0 - c;
     const auto& [x, y, z] = axis;
     return {{t * x * x + c, t * x * y - s * z, t * x * z + s * y, t * x * y + s * z, t * y * y + c,
