@@ -11,6 +11,7 @@
 #include <optional>
 #include <set>
 #include <string>
+#include <string_view>
 
 struct ImGuiWindow;
 
@@ -113,7 +114,7 @@ private:
     void placePanel(const char* title, float x, float y, float w, float h);
     void keepInsideWorkArea(const ImGuiWindow* window) const;
     void followLayout();
-    std::vector<const char*> rightColumn() const;
+    std::vector<std::string_view> rightColumn() const;
     void drawBottomStrip(float x, float y, float w, float h);
     void afterPanel(const char* title, const PanelResult& result);
     void drawControls(float width, float height);
@@ -149,9 +150,9 @@ private:
     std::string zoomed_;
     std::string restoring_; // the panel going back to its place after a zoom, for one frame
     std::map<std::string, std::pair<ImVec2, ImVec2>> panelPlaces_; // title -> (pos, size) before zooming
-    std::set<std::string> layoutResets_;   // panels still to go back to their default places
-    ImVec2 layoutSize_;                    // the window's size the docked panels were laid out for
-    std::vector<const char*> dockedShown_; // and the docked panels shown then
+    std::set<std::string> layoutResets_;        // panels still to go back to their default places
+    ImVec2 layoutSize_;                         // the window's size the docked panels were laid out for
+    std::vector<std::string_view> dockedShown_; // and the docked panels shown then
     LogStore logs_;
     LogPanelState logPanel_;
     SourcePanelState sourcePanel_;

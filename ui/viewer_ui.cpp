@@ -168,7 +168,7 @@ constexpr const char* kDockedTitles[] = {kControlsTitle, kCloudTitle,    kDepthT
 // lays them all out again.
 void Viewer::followLayout() {
     const ImVec2 size = ImGui::GetMainViewport()->Size;
-    std::vector<const char*> shown = rightColumn();
+    std::vector<std::string_view> shown = rightColumn();
     const PanelVisibility& show = settings_.panels;
     for (const auto& [title, on] :
          {std::pair{kControlsTitle, show.controls}, std::pair{kCloudTitle, show.cloud},
@@ -182,10 +182,11 @@ void Viewer::followLayout() {
     dockedShown_ = std::move(shown);
 }
 
-// The right column's panels shown, top to bottom; they share its height.
-std::vector<const char*> Viewer::rightColumn() const {
+// The right column's panels shown, top to bottom; they share its height. Titles are compared by their
+// text: two uses of one literal need not share an address (unoptimized builds do not merge them).
+std::vector<std::string_view> Viewer::rightColumn() const {
     const PanelVisibility& show = settings_.panels;
-    std::vector<const char*> titles;
+    std::vector<std::string_view> titles;
     for (const auto& [title, on] :
          {std::pair{kDepthTitle, show.depth}, std::pair{kConfidenceTitle, show.confidence},
           std::pair{kCameraTitle, show.camera},
@@ -430,10 +431,10 @@ void Viewer::drawCloud(float x, float y, float w, float h) {
 
 // The right column, `height` tall, shared by the image panels shown.
 void Viewer::drawSidePanels(float x, float w, float height) {
-    const std::vector<const char*> column = rightColumn();
+    const std::vector<std::string_view> column = rightColumn();
     const float h = height / static_cast<float>(std::max<std::size_t>(column.size(), 1));
     const auto place = [&](const char* title) {
-        const auto slot = std::find(column.begin(), column.end(), title) - column.begin();
+        const auto slot = std::find(column.begin(), column.end(), std::string_view(title)) - column.begin();
         placePanel(title, x, static_cast<float>(slot) * h, w, h);
     };
     PanelVisibility& show = settings_.panels;
