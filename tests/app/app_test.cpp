@@ -309,16 +309,22 @@ TEST(AppWindow, APausedReplayIsDrawnNoFasterThanTheDisplayRefreshes) {
     EXPECT_LE(uiFps, 60.0 * 31.0 / 30.0) << "one frame per refresh period at most";
 }
 
-// The start of a drive script: the window on `arguments` in the background ($app), found ($w) and given
-// a few seconds to draw.
+// The start of a drive script: the window on `arguments` in the background ($app), found ($w), and given
+// time to show its first frame. That is waited for, not slept: a sanitized build on a busy machine takes
+// many seconds, and a click sent before the panels are laid out lands on nothing. The viewer logs the
+// first frame's calibration when it shows it; a second more lets the window draw it.
 std::string windowStarted(const std::string& arguments) {
-    return binary() + " " + arguments + " &\napp=$!\n" +
-           "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\nsleep 3\n";
+    return "log=$(mktemp)\n" + binary() + " " + arguments + " 2> \"$log\" &\napp=$!\n" +
+           "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\n"
+           "for i in $(seq 600); do grep -q 'calibration:' \"$log\" && break; sleep 0.1; done\nsleep 1\n";
 }
+
+// The end of a drive script after Ctrl+Q: the run's log goes where the test reads the script's output.
+constexpr const char* kAppExited = "wait $app\nstatus=$?\ncat \"$log\" >&2\nrm -f \"$log\"\nexit $status\n";
 
 // The end of a drive script: the window grabbed from the X server into `xwd`, then Ctrl+Q.
 std::string grabbedAndQuit(const std::string& xwd) {
-    return "sleep 1\nxwd -silent -id \"$w\" -out " + xwd + "\nxdotool key ctrl+q\nwait $app\n";
+    return "sleep 1\nxwd -silent -id \"$w\" -out " + xwd + "\nxdotool key ctrl+q\n" + kAppExited;
 }
 
 // What the X server shows is, pixel for pixel, the screenshot --out read from the back buffer.
@@ -518,16 +524,14 @@ TEST(AppWindow, ClicksAndKeysGoThroughTheRealWindow) {
     const std::string script = work.str() + "/drive.sh";
     std::ofstream(script)
         << "cd " << work.str() << "\n"
-        << binary() << " --out " << out.str() << " &\n"
-        << "app=$!\n"
-        << "w=$(timeout 60 xdotool search --sync --onlyvisible --name '^depthcloud$' | head -1)\n"
-        << "sleep 3\n"
-        << "xdotool mousemove --window \"$w\" 1113 119 click 1\n"
+        << windowStarted("--out " + out.str()) << "xdotool mousemove --window \"$w\" 1113 119 click 1\n"
         << "sleep 2\n"
         << "xdotool windowfocus --sync \"$w\" keydown p sleep 0.3 keyup p\n"
-        << "sleep 7\n" // the toast saying where the snapshot went lies over the legend for 6 s"
+        // The toast saying where the snapshot went lies over the legend for 6 s after the snapshot is
+        // written, which under a sanitizer takes seconds: the log line is waited for.
+        << "for i in $(seq 600); do grep -q 'snapshot saved' \"$log\" && break; sleep 0.1; done\nsleep 7\n"
         << "xdotool mousemove --window \"$w\" 640 300 key ctrl+q\n"
-        << "wait $app\n";
+        << kAppExited;
     const RunResult r = run("XDG_CONFIG_HOME=" + home.str() +
                             " timeout 180 xvfb-run -a -s '-screen 0 1280x800x24' sh " + script);
     ASSERT_EQ(r.exitCode, 0) << r.output;
