@@ -6,6 +6,7 @@
 #include "devices/replay/replay_source.h"
 #include "devices/source_spec.h"
 #include "engine/processing_graph.h"
+#include "failing_camera.h"
 #include "processing/camera_image.h"
 #include "processing/confidence_filter.h"
 #include "processing/infrared_image.h"
@@ -238,41 +239,11 @@ TEST_F(EngineUiTest, AStillViewKeepsItsPictureAndEveryChangeIsDrawnInTheNextFram
     EXPECT_TRUE(keptPictureIsCurrent());
 }
 
-// Delivers two frames of the synthetic scene, then stays Stalled; `last` is the sequence of the last one.
-class StallingDevice final : public devices::Device {
-public:
-    explicit StallingDevice(std::shared_ptr<std::atomic<std::int64_t>> last) : last_(std::move(last)) {}
-    std::string description() const override { return "stalling camera"; }
-    devices::Capabilities capabilities() const override { return synthetic_.capabilities(); }
-
-protected:
-    Status doOpen() override { return synthetic_.open(); }
-    Status doStart() override { return synthetic_.start(); }
-    void doStop() override {}
-    // Counts the frames delivered, not the calls: on a busy machine the synthetic camera's first calls may
-    // time out before its first frame is due.
-    devices::CaptureResult doCapture(std::chrono::milliseconds timeout) override {
-        if (delivered_ >= 2) {
-            std::this_thread::sleep_for(std::min(timeout, std::chrono::milliseconds(20)));
-            return {devices::CaptureResult::Kind::Stalled, nullptr, "stalling camera: no frame"};
-        }
-        devices::CaptureResult result = synthetic_.capture(timeout);
-        if (result.frame) {
-            ++delivered_;
-            last_->store(static_cast<std::int64_t>(result.frame->sequence));
-        }
-        return result;
-    }
-
-private:
-    devices::SyntheticDevice synthetic_{smallScene()};
-    std::shared_ptr<std::atomic<std::int64_t>> last_;
-    int delivered_ = 0;
-};
-
 TEST_F(EngineUiTest, AStalledCameraShowsEverySettingChangeInTheNextFrame) {
     const auto last = std::make_shared<std::atomic<std::int64_t>>(-1);
-    start(std::make_unique<StallingDevice>(last), "stalling");
+    start(std::make_unique<FailingCamera>(2, devices::CaptureResult::Kind::Stalled,
+                                          "stalling camera: no frame", last),
+          "stalling");
     viewer_->settings().cloud.motion.enabled = false;
     // Until the camera has stalled with its last frame on screen (the second of its two frames may replace
     // the first before processing). Bounded in time: a sanitized build takes many more window frames.

@@ -1,5 +1,6 @@
 // Headless UI tests of the viewer's core controls: confidence, rotation, orbit, zoom, shortcuts, stages.
 
+#include "failing_camera.h"
 #include "ui_fixture.h"
 
 #include <algorithm>
@@ -232,29 +233,10 @@ TEST_F(UiSourceTest, UnsupportedDeviceIsShownNotCrashed) {
     EXPECT_EQ(viewer_->cloudMessage(), devices::Session::kNoDepthMessage);
 }
 
-// Delivers a few frames of the synthetic scene, then reports the camera gone.
-class UnpluggedDevice final : public devices::Device {
-public:
-    std::string description() const override { return "unplugged camera"; }
-    devices::Capabilities capabilities() const override { return synthetic_.capabilities(); }
-
-protected:
-    Status doOpen() override { return synthetic_.open(); }
-    Status doStart() override { return synthetic_.start(); }
-    void doStop() override {}
-    devices::CaptureResult doCapture(std::chrono::milliseconds timeout) override {
-        if (++captures_ > 3)
-            return {devices::CaptureResult::Kind::Disconnected, nullptr, "unplugged camera: No such device"};
-        return synthetic_.capture(timeout);
-    }
-
-private:
-    devices::SyntheticDevice synthetic_{smallScene()};
-    int captures_ = 0;
-};
-
 TEST_F(UiSourceTest, TheLastFrameStaysWithADisconnectedNote) {
-    start(std::make_unique<UnpluggedDevice>(), "unplugged");
+    start(std::make_unique<FailingCamera>(3, devices::CaptureResult::Kind::Disconnected,
+                                          "unplugged camera: No such device"),
+          "unplugged");
     // Until the camera is gone and the frames it sent have been processed and shown: bounded in time, since
     // a sanitized build needs many more window frames for it.
     frameUntil([&] { return viewer_->statusLine().state == "disconnected" && viewer_->shown(); });
