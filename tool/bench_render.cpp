@@ -22,6 +22,7 @@
 #include <cstdio>
 #include <string>
 #include <thread>
+#include <vector>
 
 namespace dc::tool {
 
@@ -30,6 +31,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr int kRenderWarmupFrames = 20;
+constexpr auto kRenderWarmup = std::chrono::milliseconds(1500);
 
 struct BenchCase {
     const char* name;
@@ -80,11 +82,15 @@ std::vector<frame::FramePtr> makeFrames(const BenchCase& c) {
     return syntheticFrames(config, 8);
 }
 
-// Each frame's times over `frames` calls after a warm-up: before(i) runs untimed (the wait for the engine's
+// Each frame's times over `frames` calls after a warm-up of at least kRenderWarmupFrames frames and
+// kRenderWarmup: NVIDIA's driver takes about a second of steady load to raise the GPU's clock, longer than a
+// case's frames take, so a shorter warm-up timed each case at whatever clock the one before left (345 to
+// 1845 MHz from run to run). before(i) runs untimed (the wait for the engine's
 // next result is the other thread's, not this one's), draw(i) is timed and ended by glFinish (llvmpipe
 // draws asynchronously).
 struct FrameTimes {
     base::RollingStats wall, cpu, gpu, clock;
+    int firstMeasured = -1; // the index of the first frame after the warm-up
     GlFrameMs medians() const {
         return {wall.median(), cpu.median(), gpu.median(), clock.count() > 0 ? clock.median() : 0.0};
     }
@@ -94,7 +100,11 @@ template <class Before, class Draw> FrameTimes timeFrames(int frames, Before&& b
     const auto n = static_cast<std::size_t>(frames);
     FrameTimes t{base::RollingStats(n), base::RollingStats(n), base::RollingStats(n), base::RollingStats(n)};
     const render::gl::Query query = render::gl::Query::create();
-    for (int i = 0; i < kRenderWarmupFrames + frames; ++i) {
+    const auto warmupEnd = Clock::now() + kRenderWarmup;
+    for (int i = 0; t.wall.count() < n; ++i) {
+        const bool warmingUp = i < kRenderWarmupFrames || Clock::now() < warmupEnd;
+        if (!warmingUp && t.firstMeasured < 0)
+            t.firstMeasured = i;
         before(i);
         const auto start = Clock::now();
         const double cpuStart = base::threadCpuMs();
@@ -105,7 +115,7 @@ template <class Before, class Draw> FrameTimes timeFrames(int frames, Before&& b
         glFinish();
         GLuint64 gpuNs = 0;
         glGetQueryObjectui64v(query.id(), GL_QUERY_RESULT, &gpuNs);
-        if (i < kRenderWarmupFrames)
+        if (warmingUp)
             continue;
         t.wall.add(msSince(start));
         t.cpu.add(cpuMs);
@@ -237,13 +247,16 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
         // The same still view as the window runs it: the viewer's update and the ImGui frame, and the
         // composite only if the picture changed (it does not: nothing moves).
         viewer.settings().cloud.motion.enabled = false;
-        result.stillMs = timeFrames(o.frames, [&](int i) {
-                             gui.newFrame(1.0f / 60.0f);
-                             viewer.update(i / 60.0);
-                             viewer.drawUi();
-                             result.stillDrawn +=
-                                 gui.renderIfChanged(renderer.contentVersion()) && i >= kRenderWarmupFrames;
-                         }).wall.median();
+        std::vector<bool> drawn;
+        const FrameTimes still = timeFrames(o.frames, [&](int i) {
+            gui.newFrame(1.0f / 60.0f);
+            viewer.update(i / 60.0);
+            viewer.drawUi();
+            drawn.push_back(gui.renderIfChanged(renderer.contentVersion()));
+        });
+        result.stillMs = still.wall.median();
+        result.stillDrawn =
+            static_cast<int>(std::count(drawn.begin() + still.firstMeasured, drawn.end(), true));
         result.cloudWidth = renderer.cloudTarget().width();
         result.cloudHeight = renderer.cloudTarget().height();
         result.shownSamples = static_cast<std::size_t>(shown->depth.width()) * shown->depth.height();
