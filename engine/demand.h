@@ -27,7 +27,7 @@ struct QualityDemand {
 // with which settings. The frame processor runs exactly the stages this needs, again whenever it changes,
 // and a source is told the part that concerns it (SourceDemand). Plain data, compared as a whole.
 struct Demand {
-    bool cloud = true;       // the point-cloud panel is visible
+    bool cloud = true;        // the point-cloud panel is visible
     bool pointColours = true; // its points take the camera's colour (rather than a depth or confidence map)
     // The cloud's GL path colours camera-coloured points itself, from the camera image and the rig of
     // ShownFrame::frame: no colour per point is made for it here, unless the rig is one a shader cannot
@@ -37,6 +37,7 @@ struct Demand {
     bool depthImage = true;      // the depth panel, or the camera panel's depth overlay
     bool confidencePanel = true; // the confidence panel
     int cameraPanelWidth = 0;    // pixels the camera panel is shown at; 0 = hidden
+    int dataPanelWidth = 0;      // pixels the depth or confidence panel is shown at (the wider); 0 = unknown
     // The camera panel's depth overlay is shown: a two-sensor frame's depth is aligned to the colour image
     // for it (a single camera's is the depth panel's image).
     bool depthOverCamera = false;

@@ -87,6 +87,7 @@ void ProcessingGraph::reset() {
     range_.clear();
     cloud_.clear();
     count_.clear();
+    panelSamples_.clear();
     quality_.clear();
     noise_.reset();
     noiseKey_.reset();
@@ -148,6 +149,7 @@ processing::ShownFramePtr ProcessingGraph::run(const frame::FramePtr& captured, 
     addEffects(*shown, *frame, demand);
     addDepthOverCamera(*shown, *frame, demand);
     addDepthProducts(*shown, demand);
+    addPanelSamples(*shown, demand);
     addPointColours(*shown, *frame, demand);
     addQuality(*shown, demand);
     timings_ = nullptr;
@@ -309,6 +311,19 @@ std::shared_ptr<const frame::DepthData> ProcessingGraph::colourViewDepth(const p
         aligned->depthMeters = processing::alignDepthToColour(depth->depthMeters, *frame.rig, width, height);
         return std::shared_ptr<const frame::DepthData>(std::move(aligned));
     });
+}
+
+// The depth and confidence panels shown smaller than the map need only the samples nearest sampling shows:
+// picked here rather than on the GL thread, which then uploads a fraction of the map and nothing else.
+void ProcessingGraph::addPanelSamples(processing::ShownFrame& shown, const Demand& demand) {
+    const std::shared_ptr<const frame::DepthData>& depth = shown.depth.data;
+    const int step = processing::panelSampleStep(shown.depth.width(), demand.dataPanelWidth);
+    if (!depth || step < 2 || (!demand.depthImage && !demand.confidencePanel))
+        return;
+    shown.panelSamples = cached(panelSamples_, PanelSamplesKey{depth, step}, kPanelSamplesStage, [&] {
+        return std::make_shared<const frame::DepthData>(processing::sampleCellCentres(*depth, step));
+    });
+    shown.panelStep = step;
 }
 
 void ProcessingGraph::addDepthProducts(processing::ShownFrame& shown, const Demand& demand) {

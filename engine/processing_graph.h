@@ -30,6 +30,7 @@ inline constexpr std::string_view kColourOverlayStage = "colour overlay";
 inline constexpr std::string_view kDepthRangeStage = "depth range";
 inline constexpr std::string_view kPointCountStage = "point count";
 inline constexpr std::string_view kDecimationStage = "decimation";
+inline constexpr std::string_view kPanelSamplesStage = "panel samples";
 inline constexpr std::string_view kQualityStage = "depth quality";
 
 // Turns one frame and one demand into the ShownFrame the GL thread draws, running only the stages the
@@ -115,6 +116,11 @@ private:
         float nearMeters = 0.0f;
         bool operator==(const DecimationKey&) const = default;
     };
+    struct PanelSamplesKey {
+        std::shared_ptr<const frame::DepthData> depth;
+        int step = 1;
+        bool operator==(const PanelSamplesKey&) const = default;
+    };
     // The Quality panel's figures: of one shown depth, over one region, under one processing.
     struct QualityKey {
         std::shared_ptr<const frame::DepthData> depth;
@@ -138,6 +144,7 @@ private:
     void addDepthProducts(processing::ShownFrame& shown, const Demand& demand);
     processing::ShownCloud shownCloud(const processing::ShownFrame& shown, const Demand& demand);
     void addQuality(processing::ShownFrame& shown, const Demand& demand);
+    void addPanelSamples(processing::ShownFrame& shown, const Demand& demand);
     std::shared_ptr<const processing::ShownQuality>
     measureQuality(const QualityKey& key, const frame::Intrinsics& intrinsics, const frame::Frame& frame);
 
@@ -163,6 +170,7 @@ private:
     Memo<std::shared_ptr<const frame::DepthData>, std::optional<processing::DepthRangeMeters>> range_;
     Memo<DecimationKey, processing::ShownCloud> cloud_;
     Memo<CountKey, std::size_t> count_;
+    Memo<PanelSamplesKey, std::shared_ptr<const frame::DepthData>> panelSamples_;
     Memo<QualityKey, std::shared_ptr<const processing::ShownQuality>> quality_;
     // The noise window and the question it answers (QualityKey without the depth): frames enter it as
     // their figures are made, and a question that changes starts it over.

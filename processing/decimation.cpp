@@ -96,4 +96,8 @@ frame::DepthData sampleCellCentres(const frame::DepthData& depth, int step) {
     return out;
 }
 
+int panelSampleStep(int mapWidth, int shownWidth) {
+    return shownWidth > 0 ? std::max(1, mapWidth / shownWidth) : 1;
+}
+
 } // namespace dc::processing

@@ -31,4 +31,8 @@ DecimatedDepth decimateNearest(const frame::DepthData& depth, const frame::Intri
 // shown at 1/step of the map's size, so a panel can be drawn from these instead of the whole map.
 frame::DepthData sampleCellCentres(const frame::DepthData& depth, int step);
 
+// The step a panel shown `shownWidth` pixels wide draws a `mapWidth`-wide map at: 1 (every sample) while
+// it is shown at least half as wide as the map, or at an unknown width (0).
+int panelSampleStep(int mapWidth, int shownWidth);
+
 } // namespace dc::processing

@@ -81,6 +81,11 @@ struct ShownFrame {
     // (outside its view or hidden: they are gray); null when it sees them all.
     std::shared_ptr<const frame::Plane<std::uint8_t>> pointSeen;
     std::shared_ptr<const RgbImage> cameraImage; // the camera panel, at the size it is shown
+    // The depth and confidence panels' samples when they are shown at 1/panelStep of the map's width
+    // (engine::Demand::dataPanelWidth, processing::sampleCellCentres), made here so that the GL thread
+    // only uploads them; null while they are shown whole.
+    std::shared_ptr<const frame::DepthData> panelSamples;
+    int panelStep = 1;
     // The camera panel's depth overlay of a two-sensor frame: the shown depth aligned to the colour image
     // (0 where the depth sensor saw nothing there). Null for a single camera, whose depth panel image
     // already lies over the camera image.

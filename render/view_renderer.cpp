@@ -54,6 +54,8 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     if (newDepth)
         panelsDrawnWith_.reset();
     depth_ = shown.depth;
+    shownPanelSamples_ = shown.panelSamples;
+    shownPanelStep_ = shown.panelStep;
     if (shown.depthOverCamera != depthOverCamera_ || (newDepth && !shown.depthOverCamera))
         overlayDrawnWith_.reset();
     colourOverDepthFromEngine_ = shown.colourOverDepth != nullptr;
@@ -151,20 +153,26 @@ Expected<std::vector<processing::PanelPicture>> ViewRenderer::panelPictures() {
 const FrameTextures& ViewRenderer::panelTextures(int step) {
     if (step <= 1)
         return texturesFor(panelDepth_, depth_, pointColours_, false);
-    if (panelSampledFrom_ != depth_.data || panelStep_ != step) {
-        processing::ShownDepth sampled;
-        sampled.data =
-            std::make_shared<const frame::DepthData>(processing::sampleCellCentres(*depth_.data, step));
-        texturesFor(panelSamples_, sampled, nullptr, false);
-        panelSampledFrom_ = depth_.data;
+    processing::ShownDepth samples;
+    samples.data = shownPanelSamples_ && shownPanelStep_ == step ? shownPanelSamples_ : nullptr;
+    if (!samples.data) {
+        // The panel's width changed after the engine made this frame, or the engine was not told it.
+        if (ownSampledFrom_ != depth_.data || ownSampleStep_ != step) {
+            ownPanelSamples_ =
+                std::make_shared<const frame::DepthData>(processing::sampleCellCentres(*depth_.data, step));
+            ownSampledFrom_ = depth_.data;
+            ownSampleStep_ = step;
+            ++panelSamplings_;
+        }
+        samples.data = ownPanelSamples_;
     }
-    return panelSamples_.textures;
+    return texturesFor(panelSamples_, samples, nullptr, false);
 }
 
 void ViewRenderer::drawDataPanels(const PanelParams& params) {
     // Nearest sampling shows one sample in `step` of a map drawn `step` times smaller than it is: those
     // samples are all the panel needs, and a 1920x1440 map is 11 MB to upload and 2.8 M pixels to draw.
-    const int step = params.shownWidth > 0 ? std::max(1, depth_.width() / params.shownWidth) : 1;
+    const int step = processing::panelSampleStep(depth_.width(), params.shownWidth);
     const FrameTextures& textures = panelTextures(step);
     panelStep_ = step;
     panelsMap_ = {depth_.width(), depth_.height()};

@@ -124,6 +124,8 @@ public:
     // Work done, for tests that check that nothing is redone for nothing.
     std::uint64_t uploads() const { return uploads_; }
     std::uint64_t panelRenders() const { return panelRenders_; }
+    // The panels' samples picked on this thread because the engine's were for another width (or none).
+    std::uint64_t panelSamplings() const { return panelSamplings_; }
     std::uint64_t cloudRenders() const { return cloudRenders_; }
     // Moves whenever a texture the panels show gets new contents: a window whose ImGui frame is the same
     // and this the same shows the same picture (ui::FrameDamage).
@@ -169,7 +171,8 @@ private:
     // colours from the engine (engine::Demand::gpuCameraColours).
     bool shaderColours(const CloudParams& params, bool accumulated) const;
     void drawDataPanels(const PanelParams& params);
-    // The textures the panels draw from: the shown depth's own, or every `step`-th sample of it.
+    // The textures the panels draw from: the shown depth's own, or every `step`-th sample of it (the
+    // engine's when it picked them for this step).
     const FrameTextures& panelTextures(int step);
     void drawDepthOverCamera(const PanelParams& params);
     void drawColourOverDepth(int step);
@@ -182,7 +185,12 @@ private:
     UploadedDepth cloudDepth_; // the cloud's samples when they are decimated
     UploadedDepth overlayDepth_;
     UploadedDepth panelSamples_; // every n-th sample of the shown depth, for panels shown smaller
-    std::shared_ptr<const frame::DepthData> panelSampledFrom_;
+    std::shared_ptr<const frame::DepthData> shownPanelSamples_; // the engine's (ShownFrame::panelSamples)
+    int shownPanelStep_ = 1;
+    std::shared_ptr<const frame::DepthData> ownPanelSamples_; // picked here when the engine's do not fit
+    std::shared_ptr<const frame::DepthData> ownSampledFrom_;
+    int ownSampleStep_ = 1;
+    std::uint64_t panelSamplings_ = 0;
     int panelStep_ = 1;
     std::pair<int, int> panelsMap_{0, 0};
     std::shared_ptr<const frame::DepthData> depthOverCamera_;

@@ -64,6 +64,7 @@ engine::Demand Presenter::demandOf() const {
     d.depthImage = show.depth || (show.camera && settings_.camera.depthOverlay);
     d.confidencePanel = show.confidence;
     d.cameraPanelWidth = show.camera ? cameraShownWidth_ : 0;
+    d.dataPanelWidth = d.depthImage || d.confidencePanel ? dataPanelsShownWidth_ : 0;
     d.depthOverCamera = show.camera && settings_.camera.depthOverlay;
     d.colourOverDepth = show.depth && settings_.depthView.colourOverlay;
     d.infraredPanel = show.infrared;

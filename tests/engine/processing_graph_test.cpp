@@ -7,6 +7,7 @@
 #include "processing/aura.h"
 #include "processing/camera_image.h"
 #include "processing/confidence_estimator.h"
+#include "processing/decimation.h"
 #include "processing/fog.h"
 #include "tests/small_rig.h"
 
@@ -153,6 +154,35 @@ TEST_F(ProcessingGraphTest, TheCameraPanelIsRemadeOnlyWhenItsShownSizeCrossesASt
     d.cameraPanelWidth = 100;
     EXPECT_EQ(runOn(0, d), (Runs{{std::string(kCameraImageStage), 1}}));
     EXPECT_EQ(last_->cameraImage->width, processing::cameraPanelImageSize(frames_[0]->capturedImage, 100)[0]);
+}
+
+// The depth and confidence panels shown at a third of the map's width read every third sample: the graph
+// picks them (the GL thread only uploads them), once per shown depth and step.
+TEST_F(ProcessingGraphTest, PanelsShownSmallerThanTheMapGetTheirSamplesPickedOncePerStep) {
+    Demand d = everything();
+    runOn(0, d, true);
+    EXPECT_EQ(last_->panelSamples, nullptr) << "an unknown panel width draws the map whole";
+    const int width = last_->depth.width();
+    d.dataPanelWidth = width / 3;
+    EXPECT_EQ(runOn(0, d), (Runs{{std::string(kPanelSamplesStage), 1}}));
+    ASSERT_NE(last_->panelSamples, nullptr);
+    EXPECT_EQ(last_->panelStep, 3);
+    const frame::DepthData expected = processing::sampleCellCentres(*last_->depth.data, 3);
+    EXPECT_EQ(last_->panelSamples->depthMeters.pixels, expected.depthMeters.pixels);
+    EXPECT_EQ(last_->panelSamples->confidence.pixels, expected.confidence.pixels);
+    d.dataPanelWidth = width / 3 - 1; // a little narrower: still every third sample
+    EXPECT_EQ(runOn(0, d), Runs{});
+    d.dataPanelWidth = width / 2;
+    EXPECT_EQ(runOn(0, d), (Runs{{std::string(kPanelSamplesStage), 1}}));
+    EXPECT_EQ(last_->panelStep, 2);
+    d.dataPanelWidth = width;
+    EXPECT_EQ(runOn(0, d), Runs{});
+    EXPECT_EQ(last_->panelSamples, nullptr) << "shown whole";
+    d.dataPanelWidth = width / 3;
+    d.depthImage = false;
+    d.confidencePanel = false;
+    runOn(0, d);
+    EXPECT_EQ(last_->panelSamples, nullptr) << "no panel shows them";
 }
 
 TEST_F(ProcessingGraphTest, AStageWhoseOutputNobodyReadsNeverRuns) {

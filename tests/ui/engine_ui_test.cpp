@@ -492,6 +492,8 @@ TEST_F(EngineUiTest, PanelsShownSmallerThanTheirMapDrawEveryNthSampleAndASnapsho
     ASSERT_GE(step, 2) << "drawn " << depth.width() << " wide";
     EXPECT_EQ(depth.width(), (width + step - 1) / step);
     EXPECT_EQ(confidence.width(), depth.width());
+    ASSERT_NE(shown().panelSamples, nullptr) << "the engine picks the samples, told the panel's width";
+    EXPECT_EQ(shown().panelStep, step);
     const std::vector<std::uint8_t> smallDepth = depth.readRgba(), smallConfidence = confidence.readRgba();
     const int smallWidth = depth.width(), smallHeight = depth.height();
 
