@@ -9,8 +9,8 @@
 #include "devices/session.h"
 #include "devices/source_spec.h"
 #include "devices/synthetic/synthetic_device.h"
-#include "frame/rgb_image.h"
 #include "tool/bench_frames.h"
+#include "tool/bench_replay_formats.h"
 #include "tool/options.h"
 #include "tool/recording_commands.h"
 
@@ -29,10 +29,6 @@
 #include <unistd.h>
 #include <vector>
 
-#ifdef DC_HAVE_ROS
-#include "devices/ros/bag_reader.h"
-#endif
-
 namespace dc::tool {
 
 namespace {
@@ -42,31 +38,6 @@ using Clock = std::chrono::steady_clock;
 
 double secondsSince(Clock::time_point start) {
     return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// Decodes every frame of `source` `passes` times; prints the median pass as frames per second and as a
-// multiple of real time (a single pass of a short recording lasts a fraction of a second: too noisy alone).
-// Returns the median seconds of one pass.
-double decodeAll(const std::string& name, devices::replay::ReplaySource& source, bool color, int passes) {
-    source.setDecodeColor(color);
-    const std::size_t n = source.frameCount();
-    const double recordedSeconds = static_cast<double>(source.timestampNs(n - 1) - source.timestampNs(0)) *
-                                   1e-9 * static_cast<double>(n) /
-                                   static_cast<double>(std::max<std::size_t>(n - 1, 1));
-    std::size_t failed = 0;
-    std::vector<double> seconds;
-    for (int pass = 0; pass < passes; ++pass) {
-        const auto start = Clock::now();
-        for (std::size_t i = 0; i < n; ++i)
-            failed += devices::replay::loadFrame(source, i) ? 0 : 1;
-        seconds.push_back(secondsSince(start));
-    }
-    std::sort(seconds.begin(), seconds.end());
-    const double median = seconds[seconds.size() / 2];
-    std::printf("  %-44s %5zu frames, median of %d passes %6.2f s: %7.1f fps = %6.1fx real time%s\n",
-                name.c_str(), n, passes, median, static_cast<double>(n) / median, recordedSeconds / median,
-                failed ? (" (" + std::to_string(failed) + " failed)").c_str() : "");
-    return median;
 }
 
 // What a case records: a few distinct frames of one source, replayed at the source's own rate.
@@ -280,88 +251,6 @@ nlohmann::json toJson(const RecordCaseResult& r) {
 
 } // namespace
 
-#ifdef DC_HAVE_ROS
-// The frames as a RealSense-style bag: 16UC1 millimetres and rgb8, uncompressed, with camera_info.
-Status writeBag(const std::string& path, const std::vector<frame::FramePtr>& frames) {
-    auto bag = devices::ros::BagWriter::create(path);
-    if (!bag)
-        return bag.error();
-    const frame::Intrinsics k = frames.front()->depthIntrinsics();
-    devices::ros::RosCameraInfo info{static_cast<std::uint32_t>(k.width),
-                                     static_cast<std::uint32_t>(k.height),
-                                     {k.fx, 0, k.cx, 0, k.fy, k.cy, 0, 0, 1},
-                                     "plumb_bob",
-                                     {0, 0, 0, 0, 0}};
-    if (Status s = (*bag)->write("/camera/depth/camera_info", frames.front()->timestampNs, info); !s)
-        return s;
-    for (const frame::FramePtr& f : frames) {
-        const auto& depth = f->sceneDepth->depthMeters;
-        devices::ros::RosImage d{f->timestampNs,
-                                 "camera",
-                                 "16UC1",
-                                 static_cast<std::uint32_t>(depth.width),
-                                 static_cast<std::uint32_t>(depth.height),
-                                 static_cast<std::uint32_t>(2 * depth.width),
-                                 false,
-                                 std::vector<std::uint8_t>(depth.pixels.size() * 2)};
-        for (std::size_t i = 0; i < depth.pixels.size(); ++i) {
-            const auto mm =
-                static_cast<std::uint16_t>(std::clamp(depth.pixels[i] * 1000.0f + 0.5f, 0.0f, 65535.0f));
-            std::memcpy(&d.data[2 * i], &mm, 2);
-        }
-        const auto& image = f->capturedImage;
-        devices::ros::RosImage c{f->timestampNs,
-                                 "camera",
-                                 "rgb8",
-                                 static_cast<std::uint32_t>(image.width),
-                                 static_cast<std::uint32_t>(image.height),
-                                 static_cast<std::uint32_t>(3 * image.width),
-                                 false,
-                                 frame::toRgb24(image)};
-        if (Status s = (*bag)->write("/camera/depth/image_rect_raw", d); !s)
-            return s;
-        if (Status s = (*bag)->write("/camera/color/image_raw", c); !s)
-            return s;
-    }
-    return (*bag)->close();
-}
-
-// The same 1280x720 depth + colour frames from our recording and from a ROS bag, decoded alike.
-void benchBagAgainstRecording(const BenchReplayOptions& o) {
-    devices::SyntheticConfig config;
-    config.depthWidth = config.cameraWidth = 1280;
-    config.depthHeight = config.cameraHeight = 720;
-    config.motion = true;
-    auto frames = syntheticFrames(config, o.bagFrames);
-    for (std::size_t i = 0; i < frames.size(); ++i) {
-        auto f = std::make_shared<frame::Frame>(*frames[i]);
-        // From 1 s: a bag refuses messages at time 0 (ros::TIME_MIN is 1 ns).
-        f->timestampNs = 1'000'000'000 + static_cast<std::int64_t>(i) * 1'000'000'000 / 30;
-        frames[i] = f;
-    }
-    const std::string recordingPath = tempPath({}, "replay-720p"), bagPath = recordingPath + ".bag";
-    auto writer = devices::recording::RecordingWriter::create(recordingPath, {"synthetic 1280x720", {}});
-    for (std::size_t i = 0; writer && i < frames.size(); ++i)
-        (void)writer->append(*frames[i]);
-    const bool recorded = writer && writer->finish();
-    const Status bagged = writeBag(bagPath, frames);
-    auto recording = devices::replay::openRecordingSource(recordingPath);
-    auto bag = devices::replay::openReplaySource(bagPath);
-    if (recorded && bagged && recording && bag) {
-        const double ours =
-            decodeAll("synthetic 1280x720 recording (zstd, NV12)", **recording, true, o.passes);
-        const double ros = decodeAll("same frames as a ROS bag (16UC1 + rgb8)", **bag, true, o.passes);
-        std::printf("  %-44s %.2fx the recording's time per frame\n", "ROS bag / recording", ros / ours);
-    } else {
-        std::printf("  1280x720 bag case: %s\n",
-                    !bagged ? bagged.error().message.c_str() : "cannot write or open");
-    }
-    std::error_code ec;
-    fs::remove(recordingPath, ec);
-    fs::remove(bagPath, ec);
-}
-#endif
-
 int runBenchReplay(const BenchReplayOptions& o) {
     setLogQuiet(true);
     std::printf("bench replay: decode throughput, headless, one thread (goal: >= 20x real time)\n");
@@ -399,9 +288,7 @@ int runBenchReplay(const BenchReplayOptions& o) {
     }
     std::error_code ec;
     fs::remove(path, ec);
-#ifdef DC_HAVE_ROS
-    benchBagAgainstRecording(o);
-#endif
+    benchReplayFormats(o.bagFrames, o.passes);
     return kExitOk;
 }
 

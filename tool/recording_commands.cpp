@@ -81,7 +81,7 @@ void addRecordingCommands(CLI::App& app, CLI::App& bench, RecordingCommands& c) 
         ->capture_default_str();
     c.benchReplayCmd
         ->add_option("--bag-frames", c.benchReplay.bagFrames,
-                     "1280x720 frames for the ROS bag against recording case")
+                     "1280x720 frames for the comparison of recording, ROS bag, MCAP and .db3")
         ->check(CLI::Range(2, 3000));
     c.benchReplayCmd
         ->add_option("--passes", c.benchReplay.passes, "passes over every case; the median is reported")

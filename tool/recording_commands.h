@@ -36,7 +36,7 @@ struct BenchReplayOptions {
     std::string
         data; // a capture to decode besides the synthetic recording (a .dcrec, Stray or TUM directory)
     int syntheticFrames = 150;
-    int bagFrames = 60; // 1280x720 frames for the ROS bag against recording case
+    int bagFrames = 60; // 1280x720 frames for the comparison of formats (benchReplayFormats)
     int passes = 5;     // decodes of every frame per case; the median pass is reported
 };
 

@@ -132,6 +132,7 @@ frame::Pose poseFromQuaternion(const double t[3], const double q[4]) {
 namespace {
 
 constexpr std::string_view kMcapMagic{"\x89MCAP0\r\n", 8};
+constexpr std::string_view kSqliteMagic{"SQLite format 3\0", 16};
 
 std::string lowercaseExtension(const std::filesystem::path& p) {
     std::string extension = p.extension().string();
@@ -142,22 +143,27 @@ std::string lowercaseExtension(const std::filesystem::path& p) {
 
 CaptureKind classifyFile(const std::filesystem::path& p) {
     std::ifstream in(p, std::ios::binary);
-    std::array<char, 8> head{};
-    if (in.read(head.data(), head.size())) {
-        if (std::string_view(head.data(), head.size()) == "#ROSBAG ")
-            return CaptureKind::RosBag;
-        if (std::string_view(head.data(), head.size()) == kMcapMagic)
-            return CaptureKind::Mcap;
-        if (std::equal(head.begin(), head.end(), recording::kFileMagic.begin(),
-                       [](char a, std::uint8_t b) { return static_cast<std::uint8_t>(a) == b; }))
-            return CaptureKind::DcRecording;
-    }
+    std::array<char, 16> head{};
+    in.read(head.data(), head.size());
+    const std::string_view read(head.data(), static_cast<std::size_t>(in.gcount()));
+    if (read.starts_with("#ROSBAG "))
+        return CaptureKind::RosBag;
+    if (read.starts_with(kMcapMagic))
+        return CaptureKind::Mcap;
+    if (read.starts_with(kSqliteMagic))
+        return CaptureKind::Rosbag2;
+    if (read.size() >= recording::kFileMagic.size() &&
+        std::equal(recording::kFileMagic.begin(), recording::kFileMagic.end(), read.begin(),
+                   [](std::uint8_t a, char b) { return a == static_cast<std::uint8_t>(b); }))
+        return CaptureKind::DcRecording;
     // A file that only carries the name still goes to its reader, which says what is wrong with it.
     const std::string extension = lowercaseExtension(p);
     if (extension == ".bag")
         return CaptureKind::RosBag;
     if (extension == ".mcap")
         return CaptureKind::Mcap;
+    if (extension == ".db3")
+        return CaptureKind::Rosbag2;
     return extension == ".dcrec" ? CaptureKind::DcRecording : CaptureKind::OtherFile;
 }
 

@@ -67,7 +67,7 @@ enum class CaptureKind {
     DcRecording,  // a depthcloud recording
     RosBag,       // a ROS 1 bag (RealSense, ROS)
     Mcap,         // an MCAP file (ROS 2's rosbag2 since Iron, Foxglove)
-    Rosbag2,      // a rosbag2 folder: metadata.yaml beside its storage files
+    Rosbag2,      // a rosbag2 folder (metadata.yaml beside its storage files), or one of its .db3 files
     StrayCapture, // a Stray Scanner capture: depth/ beside rgb.mp4
     TumSequence,  // a TUM RGB-D sequence: rgb.txt and depth.txt
     Folder,       // any other directory
@@ -77,7 +77,7 @@ enum class CaptureKind {
 CaptureKind classifyCapture(const std::filesystem::path& path);
 
 // Opens PATH as whatever it is: a depthcloud recording (a file), a ROS bag (a .bag file), a ROS 2 recording
-// (an .mcap file or a rosbag2 folder stored as MCAP), a Stray Scanner
+// (an .mcap file, a rosbag2 .db3 file, or a rosbag2 folder of either), a Stray Scanner
 // directory (depth/, rgb.mp4, camera_matrix.csv, odometry.csv) or a TUM RGB-D directory (rgb.txt, depth.txt).
 Expected<std::unique_ptr<ReplaySource>> openReplaySource(const std::string& path,
                                                          const ReplayOpenOptions& options = {});

@@ -4,10 +4,12 @@
 #include "devices/ros/db3_store.h"
 #include "devices/ros/mcap_reader.h"
 #include "devices/ros/message_store.h"
+#include "devices/ros/split_store.h"
+
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <fstream>
 
 namespace dc::devices::ros {
 
@@ -103,65 +105,81 @@ private:
     std::vector<std::uint16_t> handles_;   // channel per indexed topic
 };
 
-// The value of a top-level or nested "key: value" line of metadata.yaml (rosbag2 writes one per line).
-std::vector<std::string> yamlValues(std::istream& in, const std::string& key) {
-    std::vector<std::string> values;
-    for (std::string line; std::getline(in, line);) {
-        const auto at = line.find(key + ":");
-        if (at == std::string::npos || line.find_first_not_of(' ') != at)
-            continue;
-        std::string value = line.substr(at + key.size() + 1);
-        value.erase(0, value.find_first_not_of(" \"'"));
-        value.erase(value.find_last_not_of(" \"'\r") + 1);
-        values.push_back(value);
+// One file of a ROS 2 recording: sqlite3 (by its header or its .db3 name) or MCAP.
+Expected<std::unique_ptr<MessageStore>> openStore(const std::string& file) {
+    if (replay::classifyCapture(file) == replay::CaptureKind::Rosbag2)
+        return openDb3Store(file);
+    auto mcap = McapReader::open(file);
+    if (!mcap)
+        return mcap.error();
+    return std::unique_ptr<MessageStore>(std::make_unique<McapStore>(std::move(*mcap)));
+}
+
+// The files metadata.yaml lists, or every file of the storage's extension in name order where it lists none.
+Expected<std::vector<std::string>> filesOfStorage(const std::filesystem::path& directory,
+                                                  const YAML::Node& information,
+                                                  const std::string& extension) {
+    namespace fs = std::filesystem;
+    std::vector<std::string> files;
+    if (const YAML::Node listed = information["relative_file_paths"]; listed && listed.IsSequence()) {
+        for (const YAML::Node& name : listed) {
+            const fs::path file = directory / name.as<std::string>();
+            if (!fs::is_regular_file(file))
+                return Error{directory.string() + ": metadata.yaml lists " + name.as<std::string>() +
+                             ", which is not there"};
+            files.push_back(file.string());
+        }
+        return files;
     }
-    return values;
+    std::error_code ec;
+    for (const auto& entry : fs::directory_iterator(directory, ec))
+        if (entry.path().extension() == extension)
+            files.push_back(entry.path().string());
+    std::sort(files.begin(), files.end());
+    return files;
 }
 
 } // namespace
 
-Expected<std::string> rosbag2File(const std::string& directory) {
-    namespace fs = std::filesystem;
-    const fs::path metadata = fs::path(directory) / "metadata.yaml";
-    std::ifstream in(metadata);
-    if (!in)
-        return Error{directory + ": no metadata.yaml (not a rosbag2 folder)"};
-    const auto storage = yamlValues(in, "storage_identifier");
-    const std::string kind = storage.empty() ? "" : storage.front();
+Expected<std::vector<std::string>> rosbag2Files(const std::string& directory) {
+    const std::filesystem::path metadata = std::filesystem::path(directory) / "metadata.yaml";
+    YAML::Node information;
+    try {
+        information = YAML::LoadFile(metadata.string())["rosbag2_bagfile_information"];
+    } catch (const YAML::Exception& e) {
+        return Error{metadata.string() + ": " + e.what()};
+    }
+    if (!information || !information.IsMap())
+        return Error{metadata.string() + ": no rosbag2_bagfile_information (not a rosbag2 folder)"};
+    const YAML::Node storage = information["storage_identifier"];
+    const std::string kind = storage && storage.IsScalar() ? storage.as<std::string>() : "";
     const std::string extension = kind == "mcap" ? ".mcap" : kind == "sqlite3" ? ".db3" : "";
     if (extension.empty())
         return Error{directory + ": a rosbag2 folder stored as '" + kind +
                      "'; only MCAP and sqlite3 storage are supported"};
-    std::vector<fs::path> files;
-    std::error_code ec;
-    for (const auto& entry : fs::directory_iterator(directory, ec))
-        if (entry.path().extension() == extension)
-            files.push_back(entry.path());
-    if (files.size() != 1)
-        return Error{directory + ": " + std::to_string(files.size()) + " " + extension +
-                     " files; a rosbag2 folder split over several files is not supported yet"};
-    return files.front().string();
+    auto files = filesOfStorage(directory, information, extension);
+    if (files && files->empty())
+        return Error{directory + ": 0 " + extension + " files"};
+    return files;
 }
 
 Expected<std::unique_ptr<replay::ReplaySource>> openMcapSource(const std::string& path,
                                                                const BagOptions& options) {
-    std::string file = path;
+    std::vector<std::string> files{path};
     if (std::filesystem::is_directory(path)) {
-        auto inFolder = rosbag2File(path);
+        auto inFolder = rosbag2Files(path);
         if (!inFolder)
             return inFolder.error();
-        file = *inFolder;
+        files = std::move(*inFolder);
     }
-    if (std::filesystem::path(file).extension() == ".db3") {
-        auto db3 = openDb3Store(file);
-        if (!db3)
-            return db3.error();
-        return openMessageSource(std::move(*db3), file, options);
+    std::vector<std::unique_ptr<MessageStore>> stores;
+    for (const std::string& file : files) {
+        auto store = openStore(file);
+        if (!store)
+            return store.error();
+        stores.push_back(std::move(*store));
     }
-    auto mcap = McapReader::open(file);
-    if (!mcap)
-        return mcap.error();
-    return openMessageSource(std::make_unique<McapStore>(std::move(*mcap)), file, options);
+    return openMessageSource(concatenateStores(std::move(stores)), files.front(), options);
 }
 
 } // namespace dc::devices::ros

@@ -13,6 +13,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <utility>
 
 namespace dc::devices::ros {
 namespace {
@@ -24,20 +25,25 @@ class Db3Replay : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = new test::TempDir;
-        const std::string command = std::string("/usr/bin/python3 ") + DC_DB3_WRITER_SCRIPT + " " + bag();
-        if (std::system(command.c_str()) != 0)
-            problem_ = "the .db3 writer failed (" + command + ")";
+        for (const auto& [folder, parts] : {std::pair{bag(), 1}, std::pair{split(), 2}}) {
+            const std::string command = std::string("/usr/bin/python3 ") + DC_DB3_WRITER_SCRIPT + " " +
+                                        folder + " " + std::to_string(parts);
+            if (std::system(command.c_str()) != 0)
+                problem_ = "the .db3 writer failed (" + command + ")";
+        }
     }
     static void TearDownTestSuite() { delete dir_; }
     void SetUp() override { ASSERT_TRUE(problem_.empty()) << problem_; }
     static std::string bag() { return dir_->path("bag"); }
+    static std::string split() { return dir_->path("split"); } // the same frames in two .db3 files
 
     static inline test::TempDir* dir_ = nullptr;
     static inline std::string problem_;
 };
 
-TEST_F(Db3Replay, EveryFrameEqualsWhatWasWrittenWithItsStampAndCalibration) {
-    auto source = replay::openReplaySpecSource("replay:" + bag());
+// Opens `spec` and checks every frame against the writer's pattern, last to first (seeks included).
+void expectEveryFrameAsWritten(const std::string& spec) {
+    auto source = replay::openReplaySpecSource(spec);
     ASSERT_TRUE(source) << source.error().message;
     ASSERT_EQ((*source)->frameCount(), kFrames);
     EXPECT_NE((*source)->description().find("/camera/camera/depth/image_rect_raw"), std::string::npos);
@@ -66,6 +72,37 @@ TEST_F(Db3Replay, EveryFrameEqualsWhatWasWrittenWithItsStampAndCalibration) {
     EXPECT_EQ(rig->color->intrinsics.cx, 40.0);
     EXPECT_EQ(rig->depth->distortion, (std::vector<double>{0.1, -0.2, 0.001, 0.002, 0.05}));
     EXPECT_TRUE((*source)->warnings().empty());
+}
+
+TEST_F(Db3Replay, EveryFrameEqualsWhatWasWrittenWithItsStampAndCalibration) {
+    expectEveryFrameAsWritten("replay:" + bag());
+}
+
+TEST_F(Db3Replay, TheDb3FileAloneReplaysWithoutItsFolder) {
+    const std::string alone = dir_->path("alone.db3");
+    fs::copy_file(bag() + "/rosbag2_0.db3", alone);
+    expectEveryFrameAsWritten("replay:" + alone);
+    EXPECT_EQ(replay::classifyCapture(alone), replay::CaptureKind::Rosbag2);
+    const std::string renamed = dir_->path("recording.sqlite");
+    fs::copy_file(alone, renamed);
+    EXPECT_EQ(replay::classifyCapture(renamed), replay::CaptureKind::Rosbag2) << "known by its header";
+    expectEveryFrameAsWritten("replay:" + renamed);
+}
+
+// The second file numbers the topics apart from the first; the frames run on across the split.
+TEST_F(Db3Replay, AFolderSplitOverTwoFilesReplaysAsOneRecording) {
+    ASSERT_TRUE(fs::exists(split() + "/rosbag2_1.db3"));
+    expectEveryFrameAsWritten("replay:" + split());
+}
+
+TEST_F(Db3Replay, AListedFileThatIsMissingIsNamed) {
+    const std::string cut = dir_->path("cut");
+    fs::create_directories(cut);
+    fs::copy_file(split() + "/metadata.yaml", cut + "/metadata.yaml");
+    fs::copy_file(split() + "/rosbag2_0.db3", cut + "/rosbag2_0.db3");
+    auto source = replay::openReplaySpecSource("replay:" + cut);
+    ASSERT_FALSE(source);
+    EXPECT_NE(source.error().message.find("rosbag2_1.db3"), std::string::npos) << source.error().message;
 }
 
 TEST_F(Db3Replay, BrokenFoldersAndFilesAreOneLineErrors) {

@@ -3,7 +3,8 @@
 depthcloud's code: Python's sqlite3 module with Humble's rosbag2 schema, and messages serialised here as
 little-endian XCDR1 by struct. Frames follow tests/ros/replay_test_pattern.h (the MCAP writer's formulas).
 
-Usage: make_test_db3.py OUT_DIR  (writes OUT_DIR/metadata.yaml and OUT_DIR/rosbag2_0.db3)
+Usage: make_test_db3.py OUT_DIR [PARTS]  (writes OUT_DIR/metadata.yaml and OUT_DIR/rosbag2_0.db3, or the
+frames split over PARTS files rosbag2_0.db3, rosbag2_1.db3, ... as a recorder's size limit splits them)
 """
 import os
 import sqlite3
@@ -95,41 +96,59 @@ TOPICS = [  # id, name, type
 ]
 
 
-def write(directory):
-    os.makedirs(directory, exist_ok=True)
-    path = os.path.join(directory, "rosbag2_0.db3")
+SCHEMA = """
+    CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);
+    CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL,
+                          metadata TEXT NOT NULL);
+    CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL,
+                        serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);
+    CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL,
+                          data BLOB NOT NULL);
+    CREATE INDEX timestamp_idx ON messages (timestamp ASC);
+    INSERT INTO schema VALUES (3, 'humble');
+"""
+
+
+def frame_rows(i, topic_id):
+    depth_ns = START_NS + i * FRAME_NS
+    color_ns = depth_ns + COLOR_OFFSET_NS
+    # Colour rows first: the store must order by receive time, not by row.
+    return [
+        (topic_id[3], color_ns + LOG_DELAY_NS, color_image(i, color_ns)),
+        (topic_id[4], color_ns + LOG_DELAY_NS, camera_info(color_ns, COLOR_W, COLOR_H, COLOR_K, LENS)),
+        (topic_id[1], depth_ns + LOG_DELAY_NS, depth_image(i, depth_ns)),
+        (topic_id[2], depth_ns + LOG_DELAY_NS, camera_info(depth_ns, DEPTH_W, DEPTH_H, DEPTH_K, LENS)),
+    ]
+
+
+def write_file(path, frames, part):
     if os.path.exists(path):
         os.remove(path)
     db = sqlite3.connect(path)
-    db.executescript("""
-        CREATE TABLE schema(schema_version INTEGER PRIMARY KEY, ros_distro TEXT NOT NULL);
-        CREATE TABLE metadata(id INTEGER PRIMARY KEY, metadata_version INTEGER NOT NULL,
-                              metadata TEXT NOT NULL);
-        CREATE TABLE topics(id INTEGER PRIMARY KEY, name TEXT NOT NULL, type TEXT NOT NULL,
-                            serialization_format TEXT NOT NULL, offered_qos_profiles TEXT NOT NULL);
-        CREATE TABLE messages(id INTEGER PRIMARY KEY, topic_id INTEGER NOT NULL, timestamp INTEGER NOT NULL,
-                              data BLOB NOT NULL);
-        CREATE INDEX timestamp_idx ON messages (timestamp ASC);
-        INSERT INTO schema VALUES (3, 'humble');
-    """)
-    db.executemany("INSERT INTO topics VALUES (?, ?, ?, 'cdr', '')", TOPICS)
-    rows = []
-    for i in range(FRAMES):
-        depth_ns = START_NS + i * FRAME_NS
-        color_ns = depth_ns + COLOR_OFFSET_NS
-        # Colour rows first: the store must order by receive time, not by row.
-        rows.append((3, color_ns + LOG_DELAY_NS, color_image(i, color_ns)))
-        rows.append((4, color_ns + LOG_DELAY_NS, camera_info(color_ns, COLOR_W, COLOR_H, COLOR_K, LENS)))
-        rows.append((1, depth_ns + LOG_DELAY_NS, depth_image(i, depth_ns)))
-        rows.append((2, depth_ns + LOG_DELAY_NS, camera_info(depth_ns, DEPTH_W, DEPTH_H, DEPTH_K, LENS)))
+    db.executescript(SCHEMA)
+    # Each later file numbers the topics differently, as a recorder that met them in another order would.
+    ids = {tid: (tid + part - 1) % len(TOPICS) + 1 for tid, _, _ in TOPICS}
+    db.executemany("INSERT INTO topics VALUES (?, ?, ?, 'cdr', '')",
+                   [(ids[tid], name, kind) for tid, name, kind in TOPICS])
+    rows = [row for i in frames for row in frame_rows(i, ids)]
     db.executemany("INSERT INTO messages (topic_id, timestamp, data) VALUES (?, ?, ?)", rows)
     db.commit()
     db.close()
+    return len(rows)
+
+
+def write(directory, parts):
+    os.makedirs(directory, exist_ok=True)
+    names = [f"rosbag2_{p}.db3" for p in range(parts)]
+    count = 0
+    for p, name in enumerate(names):
+        frames = [i for i in range(FRAMES) if i * parts // FRAMES == p]
+        count += write_file(os.path.join(directory, name), frames, p)
     with open(os.path.join(directory, "metadata.yaml"), "w") as f:
         f.write("rosbag2_bagfile_information:\n  version: 5\n  storage_identifier: sqlite3\n"
-                "  relative_file_paths:\n    - rosbag2_0.db3\n"
-                f"  message_count: {len(rows)}\n")
+                "  relative_file_paths:\n" + "".join(f"    - {n}\n" for n in names) +
+                f"  message_count: {count}\n")
 
 
 if __name__ == "__main__":
-    write(sys.argv[1])
+    write(sys.argv[1], int(sys.argv[2]) if len(sys.argv) > 2 else 1)
