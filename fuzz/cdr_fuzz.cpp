@@ -1,4 +1,5 @@
-// libFuzzer: the CDR decoders of ROS 2 messages (Image, CameraInfo, a header's stamp) on arbitrary bytes.
+// libFuzzer: the CDR decoders of ROS 2 messages (Image, CameraInfo, TFMessage, a header's stamp) on arbitrary
+// bytes.
 
 #include "devices/ros/cdr.h"
 
@@ -10,5 +11,6 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)decodeHeaderStampNs({data, size});
     (void)decodeImage({data, size});
     (void)decodeCameraInfo({data, size});
+    (void)decodeTfMessage({data, size});
     return 0;
 }

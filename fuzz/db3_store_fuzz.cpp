@@ -44,6 +44,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         for (std::size_t i = 0; i < messages; ++i) {
             (void)(*store)->recordedNs(*handle, i);
             (void)(*store)->image(*handle, i);
+            (void)(*store)->transforms(*handle, i);
         }
     }
     return 0;

@@ -19,6 +19,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
             if (auto message = (*reader)->message(channel.id, i)) {
                 (void)decodeImage(*message);
                 (void)decodeCameraInfo(*message);
+                (void)decodeTfMessage(*message);
             }
     }
     return 0;

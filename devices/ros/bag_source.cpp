@@ -7,7 +7,9 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cstdlib>
 #include <filesystem>
+#include <iterator>
 
 namespace dc::devices::ros {
 
@@ -108,6 +110,23 @@ int infraredRank(const std::string& topic) {
     return -1;
 }
 
+// A tf transform (ROS's optical frames have OpenCV's axes, as ours) as a camera-to-world pose, column-major.
+frame::Pose poseOf(const RosTransform& t) {
+    const auto r = rotationFromQuaternion(t.rotationXyzw);
+    frame::Pose pose;
+    for (int row = 0; row < 3; ++row) {
+        for (int col = 0; col < 3; ++col)
+            pose.cameraToWorld[col * 4 + row] = r[row * 3 + col];
+        pose.cameraToWorld[12 + row] = t.translationMeters[row];
+    }
+    return pose;
+}
+
+// How far from a depth image's stamp the transform that places it may be stamped: within a frame at 20 fps.
+constexpr std::int64_t kPoseToleranceNs = 50'000'000;
+constexpr const char* kTfTopic = "/tf";
+constexpr const char* kTfType = "tf2_msgs/TFMessage";
+
 // One image topic's messages with the timestamps replay uses.
 struct ImageStream {
     std::size_t handle = 0;
@@ -127,7 +146,10 @@ public:
                (infraredTopic_.empty() ? "" : ", infrared " + infraredTopic_) + ")";
     }
     Capabilities capabilities() const override {
-        return {.sceneDepth = true, .color = !colorTopic_.empty(), .approximateIntrinsics = !rig_.depth};
+        return {.sceneDepth = true,
+                .color = !colorTopic_.empty(),
+                .pose = !poses_.empty(),
+                .approximateIntrinsics = !rig_.depth};
     }
     std::size_t frameCount() const override { return depth_.timestampsNs.size(); }
     std::int64_t timestampNs(std::size_t i) const override { return depth_.timestampsNs[i]; }
@@ -143,6 +165,8 @@ private:
     Expected<ImageStream> index(const std::string& topic);
     void readCalibration();
     void chooseInfrared();
+    void readPoses();
+    std::vector<std::pair<std::int64_t, RosTransform>> depthFrameTrack(const std::string& frameId);
     std::vector<std::optional<std::size_t>> pairWithDepth(const ImageStream& other) const;
 
     std::string path_;
@@ -151,6 +175,7 @@ private:
     std::string depthTopic_, colorTopic_, infraredTopic_;
     ImageStream depth_, color_, infrared_;
     std::vector<std::optional<std::size_t>> colorOf_, infraredOf_; // per depth image
+    std::vector<std::optional<frame::Pose>> poses_;                // per depth image, from /tf
     double metersPerUnit_ = kRosDepthMetersPerUnit;
     BagRig rig_;
     std::shared_ptr<const frame::RigCalibration> rigCalibration_; // when the bag records both sensors
@@ -322,7 +347,59 @@ Status BagSource::open() {
         infrared_ = std::move(*infrared);
     }
     infraredOf_ = pairWithDepth(infrared_);
+    readPoses();
     return {};
+}
+
+// Every transform on /tf whose child is `frameId`, by stamp. A message that cannot be read is skipped and
+// counted in one warning.
+std::vector<std::pair<std::int64_t, RosTransform>> BagSource::depthFrameTrack(const std::string& frameId) {
+    std::vector<std::pair<std::int64_t, RosTransform>> track;
+    auto handle = bag_->indexTopic(kTfTopic);
+    if (!handle)
+        return track;
+    std::size_t unreadable = 0;
+    for (std::size_t i = 0; i < bag_->messageCount(*handle); ++i) {
+        auto transforms = bag_->transforms(*handle, i);
+        unreadable += transforms ? 0 : 1;
+        if (transforms)
+            for (const RosTransformStamped& t : *transforms)
+                if (t.childFrameId == frameId)
+                    track.emplace_back(t.stampNs, t.transform);
+    }
+    if (unreadable > 0)
+        warnings_.push_back(path_ + ": " + std::to_string(unreadable) + " " + kTfTopic +
+                            " messages could not be read; their poses are left out");
+    std::sort(track.begin(), track.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+    return track;
+}
+
+// Where a ROS 2 recording places its depth camera (our MCAP export's odom -> camera_depth_optical_frame, or
+// a SLAM node's): each depth image takes the /tf transform of its own frame_id stamped nearest to it, within
+// kPoseToleranceNs. Only the direct parent is read, not a chain of frames.
+void BagSource::readPoses() {
+    const auto& topics = bag_->topics();
+    if (std::none_of(topics.begin(), topics.end(),
+                     [](const MessageStore::Topic& t) { return t.name == kTfTopic && t.type == kTfType; }))
+        return;
+    const auto image = bag_->firstImage(depthTopic_);
+    if (!image || image->frameId.empty())
+        return;
+    const auto track = depthFrameTrack(image->frameId);
+    if (track.empty())
+        return;
+    poses_.assign(frameCount(), std::nullopt);
+    for (std::size_t i = 0; i < frameCount(); ++i) {
+        const std::int64_t stamp = depth_.timestampsNs[i];
+        auto next = std::lower_bound(track.begin(), track.end(), stamp,
+                                     [](const auto& entry, std::int64_t ns) { return entry.first < ns; });
+        auto best = next;
+        if (next == track.end() ||
+            (next != track.begin() && stamp - std::prev(next)->first < next->first - stamp))
+            best = std::prev(next);
+        if (std::llabs(best->first - stamp) <= kPoseToleranceNs)
+            poses_[i] = poseOf(best->second);
+    }
 }
 
 Expected<frame::Frame> BagSource::frame(std::size_t i) {
@@ -332,6 +409,8 @@ Expected<frame::Frame> BagSource::frame(std::size_t i) {
     frame::Frame frame;
     frame.sequence = i;
     frame.timestampNs = depth_.timestampsNs[i];
+    if (i < poses_.size())
+        frame.pose = poses_[i];
     auto depthImage = bag_->image(depth_.handle, i);
     if (!depthImage)
         return fail(depthImage.error());

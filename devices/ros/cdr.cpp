@@ -147,4 +147,28 @@ Expected<RosCameraInfo> decodeCameraInfo(std::span<const std::uint8_t> message) 
     return info;
 }
 
+Expected<std::vector<RosTransformStamped>> decodeTfMessage(std::span<const std::uint8_t> message) {
+    CdrReader cdr(message);
+    const std::uint32_t count = cdr.u32();
+    // A transform takes at least 80 bytes (a stamp, two empty names, seven doubles): a count beyond the
+    // message is damage, not a reason to allocate.
+    constexpr std::size_t kSmallestTransform = 80;
+    if (count > message.size() / kSmallestTransform)
+        return Error{"a tf2_msgs/msg/TFMessage message is unreadable: " + std::to_string(count) +
+                     " transforms in " + std::to_string(message.size()) + " bytes"};
+    std::vector<RosTransformStamped> transforms(count);
+    for (RosTransformStamped& t : transforms) {
+        t.stampNs = cdr.stampNs();
+        t.parentFrameId = cdr.string();
+        t.childFrameId = cdr.string();
+        for (double& v : t.transform.translationMeters)
+            v = cdr.f64();
+        for (double& v : t.transform.rotationXyzw)
+            v = cdr.f64();
+    }
+    if (cdr.failed())
+        return problemOf(cdr, "tf2_msgs/msg/TFMessage");
+    return transforms;
+}
+
 } // namespace dc::devices::ros

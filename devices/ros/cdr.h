@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <span>
 #include <string>
+#include <vector>
 
 // ROS 2 messages as DDS serializes them: XCDR1 (plain CDR) with its 4-byte encapsulation header, little or
 // big endian, into the plain values the ROS 1 readers produce, so both replay through the same code.
@@ -50,5 +51,7 @@ Expected<RosImage> decodeImage(std::span<const std::uint8_t> message);
 Expected<std::int64_t> decodeHeaderStampNs(std::span<const std::uint8_t> message);
 // sensor_msgs/msg/CameraInfo: size, distortion and K.
 Expected<RosCameraInfo> decodeCameraInfo(std::span<const std::uint8_t> message);
+// tf2_msgs/msg/TFMessage: every transform it holds.
+Expected<std::vector<RosTransformStamped>> decodeTfMessage(std::span<const std::uint8_t> message);
 
 } // namespace dc::devices::ros

@@ -30,6 +30,9 @@ public:
     Expected<RosImage> image(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle][i].first, decodeImage);
     }
+    Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
+        return decoded(handles_[handle][i].first, decodeTfMessage);
+    }
     std::optional<RosImage> firstImage(const std::string& topic) const override {
         return first(topic, decodeImage);
     }

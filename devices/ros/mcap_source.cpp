@@ -57,6 +57,9 @@ public:
     Expected<std::int64_t> imageStampNs(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle], i, decodeHeaderStampNs);
     }
+    Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
+        return decoded(handles_[handle], i, decodeTfMessage);
+    }
     std::optional<RosImage> firstImage(const std::string& topic) const override {
         return first(topic, decodeImage);
     }

@@ -37,4 +37,13 @@ struct RosTransform {
     std::array<double, 4> rotationXyzw{0, 0, 0, 1};
 };
 
+// geometry_msgs/TransformStamped, as tf2_msgs/TFMessage carries a list of them: the pose of `childFrameId`
+// in `parentFrameId` at `stampNs`.
+struct RosTransformStamped {
+    std::int64_t stampNs = 0;
+    std::string parentFrameId;
+    std::string childFrameId;
+    RosTransform transform;
+};
+
 } // namespace dc::devices::ros

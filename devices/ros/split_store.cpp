@@ -63,6 +63,10 @@ public:
         const auto [part, local, index] = locate(handle, i);
         return parts_[part]->imageStampNs(local, index);
     }
+    Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
+        const auto [part, local, index] = locate(handle, i);
+        return parts_[part]->transforms(local, index);
+    }
 
     std::optional<RosImage> firstImage(const std::string& topic) const override {
         return first<RosImage>([&](const MessageStore& s) { return s.firstImage(topic); });

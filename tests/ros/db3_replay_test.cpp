@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -72,6 +73,21 @@ void expectEveryFrameAsWritten(const std::string& spec) {
     EXPECT_EQ(rig->color->intrinsics.cx, 40.0);
     EXPECT_EQ(rig->depth->distortion, (std::vector<double>{0.1, -0.2, 0.001, 0.002, 0.05}));
     EXPECT_TRUE((*source)->warnings().empty());
+    // Each frame's pose is the camera's /tf transform (make_test_db3.py's pose(i)), not the decoy's.
+    EXPECT_TRUE((*source)->capabilities().pose);
+    for (std::size_t i = 0; i < kFrames; ++i) {
+        auto f = (*source)->frame(i);
+        ASSERT_TRUE(f && f->pose) << "frame " << i;
+        const auto& m = f->pose->cameraToWorld;
+        const double angle = 0.1 * static_cast<double>(i);
+        EXPECT_NEAR(m[0], std::cos(angle), 1e-12);
+        EXPECT_NEAR(m[1], std::sin(angle), 1e-12);
+        EXPECT_NEAR(m[4], -std::sin(angle), 1e-12);
+        EXPECT_NEAR(m[10], 1.0, 1e-12);
+        EXPECT_NEAR(m[12], 0.1 * static_cast<double>(i), 1e-12);
+        EXPECT_NEAR(m[13], 0.2, 1e-12);
+        EXPECT_NEAR(m[14], 0.3, 1e-12);
+    }
 }
 
 TEST_F(Db3Replay, EveryFrameEqualsWhatWasWrittenWithItsStampAndCalibration) {

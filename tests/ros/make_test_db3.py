@@ -6,6 +6,7 @@ little-endian XCDR1 by struct. Frames follow tests/ros/replay_test_pattern.h (th
 Usage: make_test_db3.py OUT_DIR [PARTS]  (writes OUT_DIR/metadata.yaml and OUT_DIR/rosbag2_0.db3, or the
 frames split over PARTS files rosbag2_0.db3, rosbag2_1.db3, ... as a recorder's size limit splits them)
 """
+import math
 import os
 import sqlite3
 import struct
@@ -75,6 +76,25 @@ def camera_info(stamp_ns, width, height, k, d):
     return bytes(w.out)
 
 
+def pose(i):
+    """Frame i's camera in odom: translation (0.1 i, 0.2, 0.3) m, turned 0.1 i rad about z."""
+    half = 0.05 * i
+    return (0.1 * i, 0.2, 0.3), (0.0, 0.0, math.sin(half), math.cos(half))
+
+
+def tf_message(i, stamp_ns):
+    """A TFMessage with the camera's pose, and another frame's that the replay must not take for it."""
+    w = Cdr()
+    w.put("I", 2)
+    for child, (t, q) in (("base_link", ((5.0, 5.0, 5.0), (0.0, 0.0, 0.0, 1.0))),
+                          ("camera_optical_frame", pose(i))):
+        w.header(stamp_ns, "odom")
+        w.string(child)
+        for v in t + q:
+            w.put("d", v)
+    return bytes(w.out)
+
+
 def depth_image(i, stamp_ns):
     data = b"".join(struct.pack("<H", depth_units(x, y, i)) for y in range(DEPTH_H) for x in range(DEPTH_W))
     return image(stamp_ns, "16UC1", DEPTH_W, DEPTH_H, 2 * DEPTH_W, data)
@@ -93,6 +113,7 @@ TOPICS = [  # id, name, type
     (2, "/camera/camera/depth/camera_info", "sensor_msgs/msg/CameraInfo"),
     (3, "/camera/camera/color/image_raw", "sensor_msgs/msg/Image"),
     (4, "/camera/camera/color/camera_info", "sensor_msgs/msg/CameraInfo"),
+    (5, "/tf", "tf2_msgs/msg/TFMessage"),
 ]
 
 
@@ -118,6 +139,8 @@ def frame_rows(i, topic_id):
         (topic_id[4], color_ns + LOG_DELAY_NS, camera_info(color_ns, COLOR_W, COLOR_H, COLOR_K, LENS)),
         (topic_id[1], depth_ns + LOG_DELAY_NS, depth_image(i, depth_ns)),
         (topic_id[2], depth_ns + LOG_DELAY_NS, camera_info(depth_ns, DEPTH_W, DEPTH_H, DEPTH_K, LENS)),
+        # Stamped 1 ms after the depth image, as a pose estimator's output would be.
+        (topic_id[5], depth_ns + LOG_DELAY_NS, tf_message(i, depth_ns + 1000000)),
     ]
 
 

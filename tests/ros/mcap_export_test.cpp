@@ -255,6 +255,11 @@ TEST_F(McapExport, ReplayOfTheExportGivesBackTheSameFrames) {
             const frame::Intrinsics a = replayed[i].depthIntrinsics(), b = source[i].depthIntrinsics();
             EXPECT_NEAR(a.fx, b.fx, 1e-9);
             EXPECT_NEAR(a.cy, b.cy, 1e-9);
+            // The pose comes back from /tf (odom -> camera_depth_optical_frame).
+            ASSERT_TRUE(source[i].pose && replayed[i].pose) << name << " frame " << i;
+            for (std::size_t e = 0; e < 16; ++e)
+                EXPECT_NEAR(replayed[i].pose->cameraToWorld[e], source[i].pose->cameraToWorld[e], 1e-9)
+                    << name << " frame " << i << " element " << e;
         }
     }
 }
