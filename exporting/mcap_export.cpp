@@ -121,6 +121,8 @@ const char* topicName(McapTopic topic) {
         return "/camera/camera/infra1/camera_info";
     case McapTopic::Tf:
         return "/tf";
+    case McapTopic::TfStatic:
+        return "/tf_static";
     }
     return "";
 }
@@ -138,7 +140,7 @@ std::uint16_t McapFrameWriter::channel(McapTopic topic) {
         return id;
     const bool image =
         topic == McapTopic::DepthImage || topic == McapTopic::ColorImage || topic == McapTopic::InfraredImage;
-    const std::size_t kind = topic == McapTopic::Tf ? 2 : image ? 0 : 1;
+    const std::size_t kind = topic == McapTopic::Tf || topic == McapTopic::TfStatic ? 2 : image ? 0 : 1;
     static const std::array<const ros2::MessageType*, 3> kTypes{&ros2::kImageType, &ros2::kCameraInfoType,
                                                                 &ros2::kTfMessageType};
     if (schemas_[kind] == 0)
@@ -170,7 +172,26 @@ Status McapFrameWriter::add(const frame::Frame& frame) {
         s = addInfrared(frame);
     if (s && frame.pose)
         s = write(McapTopic::Tf, t, ros2::serializeTf({poseTransform(*frame.pose, t)}));
+    if (s)
+        s = addExtrinsics(frame);
     return s;
+}
+
+// The colour camera in the depth camera's frame: the inverse of the calibration's depth-to-colour transform
+// (p_colour = R p_depth + t), so p_depth = Rᵀ (p_colour - t).
+Status McapFrameWriter::addExtrinsics(const frame::Frame& frame) {
+    if (extrinsicsWritten_ || !frame.rig || frame.capturedImage.empty())
+        return {};
+    const auto& r = frame.rig->depthToColour.rotation;
+    const auto& t = frame.rig->depthToColour.translationMeters;
+    ros2::TransformStamped colour;
+    colour.header = headerOf(McapTopic::DepthImage, frame.timestampNs);
+    colour.childFrameId = frameIdOf(McapTopic::ColorImage);
+    colour.rotation = ros2::quaternionOf({r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8]});
+    for (int i = 0; i < 3; ++i)
+        colour.translation[i] = -(r[i] * t[0] + r[3 + i] * t[1] + r[6 + i] * t[2]);
+    extrinsicsWritten_ = true;
+    return write(McapTopic::TfStatic, frame.timestampNs, ros2::serializeTf({colour}));
 }
 
 Status McapFrameWriter::addColor(const frame::Frame& frame) {

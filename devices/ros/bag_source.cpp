@@ -2,14 +2,13 @@
 
 #include "devices/replay/tum_format.h"
 #include "devices/ros/bag_reader.h"
+#include "devices/ros/tf_tree.h"
 #include "frame/calibration.h"
 #include "frame/camera_model.h"
 
 #include <algorithm>
 #include <cctype>
-#include <cstdlib>
 #include <filesystem>
-#include <iterator>
 
 namespace dc::devices::ros {
 
@@ -110,21 +109,20 @@ int infraredRank(const std::string& topic) {
     return -1;
 }
 
-// A tf transform (ROS's optical frames have OpenCV's axes, as ours) as a camera-to-world pose, column-major.
-frame::Pose poseOf(const RosTransform& t) {
-    const auto r = rotationFromQuaternion(t.rotationXyzw);
+// A camera's place in its tf root as a camera-to-world pose (ROS's optical frames have OpenCV's axes, as
+// ours), column-major.
+frame::Pose poseOf(const frame::RigidTransform& t) {
     frame::Pose pose;
     for (int row = 0; row < 3; ++row) {
         for (int col = 0; col < 3; ++col)
-            pose.cameraToWorld[col * 4 + row] = r[row * 3 + col];
+            pose.cameraToWorld[col * 4 + row] = t.rotation[row * 3 + col];
         pose.cameraToWorld[12 + row] = t.translationMeters[row];
     }
     return pose;
 }
 
-// How far from a depth image's stamp the transform that places it may be stamped: within a frame at 20 fps.
+// How far from a depth image's stamp a moving tf link that places it may be stamped: a frame at 20 fps.
 constexpr std::int64_t kPoseToleranceNs = 50'000'000;
-constexpr const char* kTfTopic = "/tf";
 constexpr const char* kTfType = "tf2_msgs/TFMessage";
 
 // One image topic's messages with the timestamps replay uses.
@@ -165,8 +163,9 @@ private:
     Expected<ImageStream> index(const std::string& topic);
     void readCalibration();
     void chooseInfrared();
+    void readTf();
+    void extrinsicsFromTf();
     void readPoses();
-    std::vector<std::pair<std::int64_t, RosTransform>> depthFrameTrack(const std::string& frameId);
     std::vector<std::optional<std::size_t>> pairWithDepth(const ImageStream& other) const;
 
     std::string path_;
@@ -175,7 +174,8 @@ private:
     std::string depthTopic_, colorTopic_, infraredTopic_;
     ImageStream depth_, color_, infrared_;
     std::vector<std::optional<std::size_t>> colorOf_, infraredOf_; // per depth image
-    std::vector<std::optional<frame::Pose>> poses_;                // per depth image, from /tf
+    std::vector<std::optional<frame::Pose>> poses_;                // per depth image, from tf
+    TfTree tf_;
     double metersPerUnit_ = kRosDepthMetersPerUnit;
     BagRig rig_;
     std::shared_ptr<const frame::RigCalibration> rigCalibration_; // when the bag records both sensors
@@ -290,6 +290,8 @@ void BagSource::readCalibration() {
         if (depthTf && colorTf)
             rig_.depthToColor = depthToColor(*depthTf, *colorTf);
     }
+    if (!rig_.depthToColor)
+        extrinsicsFromTf();
     if (!rig_.depth)
         warnings_.push_back(path_ + ": no camera_info for " + depthTopic_ + " (looked for " +
                             cameraInfoTopic(depthTopic_) + "); the cloud's geometry is approximate");
@@ -327,6 +329,7 @@ Status BagSource::open() {
     warnings_ = bag_->warnings();
     if (Status s = chooseTopics(); !s)
         return s;
+    readTf();
     readCalibration();
     auto depth = index(depthTopic_);
     if (!depth)
@@ -351,55 +354,66 @@ Status BagSource::open() {
     return {};
 }
 
-// Every transform on /tf whose child is `frameId`, by stamp. A message that cannot be read is skipped and
-// counted in one warning.
-std::vector<std::pair<std::int64_t, RosTransform>> BagSource::depthFrameTrack(const std::string& frameId) {
-    std::vector<std::pair<std::int64_t, RosTransform>> track;
-    auto handle = bag_->indexTopic(kTfTopic);
-    if (!handle)
-        return track;
-    std::size_t unreadable = 0;
-    for (std::size_t i = 0; i < bag_->messageCount(*handle); ++i) {
-        auto transforms = bag_->transforms(*handle, i);
-        unreadable += transforms ? 0 : 1;
-        if (transforms)
-            for (const RosTransformStamped& t : *transforms)
-                if (t.childFrameId == frameId)
-                    track.emplace_back(t.stampNs, t.transform);
+// Every transform on /tf and /tf_static, for poses and extrinsics. A message that cannot be read is
+// skipped and counted in one warning.
+void BagSource::readTf() {
+    if (!bag_->readsTransforms())
+        return;
+    for (const MessageStore::Topic& topic : bag_->topics()) {
+        const bool fixed = topic.name == "/tf_static";
+        if (topic.type != kTfType || (topic.name != "/tf" && !fixed))
+            continue;
+        auto handle = bag_->indexTopic(topic.name);
+        if (!handle)
+            continue;
+        std::size_t unreadable = 0;
+        for (std::size_t i = 0; i < bag_->messageCount(*handle); ++i) {
+            auto transforms = bag_->transforms(*handle, i);
+            unreadable += transforms ? 0 : 1;
+            if (transforms)
+                for (const RosTransformStamped& t : *transforms)
+                    tf_.add(t, fixed);
+        }
+        if (unreadable > 0)
+            warnings_.push_back(path_ + ": " + std::to_string(unreadable) + " " + topic.name +
+                                " messages could not be read; the transforms they held are left out");
     }
-    if (unreadable > 0)
-        warnings_.push_back(path_ + ": " + std::to_string(unreadable) + " " + kTfTopic +
-                            " messages could not be read; their poses are left out");
-    std::sort(track.begin(), track.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-    return track;
+    tf_.finish();
 }
 
-// Where a ROS 2 recording places its depth camera (our MCAP export's odom -> camera_depth_optical_frame, or
-// a SLAM node's): each depth image takes the /tf transform of its own frame_id stamped nearest to it, within
-// kPoseToleranceNs. Only the direct parent is read, not a chain of frames.
+// A ROS 2 recording keeps the colour camera's place only in tf: where both images' frames meet in one root,
+// the depth-to-colour transform follows (p_colour = C⁻¹ D p_depth), at the first depth image's stamp.
+void BagSource::extrinsicsFromTf() {
+    const auto depth = bag_->firstImage(depthTopic_);
+    const auto colour = colorTopic_.empty() ? std::nullopt : bag_->firstImage(colorTopic_);
+    if (tf_.empty() || !depth || !colour || depth->frameId.empty() || depth->frameId == colour->frameId)
+        return;
+    const auto d = tf_.locate(depth->frameId, depth->stampNs, kPoseToleranceNs);
+    const auto c = tf_.locate(colour->frameId, depth->stampNs, kPoseToleranceNs);
+    if (!d || !c || d->root != c->root)
+        return;
+    const frame::RigidTransform depthToColour = compose(inverse(c->toRoot), d->toRoot);
+    rig_.depthToColor = BagExtrinsics{depthToColour.rotation, depthToColour.translationMeters};
+}
+
+// Where a ROS 2 recording places its depth camera (our MCAP export's odom -> camera_depth_optical_frame, a
+// SLAM node's map -> camera_link with the driver's fixed links below it): the depth image's frame_id
+// followed up its tf chain at the image's stamp. A chain without a moving link gives no pose: it says
+// where the camera is mounted, not where it went.
 void BagSource::readPoses() {
-    const auto& topics = bag_->topics();
-    if (std::none_of(topics.begin(), topics.end(),
-                     [](const MessageStore::Topic& t) { return t.name == kTfTopic && t.type == kTfType; }))
-        return;
     const auto image = bag_->firstImage(depthTopic_);
-    if (!image || image->frameId.empty())
+    if (tf_.empty() || !image || image->frameId.empty())
         return;
-    const auto track = depthFrameTrack(image->frameId);
-    if (track.empty())
-        return;
-    poses_.assign(frameCount(), std::nullopt);
-    for (std::size_t i = 0; i < frameCount(); ++i) {
-        const std::int64_t stamp = depth_.timestampsNs[i];
-        auto next = std::lower_bound(track.begin(), track.end(), stamp,
-                                     [](const auto& entry, std::int64_t ns) { return entry.first < ns; });
-        auto best = next;
-        if (next == track.end() ||
-            (next != track.begin() && stamp - std::prev(next)->first < next->first - stamp))
-            best = std::prev(next);
-        if (std::llabs(best->first - stamp) <= kPoseToleranceNs)
-            poses_[i] = poseOf(best->second);
-    }
+    std::vector<std::optional<frame::Pose>> poses(frameCount());
+    bool any = false;
+    for (std::size_t i = 0; i < frameCount(); ++i)
+        if (const auto located = tf_.locate(image->frameId, depth_.timestampsNs[i], kPoseToleranceNs);
+            located && located->moving) {
+            poses[i] = poseOf(located->toRoot);
+            any = true;
+        }
+    if (any)
+        poses_ = std::move(poses);
 }
 
 Expected<frame::Frame> BagSource::frame(std::size_t i) {

@@ -30,6 +30,7 @@ public:
     Expected<RosImage> image(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle][i].first, decodeImage);
     }
+    bool readsTransforms() const override { return true; }
     Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle][i].first, decodeTfMessage);
     }

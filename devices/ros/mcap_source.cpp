@@ -57,6 +57,7 @@ public:
     Expected<std::int64_t> imageStampNs(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle], i, decodeHeaderStampNs);
     }
+    bool readsTransforms() const override { return true; }
     Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle], i, decodeTfMessage);
     }

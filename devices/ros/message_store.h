@@ -48,7 +48,8 @@ public:
     // RealSense's ROS 1 recordings only (their depth units and extrinsics).
     virtual std::optional<float> firstFloat32(const std::string&) const { return std::nullopt; }
     virtual std::optional<RosTransform> firstTransform(const std::string&) const { return std::nullopt; }
-    // A tf2_msgs/TFMessage (/tf, /tf_static) of a ROS 2 recording; other formats have none to read.
+    // A tf2_msgs/TFMessage (/tf, /tf_static): ROS 2 recordings' (readsTransforms()); others are not read.
+    virtual bool readsTransforms() const { return false; }
     virtual Expected<std::vector<RosTransformStamped>> transforms(std::size_t, std::size_t) const {
         return Error{formatName() + " recordings' tf messages are not read"};
     }

@@ -63,6 +63,7 @@ public:
         const auto [part, local, index] = locate(handle, i);
         return parts_[part]->imageStampNs(local, index);
     }
+    bool readsTransforms() const override { return parts_.front()->readsTransforms(); }
     Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
         const auto [part, local, index] = locate(handle, i);
         return parts_[part]->transforms(local, index);

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -73,7 +74,15 @@ void expectEveryFrameAsWritten(const std::string& spec) {
     EXPECT_EQ(rig->color->intrinsics.cx, 40.0);
     EXPECT_EQ(rig->depth->distortion, (std::vector<double>{0.1, -0.2, 0.001, 0.002, 0.05}));
     EXPECT_TRUE((*source)->warnings().empty());
-    // Each frame's pose is the camera's /tf transform (make_test_db3.py's pose(i)), not the decoy's.
+    // The colour camera's place comes from /tf_static alone: both optical frames hang on camera_link, the
+    // colour one 30 mm further along y.
+    ASSERT_TRUE(rig->depthToColor);
+    EXPECT_EQ(rig->depthToColor->rotation, (std::array<double, 9>{1, 0, 0, 0, 1, 0, 0, 0, 1}));
+    EXPECT_NEAR(rig->depthToColor->translationMeters[0], 0.0, 1e-12);
+    EXPECT_NEAR(rig->depthToColor->translationMeters[1], 0.03, 1e-12);
+    EXPECT_NEAR(rig->depthToColor->translationMeters[2], 0.0, 1e-12);
+    // Each frame's pose is the depth frame's chain: camera_link's /tf transform (make_test_db3.py's pose(i),
+    // not the decoy's) after the fixed 15 mm along y.
     EXPECT_TRUE((*source)->capabilities().pose);
     for (std::size_t i = 0; i < kFrames; ++i) {
         auto f = (*source)->frame(i);
@@ -84,8 +93,8 @@ void expectEveryFrameAsWritten(const std::string& spec) {
         EXPECT_NEAR(m[1], std::sin(angle), 1e-12);
         EXPECT_NEAR(m[4], -std::sin(angle), 1e-12);
         EXPECT_NEAR(m[10], 1.0, 1e-12);
-        EXPECT_NEAR(m[12], 0.1 * static_cast<double>(i), 1e-12);
-        EXPECT_NEAR(m[13], 0.2, 1e-12);
+        EXPECT_NEAR(m[12], 0.1 * static_cast<double>(i) - 0.015 * std::sin(angle), 1e-12);
+        EXPECT_NEAR(m[13], 0.2 + 0.015 * std::cos(angle), 1e-12);
         EXPECT_NEAR(m[14], 0.3, 1e-12);
     }
 }

@@ -48,9 +48,12 @@ class Cdr:
         self.string(frame_id)
 
 
-def image(stamp_ns, encoding, width, height, step, data):
+DEPTH_FRAME, COLOR_FRAME = "camera_depth_optical_frame", "camera_color_optical_frame"
+
+
+def image(stamp_ns, frame_id, encoding, width, height, step, data):
     w = Cdr()
-    w.header(stamp_ns, "camera_optical_frame")
+    w.header(stamp_ns, frame_id)
     w.put("I", height)
     w.put("I", width)
     w.string(encoding)
@@ -61,9 +64,9 @@ def image(stamp_ns, encoding, width, height, step, data):
     return bytes(w.out)
 
 
-def camera_info(stamp_ns, width, height, k, d):
+def camera_info(stamp_ns, frame_id, width, height, k, d):
     w = Cdr()
-    w.header(stamp_ns, "camera_optical_frame")
+    w.header(stamp_ns, frame_id)
     w.put("I", height)
     w.put("I", width)
     w.string("plumb_bob")
@@ -77,32 +80,44 @@ def camera_info(stamp_ns, width, height, k, d):
 
 
 def pose(i):
-    """Frame i's camera in odom: translation (0.1 i, 0.2, 0.3) m, turned 0.1 i rad about z."""
+    """Frame i's camera_link in odom: translation (0.1 i, 0.2, 0.3) m, turned 0.1 i rad about z."""
     half = 0.05 * i
     return (0.1 * i, 0.2, 0.3), (0.0, 0.0, math.sin(half), math.cos(half))
 
 
-def tf_message(i, stamp_ns):
-    """A TFMessage with the camera's pose, and another frame's that the replay must not take for it."""
+def tf_message(stamp_ns, parent, transforms):
+    """A TFMessage of (child, (translation, quaternion xyzw)) in `parent`."""
     w = Cdr()
-    w.put("I", 2)
-    for child, (t, q) in (("base_link", ((5.0, 5.0, 5.0), (0.0, 0.0, 0.0, 1.0))),
-                          ("camera_optical_frame", pose(i))):
-        w.header(stamp_ns, "odom")
+    w.put("I", len(transforms))
+    for child, (t, q) in transforms:
+        w.header(stamp_ns, parent)
         w.string(child)
         for v in t + q:
             w.put("d", v)
     return bytes(w.out)
 
 
+def moving_tf(i, stamp_ns):
+    """camera_link's pose, and another frame's that the replay must not take for it."""
+    return tf_message(stamp_ns, "odom", [("base_link", ((5.0, 5.0, 5.0), (0.0, 0.0, 0.0, 1.0))),
+                                         ("camera_link", pose(i))])
+
+
+def static_tf(stamp_ns):
+    """The optical frames on camera_link, 15 mm either side of it along y: colour = depth + (0, 0.03, 0)."""
+    still = (0.0, 0.0, 0.0, 1.0)
+    return tf_message(stamp_ns, "camera_link", [(DEPTH_FRAME, ((0.0, 0.015, 0.0), still)),
+                                                (COLOR_FRAME, ((0.0, -0.015, 0.0), still))])
+
+
 def depth_image(i, stamp_ns):
     data = b"".join(struct.pack("<H", depth_units(x, y, i)) for y in range(DEPTH_H) for x in range(DEPTH_W))
-    return image(stamp_ns, "16UC1", DEPTH_W, DEPTH_H, 2 * DEPTH_W, data)
+    return image(stamp_ns, DEPTH_FRAME, "16UC1", DEPTH_W, DEPTH_H, 2 * DEPTH_W, data)
 
 
 def color_image(i, stamp_ns):
     data = bytes(c for y in range(COLOR_H) for x in range(COLOR_W) for c in color_rgb(x, y, i))
-    return image(stamp_ns, "rgb8", COLOR_W, COLOR_H, 3 * COLOR_W, data)
+    return image(stamp_ns, COLOR_FRAME, "rgb8", COLOR_W, COLOR_H, 3 * COLOR_W, data)
 
 
 DEPTH_K = [50, 0, 32, 0, 51, 24, 0, 0, 1]
@@ -114,6 +129,7 @@ TOPICS = [  # id, name, type
     (3, "/camera/camera/color/image_raw", "sensor_msgs/msg/Image"),
     (4, "/camera/camera/color/camera_info", "sensor_msgs/msg/CameraInfo"),
     (5, "/tf", "tf2_msgs/msg/TFMessage"),
+    (6, "/tf_static", "tf2_msgs/msg/TFMessage"),
 ]
 
 
@@ -134,14 +150,19 @@ def frame_rows(i, topic_id):
     depth_ns = START_NS + i * FRAME_NS
     color_ns = depth_ns + COLOR_OFFSET_NS
     # Colour rows first: the store must order by receive time, not by row.
-    return [
+    rows = [
         (topic_id[3], color_ns + LOG_DELAY_NS, color_image(i, color_ns)),
-        (topic_id[4], color_ns + LOG_DELAY_NS, camera_info(color_ns, COLOR_W, COLOR_H, COLOR_K, LENS)),
+        (topic_id[4], color_ns + LOG_DELAY_NS,
+         camera_info(color_ns, COLOR_FRAME, COLOR_W, COLOR_H, COLOR_K, LENS)),
         (topic_id[1], depth_ns + LOG_DELAY_NS, depth_image(i, depth_ns)),
-        (topic_id[2], depth_ns + LOG_DELAY_NS, camera_info(depth_ns, DEPTH_W, DEPTH_H, DEPTH_K, LENS)),
+        (topic_id[2], depth_ns + LOG_DELAY_NS,
+         camera_info(depth_ns, DEPTH_FRAME, DEPTH_W, DEPTH_H, DEPTH_K, LENS)),
         # Stamped 1 ms after the depth image, as a pose estimator's output would be.
-        (topic_id[5], depth_ns + LOG_DELAY_NS, tf_message(i, depth_ns + 1000000)),
+        (topic_id[5], depth_ns + LOG_DELAY_NS, moving_tf(i, depth_ns + 1000000)),
     ]
+    if i == 0:  # latched once, as the driver publishes it
+        rows.append((topic_id[6], depth_ns, static_tf(depth_ns)))
+    return rows
 
 
 def write_file(path, frames, part):

@@ -6,7 +6,10 @@
 #include "devices/recording/frame_codec.h"
 #include "devices/replay/replay_source.h"
 #include "devices/replay/replay_spec.h"
+#include "devices/synthetic/synthetic_device.h"
 #include "exporting/export.h"
+#include "exporting/mcap_export.h"
+#include "frame/camera_model.h"
 #include "frame/rgb_image.h"
 #include "tests/recording/recording_test_support.h"
 #include "tests/ros/shell_run.h"
@@ -262,6 +265,41 @@ TEST_F(McapExport, ReplayOfTheExportGivesBackTheSameFrames) {
                     << name << " frame " << i << " element " << e;
         }
     }
+}
+
+// A two-sensor frame's extrinsics go to /tf_static (the colour camera in the depth camera's frame) and come
+// back as the replay's calibration, through tf alone.
+TEST_F(McapExport, ATwoSensorRigsExtrinsicsGoToTfStaticAndComeBackAsItsCalibration) {
+    devices::SyntheticConfig config;
+    config.rig = true;
+    devices::SyntheticDevice device(config);
+    ASSERT_TRUE(device.open());
+    const std::string path = dir_.path("rig.mcap");
+    auto writer = McapFrameWriter::create(path, false);
+    ASSERT_TRUE(writer) << writer.error().message;
+    std::vector<frame::FramePtr> frames;
+    for (int i = 0; i < 2; ++i) {
+        frames.push_back(device.makeFrame(static_cast<std::uint64_t>(i), 1.0 + i / 30.0));
+        ASSERT_TRUE((*writer)->add(*frames.back()));
+    }
+    ASSERT_TRUE((*writer)->finish());
+    const frame::RigCalibration& want = *frames.front()->rig;
+    ASSERT_FALSE(want.depthToColour.isIdentity()) << "a rig whose sensors sit apart";
+    const auto replayed = framesOf("replay:" + path);
+    ASSERT_EQ(replayed.size(), 2u);
+    ASSERT_TRUE(replayed.front().rig) << "replayed as a two-sensor frame";
+    const frame::RigidTransform& got = replayed.front().rig->depthToColour;
+    for (std::size_t k = 0; k < 9; ++k)
+        EXPECT_NEAR(got.rotation[k], want.depthToColour.rotation[k], 1e-9) << "rotation " << k;
+    for (std::size_t k = 0; k < 3; ++k)
+        EXPECT_NEAR(got.translationMeters[k], want.depthToColour.translationMeters[k], 1e-12) << "t " << k;
+    // The lenses as the streams see them (the synthetic rig is calibrated at its native modes).
+    const frame::Intrinsics& colour = frames.front()->cameraIntrinsics;
+    const frame::Intrinsics depth = frames.front()->depthIntrinsics();
+    EXPECT_NEAR(replayed.front().rig->colour.intrinsics.scaledTo(colour.width, colour.height).fx,
+                want.colour.intrinsics.scaledTo(colour.width, colour.height).fx, 1e-9);
+    EXPECT_NEAR(replayed.front().rig->depth.intrinsics.scaledTo(depth.width, depth.height).cx,
+                want.depth.intrinsics.scaledTo(depth.width, depth.height).cx, 1e-9);
 }
 
 TEST_F(McapExport, AnExistingFileIsRefusedWithoutOverwriteAndReplacedWithIt) {
