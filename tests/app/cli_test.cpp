@@ -193,10 +193,16 @@ TEST_F(Cli, HelpPrintsConfidenceLevelsByName) {
 
 TEST_F(Cli, BenchReplayRunsOnSyntheticDataOutsideTheRepository) {
     ASSERT_FALSE(fs::exists(dir_ / "../shared/data")) << "this test must run away from the checkout";
-    const RunResult r = run("bench replay --passes 1 --synthetic-frames 10");
+    const RunResult r = run("bench replay --passes 1 --synthetic-frames 10 --bag-frames 3");
     EXPECT_EQ(r.exitCode, 0) << r.out << r.err;
     EXPECT_NE(r.out.find("synthetic 640x480 recording (zstd, NV12)        10 frames"), std::string::npos)
         << r.out;
+    // The same frames through every format's writer and our reader, each read back whole.
+    for (const char* format : {"as a ROS 1 bag", "as MCAP", "as a rosbag2 .db3"})
+        EXPECT_NE(r.out.find(std::string("same frames ") + format), std::string::npos) << format << "\n"
+                                                                                       << r.out;
+    EXPECT_EQ(r.out.find("cannot write or open"), std::string::npos) << r.out;
+    EXPECT_EQ(r.out.find(" failed)"), std::string::npos) << r.out;
 }
 
 } // namespace
