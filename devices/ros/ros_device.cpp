@@ -15,7 +15,6 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-constexpr auto kProbeTimeout = 1000ms;    // a master that does not answer in this long is away
 constexpr auto kMasterCheckInterval = 1s; // how soon a vanished master shows as Disconnected
 constexpr auto kInfoGrace = 1s;           // depth waits this long for camera_info before a guessed lens
 constexpr std::size_t kMaxInbox = 8;      // messages the capture thread has not taken yet; oldest dropped
@@ -63,7 +62,7 @@ Status RosDevice::connect() {
     if (!master)
         return master.error();
     master_ = *master;
-    if (Status s = probeMaster(master_, kProbeTimeout); !s)
+    if (Status s = probeMaster(master_, kMasterProbeTimeout); !s)
         return s;
     return startRosNode(master_);
 }
@@ -154,7 +153,7 @@ std::optional<CaptureResult> RosDevice::checkMaster() {
     if (Clock::now() - lastMasterCheck_ < kMasterCheckInterval)
         return std::nullopt;
     lastMasterCheck_ = Clock::now();
-    const Status alive = probeMaster(master_, kProbeTimeout);
+    const Status alive = probeMaster(master_, kMasterProbeTimeout);
     if (alive)
         return std::nullopt;
     // Publishers may keep sending over their own connections, but nothing new can be found without the

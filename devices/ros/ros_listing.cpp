@@ -8,10 +8,6 @@
 
 namespace dc::devices::ros {
 
-namespace {
-constexpr std::chrono::milliseconds kProbeTimeout{1000};
-} // namespace
-
 RosListing listRosImageTopics() {
     RosListing listing;
     const char* env = std::getenv("ROS_MASTER_URI");
@@ -20,7 +16,7 @@ RosListing listRosImageTopics() {
     listing.configured = true;
     listing.masterUri = env;
     auto master = parseMasterUri(env);
-    Status reached = master ? probeMaster(*master, kProbeTimeout) : Status(master.error());
+    Status reached = master ? probeMaster(*master, kMasterProbeTimeout) : Status(master.error());
     if (reached)
         reached = startRosNode(*master);
     auto topics = reached ? advertisedTopics() : Expected<std::vector<TopicInfo>>(reached.error());

@@ -24,5 +24,7 @@ Expected<MasterUri> parseMasterUri(const std::string& uri);
 // Asks the master for its pid over XML-RPC, waiting at most `timeout` in all: success means a master
 // answers there. The error says why not (refused, timed out, no answer, unknown host) in one line.
 Status probeMaster(const MasterUri& master, std::chrono::milliseconds timeout);
+// A master that does not answer a probe in this long is taken to be away.
+inline constexpr std::chrono::milliseconds kMasterProbeTimeout{1000};
 
 } // namespace dc::devices::ros
