@@ -40,7 +40,7 @@ constexpr const char* kColourTopic = "/camera/camera/color/image_raw";
 constexpr const char* kDepthInfoTopic = "/camera/camera/depth/camera_info";
 
 // Synthetic 1280x720 frames, their depth in whole millimetres so that every format stores it as 16UC1.
-Frames benchFrames(int count) {
+Frames formatFrames(int count) {
     devices::SyntheticConfig config;
     config.depthWidth = config.cameraWidth = 1280;
     config.depthHeight = config.cameraHeight = 720;
@@ -165,6 +165,18 @@ Status writeDb3(const std::string& path, const Frames& frames) {
     return execute(db.get(), "COMMIT;");
 }
 
+devices::ros::RosImage rosImage(std::int64_t stampNs, const char* encoding, int width, int height,
+                                int bytesPerPixel, std::vector<std::uint8_t> data) {
+    return {stampNs,
+            "camera",
+            encoding,
+            static_cast<std::uint32_t>(width),
+            static_cast<std::uint32_t>(height),
+            static_cast<std::uint32_t>(bytesPerPixel * width),
+            false,
+            std::move(data)};
+}
+
 // The frames as a RealSense-style ROS 1 bag: 16UC1 millimetres and rgb8, uncompressed, with camera_info.
 Status writeBag(const std::string& path, const Frames& frames) {
     auto bag = devices::ros::BagWriter::create(path);
@@ -181,22 +193,8 @@ Status writeBag(const std::string& path, const Frames& frames) {
     for (const frame::FramePtr& f : frames) {
         const auto& depth = f->sceneDepth->depthMeters;
         const auto& image = f->capturedImage;
-        const devices::ros::RosImage d{f->timestampNs,
-                                       "camera",
-                                       "16UC1",
-                                       static_cast<std::uint32_t>(depth.width),
-                                       static_cast<std::uint32_t>(depth.height),
-                                       static_cast<std::uint32_t>(2 * depth.width),
-                                       false,
-                                       millimetres(depth)};
-        const devices::ros::RosImage c{f->timestampNs,
-                                       "camera",
-                                       "rgb8",
-                                       static_cast<std::uint32_t>(image.width),
-                                       static_cast<std::uint32_t>(image.height),
-                                       static_cast<std::uint32_t>(3 * image.width),
-                                       false,
-                                       frame::toRgb24(image)};
+        const auto d = rosImage(f->timestampNs, "16UC1", depth.width, depth.height, 2, millimetres(depth));
+        const auto c = rosImage(f->timestampNs, "rgb8", image.width, image.height, 3, frame::toRgb24(image));
         if (Status s = (*bag)->write(kDepthTopic, d); !s)
             return s;
         if (Status s = (*bag)->write(kColourTopic, c); !s)
@@ -238,7 +236,7 @@ double decodeAll(const std::string& name, devices::replay::ReplaySource& source,
 }
 
 void benchReplayFormats(int count, int passes) {
-    const Frames frames = benchFrames(count);
+    const Frames frames = formatFrames(count);
     if (frames.empty())
         return;
     const Format formats[] = {
