@@ -626,9 +626,15 @@ void Viewer::applyTimeline(devices::replay::ReplayControl& replay, const Timelin
 
 // The range is written as the instrument shows it (smoothed, upsampled, as the settings say) into the
 // chosen folder, or where that exists already into the next free numbered one beside it: an export never
-// writes over another.
+// writes over another. A relative folder is taken from where the tool runs now, once: the export's thread
+// writes to that folder even if the working directory changes while it runs.
 void Viewer::startExport() {
-    std::filesystem::path chosen(timelineState_.outDirectory.data());
+    std::error_code ec;
+    std::filesystem::path chosen = std::filesystem::absolute(timelineState_.outDirectory.data(), ec);
+    if (ec) {
+        logError("export: " + std::string(timelineState_.outDirectory.data()) + ": " + ec.message());
+        return;
+    }
     if (!chosen.has_filename())
         chosen = chosen.parent_path(); // "out/" names the folder "out"
     const std::filesystem::path parent = chosen.has_parent_path() ? chosen.parent_path() : ".";
@@ -642,7 +648,6 @@ void Viewer::startExport() {
     demand.quality.reset();
     if (!instrument_.startExport(static_cast<exporting::ExportFormat>(timelineState_.format), *dir,
                                  timelineState_.rangeStart, timelineState_.rangeEnd, demand)) {
-        std::error_code ec;
         std::filesystem::remove(*dir, ec); // still empty: nothing was started
     }
 }
