@@ -151,6 +151,9 @@ std::optional<processing::ShownFramePtr> FrameProcessor::process(const Work& wor
     bool fresh = false;
     bool taken = false;
     if (work.epoch != countedEpoch_) {
+        // Another session: the old one's frame is not this source's to show, not even as a redo for a
+        // demand that changes before the new source delivers (both sessions can reach one work item).
+        current_.reset();
         countedEpoch_ = work.epoch;
         skipped_ = 0;
         failed_ = 0;

@@ -13,6 +13,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 namespace dc::engine::test {
@@ -255,6 +256,41 @@ TEST(FrameProcessorFaultTest, AStageThatThrowsCostsOneFrameAndIsLoggedNamingTheS
 // The instrument's frame counts add up for a paced source and a consumer slower than it: every delivered
 // frame is shown or dropped, and at any moment at most three are on their way (the session's mailbox, the
 // processor's hands, the result slot).
+// Switching sources as the Instrument does (no session, then the new one) while the processor is busy, so
+// that its next work item carries both: with the new source still silent, nothing of the old source's last
+// frame is processed or shown for it. The seam holds the processor inside the fog stage meanwhile.
+TEST(FrameProcessorSwitchTest, AfterASourceSwitchTheOldSourcesFrameIsNeverShownAgain) {
+    std::atomic<bool> inFog = false, release = false;
+    StageStats stages;
+    processing::AccumulationWorker accumulation;
+    FrameProcessor processor(stages, accumulation, [&](std::string_view stage) {
+        if (stage != kFogStage)
+            return;
+        inFog = true;
+        while (!release)
+            std::this_thread::sleep_for(1ms);
+    });
+    auto device = std::make_unique<ScriptedDevice>(0.0);
+    ScriptedDevice& source = *device;
+    auto old = std::make_shared<devices::Session>(std::move(device));
+    ASSERT_TRUE(old->start().ok());
+    processor.setSession(old);
+    Demand d = cloudAndPanels();
+    processor.setDemand(d);
+    source.push(syntheticFrames(1));
+    ASSERT_TRUE(processor.waitFor(10s, any));
+    d.fog = true;
+    processor.setDemand(d); // a redo of the old frame, held in its fog stage
+    ASSERT_TRUE(waitUntil([&] { return inFog.load(); }));
+    auto silent = std::make_shared<devices::Session>(std::make_unique<ScriptedDevice>(0.0));
+    ASSERT_TRUE(silent->start().ok());
+    processor.setSession(nullptr);
+    processor.setSession(silent);
+    release = true;
+    EXPECT_FALSE(processor.waitFor(500ms, any)) << "nothing to show until the new source delivers";
+    processor.setSession(nullptr);
+}
+
 TEST(InstrumentCountsTest, ShownPlusDroppedIsDeliveredWithASlowConsumer) {
     constexpr std::uint64_t kFrames = 40;
     auto device = std::make_unique<ScriptedDevice>(240.0);
