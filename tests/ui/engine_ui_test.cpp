@@ -412,14 +412,20 @@ TEST_F(EngineUiTest, AccumulationAddsTheSamePointsTheSnapshotHolds) {
     const auto dir = viewer_->saveSnapshot((dir_ / "acc").string());
     ASSERT_TRUE(dir.ok()) << dir.error().message;
     const std::vector<PlyPoint> ply = readPly(fs::path(*dir) / "cloud.ply");
-    // Frames keep coming and the worker may be adding one (which adds nothing new): read between two.
+    // Frames keep coming and the worker may be adding one (which adds nothing new): read between two. Under
+    // a sanitizer and load an add can take longer than a frame's interval, so wait for an idle moment first.
     std::vector<processing::WorldPoint> world;
+    bool wasRead = false;
     const auto read = [&](processing::PointAccumulator& points) {
         world.assign(points.slots().begin(),
                      points.slots().begin() + static_cast<std::ptrdiff_t>(points.size()));
     };
-    for (int i = 0; i < 1000 && !instrument_->accumulation().tryRead(read); ++i)
-        std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(60);
+    while (!wasRead && std::chrono::steady_clock::now() < deadline) {
+        instrument_->accumulation().waitIdle();
+        wasRead = instrument_->accumulation().tryRead(read);
+    }
+    ASSERT_TRUE(wasRead) << "the accumulation worker was never idle for a minute";
     // At a 0.5 mm voxel the desk's points, millimetres apart, each keep their own voxel.
     ASSERT_EQ(world.size(), ply.size());
     const auto& m = posed->pose->cameraToWorld; // column-major
