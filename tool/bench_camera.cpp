@@ -162,6 +162,7 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
     render::ViewRenderer renderer;
     if (Status s = renderer.init(); !s)
         return s.error();
+    gui.setDrawsChangedFramesWhole(!renderer.softwareGl()); // as the window presents
     engine::Instrument instrument(
         std::make_unique<devices::FrameListDevice>(std::move(frames), o.fps, c.name), c.name);
     ui::Settings settings; // the default view and panels, as a new user meets them

@@ -41,7 +41,8 @@ struct BenchCase {
 };
 
 // One path's full viewer frames: every panel shown, a new device frame and a turning view each frame,
-// composited as the window composites on software GL: where the picture changed (ui::FrameDamage).
+// composited as the window composites: on software GL where the picture changed (ui::FrameDamage), on
+// hardware GL whole, since a swap shows the whole back buffer.
 struct PathResult {
     render::CloudPath path = render::CloudPath::Points;
     std::string variant;            // empty: the default view; else what the --breakdown run left out
@@ -201,6 +202,7 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
     render::ViewRenderer renderer;
     if (Status s = renderer.init(); !s)
         return s.error();
+    gui.setDrawsChangedFramesWhole(!renderer.softwareGl()); // as the window presents
     ui::Settings settings;
     settings.panels.stats = false; // a bench measures the viewer, not its own plots
     settings.cloud.path =

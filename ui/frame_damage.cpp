@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <map>
 #include <string_view>
 
@@ -93,6 +94,12 @@ DamageRect drawnBy(const ImDrawData& data, const ImDrawList& list, const ImDrawC
     return intersect(clip, box);
 }
 
+// std::byte vectors compare element by element; a window's lists are hundreds of kilobytes, compared for
+// every frame on the GL thread, so they are compared as one block.
+bool sameBytes(const std::vector<std::byte>& a, const std::vector<std::byte>& b) {
+    return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size()) == 0);
+}
+
 long long area(const DamageRect& r) {
     return r.empty() ? 0 : static_cast<long long>(r.x1 - r.x0) * (r.y1 - r.y0);
 }
@@ -126,6 +133,9 @@ std::vector<FrameDamage::List> FrameDamage::describe(const ImDrawData& data, ImT
         const ImDrawList& source = *data.CmdLists[i];
         List& list = lists[i];
         list.owner = source._OwnerName ? source._OwnerName : "";
+        list.bytes.reserve(static_cast<std::size_t>(source.VtxBuffer.size_in_bytes() +
+                                                    source.IdxBuffer.size_in_bytes()) +
+                           static_cast<std::size_t>(source.CmdBuffer.size()) * sizeof(ImDrawCmd));
         append(list.bytes, source.VtxBuffer.Data, static_cast<std::size_t>(source.VtxBuffer.size_in_bytes()));
         append(list.bytes, source.IdxBuffer.Data, static_cast<std::size_t>(source.IdxBuffer.size_in_bytes()));
         for (const ImDrawCmd& c : source.CmdBuffer) {
@@ -164,7 +174,7 @@ std::optional<std::vector<DamageRect>> FrameDamage::changes(const std::vector<Li
         next = old->second + 1;
         kept[old->second] = true;
         const List& was = lists_[old->second];
-        if (was.bytes != list.bytes) {
+        if (!sameBytes(was.bytes, list.bytes)) {
             rects.push_back(was.bounds);
             rects.push_back(list.bounds);
         } else if (contentVersion != contentVersion_) {

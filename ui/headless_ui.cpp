@@ -66,6 +66,11 @@ bool HeadlessUi::renderIfChanged(std::uint64_t contentVersion) {
     ImDrawData& data = *ImGui::GetDrawData();
     snapClipRects(data);
     const std::vector<DamageRect> rects = damage_.update(data, contentVersion, ImGui::GetIO().Fonts->TexID);
+    if (changedFramesWhole_ && !rects.empty()) {
+        target_.bindAndClear(0.1f, 0.1f, 0.12f);
+        ImGui_ImplOpenGL3_RenderDrawData(&data);
+        return true;
+    }
     drawDamaged(data, rects, [this](const DamageRect& r) {
         target_.bindAndClearWithin(pixelRectOf(r, target_.height()), 0.1f, 0.1f, 0.12f);
     });

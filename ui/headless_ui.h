@@ -26,6 +26,9 @@ public:
     // Finishes the ImGui frame and draws it, as the window does, only where the picture changes
     // (FrameDamage); returns whether it drew anything.
     bool renderIfChanged(std::uint64_t contentVersion);
+    // Whether renderIfChanged() draws a frame that changed anywhere whole, as the window does where it swaps
+    // (hardware GL), rather than in the parts that changed, as it does where it copies them (software GL).
+    void setDrawsChangedFramesWhole(bool whole) { changedFramesWhole_ = whole; }
 
     ImGuiIO& io() { return ImGui::GetIO(); }
     const render::RenderTarget& target() const { return target_; }
@@ -34,6 +37,7 @@ private:
     ImGuiContext* context_ = nullptr;
     bool rendererReady_ = false;
     FrameDamage damage_;
+    bool changedFramesWhole_ = false;
     render::RenderTarget target_{render::Sampling::Linear, render::DepthBuffer::Without}; // as a window's
 };
 

@@ -161,5 +161,29 @@ TEST_F(FrameDamageTest, AFrameDrawnWhereItChangedIsTheFrameDrawnWhole) {
     EXPECT_GT(partFrames_, 30) << "most frames are drawn in parts: the comparison is of something";
 }
 
+// The benches composite as the window does on hardware GL, where a swap shows the whole back buffer: a
+// frame that changed anywhere is drawn whole. Drawn in parts, a pixel outside what changed keeps whatever
+// was there; drawn whole, it is drawn again.
+TEST_F(FrameDamageTest, AChangedFrameDrawnWholeRedrawsEvenWhereItDidNotChange) {
+    const render::PixelRect corner{0, kHeight - 4, 4, 4}; // the controls' title bar, which does not change
+    const auto scribbledOver = [&](bool whole) {
+        gui_.setDrawsChangedFramesWhole(whole);
+        gui_.newFrame(1.0f / 60.0f);
+        viewer_->update(0.0);
+        viewer_->drawUi();
+        viewer_->presented(gui_.renderIfChanged(renderer_.contentVersion()));
+        gui_.target().bindAndClearWithin(corner, 1.0f, 0.0f, 1.0f);
+        gui_.newFrame(1.0f / 60.0f);
+        viewer_->update(0.5); // the view turns: the cloud changes, the controls do not
+        viewer_->drawUi();
+        EXPECT_TRUE(gui_.renderIfChanged(renderer_.contentVersion()));
+        viewer_->presented(true);
+        const std::vector<std::uint8_t> rgba = gui_.target().readRgba();
+        return rgba[0] == 255 && rgba[1] == 0 && rgba[2] == 255; // the top row comes first
+    };
+    EXPECT_TRUE(scribbledOver(false)) << "in parts, the unchanged corner is not drawn again";
+    EXPECT_FALSE(scribbledOver(true)) << "whole, it is";
+}
+
 } // namespace
 } // namespace dc::ui::test
