@@ -133,9 +133,9 @@ std::vector<FrameDamage::List> FrameDamage::describe(const ImDrawData& data, ImT
         const ImDrawList& source = *data.CmdLists[i];
         List& list = lists[i];
         list.owner = source._OwnerName ? source._OwnerName : "";
-        list.bytes.reserve(static_cast<std::size_t>(source.VtxBuffer.size_in_bytes() +
-                                                    source.IdxBuffer.size_in_bytes()) +
-                           static_cast<std::size_t>(source.CmdBuffer.size()) * sizeof(ImDrawCmd));
+        list.bytes.reserve(
+            static_cast<std::size_t>(source.VtxBuffer.size_in_bytes() + source.IdxBuffer.size_in_bytes()) +
+            static_cast<std::size_t>(source.CmdBuffer.size()) * sizeof(ImDrawCmd));
         append(list.bytes, source.VtxBuffer.Data, static_cast<std::size_t>(source.VtxBuffer.size_in_bytes()));
         append(list.bytes, source.IdxBuffer.Data, static_cast<std::size_t>(source.IdxBuffer.size_in_bytes()));
         for (const ImDrawCmd& c : source.CmdBuffer) {

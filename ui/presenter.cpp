@@ -49,6 +49,7 @@ Presenter::Presenter(engine::Instrument& instrument, render::ViewRenderer& rende
 void Presenter::forgetShown() {
     anchors_.clear();
     shown_.reset();
+    awaited_.reset(); // taken from the source before, so it is that source's
     pivotSet_ = false;
     followedRange_.reset();
 }

@@ -235,6 +235,17 @@ TEST_F(InstrumentTest, AfterASourceSwitchTheFrameCountsAreTheNewSourcesOwn) {
     EXPECT_LE(later.shown + later.dropped, later.delivered);
 }
 
+// A result awaitFrame() took before a switch (a file dropped on the window after the wait) is the old
+// source's: the next update does not show it.
+TEST_F(InstrumentTest, AFrameAwaitedBeforeASwitchIsNotShownAfterIt) {
+    ASSERT_TRUE(viewer_->awaitFrame(std::chrono::seconds(5)));
+    ASSERT_TRUE(viewer_->openSource("synthetic:64x48@30").ok());
+    viewer_->update(0.0);
+    const processing::ShownFramePtr& shown = viewer_->shown();
+    EXPECT_TRUE(!shown || shown->depth.width() == 64)
+        << "the old source's frame, " << shown->depth.width() << " samples wide";
+}
+
 // The UI may hold a result of the source it switched away from and present it after the switch (the monkey
 // met it: shown + dropped exceeded delivered by 2 after a click); that frame is not the new source's.
 TEST_F(InstrumentTest, AFrameOfTheOldSourcePresentedAfterASwitchIsNotTheNewSourcesShownFrame) {
