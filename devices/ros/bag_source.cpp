@@ -24,10 +24,27 @@ std::optional<std::string> realsensePrefix(const std::string& imageTopic) {
 
 // camera_info beside an image topic: RealSense's info/camera_info, or the namespace's camera_info as ROS
 // camera drivers publish it (/camera/depth/image_rect_raw -> /camera/depth/camera_info).
+// image_transport publishes an image compressed under its raw topic and the transport's name.
+std::string withoutTransport(const std::string& topic) {
+    for (const std::string suffix : {"/compressedDepth", "/compressed"})
+        if (topic.size() > suffix.size() && topic.ends_with(suffix))
+            return topic.substr(0, topic.size() - suffix.size());
+    return topic;
+}
+
 std::string cameraInfoTopic(const std::string& imageTopic) {
     if (auto prefix = realsensePrefix(imageTopic))
         return *prefix + "/info/camera_info";
-    return imageTopic.substr(0, imageTopic.rfind('/')) + "/camera_info";
+    const std::string raw = withoutTransport(imageTopic);
+    return raw.substr(0, raw.rfind('/')) + "/camera_info";
+}
+
+bool isCompressedImageTopic(const MessageStore& bag, const MessageStore::Topic& topic) {
+    return topic.type == kRosCompressedImageType && bag.readsCompressedImages();
+}
+
+bool isImageTopic(const MessageStore& bag, const MessageStore::Topic& topic) {
+    return topic.type == kRosImageType || isCompressedImageTopic(bag, topic);
 }
 
 std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw) {
@@ -194,8 +211,9 @@ Status BagSource::checkTopic(const std::string& topic, ImageKind want, const cha
                                     [&](const MessageStore::Topic& t) { return t.name == topic; });
     if (found == topics.end())
         return Error{path_ + " has no topic " + topic};
-    if (found->type != kRosImageType)
-        return Error{path_ + ": topic " + topic + " is " + found->type + ", not " + kRosImageType};
+    if (!isImageTopic(*bag_, *found))
+        return Error{path_ + ": topic " + topic + " is " + found->type + ", not " + kRosImageType +
+                     (bag_->readsCompressedImages() ? std::string(" or ") + kRosCompressedImageType : "")};
     if (const auto image = bag_->firstImage(topic); !image || imageKind(image->encoding) != want)
         return Error{path_ + ": topic " + topic + " is not a " + what + " image (encoding '" +
                      (image ? image->encoding : "unreadable") + "')"};
@@ -214,15 +232,17 @@ Status BagSource::chooseTopics() {
             return 1;
         return topic.find(depth ? "depth" : "color") != std::string::npos ? 2 : 3;
     };
+    // Of one rank, a raw image comes before a compressed one (JPEG loses detail; both are often recorded).
     std::vector<std::pair<int, std::string>> depths, colours;
     for (const MessageStore::Topic& t : bag_->topics()) {
-        if (t.type != kRosImageType)
+        if (!isImageTopic(*bag_, t))
             continue;
         const ImageKind kind = kindOf(*bag_, t.name);
+        const int order = 2 * rank(t.name, kind) + (isCompressedImageTopic(*bag_, t) ? 1 : 0);
         if (kind == ImageKind::Depth)
-            depths.emplace_back(rank(t.name, kind), t.name);
+            depths.emplace_back(order, t.name);
         else if (kind == ImageKind::Color)
-            colours.emplace_back(rank(t.name, kind), t.name);
+            colours.emplace_back(order, t.name);
     }
     std::sort(depths.begin(), depths.end());
     std::sort(colours.begin(), colours.end());
@@ -303,7 +323,7 @@ void BagSource::chooseInfrared() {
     int best = 2;
     for (const MessageStore::Topic& t : bag_->topics()) {
         const int rank = infraredRank(t.name);
-        if (t.type != kRosImageType || t.name == depthTopic_ || rank < 0 || rank >= best)
+        if (!isImageTopic(*bag_, t) || t.name == depthTopic_ || rank < 0 || rank >= best)
             continue;
         if (const auto image = bag_->firstImage(t.name); image && isInfraredEncoding(image->encoding)) {
             infraredTopic_ = t.name;

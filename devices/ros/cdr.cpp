@@ -1,5 +1,8 @@
 #include "devices/ros/cdr.h"
 
+#include "devices/ros/compressed_image.h"
+#include "devices/ros/ros_image.h"
+
 #include <bit>
 #include <cstring>
 
@@ -123,6 +126,26 @@ Expected<RosImage> decodeImage(std::span<const std::uint8_t> message) {
         return problemOf(cdr, "sensor_msgs/msg/Image");
     image.data.assign(data.begin(), data.end());
     return image;
+}
+
+Expected<RosImage> decodeCompressedImage(std::span<const std::uint8_t> message) {
+    CdrReader cdr(message);
+    const std::int64_t stampNs = cdr.stampNs();
+    std::string frameId = cdr.string();
+    const std::string format = cdr.string();
+    const auto data = cdr.bytes();
+    if (cdr.failed())
+        return problemOf(cdr, "sensor_msgs/msg/CompressedImage");
+    auto image = decompressImage(format, data);
+    if (!image)
+        return image.error();
+    image->stampNs = stampNs;
+    image->frameId = std::move(frameId);
+    return image;
+}
+
+ImageDecoder imageDecoderFor(const std::string& type) {
+    return type == kRosCompressedImageType ? decodeCompressedImage : decodeImage;
 }
 
 Expected<RosCameraInfo> decodeCameraInfo(std::span<const std::uint8_t> message) {

@@ -47,6 +47,11 @@ private:
 
 // sensor_msgs/msg/Image.
 Expected<RosImage> decodeImage(std::span<const std::uint8_t> message);
+// sensor_msgs/msg/CompressedImage, decompressed (devices/ros/compressed_image.h).
+Expected<RosImage> decodeCompressedImage(std::span<const std::uint8_t> message);
+// The decoder of a topic's images by its type in ROS 1 spelling: CompressedImage's, or Image's.
+using ImageDecoder = Expected<RosImage> (*)(std::span<const std::uint8_t>);
+ImageDecoder imageDecoderFor(const std::string& type);
 // Only the header stamp of any message that starts with std_msgs/Header (an image, without its pixels).
 Expected<std::int64_t> decodeHeaderStampNs(std::span<const std::uint8_t> message);
 // sensor_msgs/msg/CameraInfo: size, distortion and K.

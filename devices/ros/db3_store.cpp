@@ -28,14 +28,15 @@ public:
         return handles_[handle][i].second;
     }
     Expected<RosImage> image(std::size_t handle, std::size_t i) const override {
-        return decoded(handles_[handle][i].first, decodeImage);
+        return decoded(handles_[handle][i].first, decoders_[handle]);
     }
     bool readsTransforms() const override { return true; }
     Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle][i].first, decodeTfMessage);
     }
+    bool readsCompressedImages() const override { return true; }
     std::optional<RosImage> firstImage(const std::string& topic) const override {
-        return first(topic, decodeImage);
+        return first(topic, imageDecoderFor(typeOf(topic)));
     }
     std::optional<RosCameraInfo> firstCameraInfo(const std::string& topic) const override {
         return first(topic, decodeCameraInfo);
@@ -92,6 +93,7 @@ private:
     std::vector<std::int64_t> topicIds_; // per topic
     // Per indexed topic: each message's (row id, receive time), in receive-time order.
     std::vector<std::vector<std::pair<std::int64_t, std::int64_t>>> handles_;
+    std::vector<ImageDecoder> decoders_; // per indexed topic, by its type
 };
 
 Status Db3Store::readTopics() {
@@ -127,6 +129,7 @@ Expected<std::size_t> Db3Store::indexTopic(const std::string& topic) {
         rows.emplace_back(sqlite3_column_int64(statement->get(), 0),
                           sqlite3_column_int64(statement->get(), 1));
     handles_.push_back(std::move(rows));
+    decoders_.push_back(imageDecoderFor(typeOf(topic)));
     return handles_.size() - 1;
 }
 

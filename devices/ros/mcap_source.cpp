@@ -43,6 +43,7 @@ public:
         if (!channel)
             return Error{"no topic " + topic};
         handles_.push_back(*channel);
+        decoders_.push_back(imageDecoderFor(typeOf(topic)));
         return handles_.size() - 1;
     }
     std::size_t messageCount(std::size_t handle) const override {
@@ -52,7 +53,7 @@ public:
         return mcap_->logTimeNs(handles_[handle], i);
     }
     Expected<RosImage> image(std::size_t handle, std::size_t i) const override {
-        return decoded(handles_[handle], i, decodeImage);
+        return decoded(handles_[handle], i, decoders_[handle]);
     }
     Expected<std::int64_t> imageStampNs(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle], i, decodeHeaderStampNs);
@@ -61,8 +62,9 @@ public:
     Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle], i, decodeTfMessage);
     }
+    bool readsCompressedImages() const override { return true; }
     std::optional<RosImage> firstImage(const std::string& topic) const override {
-        return first(topic, decodeImage);
+        return first(topic, imageDecoderFor(typeOf(topic)));
     }
     std::optional<RosCameraInfo> firstCameraInfo(const std::string& topic) const override {
         return first(topic, decodeCameraInfo);
@@ -107,6 +109,7 @@ private:
     std::vector<Topic> topics_;
     std::vector<std::uint16_t> channelOf_; // per topic
     std::vector<std::uint16_t> handles_;   // channel per indexed topic
+    std::vector<ImageDecoder> decoders_;   // per indexed topic, by its type
 };
 
 // One file of a ROS 2 recording: sqlite3 (by its header or its .db3 name) or MCAP.

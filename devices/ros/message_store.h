@@ -27,6 +27,13 @@ public:
     // What the file is, for descriptions: "ROS bag", "MCAP".
     virtual std::string formatName() const = 0;
     virtual const std::vector<Topic>& topics() const = 0;
+    // A topic's type, empty where the store has no such topic.
+    std::string typeOf(const std::string& topic) const {
+        for (const Topic& t : topics())
+            if (t.name == topic)
+                return t.type;
+        return {};
+    }
     // What opening recovered from (a truncated file), for the replay's warnings.
     virtual std::vector<std::string> warnings() const { return {}; }
     // The messages of `topic` in recorded order, kept as an index for random access; returns its handle.
@@ -41,6 +48,9 @@ public:
             return decoded.error();
         return decoded->stampNs;
     }
+
+    // Whether image() and firstImage() decompress sensor_msgs/CompressedImage topics (ROS 2 recordings').
+    virtual bool readsCompressedImages() const { return false; }
 
     // The first message of a topic, when it exists and has that type.
     virtual std::optional<RosImage> firstImage(const std::string& topic) const = 0;

@@ -137,19 +137,21 @@ TEST_P(McapReplay, CalibrationComesFromCameraInfo) {
     EXPECT_EQ(f->cameraIntrinsics.fx, 50.0 * kColorW / kDepthW);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Layouts, McapReplay,
-    ::testing::Values(Layout{"zstd.mcap"}, Layout{"lz4.mcap"}, Layout{"uncompressed-chunks.mcap"},
-                      Layout{"unchunked.mcap"}, Layout{"no-summary.mcap"}, Layout{"no-message-index.mcap"},
-                      Layout{"big-endian.mcap"}, Layout{"rosbag2"}, Layout{"float-bgr.mcap", true},
-                      Layout{"rgba-infrared.mcap", false, true}, Layout{"bgra-big-endian.mcap", true}),
-    [](const auto& info) {
-        std::string name = info.param.file;
-        for (char& c : name)
-            if (!std::isalnum(static_cast<unsigned char>(c)))
-                c = '_';
-        return name;
-    });
+INSTANTIATE_TEST_SUITE_P(Layouts, McapReplay,
+                         ::testing::Values(Layout{"zstd.mcap"}, Layout{"lz4.mcap"},
+                                           Layout{"uncompressed-chunks.mcap"}, Layout{"unchunked.mcap"},
+                                           Layout{"no-summary.mcap"}, Layout{"no-message-index.mcap"},
+                                           Layout{"big-endian.mcap"}, Layout{"rosbag2"},
+                                           Layout{"float-bgr.mcap", true},
+                                           Layout{"rgba-infrared.mcap", false, true},
+                                           Layout{"bgra-big-endian.mcap", true}, Layout{"compressed.mcap"}),
+                         [](const auto& info) {
+                             std::string name = info.param.file;
+                             for (char& c : name)
+                                 if (!std::isalnum(static_cast<unsigned char>(c)))
+                                     c = '_';
+                             return name;
+                         });
 
 using McapFiles = McapReplay;
 

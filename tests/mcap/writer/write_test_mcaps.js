@@ -9,6 +9,7 @@
 
 const fs = require("fs");
 const path = require("path");
+const zlib = require("zlib");
 const { McapWriter, TempBuffer } = require("@mcap/core");
 const { CdrWriter, EncapsulationKind } = require("@foxglove/cdr");
 const zstd = require("@foxglove/wasm-zstd");
@@ -91,6 +92,67 @@ function infraredImage(kind, i, stampNs) {
   return imageMessage(kind, stampNs, "mono8", DEPTH_W, DEPTH_H, DEPTH_W, data, false);
 }
 
+// A PNG written here with Node's zlib (the replay decodes it with libpng): colour type 0 (gray) or 2 (RGB),
+// unfiltered rows; rowBytes(y) gives row y's samples, 16-bit ones big-endian as PNG stores them.
+const CRC_TABLE = Array.from({ length: 256 }, (_, n) => {
+  let c = n;
+  for (let k = 0; k < 8; ++k) c = c & 1 ? 0xedb88320 ^ (c >>> 1) : c >>> 1;
+  return c >>> 0;
+});
+function crc32(bytes) {
+  let c = 0xffffffff;
+  for (const b of bytes) c = CRC_TABLE[(c ^ b) & 0xff] ^ (c >>> 8);
+  return (c ^ 0xffffffff) >>> 0;
+}
+function pngChunk(type, data) {
+  const out = Buffer.alloc(12 + data.length);
+  out.writeUInt32BE(data.length, 0);
+  out.write(type, 4, "ascii");
+  Buffer.from(data).copy(out, 8);
+  out.writeUInt32BE(crc32(out.subarray(4, 8 + data.length)), 8 + data.length);
+  return out;
+}
+function png(width, height, bitDepth, colourType, rowBytes) {
+  const ihdr = Buffer.alloc(13); // compression, filter and interlace methods 0
+  ihdr.writeUInt32BE(width, 0);
+  ihdr.writeUInt32BE(height, 4);
+  ihdr[8] = bitDepth;
+  ihdr[9] = colourType;
+  const rows = Array.from({ length: height }, (_, y) => Buffer.concat([Buffer.from([0]), Buffer.from(rowBytes(y))]));
+  return Buffer.concat([Buffer.from([137, 80, 78, 71, 13, 10, 26, 10]), pngChunk("IHDR", ihdr),
+    pngChunk("IDAT", zlib.deflateSync(Buffer.concat(rows))), pngChunk("IEND", Buffer.alloc(0))]);
+}
+
+function compressedMessage(kind, stampNs, format, data) {
+  const w = new CdrWriter({ kind });
+  header(w, stampNs);
+  w.string(format);
+  w.uint8Array(data, true);
+  return w.data;
+}
+
+// image_transport's compressedDepth of 16UC1: its 12-byte header (format 0 = PNG, then the two inverse-depth
+// quantisation floats, unused for 16UC1), then a 16-bit gray PNG of the millimetres.
+function compressedDepthImage(kind, i, stampNs) {
+  const header = Buffer.alloc(12);
+  const image = png(DEPTH_W, DEPTH_H, 16, 0, (y) => {
+    const row = Buffer.alloc(DEPTH_W * 2);
+    for (let x = 0; x < DEPTH_W; ++x) row.writeUInt16BE(depthUnits(x, y, i), 2 * x);
+    return row;
+  });
+  return compressedMessage(kind, stampNs, "16UC1; compressedDepth png", Buffer.concat([header, image]));
+}
+
+// image_transport's compressed plugin with png_level set: an RGB PNG.
+function compressedColorImage(kind, i, stampNs) {
+  const image = png(COLOR_W, COLOR_H, 8, 2, (y) => {
+    const row = [];
+    for (let x = 0; x < COLOR_W; ++x) row.push(...colorRgb(x, y, i));
+    return row;
+  });
+  return compressedMessage(kind, stampNs, "rgb8; png compressed rgb8", image);
+}
+
 function cameraInfo(kind, stampNs, info) {
   const w = new CdrWriter({ kind });
   header(w, stampNs);
@@ -114,6 +176,7 @@ const SCHEMAS = {
   "sensor_msgs/msg/CameraInfo":
     "std_msgs/Header header\nuint32 height\nuint32 width\nstring distortion_model\nfloat64[] d\nfloat64[9] k\n" +
     "float64[9] r\nfloat64[12] p\nuint32 binning_x\nuint32 binning_y\nRegionOfInterest roi\n",
+  "sensor_msgs/msg/CompressedImage": "std_msgs/Header header\nstring format\nuint8[] data\n",
 };
 
 const compressors = {
@@ -131,9 +194,10 @@ const withoutSummary = {
 
 // Writes one file; returns its bytes and, per depth frame, the file offset at which its message was added
 // (with chunkSize 1 every message is its own chunk, so that offset is where the frame's chunk starts).
-// `images` picks the encodings: 16UC1 + rgb8 unless it says otherwise, and an infra1 mono8 stream.
+// `images` picks the encodings: 16UC1 + rgb8 unless it says otherwise, and an infra1 mono8 stream; with
+// `compressed`, depth and colour are image_transport's compressedDepth and compressed (PNG) topics instead.
 async function write(options, kind = EncapsulationKind.CDR_LE, bigEndianPixels = false, images = {}) {
-  const { depthEncoding = "16UC1", colorEncoding = "rgb8", infrared = false } = images;
+  const { depthEncoding = "16UC1", colorEncoding = "rgb8", infrared = false, compressed = false } = images;
   const buffer = new TempBuffer();
   const writer = new McapWriter({ writable: buffer, ...options });
   await writer.start({ profile: "ros2", library: "depthcloud test writer" });
@@ -142,9 +206,13 @@ async function write(options, kind = EncapsulationKind.CDR_LE, bigEndianPixels =
     schema[name] = await writer.registerSchema({ name, encoding: "ros2msg", data: new TextEncoder().encode(text) });
   const channel = async (topic, type) =>
     writer.registerChannel({ topic, schemaId: schema[type], messageEncoding: "cdr", metadata: new Map() });
-  const depth = await channel("/camera/camera/depth/image_rect_raw", "sensor_msgs/msg/Image");
+  const depth = compressed
+    ? await channel("/camera/camera/depth/image_rect_raw/compressedDepth", "sensor_msgs/msg/CompressedImage")
+    : await channel("/camera/camera/depth/image_rect_raw", "sensor_msgs/msg/Image");
   const depthInfo = await channel("/camera/camera/depth/camera_info", "sensor_msgs/msg/CameraInfo");
-  const color = await channel("/camera/camera/color/image_raw", "sensor_msgs/msg/Image");
+  const color = compressed
+    ? await channel("/camera/camera/color/image_raw/compressed", "sensor_msgs/msg/CompressedImage")
+    : await channel("/camera/camera/color/image_raw", "sensor_msgs/msg/Image");
   const colorInfo = await channel("/camera/camera/color/camera_info", "sensor_msgs/msg/CameraInfo");
   const infra = infrared ? await channel("/camera/camera/infra1/image_rect_raw", "sensor_msgs/msg/Image") : 0;
   const depthOffsets = [];
@@ -155,9 +223,12 @@ async function write(options, kind = EncapsulationKind.CDR_LE, bigEndianPixels =
   for (let i = 0; i < FRAMES; ++i) {
     const stampNs = START_NS + BigInt(i) * FRAME_NS;
     depthOffsets.push(Number(buffer.position()));
-    await add(depth, stampNs, depthImage(kind, i, stampNs, bigEndianPixels, depthEncoding));
+    await add(depth, stampNs, compressed ? compressedDepthImage(kind, i, stampNs)
+      : depthImage(kind, i, stampNs, bigEndianPixels, depthEncoding));
     await add(depthInfo, stampNs, cameraInfo(kind, stampNs, DEPTH_INFO));
-    await add(color, stampNs + COLOR_OFFSET_NS, colorImage(kind, i, stampNs + COLOR_OFFSET_NS, colorEncoding));
+    const colorStampNs = stampNs + COLOR_OFFSET_NS;
+    await add(color, colorStampNs, compressed ? compressedColorImage(kind, i, colorStampNs)
+      : colorImage(kind, i, colorStampNs, colorEncoding));
     if (infrared) await add(infra, stampNs, infraredImage(kind, i, stampNs));
     await add(colorInfo, stampNs + COLOR_OFFSET_NS, cameraInfo(kind, stampNs, COLOR_INFO));
   }
@@ -189,6 +260,7 @@ async function main() {
     "float-bgr.mcap": { depthEncoding: "32FC1", colorEncoding: "bgr8" },
     "rgba-infrared.mcap": { colorEncoding: "rgba8", infrared: true },
     "bgra-big-endian.mcap": { depthEncoding: "32FC1", colorEncoding: "bgra8" },
+    "compressed.mcap": { compressed: true },
   }))
     save(name, (await write(chunked(compressors.zstd), name.includes("big") ? EncapsulationKind.CDR_BE : EncapsulationKind.CDR_LE, name.includes("big"), images)).bytes);
   // One chunk per message, cut 20 bytes into the chunk of depth frame 3: frames 0-2 survive.
