@@ -27,9 +27,10 @@ class Db3Replay : public ::testing::Test {
 protected:
     static void SetUpTestSuite() {
         dir_ = new test::TempDir;
-        for (const auto& [folder, parts] : {std::pair{bag(), 1}, std::pair{split(), 2}}) {
-            const std::string command = std::string("/usr/bin/python3 ") + DC_DB3_WRITER_SCRIPT + " " +
-                                        folder + " " + std::to_string(parts);
+        for (const auto& [folder, arguments] :
+             {std::pair{bag(), "1"}, std::pair{split(), "2"}, std::pair{compressed(), "1 compressed"}}) {
+            const std::string command =
+                std::string("/usr/bin/python3 ") + DC_DB3_WRITER_SCRIPT + " " + folder + " " + arguments;
             if (std::system(command.c_str()) != 0)
                 problem_ = "the .db3 writer failed (" + command + ")";
         }
@@ -38,6 +39,8 @@ protected:
     void SetUp() override { ASSERT_TRUE(problem_.empty()) << problem_; }
     static std::string bag() { return dir_->path("bag"); }
     static std::string split() { return dir_->path("split"); } // the same frames in two .db3 files
+    // The same frames as image_transport's compressedDepth and compressed (PNG) topics.
+    static std::string compressed() { return dir_->path("compressed"); }
 
     static inline test::TempDir* dir_ = nullptr;
     static inline std::string problem_;
@@ -101,6 +104,10 @@ void expectEveryFrameAsWritten(const std::string& spec) {
 
 TEST_F(Db3Replay, EveryFrameEqualsWhatWasWrittenWithItsStampAndCalibration) {
     expectEveryFrameAsWritten("replay:" + bag());
+}
+
+TEST_F(Db3Replay, CompressedTopicsReplayAsTheirRawImagesWould) {
+    expectEveryFrameAsWritten("replay:" + compressed());
 }
 
 TEST_F(Db3Replay, TheDb3FileAloneReplaysWithoutItsFolder) {

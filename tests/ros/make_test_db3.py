@@ -3,14 +3,16 @@
 depthcloud's code: Python's sqlite3 module with Humble's rosbag2 schema, and messages serialised here as
 little-endian XCDR1 by struct. Frames follow tests/ros/replay_test_pattern.h (the MCAP writer's formulas).
 
-Usage: make_test_db3.py OUT_DIR [PARTS]  (writes OUT_DIR/metadata.yaml and OUT_DIR/rosbag2_0.db3, or the
-frames split over PARTS files rosbag2_0.db3, rosbag2_1.db3, ... as a recorder's size limit splits them)
+Usage: make_test_db3.py OUT_DIR [PARTS [compressed]]  (writes OUT_DIR/metadata.yaml and OUT_DIR/rosbag2_0.db3,
+or the frames split over PARTS files rosbag2_0.db3, rosbag2_1.db3, ... as a recorder's size limit splits them;
+"compressed" records image_transport's compressedDepth and compressed topics, PNG made here with zlib)
 """
 import math
 import os
 import sqlite3
 import struct
 import sys
+import zlib
 
 FRAMES = 5
 DEPTH_W, DEPTH_H, COLOR_W, COLOR_H = 64, 48, 80, 60
@@ -110,6 +112,36 @@ def static_tf(stamp_ns):
                                                 (COLOR_FRAME, ((0.0, -0.015, 0.0), still))])
 
 
+def png(width, height, bit_depth, colour_type, rows):
+    """A PNG of unfiltered `rows` (each row's samples; 16-bit ones big-endian), colour type 0 gray or 2 RGB."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    header = struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0)
+    pixels = zlib.compress(b"".join(b"\0" + row for row in rows))
+    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", pixels) + chunk(b"IEND", b"")
+
+
+def compressed_image(stamp_ns, frame_id, fmt, data):
+    w = Cdr()
+    w.header(stamp_ns, frame_id)
+    w.string(fmt)
+    w.put("I", len(data))
+    w.out += data
+    return bytes(w.out)
+
+
+def compressed_depth_image(i, stamp_ns):
+    """compressedDepth's 12-byte header (PNG, quantisation unused for 16UC1), then a 16-bit gray PNG."""
+    rows = [b"".join(struct.pack(">H", depth_units(x, y, i)) for x in range(DEPTH_W)) for y in range(DEPTH_H)]
+    data = struct.pack("<iff", 0, 0.0, 0.0) + png(DEPTH_W, DEPTH_H, 16, 0, rows)
+    return compressed_image(stamp_ns, DEPTH_FRAME, "16UC1; compressedDepth png", data)
+
+
+def compressed_color_image(i, stamp_ns):
+    rows = [bytes(c for x in range(COLOR_W) for c in color_rgb(x, y, i)) for y in range(COLOR_H)]
+    return compressed_image(stamp_ns, COLOR_FRAME, "rgb8; png compressed rgb8", png(COLOR_W, COLOR_H, 8, 2, rows))
+
+
 def depth_image(i, stamp_ns):
     data = b"".join(struct.pack("<H", depth_units(x, y, i)) for y in range(DEPTH_H) for x in range(DEPTH_W))
     return image(stamp_ns, DEPTH_FRAME, "16UC1", DEPTH_W, DEPTH_H, 2 * DEPTH_W, data)
@@ -123,10 +155,13 @@ def color_image(i, stamp_ns):
 DEPTH_K = [50, 0, 32, 0, 51, 24, 0, 0, 1]
 COLOR_K = [60, 0, 40, 0, 61, 30, 0, 0, 1]
 LENS = [0.1, -0.2, 0.001, 0.002, 0.05]  # plumb_bob k1 k2 p1 p2 k3
+COMPRESSED = len(sys.argv) > 3 and sys.argv[3] == "compressed"
 TOPICS = [  # id, name, type
-    (1, "/camera/camera/depth/image_rect_raw", "sensor_msgs/msg/Image"),
+    (1, "/camera/camera/depth/image_rect_raw/compressedDepth", "sensor_msgs/msg/CompressedImage") if COMPRESSED
+    else (1, "/camera/camera/depth/image_rect_raw", "sensor_msgs/msg/Image"),
     (2, "/camera/camera/depth/camera_info", "sensor_msgs/msg/CameraInfo"),
-    (3, "/camera/camera/color/image_raw", "sensor_msgs/msg/Image"),
+    (3, "/camera/camera/color/image_raw/compressed", "sensor_msgs/msg/CompressedImage") if COMPRESSED
+    else (3, "/camera/camera/color/image_raw", "sensor_msgs/msg/Image"),
     (4, "/camera/camera/color/camera_info", "sensor_msgs/msg/CameraInfo"),
     (5, "/tf", "tf2_msgs/msg/TFMessage"),
     (6, "/tf_static", "tf2_msgs/msg/TFMessage"),
@@ -151,10 +186,11 @@ def frame_rows(i, topic_id):
     color_ns = depth_ns + COLOR_OFFSET_NS
     # Colour rows first: the store must order by receive time, not by row.
     rows = [
-        (topic_id[3], color_ns + LOG_DELAY_NS, color_image(i, color_ns)),
+        (topic_id[3], color_ns + LOG_DELAY_NS,
+         (compressed_color_image if COMPRESSED else color_image)(i, color_ns)),
         (topic_id[4], color_ns + LOG_DELAY_NS,
          camera_info(color_ns, COLOR_FRAME, COLOR_W, COLOR_H, COLOR_K, LENS)),
-        (topic_id[1], depth_ns + LOG_DELAY_NS, depth_image(i, depth_ns)),
+        (topic_id[1], depth_ns + LOG_DELAY_NS, (compressed_depth_image if COMPRESSED else depth_image)(i, depth_ns)),
         (topic_id[2], depth_ns + LOG_DELAY_NS,
          camera_info(depth_ns, DEPTH_FRAME, DEPTH_W, DEPTH_H, DEPTH_K, LENS)),
         # Stamped 1 ms after the depth image, as a pose estimator's output would be.
