@@ -37,6 +37,8 @@ namespace {
 using Clock = std::chrono::steady_clock;
 
 constexpr float kBackground[3] = {0.08f, 0.08f, 0.1f};
+// How long past its --frames a window waits for the source's first frame before it ends all the same.
+constexpr std::chrono::seconds kFirstFrameWait{60};
 
 struct GlfwWindowDeleter {
     void operator()(GLFWwindow* w) const { glfwDestroyWindow(w); }
@@ -421,7 +423,8 @@ int runGui(const ViewerOptions& options) {
         Clock::time_point frameStart = start;
         ui::FrameDamage damage;
         std::pair<int, int> framebufferSize = sizeOf(window.get());
-        bool incomplete = false; // a part of the last frame did not reach the window
+        bool incomplete = false;                        // a part of the last frame did not reach the window
+        std::optional<Clock::time_point> framesCounted; // when the window drew its --frames
         // Software GL draws only what changed, into a back buffer that nothing swaps; a GPU draws whole
         // frames, synchronised with the display by the swap.
         const std::optional<PartialPresenter> parts =
@@ -445,9 +448,14 @@ int runGui(const ViewerOptions& options) {
                 (void)viewer.openPath(path);
             if (viewer.quitRequested())
                 glfwSetWindowShouldClose(window.get(), GLFW_TRUE);
-            // Closing the window ends the run like the last of --frames: --out still gets its files.
+            // Closing the window ends the run like the last of --frames: --out still gets its files. --frames
+            // counts the window's frames, and a source slow to start on a busy machine may not have shown one
+            // by then: the run goes on until it has (or kFirstFrameWait passed), so --out has a picture.
+            if (options.frames && frame + 1 >= *options.frames && !framesCounted)
+                framesCounted = Clock::now();
             const bool last =
-                glfwWindowShouldClose(window.get()) || (options.frames && frame + 1 >= *options.frames);
+                glfwWindowShouldClose(window.get()) ||
+                (framesCounted && (viewer.shown() || Clock::now() - *framesCounted > kFirstFrameWait));
             const auto [drawn, refused] = drawChanged(window.get(), parts, changed, last);
             incomplete = refused;
             if (drawn)

@@ -427,7 +427,8 @@ TEST(AppWindow, AResizedWindowShowsTheWholePictureAtItsNewSize) {
 TEST(AppWindow, TheWindowFitsTheScreenAndIsRememberedWithItsPosition) {
     TempDir first, second, home;
     const std::string xvfb = "XDG_CONFIG_HOME=" + home.str() + " xvfb-run -a -s '-screen 0 1920x1080x24' ";
-    ASSERT_EQ(run(xvfb + binary() + " --frames 5 --out " + first.str()).exitCode, 0);
+    const RunResult opened = run(xvfb + binary() + " --frames 5 --out " + first.str());
+    ASSERT_EQ(opened.exitCode, 0) << opened.output;
     const cv::Mat large = cv::imread(first.str() + "/screenshot.png", cv::IMREAD_COLOR);
     EXPECT_EQ(large.cols, 1536);
     EXPECT_EQ(large.rows, 864);
@@ -438,7 +439,8 @@ TEST(AppWindow, TheWindowFitsTheScreenAndIsRememberedWithItsPosition) {
         settings["window"] = {{"x", 40}, {"y", 30}, {"width", 1111}, {"height", 666}, {"maximized", false}};
         std::ofstream(home.str() + "/depthcloud/settings.json") << settings.dump();
     }
-    ASSERT_EQ(run(xvfb + binary() + " --frames 5 --out " + second.str()).exitCode, 0);
+    const RunResult reopened = run(xvfb + binary() + " --frames 5 --out " + second.str());
+    ASSERT_EQ(reopened.exitCode, 0) << reopened.output;
     const cv::Mat saved = cv::imread(second.str() + "/screenshot.png", cv::IMREAD_COLOR);
     EXPECT_EQ(saved.cols, 1111);
     EXPECT_EQ(saved.rows, 666);
