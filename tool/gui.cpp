@@ -5,7 +5,6 @@
 
 #include "base/files.h"
 #include "base/log.h"
-#include "devices/source_spec.h"
 #include "devices/uvc/live_device_watcher.h"
 #include "frame/image_io.h"
 #include "tool/options.h"
@@ -363,7 +362,7 @@ int writeOutputs(GLFWwindow* window, ui::Viewer& viewer, const std::string& dir)
 
 } // namespace
 
-int runGui(const ViewerOptions& options) {
+int runGui(const ViewerOptions& options, std::unique_ptr<devices::Device> device) {
     GlfwLibrary glfw;
     if (!glfw.ok) {
         std::fprintf(stderr, "depthcloud: error: cannot open a window (GLFW failed to initialise); "
@@ -395,11 +394,6 @@ int runGui(const ViewerOptions& options) {
     glfwSwapInterval(1);
 
     ui::rememberSource(settings, options.source);
-    auto device = devices::openSourceSpec(options.source);
-    if (!device) {
-        std::fprintf(stderr, "depthcloud: error: %s\n", device.error().message.c_str());
-        return kExitFailure;
-    }
     int status = kExitOk;
     {
         ImGuiScope imgui(window.get(), iniPath);
@@ -413,7 +407,7 @@ int runGui(const ViewerOptions& options) {
         const auto glRenderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
         logInfo(std::string("renderer: OpenGL on ") + (glRenderer ? glRenderer : "an unknown renderer"));
         logInfo("source: " + options.source);
-        engine::Instrument instrument(std::move(*device), options.source);
+        engine::Instrument instrument(std::move(device), options.source);
         ui::Viewer viewer(instrument, renderer, settings);
         viewer.setAbout(versionLine());
         instrument.start();

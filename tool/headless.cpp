@@ -1,6 +1,5 @@
 #include "base/files.h"
 #include "base/log.h"
-#include "devices/source_spec.h"
 #include "render/gl_context.h"
 #include "tool/options.h"
 #include "tool/summary.h"
@@ -98,18 +97,15 @@ bool waitForColour(ui::Presenter& presenter, double timeSeconds) {
 
 } // namespace
 
-int runHeadless(const ViewerOptions& options) {
+int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> device) {
     setLogQuiet(true);
     auto context = render::EglContext::createHeadless();
     if (!context)
         return commandFailed("", context.error().message);
-    auto device = devices::openSourceSpec(options.source);
-    if (!device)
-        return commandFailed("", device.error().message);
     render::ViewRenderer renderer;
     if (Status s = renderer.init(); !s)
         return commandFailed("", s.error().message);
-    engine::Instrument instrument(std::move(*device), options.source);
+    engine::Instrument instrument(std::move(device), options.source);
     // Headless snapshots start from the defaults, never a user's saved view; --settings and --set choose.
     auto settings = chosenSettings({}, options);
     if (!settings)

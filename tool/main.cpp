@@ -69,7 +69,9 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
         ->capture_default_str();
     app.add_flag("--headless", o.headless,
                  "no window: render offscreen and write PNGs + summary.json to --out");
-    app.add_option("--frames", o.frames, "stop after N frames (headless default 60)")
+    app.add_option("--frames", o.frames,
+                   "stop after N frames (headless default 60; a window goes on until the source's first "
+                   "frame is shown, at most a minute)")
         ->check(CLI::Range(1, 1'000'000'000));
     app.add_option("--out", o.outDirectory, "output directory (headless default: depthcloud-snapshots)");
     // By name in help and errors: CLI11 would print a Confidence (a byte) as a raw control character.
@@ -94,7 +96,8 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
 }
 
 int runViewer(ViewerOptions o) {
-    if (auto device = dc::devices::openSourceSpec(o.source); !device)
+    auto device = dc::devices::openSourceSpec(o.source);
+    if (!device)
         return sourceCannotOpen(device.error());
     if (auto settings = chosenSettings({}, o); !settings)
         return badArgument(settings.error().message);
@@ -108,7 +111,7 @@ int runViewer(ViewerOptions o) {
         if (const std::string problem = checkOutDirectory(o.outDirectory); !problem.empty())
             return badArgument(problem);
     }
-    return o.headless ? runHeadless(o) : runGui(o);
+    return o.headless ? runHeadless(o, std::move(*device)) : runGui(o, std::move(*device));
 }
 
 } // namespace

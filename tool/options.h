@@ -1,10 +1,12 @@
 #pragma once
 
 #include "base/expected.h"
+#include "devices/device.h"
 #include "frame/frame.h"
 #include "ui/settings.h"
 
 #include <cstdio>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -47,9 +49,11 @@ struct BenchOptions {
 // --settings file instead, then each --set in order and --confidence. An Error names the argument.
 Expected<ui::Settings> chosenSettings(ui::Settings saved, const ViewerOptions& options);
 
-int runHeadless(const ViewerOptions& options);
+// Both run `device`, which runViewer opened from options.source once: a second open would repeat its
+// warnings and open a live camera twice.
+int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> device);
 // Returns kExitFailure with a message when no window can be opened.
-int runGui(const ViewerOptions& options);
+int runGui(const ViewerOptions& options, std::unique_ptr<devices::Device> device);
 int runBenchRender(const BenchOptions& options);
 
 } // namespace dc::tool

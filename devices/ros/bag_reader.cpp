@@ -1,12 +1,14 @@
 // Compiled as C++17: includes Debian's ROS 1 headers (ros_messages.h says why).
 #include "devices/ros/bag_reader.h"
 
+#include "devices/ros/compressed_image.h"
 #include "devices/ros/ros_conversions.h"
 
 #include <geometry_msgs/Transform.h>
 #include <rosbag/bag.h>
 #include <rosbag/view.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 #include <std_msgs/Float32.h>
 
@@ -26,6 +28,16 @@ template <class T> boost::shared_ptr<T> first(const rosbag::Bag& bag, const std:
         // A damaged message is as good as none: the caller falls back to defaults and says so.
     }
     return nullptr;
+}
+
+// image_transport's compressed and compressedDepth topics, as the plain image the raw topic carries.
+Expected<RosImage> decompressed(const sensor_msgs::CompressedImage& m) {
+    auto image = decompressImage(m.format, m.data.data(), m.data.size());
+    if (!image)
+        return image.error();
+    image->stampNs = toNs(m.header.stamp);
+    image->frameId = m.header.frame_id;
+    return image;
 }
 
 } // namespace
@@ -86,8 +98,15 @@ Expected<RosImage> BagReader::image(std::size_t handle, std::size_t i) const {
     try {
         if (auto message = m.instantiate<sensor_msgs::Image>())
             return toImage(*message);
+        if (auto message = m.instantiate<sensor_msgs::CompressedImage>()) {
+            auto image = decompressed(*message);
+            if (!image)
+                return Error{"message " + std::to_string(i) + " on " + m.getTopic() + ": " +
+                             image.error().message};
+            return image;
+        }
         return Error{"message " + std::to_string(i) + " on " + m.getTopic() + " is " + m.getDataType() +
-                     ", not sensor_msgs/Image"};
+                     ", not sensor_msgs/Image or sensor_msgs/CompressedImage"};
     } catch (const std::exception& e) {
         return Error{"message " + std::to_string(i) + " on " + m.getTopic() + " is unreadable: " + e.what()};
     }
@@ -96,6 +115,9 @@ Expected<RosImage> BagReader::image(std::size_t handle, std::size_t i) const {
 std::optional<RosImage> BagReader::firstImage(const std::string& topic) const {
     if (auto m = first<sensor_msgs::Image>(impl_->bag, topic))
         return toImage(*m);
+    if (auto m = first<sensor_msgs::CompressedImage>(impl_->bag, topic))
+        if (auto image = decompressed(*m))
+            return std::move(*image);
     return std::nullopt;
 }
 

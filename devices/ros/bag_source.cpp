@@ -39,12 +39,12 @@ std::string cameraInfoTopic(const std::string& imageTopic) {
     return raw.substr(0, raw.rfind('/')) + "/camera_info";
 }
 
-bool isCompressedImageTopic(const MessageStore& bag, const MessageStore::Topic& topic) {
-    return topic.type == kRosCompressedImageType && bag.readsCompressedImages();
+bool isCompressedImageTopic(const MessageStore::Topic& topic) {
+    return topic.type == kRosCompressedImageType;
 }
 
-bool isImageTopic(const MessageStore& bag, const MessageStore::Topic& topic) {
-    return topic.type == kRosImageType || isCompressedImageTopic(bag, topic);
+bool isImageTopic(const MessageStore::Topic& topic) {
+    return topic.type == kRosImageType || isCompressedImageTopic(topic);
 }
 
 std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw) {
@@ -153,7 +153,7 @@ public:
     BagSource(std::unique_ptr<MessageStore> store, std::string path, BagOptions options)
         : path_(std::move(path)), options_(std::move(options)), bag_(std::move(store)) {}
 
-    Status open();
+    Status open(std::vector<std::string> warnings);
 
     std::string description() const override {
         return bag_->formatName() + " " + std::filesystem::path(path_).filename().string() + " (" +
@@ -211,9 +211,9 @@ Status BagSource::checkTopic(const std::string& topic, ImageKind want, const cha
                                     [&](const MessageStore::Topic& t) { return t.name == topic; });
     if (found == topics.end())
         return Error{path_ + " has no topic " + topic};
-    if (!isImageTopic(*bag_, *found))
-        return Error{path_ + ": topic " + topic + " is " + found->type + ", not " + kRosImageType +
-                     (bag_->readsCompressedImages() ? std::string(" or ") + kRosCompressedImageType : "")};
+    if (!isImageTopic(*found))
+        return Error{path_ + ": topic " + topic + " is " + found->type + ", not " + kRosImageType + " or " +
+                     kRosCompressedImageType};
     if (const auto image = bag_->firstImage(topic); !image || imageKind(image->encoding) != want)
         return Error{path_ + ": topic " + topic + " is not a " + what + " image (encoding '" +
                      (image ? image->encoding : "unreadable") + "')"};
@@ -235,10 +235,10 @@ Status BagSource::chooseTopics() {
     // Of one rank, a raw image comes before a compressed one (JPEG loses detail; both are often recorded).
     std::vector<std::pair<int, std::string>> depths, colours;
     for (const MessageStore::Topic& t : bag_->topics()) {
-        if (!isImageTopic(*bag_, t))
+        if (!isImageTopic(t))
             continue;
         const ImageKind kind = kindOf(*bag_, t.name);
-        const int order = 2 * rank(t.name, kind) + (isCompressedImageTopic(*bag_, t) ? 1 : 0);
+        const int order = 2 * rank(t.name, kind) + (isCompressedImageTopic(t) ? 1 : 0);
         if (kind == ImageKind::Depth)
             depths.emplace_back(order, t.name);
         else if (kind == ImageKind::Color)
@@ -323,7 +323,7 @@ void BagSource::chooseInfrared() {
     int best = 2;
     for (const MessageStore::Topic& t : bag_->topics()) {
         const int rank = infraredRank(t.name);
-        if (!isImageTopic(*bag_, t) || t.name == depthTopic_ || rank < 0 || rank >= best)
+        if (!isImageTopic(t) || t.name == depthTopic_ || rank < 0 || rank >= best)
             continue;
         if (const auto image = bag_->firstImage(t.name); image && isInfraredEncoding(image->encoding)) {
             infraredTopic_ = t.name;
@@ -345,8 +345,10 @@ std::vector<std::optional<std::size_t>> BagSource::pairWithDepth(const ImageStre
     return out;
 }
 
-Status BagSource::open() {
-    warnings_ = bag_->warnings();
+Status BagSource::open(std::vector<std::string> warnings) {
+    warnings_ = std::move(warnings);
+    for (std::string& w : bag_->warnings())
+        warnings_.push_back(std::move(w));
     if (Status s = chooseTopics(); !s)
         return s;
     readTf();
@@ -486,10 +488,12 @@ Expected<frame::Frame> BagSource::frame(std::size_t i) {
 
 } // namespace
 
-Expected<std::unique_ptr<replay::ReplaySource>>
-openMessageSource(std::unique_ptr<MessageStore> store, const std::string& path, const BagOptions& options) {
+Expected<std::unique_ptr<replay::ReplaySource>> openMessageSource(std::unique_ptr<MessageStore> store,
+                                                                  const std::string& path,
+                                                                  const BagOptions& options,
+                                                                  std::vector<std::string> warnings) {
     auto source = std::make_unique<BagSource>(std::move(store), path, options);
-    if (Status s = source->open(); !s)
+    if (Status s = source->open(std::move(warnings)); !s)
         return s.error();
     return std::unique_ptr<replay::ReplaySource>(std::move(source));
 }

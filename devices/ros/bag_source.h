@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace dc::devices::ros {
 
@@ -42,10 +43,12 @@ struct BagRig {
 Expected<std::unique_ptr<replay::ReplaySource>> openBagSource(const std::string& path,
                                                               const BagOptions& options = {});
 
-// Any recording of ROS topics replayed the same way: `path` names it in descriptions and errors.
+// Any recording of ROS topics replayed the same way: `path` names it in descriptions and errors;
+// `warnings` are what the caller noticed in opening it, listed before the replay's own.
 Expected<std::unique_ptr<replay::ReplaySource>> openMessageSource(std::unique_ptr<MessageStore> store,
                                                                   const std::string& path,
-                                                                  const BagOptions& options = {});
+                                                                  const BagOptions& options = {},
+                                                                  std::vector<std::string> warnings = {});
 
 // The recorded calibration of a source that openBagSource opened; nullptr for any other source.
 const BagRig* bagRig(const replay::ReplaySource& source);

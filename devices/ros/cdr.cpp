@@ -136,7 +136,7 @@ Expected<RosImage> decodeCompressedImage(std::span<const std::uint8_t> message) 
     const auto data = cdr.bytes();
     if (cdr.failed())
         return problemOf(cdr, "sensor_msgs/msg/CompressedImage");
-    auto image = decompressImage(format, data);
+    auto image = decompressImage(format, data.data(), data.size());
     if (!image)
         return image.error();
     image->stampNs = stampNs;

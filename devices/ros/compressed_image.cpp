@@ -6,6 +6,7 @@
 
 #include <cstring>
 #include <limits>
+#include <span>
 
 namespace dc::devices::ros {
 
@@ -95,7 +96,8 @@ Expected<RosImage> decompressJpeg(std::span<const std::uint8_t> data) {
 
 } // namespace
 
-Expected<RosImage> decompressImage(const std::string& format, std::span<const std::uint8_t> data) {
+Expected<RosImage> decompressImage(const std::string& format, const std::uint8_t* bytes, std::size_t size) {
+    const std::span<const std::uint8_t> data(bytes, size);
     if (format.find("compressedDepth") != std::string::npos)
         return decompressDepth(format, data);
     if (frame::looksLikePng(data))

@@ -3,8 +3,8 @@
 #include "base/expected.h"
 #include "devices/ros/ros_messages.h"
 
+#include <cstddef>
 #include <cstdint>
-#include <span>
 #include <string>
 
 // sensor_msgs/CompressedImage's payload as the plain image an Image message of the same picture carries, so
@@ -17,6 +17,7 @@ namespace dc::devices::ros {
 // JPEG becomes rgb8; PNG becomes rgb8, rgba8, mono8 or 16UC1 by its channels and depth; a compressedDepth
 // PNG becomes 16UC1, or 32FC1 meters for a 32FC1 source (its inverse-depth quantisation undone; a zero
 // sample is NaN, no depth). Malformed data, or a codec other than these (RVL), is an error naming it.
-Expected<RosImage> decompressImage(const std::string& format, std::span<const std::uint8_t> data);
+// Pointer and size rather than a span: the ROS 1 bag glue, which is C++17, calls it too.
+Expected<RosImage> decompressImage(const std::string& format, const std::uint8_t* data, std::size_t size);
 
 } // namespace dc::devices::ros

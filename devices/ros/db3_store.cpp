@@ -34,7 +34,6 @@ public:
     Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle][i].first, decodeTfMessage);
     }
-    bool readsCompressedImages() const override { return true; }
     std::optional<RosImage> firstImage(const std::string& topic) const override {
         return first(topic, imageDecoderFor(typeOf(topic)));
     }

@@ -62,7 +62,6 @@ public:
     Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
         return decoded(handles_[handle], i, decodeTfMessage);
     }
-    bool readsCompressedImages() const override { return true; }
     std::optional<RosImage> firstImage(const std::string& topic) const override {
         return first(topic, imageDecoderFor(typeOf(topic)));
     }
@@ -146,6 +145,25 @@ Expected<std::vector<std::string>> filesOfStorage(const std::filesystem::path& d
     return files;
 }
 
+// A file of a split recording replays alone, as asked, but the person learns where the rest is: the other
+// files hold the frames before and after it, and often the static transforms. Empty for any other file.
+std::vector<std::string> partOfRecording(const std::string& file) {
+    namespace fs = std::filesystem;
+    const fs::path folder = fs::path(file).parent_path();
+    std::error_code ec;
+    if (!fs::exists(folder / "metadata.yaml", ec))
+        return {};
+    const std::string name = folder.empty() ? std::string(".") : folder.string();
+    auto files = rosbag2Files(name);
+    if (!files || files->size() < 2)
+        return {};
+    for (std::size_t i = 0; i < files->size(); ++i)
+        if (fs::equivalent((*files)[i], file, ec))
+            return {file + " is file " + std::to_string(i + 1) + " of " + std::to_string(files->size()) +
+                    " of the recording in " + name + ", which replay:" + name + " plays whole"};
+    return {};
+}
+
 } // namespace
 
 Expected<std::vector<std::string>> rosbag2Files(const std::string& directory) {
@@ -173,7 +191,10 @@ Expected<std::vector<std::string>> rosbag2Files(const std::string& directory) {
 Expected<std::unique_ptr<replay::ReplaySource>> openMcapSource(const std::string& path,
                                                                const BagOptions& options) {
     std::vector<std::string> files{path};
-    if (std::filesystem::is_directory(path)) {
+    std::vector<std::string> warnings;
+    if (!std::filesystem::is_directory(path)) {
+        warnings = partOfRecording(path);
+    } else {
         auto inFolder = rosbag2Files(path);
         if (!inFolder)
             return inFolder.error();
@@ -186,7 +207,8 @@ Expected<std::unique_ptr<replay::ReplaySource>> openMcapSource(const std::string
             return store.error();
         stores.push_back(std::move(*store));
     }
-    return openMessageSource(concatenateStores(std::move(stores)), files.front(), options);
+    return openMessageSource(concatenateStores(std::move(stores)), files.front(), options,
+                             std::move(warnings));
 }
 
 } // namespace dc::devices::ros

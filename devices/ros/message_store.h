@@ -49,9 +49,6 @@ public:
         return decoded->stampNs;
     }
 
-    // Whether image() and firstImage() decompress sensor_msgs/CompressedImage topics (ROS 2 recordings').
-    virtual bool readsCompressedImages() const { return false; }
-
     // The first message of a topic, when it exists and has that type.
     virtual std::optional<RosImage> firstImage(const std::string& topic) const = 0;
     virtual std::optional<RosCameraInfo> firstCameraInfo(const std::string& topic) const = 0;

@@ -13,8 +13,7 @@ namespace dc::devices::ros {
 
 // The message type of image topics, in ROS 1 spelling (message stores give ROS 2's in it too).
 inline constexpr const char* kRosImageType = "sensor_msgs/Image";
-// image_transport's compressed and compressedDepth topics, where the store reads them
-// (readsCompressedImages).
+// image_transport's compressed and compressedDepth topics: every message store's image() decompresses them.
 inline constexpr const char* kRosCompressedImageType = "sensor_msgs/CompressedImage";
 // A depth stream without camera_info is placed with this horizontal field of view: a RealSense depth
 // sensor's, the camera ROS users record most.

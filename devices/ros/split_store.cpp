@@ -64,7 +64,6 @@ public:
         return parts_[part]->imageStampNs(local, index);
     }
     bool readsTransforms() const override { return parts_.front()->readsTransforms(); }
-    bool readsCompressedImages() const override { return parts_.front()->readsCompressedImages(); }
     Expected<std::vector<RosTransformStamped>> transforms(std::size_t handle, std::size_t i) const override {
         const auto [part, local, index] = locate(handle, i);
         return parts_[part]->transforms(local, index);

@@ -146,6 +146,14 @@ TEST_F(RecordingApp, KilledRecorderLeavesAReplayablePrefix) {
     EXPECT_NE(exported.output.find("wrote " + std::to_string(reader->frameCount()) + " frames"),
               std::string::npos)
         << exported.output;
+    // The viewer opens the source once: the recovery's warning is printed once, not once per open.
+    const RunResult viewed =
+        run("--headless --source replay:" + out + ".partial --frames 2 --out " + path("snapshots"));
+    ASSERT_EQ(viewed.exitCode, 0) << viewed.output;
+    const std::string recovering = "recovering by scanning chunks";
+    const auto first = viewed.output.find(recovering);
+    ASSERT_NE(first, std::string::npos) << viewed.output;
+    EXPECT_EQ(viewed.output.find(recovering, first + 1), std::string::npos) << viewed.output;
     const RunResult refused = run("record --source synthetic --frames 2 " + out);
     // The destination is refused before the source opens, like an existing output: a bad argument.
     EXPECT_EQ(refused.exitCode, 2) << "the interrupted recording is kept, not overwritten";

@@ -241,6 +241,27 @@ TEST_F(BagReplay, GenericBagFindsDepthAndColourByEncodingWithCameraInfoBeside) {
     EXPECT_DOUBLE_EQ(k.cy, 24.0);
 }
 
+// image_transport's compressedDepth (PNG16 behind its header) and compressed (PNG) topics, as a ROS 1
+// robot records them to save bandwidth: the same pixels as the raw topics, camera_info found beside the
+// raw topic's name.
+TEST_F(BagReplay, CompressedTopicsReplayPixelForPixelWithTheirRawTopicsCalibration) {
+    auto source = open(bag("compressed.bag"));
+    ASSERT_TRUE(source);
+    ASSERT_EQ(source->frameCount(), kFrames);
+    EXPECT_TRUE(source->capabilities().color);
+    EXPECT_NE(source->description().find("/camera/depth/image_rect_raw/compressedDepth"), std::string::npos);
+    EXPECT_NE(source->description().find("/camera/color/image_raw/compressed"), std::string::npos);
+    for (std::size_t i = kFrames; i-- > 0;) {
+        EXPECT_EQ(source->timestampNs(i), kStartNs + static_cast<std::int64_t>(i) * kFrameNs);
+        auto f = replay::loadFrame(*source, i);
+        ASSERT_TRUE(f) << f.error().message;
+        expectDepth(*f, i, 0.001);
+        expectRgb(*f, i);
+        EXPECT_DOUBLE_EQ(f->depthIntrinsics().fx, 50.0);
+        EXPECT_DOUBLE_EQ(f->depthIntrinsics().cy, 24.0);
+    }
+}
+
 TEST_F(BagReplay, TopicsOptionPicksTheDepthTopicAndRefusesWhatIsNotOne) {
     auto source = open("replay:" + bag("generic.bag") + ":topics=/camera/aligned/image_raw");
     ASSERT_TRUE(source);

@@ -30,6 +30,10 @@ std::vector<std::uint8_t> withPng(std::vector<std::uint8_t> header, const cv::Ma
     return header;
 }
 
+Expected<RosImage> decompress(const std::string& format, const std::vector<std::uint8_t>& data) {
+    return decompressImage(format, data.data(), data.size());
+}
+
 float floatAt(const RosImage& image, int x, int y) {
     float v = 0.0f;
     std::memcpy(&v, image.data.data() + y * image.step + x * 4, sizeof v);
@@ -43,7 +47,7 @@ TEST(CompressedImage, A32FC1CompressedDepthComesBackInMetersWithinItsQuantisatio
     cv::Mat quantised(1, 5, CV_16UC1, cv::Scalar(0));
     for (int x = 0; x < 4; ++x)
         quantised.at<std::uint16_t>(0, x) = static_cast<std::uint16_t>(std::lround(a / meters[x] + b));
-    auto image = decompressImage("32FC1; compressedDepth png", withPng(depthHeader(a, b), quantised));
+    auto image = decompress("32FC1; compressedDepth png", withPng(depthHeader(a, b), quantised));
     ASSERT_TRUE(image) << image.error().message;
     EXPECT_EQ(image->encoding, "32FC1");
     ASSERT_EQ(image->width, 5u);
@@ -59,7 +63,7 @@ TEST(CompressedImage, A16UC1CompressedDepthIsItsMillimetresExactly) {
     cv::Mat mm(2, 3, CV_16UC1);
     for (int i = 0; i < 6; ++i)
         mm.at<std::uint16_t>(i / 3, i % 3) = static_cast<std::uint16_t>(500 + 977 * i);
-    auto image = decompressImage("16UC1; compressedDepth png", withPng(depthHeader(0, 0), mm));
+    auto image = decompress("16UC1; compressedDepth png", withPng(depthHeader(0, 0), mm));
     ASSERT_TRUE(image) << image.error().message;
     EXPECT_EQ(image->encoding, "16UC1");
     ASSERT_EQ(image->step, 6u);
@@ -74,7 +78,7 @@ TEST(CompressedImage, AJpegBecomesRgbCloseToWhatWasEncoded) {
     auto jpeg = encoder.encode(frame::makeRgb24Image(32, 16, rgb), 95);
     ASSERT_TRUE(jpeg) << jpeg.error().message;
     const std::vector<std::uint8_t> bytes(jpeg->begin(), jpeg->end());
-    auto image = decompressImage("rgb8; jpeg compressed bgr8", bytes);
+    auto image = decompress("rgb8; jpeg compressed bgr8", bytes);
     ASSERT_TRUE(image) << image.error().message;
     EXPECT_EQ(image->encoding, "rgb8");
     ASSERT_EQ(image->width, 32u);
@@ -85,17 +89,17 @@ TEST(CompressedImage, AJpegBecomesRgbCloseToWhatWasEncoded) {
 
 TEST(CompressedImage, WhatCannotBeReadIsAnErrorNamingIt) {
     const std::vector<std::uint8_t> garbage(64, 0x5a);
-    auto rvl = decompressImage("16UC1; compressedDepth rvl", garbage);
+    auto rvl = decompress("16UC1; compressedDepth rvl", garbage);
     ASSERT_FALSE(rvl);
     EXPECT_NE(rvl.error().message.find("RVL"), std::string::npos) << rvl.error().message;
-    auto shortDepth = decompressImage("16UC1; compressedDepth png", std::vector<std::uint8_t>(5, 0));
+    auto shortDepth = decompress("16UC1; compressedDepth png", std::vector<std::uint8_t>(5, 0));
     ASSERT_FALSE(shortDepth);
     EXPECT_NE(shortDepth.error().message.find("no header"), std::string::npos);
-    auto neither = decompressImage("jpeg", garbage);
+    auto neither = decompress("jpeg", garbage);
     ASSERT_FALSE(neither);
     EXPECT_NE(neither.error().message.find("neither PNG nor readable JPEG"), std::string::npos);
     cv::Mat gray8(2, 2, CV_8UC1, cv::Scalar(7));
-    auto eightBitDepth = decompressImage("16UC1; compressedDepth png", withPng(depthHeader(0, 0), gray8));
+    auto eightBitDepth = decompress("16UC1; compressedDepth png", withPng(depthHeader(0, 0), gray8));
     ASSERT_FALSE(eightBitDepth);
     EXPECT_NE(eightBitDepth.error().message.find("not 16-bit gray"), std::string::npos);
 }

@@ -10,6 +10,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -125,6 +126,33 @@ TEST_F(Db3Replay, TheDb3FileAloneReplaysWithoutItsFolder) {
 TEST_F(Db3Replay, AFolderSplitOverTwoFilesReplaysAsOneRecording) {
     ASSERT_TRUE(fs::exists(split() + "/rosbag2_1.db3"));
     expectEveryFrameAsWritten("replay:" + split());
+}
+
+// One file of a split recording replays alone (it may be all the person has), with a warning naming the
+// recording it belongs to; the folder, or a file of an unsplit one, has no such warning.
+TEST_F(Db3Replay, OneFileOfASplitRecordingSaysWhereTheRestIs) {
+    auto part = replay::openReplaySpecSource("replay:" + split() + "/rosbag2_1.db3");
+    ASSERT_TRUE(part) << part.error().message;
+    EXPECT_GT((*part)->frameCount(), 0u);
+    EXPECT_LT((*part)->frameCount(), kFrames);
+    const auto warnings = (*part)->warnings();
+    const std::string expected =
+        "is file 2 of 2 of the recording in " + split() + ", which replay:" + split();
+    EXPECT_TRUE(std::any_of(warnings.begin(), warnings.end(), [&](const std::string& w) {
+        return w.find(expected) != std::string::npos;
+    })) << (warnings.empty() ? "no warning" : warnings.front());
+    auto mentionsParts = [](const replay::ReplaySource& s) {
+        const auto all = s.warnings();
+        return std::any_of(all.begin(), all.end(), [](const std::string& w) {
+            return w.find("of the recording in") != std::string::npos;
+        });
+    };
+    auto whole = replay::openReplaySpecSource("replay:" + split());
+    ASSERT_TRUE(whole) << whole.error().message;
+    EXPECT_FALSE(mentionsParts(**whole));
+    auto unsplit = replay::openReplaySpecSource("replay:" + bag() + "/rosbag2_0.db3");
+    ASSERT_TRUE(unsplit) << unsplit.error().message;
+    EXPECT_FALSE(mentionsParts(**unsplit));
 }
 
 TEST_F(Db3Replay, AListedFileThatIsMissingIsNamed) {

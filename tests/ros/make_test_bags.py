@@ -11,8 +11,10 @@ import sys
 import rosbag
 import rospy
 from geometry_msgs.msg import Transform
-from sensor_msgs.msg import CameraInfo, Image
+from sensor_msgs.msg import CameraInfo, CompressedImage, Image
 from std_msgs.msg import Float32, String
+
+from png_writer import png
 
 FRAMES = 5
 DEPTH_W, DEPTH_H = 64, 48
@@ -147,6 +149,35 @@ def generic(path):
                       image(stamp(i), "bayer_rggb8", 4, 4, 4, bytes(16)), stamp(i))
 
 
+def compressed_image(t, fmt, data):
+    m = CompressedImage()
+    m.header.stamp = t
+    m.header.frame_id = "camera"
+    m.format, m.data = fmt, data
+    return m
+
+
+def compressed(path):
+    """The generic layout recorded from image_transport's compressedDepth and compressed (PNG) topics, as
+    ROS 1's transports spell their formats: millimetre depth behind the 12-byte compressedDepth header."""
+    t0 = rospy.Time(START_S)
+    with rosbag.Bag(path, "w") as bag:
+        bag.write("/camera/depth/camera_info",
+                  camera_info(DEPTH_W, DEPTH_H, 50, 52, 32, 24, "plumb_bob", [0.01, 0, 0, 0, 0]), t0)
+        bag.write("/camera/color/camera_info",
+                  camera_info(COLOR_W, COLOR_H, 62.5, 65, 40, 30, "plumb_bob", [0, 0, 0, 0, 0]), t0)
+        for i in range(FRAMES):
+            rows = [b"".join(struct.pack(">H", depth_units(x, y, i)) for x in range(DEPTH_W))
+                    for y in range(DEPTH_H)]
+            depth = struct.pack("<iff", 0, 0.0, 0.0) + png(DEPTH_W, DEPTH_H, 16, 0, rows)
+            bag.write("/camera/depth/image_rect_raw/compressedDepth",
+                      compressed_image(stamp(i), "16UC1; compressedDepth", depth), stamp(i))
+            rows = [bytes(c for x in range(COLOR_W) for c in color_rgb(x, y, i)) for y in range(COLOR_H)]
+            bag.write("/camera/color/image_raw/compressed",
+                      compressed_image(stamp(i, 1_000_000), "bgr8; png compressed bgr8",
+                                       png(COLOR_W, COLOR_H, 8, 2, rows)), stamp(i, 1_000_000))
+
+
 def no_images(path):
     with rosbag.Bag(path, "w") as bag:
         bag.write("/status", String("no camera here"), rospy.Time(START_S))
@@ -164,6 +195,7 @@ def main():
     for encoding in ("rgb8", "bgr8", "rgba8", "YUYV"):
         realsense(f"{out}/realsense_{encoding}.bag", encoding)
     generic(f"{out}/generic.bag")
+    compressed(f"{out}/compressed.bag")
     no_images(f"{out}/no_images.bag")
     clock_jumps_back(f"{out}/clock_jumps_back.bag")
 

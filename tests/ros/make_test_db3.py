@@ -5,14 +5,15 @@ little-endian XCDR1 by struct. Frames follow tests/ros/replay_test_pattern.h (th
 
 Usage: make_test_db3.py OUT_DIR [PARTS [compressed]]  (writes OUT_DIR/metadata.yaml and OUT_DIR/rosbag2_0.db3,
 or the frames split over PARTS files rosbag2_0.db3, rosbag2_1.db3, ... as a recorder's size limit splits them;
-"compressed" records image_transport's compressedDepth and compressed topics, PNG made here with zlib)
+"compressed" records image_transport's compressedDepth and compressed topics, PNG made by png_writer.py with zlib)
 """
 import math
 import os
 import sqlite3
 import struct
 import sys
-import zlib
+
+from png_writer import png
 
 FRAMES = 5
 DEPTH_W, DEPTH_H, COLOR_W, COLOR_H = 64, 48, 80, 60
@@ -110,15 +111,6 @@ def static_tf(stamp_ns):
     still = (0.0, 0.0, 0.0, 1.0)
     return tf_message(stamp_ns, "camera_link", [(DEPTH_FRAME, ((0.0, 0.015, 0.0), still)),
                                                 (COLOR_FRAME, ((0.0, -0.015, 0.0), still))])
-
-
-def png(width, height, bit_depth, colour_type, rows):
-    """A PNG of unfiltered `rows` (each row's samples; 16-bit ones big-endian), colour type 0 gray or 2 RGB."""
-    def chunk(kind, data):
-        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
-    header = struct.pack(">IIBBBBB", width, height, bit_depth, colour_type, 0, 0, 0)
-    pixels = zlib.compress(b"".join(b"\0" + row for row in rows))
-    return b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", header) + chunk(b"IDAT", pixels) + chunk(b"IEND", b"")
 
 
 def compressed_image(stamp_ns, frame_id, fmt, data):
