@@ -20,8 +20,11 @@ struct GlFrameMs {
 
 // The peer every viewer bench is measured against: GL_POINTS of every shown sample through the cloud
 // shader into a target of the cloud panel's size, the view turning each frame, nothing else drawn; the
-// medians over `frames` (after a warm-up), each ended by glFinish. Needs a current context.
-GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int height, int frames);
+// medians over `frames` (after a warm-up), each ended by glFinish. Back to back, or one every 1/paceFps
+// seconds as the viewer's frames come at a camera's rate: a GPU that idles between frames lowers its clock,
+// and only a peer drawn at the same pace shares it. Needs a current context.
+GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int height, int frames,
+                       double paceFps = 0.0);
 // The clock of the GPU the current context draws on, opened once (none where GpuClock::open finds none).
 const std::optional<GpuClock>& currentGpuClock();
 // A text for the clock, " at a GPU clock of N of M MHz", or empty when it is not known.

@@ -57,10 +57,11 @@ struct PathResult {
 struct CaseResult {
     BenchCase c{};
     std::vector<PathResult> paths;
-    double stillMs = 0; // a frame of the same still view as the window runs it: kept, not drawn
-    int stillDrawn = 0; // of those timed, drawn all the same (0 when the check keeps every one)
-    GlFrameMs floor;    // an ImGui frame compositing the panels, nothing new drawn
-    GlFrameMs bare;     // GL_POINTS of every shown sample into the cloud panel's size, nothing else
+    double stillMs = 0;  // a frame of the same still view as the window runs it: kept, not drawn
+    int stillDrawn = 0;  // of those timed, drawn all the same (0 when the check keeps every one)
+    GlFrameMs floor;     // an ImGui frame compositing the panels, nothing new drawn
+    GlFrameMs bare;      // GL_POINTS of every shown sample into the cloud panel's size, nothing else
+    GlFrameMs barePaced; // the same, one draw per frame of the source's rate (bareGlPoints says why)
     std::size_t shownSamples = 0;
     int cloudWidth = 0, cloudHeight = 0;
 };
@@ -150,7 +151,8 @@ std::string gpuClockText(double mhz) {
     return text;
 }
 
-GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int height, int frames) {
+GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int height, int frames,
+                       double paceFps) {
     render::PointCloudRenderer renderer;
     render::FrameTextures textures;
     render::RenderTarget target;
@@ -160,12 +162,22 @@ GlFrameMs bareGlPoints(const processing::ShownFrame& shown, int width, int heigh
     textures.uploadColours(shown.pointColours.get());
     render::CloudParams params;
     const float fov = render::verticalFovRadians(shown.depth.intrinsics);
-    return timeFrames(frames,
-                      [&](int i) {
-                          params.viewProjection = render::cloudViewProjection(
-                              {0.01f * i, 0.1f, 1.0f, {}}, 1.2f, fov, float(width) / float(height));
-                          renderer.render(target, textures, params);
-                      })
+    const auto period =
+        paceFps > 0.0
+            ? std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / paceFps))
+            : Clock::duration::zero();
+    Clock::time_point next = Clock::now();
+    return timeFrames(
+               frames,
+               [&](int) {
+                   std::this_thread::sleep_until(next);
+                   next = std::max(next + period, Clock::now());
+               },
+               [&](int i) {
+                   params.viewProjection = render::cloudViewProjection({0.01f * i, 0.1f, 1.0f, {}}, 1.2f, fov,
+                                                                       float(width) / float(height));
+                   renderer.render(target, textures, params);
+               })
         .medians();
 }
 
@@ -263,6 +275,7 @@ Expected<PathResult> runPath(const BenchCase& c, render::CloudPath path, const B
         result.cloudHeight = renderer.cloudTarget().height();
         result.shownSamples = static_cast<std::size_t>(shown->depth.width()) * shown->depth.height();
         result.bare = bareGlPoints(*shown, result.cloudWidth, result.cloudHeight, o.frames);
+        result.barePaced = bareGlPoints(*shown, result.cloudWidth, result.cloudHeight, o.frames, o.sourceFps);
     }
     return r;
 }
@@ -276,18 +289,20 @@ std::string glFrameText(const GlFrameMs& t) {
 void printResult(const CaseResult& r, const BenchOptions& o) {
     std::printf("%s (%zu samples) in a %dx%d window (cloud panel %dx%d), every panel shown, %d frames:\n",
                 r.c.name, r.shownSamples, o.width, o.height, r.cloudWidth, r.cloudHeight, o.frames);
-    std::printf("  floor (composite, nothing new) %s\n  bare GL_POINTS of every sample %s\n",
-                glFrameText(r.floor).c_str(), glFrameText(r.bare).c_str());
+    std::printf("  floor (composite, nothing new) %s\n  bare GL_POINTS of every sample %s back to back, "
+                "%s at %.0f fps\n",
+                glFrameText(r.floor).c_str(), glFrameText(r.bare).c_str(), glFrameText(r.barePaced).c_str(),
+                o.sourceFps);
     std::printf("  still view (paused, nothing moves, kept: drawn %d of %d) %.3f ms\n", r.stillDrawn,
                 o.frames, r.stillMs);
     for (const PathResult& p : r.paths) {
         std::printf(
-            "  %-10s frame median %s, p90 %.2f ms = %.0f fps; %.2fx bare GL_POINTS (GPU %.2fx); %llu "
-            "points at %dx decimation\n   ",
+            "  %-10s frame median %s, p90 %.2f ms = %.0f fps; %.2fx bare GL_POINTS (GPU %.2fx), %.2fx "
+            "bare at the same pace (GPU %.2fx); %llu points at %dx decimation\n   ",
             (std::string(render::toString(p.path)) + (p.variant.empty() ? "" : ", " + p.variant)).c_str(),
             glFrameText({p.medianMs, p.cpuMs, p.gpuMs, p.gpuClockMhz}).c_str(), p.p90Ms, 1000.0 / p.medianMs,
-            p.medianMs / r.bare.wall, p.gpuMs / r.bare.gpu, static_cast<unsigned long long>(p.points),
-            p.decimation);
+            p.medianMs / r.bare.wall, p.gpuMs / r.bare.gpu, p.medianMs / r.barePaced.wall,
+            p.gpuMs / r.barePaced.gpu, static_cast<unsigned long long>(p.points), p.decimation);
         for (const auto& s : p.stages)
             std::printf(" %s %.2f", s.name.c_str(), s.medianMs);
         std::printf("\n");
@@ -313,6 +328,8 @@ nlohmann::json toJson(const CaseResult& r) {
                          {"gpuClockMhz", p.gpuClockMhz},
                          {"vsBareGlPoints", p.medianMs / r.bare.wall},
                          {"gpuVsBareGlPoints", p.gpuMs / r.bare.gpu},
+                         {"vsBareGlPointsPaced", p.medianMs / r.barePaced.wall},
+                         {"gpuVsBareGlPointsPaced", p.gpuMs / r.barePaced.gpu},
                          {"points", p.points},
                          {"decimation", p.decimation},
                          {"stageMedianMs", stages}});
@@ -326,6 +343,7 @@ nlohmann::json toJson(const CaseResult& r) {
             {"stillViewFramesDrawn", r.stillDrawn},
             {"bareGlPointsMs", r.bare.wall},
             {"bareGlPoints", toJson(r.bare)},
+            {"bareGlPointsPaced", toJson(r.barePaced)},
             {"paths", paths}};
 }
 
