@@ -283,9 +283,21 @@ TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& 
 bool drawFogPanel(const PanelImage& image, processing::FogSettings& fog, bool* open);
 bool drawAuraPanel(const PanelImage& image, processing::AuraSettings& aura, bool* open);
 
+// The figures the Quality panel has kept for saving: how many frames, and where the last save went.
+struct QualityLogState {
+    std::size_t frames = 0;
+    std::string savedTo;
+};
+// What the Quality panel asked for this frame.
+struct QualityPanelResult {
+    bool settingsChanged = false;
+    bool save = false;  // write the kept figures (CSV and JSON)
+    bool clear = false; // forget them
+};
 // The depth-quality figures of the frame shown over the region of interest (null: none measured yet),
-// with the presets and settings that choose them; returns whether a setting changed.
-bool drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings, bool* open);
+// with the presets and settings that choose them, and the kept figures' save and clear buttons.
+QualityPanelResult drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings,
+                                    const QualityLogState& log, bool* open);
 
 // What the Camera controls panel keeps between frames: the source's controls (null: it has none), their
 // values as last read, and what the driver last refused.

@@ -110,6 +110,23 @@ void drawFigures(const processing::ShownQuality& q) {
         ImGui::TextDisabled("noise: %s", q.noiseError.c_str());
 }
 
+// The figures of every frame shown since the panel opened (or the last Clear), saved on request.
+void drawLog(const QualityLogState& log, QualityPanelResult& result) {
+    ImGui::Separator();
+    ImGui::Text("%zu frames kept", log.frames);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(log.frames == 0);
+    result.save = ImGui::Button("Save CSV + JSON");
+    if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
+        ImGui::SetTooltip("Every kept frame's figures, with the source, region and settings, into a new "
+                          "folder under depthcloud-snapshots/.");
+    ImGui::SameLine();
+    result.clear = ImGui::Button("Clear");
+    ImGui::EndDisabled();
+    if (!log.savedTo.empty())
+        ImGui::TextDisabled("saved to %s", log.savedTo.c_str());
+}
+
 bool drawSettings(QualitySettings& s) {
     if (!ImGui::CollapsingHeader("Settings"))
         return false;
@@ -126,20 +143,23 @@ bool drawSettings(QualitySettings& s) {
 
 } // namespace
 
-bool drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings, bool* open) {
+QualityPanelResult drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings,
+                                    const QualityLogState& log, bool* open) {
+    QualityPanelResult result;
     if (!ImGui::Begin(kQualityTitle, open)) {
         ImGui::End();
-        return false;
+        return result;
     }
-    bool changed = drawRegion(quality, settings);
+    result.settingsChanged = drawRegion(quality, settings);
     ImGui::Separator();
     if (quality)
         drawFigures(*quality);
     else
         ImGui::TextDisabled("No depth measured yet.");
-    changed |= drawSettings(settings);
+    drawLog(log, result);
+    result.settingsChanged |= drawSettings(settings);
     ImGui::End();
-    return changed;
+    return result;
 }
 
 } // namespace dc::ui

@@ -51,6 +51,8 @@ Status Viewer::openSource(const std::string& spec) {
     // Another source means another world: nothing measured in the old one carries over.
     presenter_.forgetShown();
     measured_.reset();
+    qualityLog_.clear();
+    qualitySavedTo_.clear();
     return {};
 }
 

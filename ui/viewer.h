@@ -1,5 +1,6 @@
 #pragma once
 
+#include "exporting/quality_log.h"
 #include "ui/log_store.h"
 #include "ui/panels.h"
 #include "ui/presenter.h"
@@ -72,6 +73,10 @@ public:
     const processing::ShownFramePtr& shown() const { return presenter_.shown(); }
     // The Quality panel's figures of the frame shown (null while the panel is hidden or before a frame).
     const processing::ShownQuality* quality() const { return shown() ? shown()->quality.get() : nullptr; }
+    // The Quality panel's figures of every frame it showed since the source opened or Clear was pressed.
+    const exporting::QualityLog& qualityLog() const { return qualityLog_; }
+    // Writes them (the panel's "Save CSV + JSON"): a new folder under `parent`, logged; returns it.
+    Expected<std::string> saveQualityFigures(const std::string& parent);
     // A rectangle drawn on the depth panel (fractions of its image) becomes the Quality panel's region, in
     // the shown depth's pixels.
     void setDrawnRoi(const ImVec4& fractions);
@@ -166,6 +171,8 @@ private:
     TimelinePanelState timelineState_;
     RecordPanelState recordState_;
     std::vector<SourceEntry> liveSources_;
+    exporting::QualityLog qualityLog_;
+    std::string qualitySavedTo_;
     std::optional<StatsView> measured_; // the figures on screen (kMeasureInterval)
     std::uint64_t measuredVersion_ = 0; // ViewRenderer::contentVersion() when they were taken
     std::chrono::steady_clock::time_point measuredAt_;

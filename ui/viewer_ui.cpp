@@ -531,7 +531,30 @@ void Viewer::drawSourcePicker(float x, float y) {
 // The Quality panel floats over the cloud, like the source picker: its figures are read beside the depth.
 void Viewer::drawQuality(float x, float y) {
     placePanel(kQualityTitle, x, y, 360.0f, 470.0f);
-    drawQualityPanel(quality(), settings_.quality, &settings_.panels.quality);
+    if (const processing::ShownFramePtr& s = shown(); s && s->frame)
+        qualityLog_.add(s->quality, s->frame->timestampNs);
+    const QualityPanelResult r =
+        drawQualityPanel(quality(), settings_.quality, {qualityLog_.rows().size(), qualitySavedTo_},
+                         &settings_.panels.quality);
+    if (r.clear) {
+        qualityLog_.clear();
+        qualitySavedTo_.clear();
+    }
+    if (r.save)
+        (void)saveQualityFigures(kSnapshotDirectory);
+}
+
+Expected<std::string> Viewer::saveQualityFigures(const std::string& parent) {
+    auto dir = exporting::writeQualityLog(parent, qualityLog_, instrument_.status().source,
+                                          settingsToJson(settings_));
+    if (!dir) {
+        logError("quality figures not saved: " + dir.error().message);
+        return dir;
+    }
+    qualitySavedTo_ = *dir;
+    logNotice("quality figures of " + std::to_string(qualityLog_.rows().size()) + " frames saved to " + *dir +
+              " (figures.csv, figures.json)");
+    return dir;
 }
 
 // The Camera controls panel floats over the cloud, so the effect of a change shows beside it. Its controls

@@ -6,7 +6,12 @@
 #include "processing/depth_quality.h"
 #include "ui_fixture.h"
 
+#include <nlohmann/json.hpp>
+
+#include <cstdlib>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <unistd.h>
 
 namespace dc::ui::test {
@@ -162,6 +167,93 @@ TEST_F(QualityPanelTest, ARegionDrawnOnTheDepthPanelIsMeasuredInTheNextFrameAndW
     frame(0.0);
     EXPECT_EQ(viewer_->quality()->roi, drawnPaused);
     EXPECT_EQ(viewer_->quality()->sequence, sequence);
+}
+
+std::vector<std::vector<std::string>> csvRows(const fs::path& file) {
+    std::ifstream in(file);
+    std::vector<std::vector<std::string>> rows;
+    for (std::string line; std::getline(in, line);) {
+        std::vector<std::string> cells;
+        std::stringstream fields(line);
+        for (std::string cell; std::getline(fields, cell, ',');)
+            cells.push_back(cell);
+        if (!line.empty() && line.back() == ',')
+            cells.emplace_back();
+        rows.push_back(std::move(cells));
+    }
+    return rows;
+}
+
+// "Save CSV + JSON" writes the figures of every frame the panel showed since Clear, each as it showed them;
+// counted here frame by frame as the panel drew them, independently of the viewer's log.
+TEST_F(QualityPanelTest, SavedFiguresAreEveryFrameThePanelShowedSinceClear) {
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), qualityShown()));
+    ASSERT_TRUE(figuresShown());
+    const auto clearAt = locate(kQualityTitle, "Clear", 0.98f, 8.0f);
+    ASSERT_TRUE(clearAt);
+    click(*clearAt, 0.0);
+    ASSERT_TRUE(viewer_->qualityLog().rows().empty());
+    std::vector<processing::ShownQuality> seen;
+    std::shared_ptr<const processing::ShownQuality> last = viewer_->shown()->quality;
+    const auto observe = [&] {
+        if (const auto& q = viewer_->shown()->quality; q && q != last) {
+            seen.push_back(*q);
+            last = q;
+        }
+    };
+    ASSERT_TRUE(frameUntil([&] {
+        observe();
+        return seen.size() >= 5;
+    }));
+    // The Save button pressed, each frame of the press watched; it writes under the working directory.
+    dir_ = fs::temp_directory_path() / ("dc-quality-save-" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+    const fs::path previous = fs::current_path();
+    fs::current_path(dir_);
+    const auto saveAt = locate(kQualityTitle, "Save CSV + JSON", 0.98f, 8.0f);
+    ASSERT_TRUE(saveAt);
+    observe();
+    gui_.io().MousePos = *saveAt;
+    for (const bool down : {false, true, false}) {
+        gui_.io().MouseDown[0] = down;
+        frame(0.0);
+        observe();
+    }
+    fs::current_path(previous);
+
+    const fs::path saved =
+        dir_ / Viewer::kSnapshotDirectory /
+        ("quality-" + std::to_string(seen.front().sequence) + "-" + std::to_string(seen.back().sequence));
+    const auto rows = csvRows(saved / "figures.csv");
+    ASSERT_EQ(rows.size(), seen.size() + 1) << "a header and a row per frame shown";
+    EXPECT_EQ(rows[0][0], "frame");
+    EXPECT_EQ(rows[0][6], "fill_rate");
+    EXPECT_EQ(rows[0][13], "plane_fit_rms_mm");
+    for (std::size_t i = 0; i < seen.size(); ++i) {
+        ASSERT_EQ(rows[i + 1].size(), rows[0].size());
+        EXPECT_EQ(rows[i + 1][0], std::to_string(seen[i].sequence));
+        ASSERT_TRUE(seen[i].figures && seen[i].figures->plane);
+        EXPECT_EQ(std::strtod(rows[i + 1][6].c_str(), nullptr), seen[i].figures->fill.fillRate());
+        EXPECT_EQ(std::strtod(rows[i + 1][13].c_str(), nullptr), seen[i].figures->plane->planeFitRmsMm);
+        EXPECT_EQ(rows[i + 1][17], "") << "no ground truth entered: no Z accuracy";
+    }
+    std::ifstream jsonFile(saved / "figures.json");
+    const auto j = nlohmann::json::parse(jsonFile, nullptr, false);
+    ASSERT_FALSE(j.is_discarded());
+    EXPECT_EQ(j["source"], instrument_->status().source);
+    EXPECT_EQ(j["rows"], seen.size());
+    EXPECT_EQ(j["firstFrame"], seen.front().sequence);
+    EXPECT_EQ(j["lastFrame"], seen.back().sequence);
+    EXPECT_EQ(j["settings"]["quality"]["roiPercent"], viewer_->settings().quality.roiPercent);
+    EXPECT_EQ(j["frames"].back()["planeFitRmsMm"], seen.back().figures->plane->planeFitRmsMm);
+    EXPECT_EQ(j["frames"].back()["roi"][2], seen.back().roi.width);
+
+    // Saved again: a folder of its own, the first left as it was.
+    const auto again = viewer_->saveQualityFigures((dir_ / "again").string());
+    ASSERT_TRUE(again) << again.error().message;
+    const auto twice = viewer_->saveQualityFigures((dir_ / "again").string());
+    ASSERT_TRUE(twice) << twice.error().message;
+    EXPECT_NE(*again, *twice);
 }
 
 // Pure yellow pixels (the region's outline) inside a panel's window, in the picture last composited.

@@ -1,0 +1,162 @@
+#include "exporting/quality_log.h"
+
+#include "base/files.h"
+
+#include <nlohmann/json.hpp>
+
+#include <cstdio>
+#include <utility>
+
+namespace dc::exporting {
+
+namespace {
+
+using nlohmann::json;
+
+json optionalJson(const std::optional<double>& value) {
+    return value ? json(*value) : json(nullptr);
+}
+
+// One row's figures under the keys `depthcloud quality --json` uses; null where not measured.
+json rowJson(const QualityLog::Row& r) {
+    json j{{"frame", r.frame},
+           {"timestampNs", r.timestampNs},
+           {"roi", {r.roi.x, r.roi.y, r.roi.width, r.roi.height}},
+           {"temporalNoiseMm", optionalJson(r.temporalNoiseMm)},
+           {"spatialNoiseMm", optionalJson(r.spatialNoiseMm)},
+           {"noiseWindowFrames", r.windowFilled}};
+    for (const char* key : {"fillRate", "distanceMm", "angleDeg", "planeFitRmsMm", "planeFitRmsPercent",
+                            "inlierFraction", "dqtPlaneFitRmsMm", "zAccuracyPercent", "subpixelRms"})
+        j[key] = nullptr;
+    if (const auto& f = r.fill) {
+        j["fillRate"] = f->fillRate();
+        j["shortfall"] = {{"noMeasurement", f->fraction(f->noMeasurement)},
+                          {"outOfRange", f->fraction(f->outOfRange)},
+                          {"lowConfidence", f->fraction(f->lowConfidence)},
+                          {"flyingPixel", f->fraction(f->flyingPixel)}};
+    }
+    if (const auto& p = r.plane) {
+        j["distanceMm"] = p->distanceMm;
+        j["angleDeg"] = p->angleDeg;
+        j["planeFitRmsMm"] = p->planeFitRmsMm;
+        j["planeFitRmsPercent"] = p->planeFitRmsPercent;
+        j["inlierFraction"] = p->inlierFraction;
+        j["dqtPlaneFitRmsMm"] = p->dqtPlaneFitRmsMm;
+        j["zAccuracyPercent"] = optionalJson(p->zAccuracyPercent);
+        j["subpixelRms"] = optionalJson(p->subpixelRms);
+    }
+    return j;
+}
+
+constexpr const char* kCsvHeader =
+    "frame,timestamp_ns,roi_x,roi_y,roi_width,roi_height,fill_rate,no_measurement,out_of_range,"
+    "low_confidence,flying_pixel,distance_mm,angle_deg,plane_fit_rms_mm,plane_fit_rms_percent,"
+    "inlier_fraction,dqt_plane_fit_rms_mm,z_accuracy_percent,subpixel_rms,temporal_noise_mm,"
+    "spatial_noise_mm,noise_window_frames\n";
+
+// A figure as a CSV cell: round-trip precision, empty where not measured.
+std::string cell(const std::optional<double>& value) {
+    if (!value)
+        return ",";
+    char text[40];
+    std::snprintf(text, sizeof text, ",%.17g", *value);
+    return text;
+}
+
+std::string csvLine(const QualityLog::Row& r) {
+    std::string line = std::to_string(r.frame) + "," + std::to_string(r.timestampNs) + "," +
+                       std::to_string(r.roi.x) + "," + std::to_string(r.roi.y) + "," +
+                       std::to_string(r.roi.width) + "," + std::to_string(r.roi.height);
+    const auto& f = r.fill;
+    const auto fraction = [&](std::size_t processing::FillBreakdown::*count) -> std::optional<double> {
+        return f ? std::optional(f->fraction((*f).*count)) : std::nullopt;
+    };
+    line += cell(f ? std::optional(f->fillRate()) : std::nullopt);
+    for (auto count : {&processing::FillBreakdown::noMeasurement, &processing::FillBreakdown::outOfRange,
+                       &processing::FillBreakdown::lowConfidence, &processing::FillBreakdown::flyingPixel})
+        line += cell(fraction(count));
+    const auto& p = r.plane;
+    const auto figure = [&](double processing::PlaneFigures::*value) -> std::optional<double> {
+        return p ? std::optional((*p).*value) : std::nullopt;
+    };
+    for (auto value :
+         {&processing::PlaneFigures::distanceMm, &processing::PlaneFigures::angleDeg,
+          &processing::PlaneFigures::planeFitRmsMm, &processing::PlaneFigures::planeFitRmsPercent,
+          &processing::PlaneFigures::inlierFraction, &processing::PlaneFigures::dqtPlaneFitRmsMm})
+        line += cell(figure(value));
+    line += cell(p ? p->zAccuracyPercent : std::nullopt);
+    line += cell(p ? p->subpixelRms : std::nullopt);
+    line += cell(r.temporalNoiseMm) + cell(r.spatialNoiseMm) + "," + std::to_string(r.windowFilled) + "\n";
+    return line;
+}
+
+} // namespace
+
+bool QualityLog::add(const std::shared_ptr<const processing::ShownQuality>& quality,
+                     std::int64_t timestampNs) {
+    if (!quality || quality == last_)
+        return false;
+    last_ = quality;
+    Row row{quality->sequence,
+            timestampNs,
+            quality->roi,
+            std::nullopt,
+            std::nullopt,
+            quality->temporalNoiseMm,
+            quality->spatialNoiseMm,
+            quality->windowFilled};
+    if (quality->figures) {
+        row.fill = quality->figures->fill;
+        row.plane = quality->figures->plane;
+    }
+    if (rows_.size() == kMaxRows) {
+        rows_.pop_front();
+        ++dropped_;
+    }
+    rows_.push_back(std::move(row));
+    return true;
+}
+
+void QualityLog::clear() {
+    rows_.clear();
+    dropped_ = 0;
+}
+
+std::string qualityCsv(const QualityLog& log) {
+    std::string text = kCsvHeader;
+    for (const QualityLog::Row& r : log.rows())
+        text += csvLine(r);
+    return text;
+}
+
+std::string qualityJson(const QualityLog& log, const std::string& source, const std::string& settingsJson) {
+    json rows = json::array();
+    for (const QualityLog::Row& r : log.rows())
+        rows.push_back(rowJson(r));
+    const bool empty = log.rows().empty();
+    json j{{"source", source},
+           {"firstFrame", empty ? json(nullptr) : json(log.rows().front().frame)},
+           {"lastFrame", empty ? json(nullptr) : json(log.rows().back().frame)},
+           {"rows", log.rows().size()},
+           {"rowsDroppedForNewer", log.dropped()},
+           {"settings", json::parse(settingsJson, nullptr, false)},
+           {"frames", std::move(rows)}};
+    return j.dump(2) + "\n";
+}
+
+Expected<std::string> writeQualityLog(const std::string& parent, const QualityLog& log,
+                                      const std::string& source, const std::string& settingsJson) {
+    if (log.rows().empty())
+        return Error{"no quality figures to save yet (show the Quality panel while frames arrive)"};
+    auto dir = base::createFreshDirectory(parent, "quality-" + std::to_string(log.rows().front().frame) +
+                                                      "-" + std::to_string(log.rows().back().frame));
+    if (!dir)
+        return dir.error();
+    if (Status s = base::writeTextFile(*dir + "/figures.csv", qualityCsv(log)); !s)
+        return s.error();
+    if (Status s = base::writeTextFile(*dir + "/figures.json", qualityJson(log, source, settingsJson)); !s)
+        return s.error();
+    return dir;
+}
+
+} // namespace dc::exporting

@@ -1,0 +1,58 @@
+#pragma once
+
+#include "base/expected.h"
+#include "processing/shown_frame.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <deque>
+#include <memory>
+#include <optional>
+#include <string>
+
+namespace dc::exporting {
+
+// The Quality panel's figures of every frame it showed, in order, for "Save figures": one row per frame
+// (the panel measures a paused frame again when its region changes: that is a new row too), without the
+// per-sample causes. Bounded: past kMaxRows the oldest rows go, and the saved range says which remain.
+class QualityLog {
+public:
+    static constexpr std::size_t kMaxRows = 108000; // an hour at 30 fps
+
+    struct Row {
+        std::uint64_t frame = 0;
+        std::int64_t timestampNs = 0;
+        processing::Roi roi;
+        std::optional<processing::FillBreakdown> fill; // unset: the frame could not be measured
+        std::optional<processing::PlaneFigures> plane;
+        std::optional<double> temporalNoiseMm;
+        std::optional<double> spatialNoiseMm;
+        std::size_t windowFilled = 0;
+    };
+
+    // Adds the figures unless they are the very ones added last (the panel draws them every UI frame).
+    // Returns whether a row was added.
+    bool add(const std::shared_ptr<const processing::ShownQuality>& quality, std::int64_t timestampNs);
+    // Forgets every row; the figures added last stay known, so they are not added again.
+    void clear();
+    const std::deque<Row>& rows() const { return rows_; }
+    std::size_t dropped() const { return dropped_; } // rows that made way for newer ones
+
+private:
+    std::deque<Row> rows_;
+    std::shared_ptr<const processing::ShownQuality> last_; // held, so no later figures share its address
+    std::size_t dropped_ = 0;
+};
+
+// Every row as CSV: a header, then one line per frame; an unmeasured figure is an empty cell.
+std::string qualityCsv(const QualityLog& log);
+// The rows as JSON with what they were measured on: the source, the settings (the JSON the window saves),
+// the frame range; each row's keys are those of `depthcloud quality --json`.
+std::string qualityJson(const QualityLog& log, const std::string& source, const std::string& settingsJson);
+
+// Writes figures.csv and figures.json into a new directory under `parent` (quality-FIRST-LAST, numbered
+// when taken); returns the directory. An empty log is an error, and nothing is written.
+Expected<std::string> writeQualityLog(const std::string& parent, const QualityLog& log,
+                                      const std::string& source, const std::string& settingsJson);
+
+} // namespace dc::exporting
