@@ -122,6 +122,44 @@ void QualityLog::clear() {
     dropped_ = 0;
 }
 
+const char* toString(QualityFigure figure) {
+    switch (figure) {
+    case QualityFigure::FillRate:
+        return "fill rate %";
+    case QualityFigure::PlaneFitRmsMm:
+        return "plane-fit RMS mm";
+    case QualityFigure::DistanceMm:
+        return "distance mm";
+    case QualityFigure::TemporalNoiseMm:
+        return "temporal noise mm";
+    }
+    return "";
+}
+
+std::vector<double> qualitySeries(const QualityLog& log, QualityFigure figure) {
+    std::vector<double> series;
+    for (const QualityLog::Row& r : log.rows()) {
+        std::optional<double> value;
+        switch (figure) {
+        case QualityFigure::FillRate:
+            value = r.fill ? std::optional(100.0 * r.fill->fillRate()) : std::nullopt;
+            break;
+        case QualityFigure::PlaneFitRmsMm:
+            value = r.plane ? std::optional(r.plane->planeFitRmsMm) : std::nullopt;
+            break;
+        case QualityFigure::DistanceMm:
+            value = r.plane ? std::optional(r.plane->distanceMm) : std::nullopt;
+            break;
+        case QualityFigure::TemporalNoiseMm:
+            value = r.temporalNoiseMm;
+            break;
+        }
+        if (value)
+            series.push_back(*value);
+    }
+    return series;
+}
+
 std::string qualityCsv(const QualityLog& log) {
     std::string text = kCsvHeader;
     for (const QualityLog::Row& r : log.rows())

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace dc::exporting {
 
@@ -43,6 +44,15 @@ private:
     std::shared_ptr<const processing::ShownQuality> last_; // held, so no later figures share its address
     std::size_t dropped_ = 0;
 };
+
+// The figures a Quality panel plots over time.
+enum class QualityFigure { FillRate, PlaneFitRmsMm, DistanceMm, TemporalNoiseMm };
+inline constexpr QualityFigure kQualityFigures[] = {QualityFigure::FillRate, QualityFigure::PlaneFitRmsMm,
+                                                    QualityFigure::DistanceMm,
+                                                    QualityFigure::TemporalNoiseMm};
+const char* toString(QualityFigure figure); // "fill rate %", "plane-fit RMS mm", ...
+// One figure of every row that measured it, oldest first (the fill rate as a percentage).
+std::vector<double> qualitySeries(const QualityLog& log, QualityFigure figure);
 
 // Every row as CSV: a header, then one line per frame; an unmeasured figure is an empty cell.
 std::string qualityCsv(const QualityLog& log);

@@ -3,6 +3,7 @@
 #include "devices/replay/replay_device.h"
 #include "devices/sensor_controls.h"
 #include "engine/instrument.h"
+#include "exporting/quality_log.h"
 #include "processing/infrared_image.h"
 #include "processing/pipeline.h"
 #include "processing/shown_frame.h"
@@ -283,9 +284,11 @@ TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& 
 bool drawFogPanel(const PanelImage& image, processing::FogSettings& fog, bool* open);
 bool drawAuraPanel(const PanelImage& image, processing::AuraSettings& aura, bool* open);
 
-// The figures the Quality panel has kept for saving: how many frames, and where the last save went.
-struct QualityLogState {
-    std::size_t frames = 0;
+// What the Quality panel keeps between frames: every shown frame's figures (for the plot and for saving),
+// the figure plotted, and where the last save went.
+struct QualityPanelState {
+    exporting::QualityLog log;
+    exporting::QualityFigure plotted = exporting::QualityFigure::PlaneFitRmsMm;
     std::string savedTo;
 };
 // What the Quality panel asked for this frame.
@@ -297,7 +300,7 @@ struct QualityPanelResult {
 // The depth-quality figures of the frame shown over the region of interest (null: none measured yet),
 // with the presets and settings that choose them, and the kept figures' save and clear buttons.
 QualityPanelResult drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings,
-                                    const QualityLogState& log, bool* open);
+                                    QualityPanelState& state, bool* open);
 
 // What the Camera controls panel keeps between frames: the source's controls (null: it has none), their
 // values as last read, and what the driver last refused.

@@ -1,5 +1,6 @@
 #include "ui/panels.h"
 
+#include <algorithm>
 #include <cstdio>
 #include <string>
 
@@ -110,12 +111,40 @@ void drawFigures(const processing::ShownQuality& q) {
         ImGui::TextDisabled("noise: %s", q.noiseError.c_str());
 }
 
-// The figures of every frame shown since the panel opened (or the last Clear), saved on request.
-void drawLog(const QualityLogState& log, QualityPanelResult& result) {
-    ImGui::Separator();
-    ImGui::Text("%zu frames kept", log.frames);
+// One figure of the kept frames over time, the figure chosen beside it.
+void drawPlot(QualityPanelState& state) {
+    ImGui::SetNextItemWidth(150.0f);
+    if (ImGui::BeginCombo("##plotted", exporting::toString(state.plotted))) {
+        for (const exporting::QualityFigure figure : exporting::kQualityFigures)
+            if (ImGui::Selectable(exporting::toString(figure), figure == state.plotted))
+                state.plotted = figure;
+        ImGui::EndCombo();
+    }
+    const std::vector<double> series = exporting::qualitySeries(state.log, state.plotted);
+    if (series.empty()) {
+        ImGui::TextDisabled("not measured in the kept frames");
+        return;
+    }
+    const auto [low, high] = std::minmax_element(series.begin(), series.end());
     ImGui::SameLine();
-    ImGui::BeginDisabled(log.frames == 0);
+    ImGui::TextDisabled("%.2f .. %.2f", *low, *high);
+    // A plot wider than its pixels would only average: the last frames that fit, one pixel each.
+    const std::size_t shown =
+        std::min(series.size(), static_cast<std::size_t>(ImGui::GetContentRegionAvail().x));
+    std::vector<float> values(series.end() - static_cast<std::ptrdiff_t>(shown), series.end());
+    ImGui::PlotLines("##over time", values.data(), static_cast<int>(values.size()), 0, nullptr,
+                     static_cast<float>(*low), static_cast<float>(*high), ImVec2(-1.0f, 60.0f));
+}
+
+// The figures of every frame shown since the source opened (or the last Clear): plotted, saved on request.
+void drawLog(QualityPanelState& state, QualityPanelResult& result) {
+    ImGui::Separator();
+    const std::size_t frames = state.log.rows().size();
+    if (frames > 0)
+        drawPlot(state);
+    ImGui::Text("%zu frames kept", frames);
+    ImGui::SameLine();
+    ImGui::BeginDisabled(frames == 0);
     result.save = ImGui::Button("Save CSV + JSON");
     if (ImGui::IsItemHovered(ImGuiHoveredFlags_AllowWhenDisabled))
         ImGui::SetTooltip("Every kept frame's figures, with the source, region and settings, into a new "
@@ -123,8 +152,8 @@ void drawLog(const QualityLogState& log, QualityPanelResult& result) {
     ImGui::SameLine();
     result.clear = ImGui::Button("Clear");
     ImGui::EndDisabled();
-    if (!log.savedTo.empty())
-        ImGui::TextDisabled("saved to %s", log.savedTo.c_str());
+    if (!state.savedTo.empty())
+        ImGui::TextDisabled("saved to %s", state.savedTo.c_str());
 }
 
 bool drawSettings(QualitySettings& s) {
@@ -144,7 +173,7 @@ bool drawSettings(QualitySettings& s) {
 } // namespace
 
 QualityPanelResult drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings,
-                                    const QualityLogState& log, bool* open) {
+                                    QualityPanelState& state, bool* open) {
     QualityPanelResult result;
     if (!ImGui::Begin(kQualityTitle, open)) {
         ImGui::End();
@@ -156,7 +185,7 @@ QualityPanelResult drawQualityPanel(const processing::ShownQuality* quality, Qua
         drawFigures(*quality);
     else
         ImGui::TextDisabled("No depth measured yet.");
-    drawLog(log, result);
+    drawLog(state, result);
     result.settingsChanged |= drawSettings(settings);
     ImGui::End();
     return result;

@@ -51,8 +51,8 @@ Status Viewer::openSource(const std::string& spec) {
     // Another source means another world: nothing measured in the old one carries over.
     presenter_.forgetShown();
     measured_.reset();
-    qualityLog_.clear();
-    qualitySavedTo_.clear();
+    quality_.log.clear();
+    quality_.savedTo.clear();
     return {};
 }
 

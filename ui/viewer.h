@@ -1,6 +1,5 @@
 #pragma once
 
-#include "exporting/quality_log.h"
 #include "ui/log_store.h"
 #include "ui/panels.h"
 #include "ui/presenter.h"
@@ -74,7 +73,7 @@ public:
     // The Quality panel's figures of the frame shown (null while the panel is hidden or before a frame).
     const processing::ShownQuality* quality() const { return shown() ? shown()->quality.get() : nullptr; }
     // The Quality panel's figures of every frame it showed since the source opened or Clear was pressed.
-    const exporting::QualityLog& qualityLog() const { return qualityLog_; }
+    const exporting::QualityLog& qualityLog() const { return quality_.log; }
     // Writes them (the panel's "Save CSV + JSON"): a new folder under `parent`, logged; returns it.
     Expected<std::string> saveQualityFigures(const std::string& parent);
     // A rectangle drawn on the depth panel (fractions of its image) becomes the Quality panel's region, in
@@ -171,8 +170,7 @@ private:
     TimelinePanelState timelineState_;
     RecordPanelState recordState_;
     std::vector<SourceEntry> liveSources_;
-    exporting::QualityLog qualityLog_;
-    std::string qualitySavedTo_;
+    QualityPanelState quality_;
     std::optional<StatsView> measured_; // the figures on screen (kMeasureInterval)
     std::uint64_t measuredVersion_ = 0; // ViewRenderer::contentVersion() when they were taken
     std::chrono::steady_clock::time_point measuredAt_;

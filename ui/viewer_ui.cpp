@@ -532,28 +532,27 @@ void Viewer::drawSourcePicker(float x, float y) {
 void Viewer::drawQuality(float x, float y) {
     placePanel(kQualityTitle, x, y, 360.0f, 470.0f);
     if (const processing::ShownFramePtr& s = shown(); s && s->frame)
-        qualityLog_.add(s->quality, s->frame->timestampNs);
+        quality_.log.add(s->quality, s->frame->timestampNs);
     const QualityPanelResult r =
-        drawQualityPanel(quality(), settings_.quality, {qualityLog_.rows().size(), qualitySavedTo_},
-                         &settings_.panels.quality);
+        drawQualityPanel(quality(), settings_.quality, quality_, &settings_.panels.quality);
     if (r.clear) {
-        qualityLog_.clear();
-        qualitySavedTo_.clear();
+        quality_.log.clear();
+        quality_.savedTo.clear();
     }
     if (r.save)
         (void)saveQualityFigures(kSnapshotDirectory);
 }
 
 Expected<std::string> Viewer::saveQualityFigures(const std::string& parent) {
-    auto dir = exporting::writeQualityLog(parent, qualityLog_, instrument_.status().source,
+    auto dir = exporting::writeQualityLog(parent, quality_.log, instrument_.status().source,
                                           settingsToJson(settings_));
     if (!dir) {
         logError("quality figures not saved: " + dir.error().message);
         return dir;
     }
-    qualitySavedTo_ = *dir;
-    logNotice("quality figures of " + std::to_string(qualityLog_.rows().size()) + " frames saved to " + *dir +
-              " (figures.csv, figures.json)");
+    quality_.savedTo = *dir;
+    logNotice("quality figures of " + std::to_string(quality_.log.rows().size()) + " frames saved to " +
+              *dir + " (figures.csv, figures.json)");
     return dir;
 }
 

@@ -1,0 +1,97 @@
+// The Quality panel's kept figures (exporting/quality_log.h): one row per new set of figures, the plotted
+// series, CSV cells for unmeasured figures, and the bound on kept rows.
+
+#include "exporting/quality_log.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+#include <sstream>
+
+namespace dc::exporting {
+namespace {
+
+std::shared_ptr<const processing::ShownQuality> figures(std::uint64_t frame, double rmsMm,
+                                                        bool plane = true) {
+    auto q = std::make_shared<processing::ShownQuality>();
+    q->sequence = frame;
+    q->roi = {1, 2, 30, 40};
+    processing::FrameQuality f;
+    f.fill.roiSamples = 1200;
+    f.fill.valid = 1200 - frame;
+    f.fill.noMeasurement = frame;
+    if (plane) {
+        f.plane = processing::PlaneFigures{};
+        f.plane->planeFitRmsMm = rmsMm;
+        f.plane->distanceMm = 1000.0 + static_cast<double>(frame);
+    } else {
+        f.planeError = "too few samples";
+    }
+    q->figures = std::move(f);
+    return q;
+}
+
+TEST(QualityLog, EachNewSetOfFiguresIsOneRowAndTheSameSetIsNotAddedTwice) {
+    QualityLog log;
+    const auto a = figures(7, 1.5);
+    EXPECT_TRUE(log.add(a, 100));
+    EXPECT_FALSE(log.add(a, 100)) << "the panel draws the same figures every UI frame";
+    EXPECT_TRUE(log.add(figures(7, 1.25), 100)) << "a paused frame measured again over another region";
+    EXPECT_FALSE(log.add(nullptr, 0));
+    ASSERT_EQ(log.rows().size(), 2u);
+    EXPECT_EQ(log.rows()[0].frame, 7u);
+    EXPECT_EQ(log.rows()[1].plane->planeFitRmsMm, 1.25);
+
+    const auto shownWhenCleared = figures(8, 2.0);
+    EXPECT_TRUE(log.add(shownWhenCleared, 200));
+    log.clear();
+    EXPECT_TRUE(log.rows().empty());
+    EXPECT_FALSE(log.add(shownWhenCleared, 200)) << "Clear forgets what was shown, it does not re-add it";
+    EXPECT_TRUE(log.add(figures(9, 2.5), 300));
+    EXPECT_EQ(log.rows().size(), 1u);
+}
+
+TEST(QualityLog, TheSeriesHoldsTheFramesThatMeasuredTheFigure) {
+    QualityLog log;
+    log.add(figures(1, 1.0), 0);
+    log.add(figures(2, 0.0, false), 0); // no plane fit: no RMS, a fill rate all the same
+    log.add(figures(3, 3.0), 0);
+    EXPECT_EQ(qualitySeries(log, QualityFigure::PlaneFitRmsMm), (std::vector<double>{1.0, 3.0}));
+    EXPECT_EQ(qualitySeries(log, QualityFigure::DistanceMm), (std::vector<double>{1001.0, 1003.0}));
+    const std::vector<double> fill = qualitySeries(log, QualityFigure::FillRate);
+    ASSERT_EQ(fill.size(), 3u);
+    EXPECT_DOUBLE_EQ(fill[1], 100.0 * 1198.0 / 1200.0);
+    EXPECT_TRUE(qualitySeries(log, QualityFigure::TemporalNoiseMm).empty());
+}
+
+TEST(QualityLog, CsvLeavesUnmeasuredFiguresEmptyAndRoundTripsTheRest) {
+    QualityLog log;
+    log.add(figures(4, 0.1), 123456789);
+    log.add(figures(5, 0.0, false), 123456790);
+    std::stringstream csv(qualityCsv(log));
+    std::string header, first, second;
+    std::getline(csv, header);
+    std::getline(csv, first);
+    std::getline(csv, second);
+    const auto columns = [](const std::string& line) {
+        return std::count(line.begin(), line.end(), ',') + 1;
+    };
+    EXPECT_EQ(columns(first), columns(header));
+    EXPECT_EQ(columns(second), columns(header));
+    EXPECT_EQ(first.rfind("4,123456789,1,2,30,40,", 0), 0u) << first;
+    EXPECT_NE(first.find(",0.10000000000000001,"), std::string::npos) << "the RMS to the last bit: " << first;
+    EXPECT_NE(second.find(",,,,,,,,"), std::string::npos) << "no plane, no noise: empty cells: " << second;
+}
+
+TEST(QualityLog, PastItsBoundTheOldestRowsMakeWayAndAreCounted) {
+    QualityLog log;
+    for (std::uint64_t i = 0; i < QualityLog::kMaxRows + 3; ++i)
+        log.add(figures(i, 1.0), 0);
+    EXPECT_EQ(log.rows().size(), QualityLog::kMaxRows);
+    EXPECT_EQ(log.dropped(), 3u);
+    EXPECT_EQ(log.rows().front().frame, 3u);
+}
+
+} // namespace
+} // namespace dc::exporting
