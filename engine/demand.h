@@ -20,6 +20,8 @@ struct QualityDemand {
     float farMeters = 10.0f;
     float flyingThresholdMeters = 0.05f;     // processing::QualityParams::flyingThresholdMeters
     std::optional<double> groundTruthMeters; // the target's true distance, for the Z accuracy
+    std::optional<double> baselineMeters;    // a stereo camera's, for subpixel RMS and the expected noise
+    double designSubpixelRms = 0.08;         // processing::QualityParams::designSubpixelRms
     bool operator==(const QualityDemand&) const = default;
 };
 

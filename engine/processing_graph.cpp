@@ -60,6 +60,8 @@ processing::QualityParams qualityParams(const QualityDemand& q, const processing
     p.farMeters = q.farMeters;
     p.flyingThresholdMeters = q.flyingThresholdMeters;
     p.groundTruthMeters = q.groundTruthMeters;
+    p.baselineMeters = q.baselineMeters;
+    p.designSubpixelRms = q.designSubpixelRms;
     return p;
 }
 

@@ -25,8 +25,9 @@ json rowJson(const QualityLog::Row& r) {
            {"temporalNoiseMm", optionalJson(r.temporalNoiseMm)},
            {"spatialNoiseMm", optionalJson(r.spatialNoiseMm)},
            {"noiseWindowFrames", r.windowFilled}};
-    for (const char* key : {"fillRate", "distanceMm", "angleDeg", "planeFitRmsMm", "planeFitRmsPercent",
-                            "inlierFraction", "dqtPlaneFitRmsMm", "zAccuracyPercent", "subpixelRms"})
+    for (const char* key :
+         {"fillRate", "distanceMm", "angleDeg", "planeFitRmsMm", "planeFitRmsPercent", "inlierFraction",
+          "dqtPlaneFitRmsMm", "zAccuracyPercent", "subpixelRms", "expectedNoiseMm"})
         j[key] = nullptr;
     if (const auto& f = r.fill) {
         j["fillRate"] = f->fillRate();
@@ -44,6 +45,7 @@ json rowJson(const QualityLog::Row& r) {
         j["dqtPlaneFitRmsMm"] = p->dqtPlaneFitRmsMm;
         j["zAccuracyPercent"] = optionalJson(p->zAccuracyPercent);
         j["subpixelRms"] = optionalJson(p->subpixelRms);
+        j["expectedNoiseMm"] = optionalJson(p->expectedNoiseMm);
     }
     return j;
 }
@@ -51,7 +53,8 @@ json rowJson(const QualityLog::Row& r) {
 constexpr const char* kCsvHeader =
     "frame,timestamp_ns,roi_x,roi_y,roi_width,roi_height,fill_rate,no_measurement,out_of_range,"
     "low_confidence,flying_pixel,distance_mm,angle_deg,plane_fit_rms_mm,plane_fit_rms_percent,"
-    "inlier_fraction,dqt_plane_fit_rms_mm,z_accuracy_percent,subpixel_rms,temporal_noise_mm,"
+    "inlier_fraction,dqt_plane_fit_rms_mm,z_accuracy_percent,subpixel_rms,expected_noise_mm,temporal_noise_"
+    "mm,"
     "spatial_noise_mm,noise_window_frames\n";
 
 // A figure as a CSV cell: round-trip precision, empty where not measured.
@@ -86,6 +89,7 @@ std::string csvLine(const QualityLog::Row& r) {
         line += cell(figure(value));
     line += cell(p ? p->zAccuracyPercent : std::nullopt);
     line += cell(p ? p->subpixelRms : std::nullopt);
+    line += cell(p ? p->expectedNoiseMm : std::nullopt);
     line += cell(r.temporalNoiseMm) + cell(r.spatialNoiseMm) + "," + std::to_string(r.windowFilled) + "\n";
     return line;
 }

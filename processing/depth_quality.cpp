@@ -490,11 +490,19 @@ Expected<PlaneFigures> planeFigures(const std::vector<Point3d>& points, const fr
             subpixelRms(select(points, robust.inliers), robust.plane, k.fx, *params.baselineMeters);
         if (subpixel)
             f.subpixelRms = *subpixel;
+        f.expectedNoiseMm =
+            expectedStereoNoiseMeters(*distance, k.fx, *params.baselineMeters, params.designSubpixelRms) *
+            kMetersToMm;
     }
     return f;
 }
 
 } // namespace
+
+double expectedStereoNoiseMeters(double zMeters, double focalPixels, double baselineMeters,
+                                 double subpixelSigmaPixels) {
+    return zMeters * zMeters * subpixelSigmaPixels / (focalPixels * baselineMeters);
+}
 
 std::vector<SampleCause> classifySamples(const frame::DepthData& depth, const QualityParams& params,
                                          FillBreakdown& counts) {

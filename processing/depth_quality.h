@@ -93,6 +93,12 @@ double zAccuracyPercent(double measuredMeters, double truthMeters);
 Expected<double> subpixelRms(std::span<const Point3d> points, const PlaneModel& plane, double focalPixels,
                              double baselineMeters);
 
+// The stereo model's depth noise at distance z: disparity d = f B / z measured to sigmaD pixels gives
+// sigmaZ = z^2 sigmaD / (f B), meters. Drawn against the measured plane-fit RMS it tells a camera at its
+// design noise from one with a calibration fault (which is worse than the model at every distance).
+double expectedStereoNoiseMeters(double zMeters, double focalPixels, double baselineMeters,
+                                 double subpixelSigmaPixels);
+
 // Why an ROI sample is not valid. Each sample has one cause, checked in this order.
 enum class SampleCause : std::uint8_t { Valid, NoMeasurement, OutOfRange, LowConfidence, FlyingPixel };
 
@@ -110,7 +116,10 @@ struct QualityParams {
     float flyingThresholdMeters = 0.05f;
     RobustFitParams fit;
     std::optional<double> groundTruthMeters;
-    std::optional<double> baselineMeters; // a stereo camera's; unset: no subpixel RMS
+    std::optional<double> baselineMeters; // a stereo camera's; unset: no subpixel RMS, no expected noise
+    // The camera's design subpixel accuracy (RMS, pixels) for the expected noise: 0.08 is what Intel
+    // quotes for its D4xx cameras.
+    double designSubpixelRms = 0.08;
 };
 
 struct FillBreakdown {
@@ -140,6 +149,8 @@ struct PlaneFigures {
     double dqtPlaneFitRmsMm = 0.0;
     std::optional<double> zAccuracyPercent;
     std::optional<double> subpixelRms;
+    std::optional<double>
+        expectedNoiseMm; // expectedStereoNoiseMeters at distanceMm, where a baseline is known
 };
 
 struct FrameQuality {

@@ -141,6 +141,8 @@ void collect(const processing::FrameQuality& q, Collected& c) {
     c.figures["inlierFraction"].push_back(f.inlierFraction);
     if (f.subpixelRms)
         c.figures["subpixelRms"].push_back(*f.subpixelRms);
+    if (f.expectedNoiseMm)
+        c.figures["expectedNoiseMm"].push_back(*f.expectedNoiseMm);
     if (f.zAccuracyPercent)
         c.figures["zAccuracyPercent"].push_back(*f.zAccuracyPercent);
 }
@@ -148,8 +150,9 @@ void collect(const processing::FrameQuality& q, Collected& c) {
 json report(const Collected& c, const processing::NoiseWindow& noise, const processing::Roi& roi) {
     json j;
     j["fillRate"] = c.fill.fillRate();
-    for (const char* key : {"planeFitRmsMm", "planeFitRmsPercent", "dqtPlaneFitRmsMm", "subpixelRms",
-                            "zAccuracyPercent", "distanceMm", "angleDeg", "inlierFraction"}) {
+    for (const char* key :
+         {"planeFitRmsMm", "planeFitRmsPercent", "dqtPlaneFitRmsMm", "subpixelRms", "expectedNoiseMm",
+          "zAccuracyPercent", "distanceMm", "angleDeg", "inlierFraction"}) {
         const auto it = c.figures.find(key);
         j[key] = it == c.figures.end() ? json(nullptr) : medianOf(it->second);
     }
@@ -184,6 +187,7 @@ std::string qualityParams(const QualityOptions& o, processing::QualityParams& p)
         p.groundTruthMeters = *o.groundTruthMm / 1000.0;
     if (o.baselineMm)
         p.baselineMeters = *o.baselineMm / 1000.0;
+    p.designSubpixelRms = o.designSubpixelRms;
     return {};
 }
 
@@ -298,8 +302,12 @@ CLI::App* addQualityCommand(CLI::App& app, QualityOptions& o) {
         ->capture_default_str();
     cmd->add_option("--ground-truth-mm", o.groundTruthMm, "the target's true distance: Z accuracy")
         ->check(CLI::PositiveNumber);
-    cmd->add_option("--baseline-mm", o.baselineMm, "the stereo baseline: subpixel RMS")
+    cmd->add_option("--baseline-mm", o.baselineMm, "the stereo baseline: subpixel RMS and expected noise")
         ->check(CLI::PositiveNumber);
+    cmd->add_option("--design-subpixel", o.designSubpixelRms,
+                    "the camera's design subpixel accuracy (pixels) for the expected noise")
+        ->check(CLI::Range(0.001, 10.0))
+        ->capture_default_str();
     cmd->add_option("--near-m", o.nearMeters, "samples nearer are out of range")->check(CLI::Range(0.0, 1e9));
     cmd->add_option("--far-m", o.farMeters, "samples farther are out of range")->check(CLI::Range(0.0, 1e9));
     cmd->add_option("--confidence", o.confidence, "lowest confidence counted as valid")

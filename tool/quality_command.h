@@ -13,7 +13,8 @@ struct QualityOptions {
     double roiPercent = 40.0; // DQT's centred ROI, percent of width and of height
     int frames = 30;          // frames captured; the noise window spans them all
     std::optional<double> groundTruthMm;
-    std::optional<double> baselineMm; // a stereo camera's baseline: enables the subpixel RMS
+    std::optional<double> baselineMm; // a stereo camera's baseline: enables the subpixel RMS, expected noise
+    double designSubpixelRms = 0.08;  // the camera's design subpixel accuracy, pixels
     double nearMeters = 0.0;
     double farMeters = 1e9;
     std::string confidence = "low";

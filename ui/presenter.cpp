@@ -32,6 +32,9 @@ engine::QualityDemand qualityDemand(const QualitySettings& s) {
     q.flyingThresholdMeters = s.flyingThresholdMm * 1e-3f;
     if (s.groundTruthMm > 0.0f)
         q.groundTruthMeters = static_cast<double>(s.groundTruthMm) * 1e-3;
+    if (s.baselineMm > 0.0f)
+        q.baselineMeters = static_cast<double>(s.baselineMm) * 1e-3;
+    q.designSubpixelRms = s.designSubpixelRms;
     return q;
 }
 

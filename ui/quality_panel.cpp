@@ -25,6 +25,9 @@ constexpr const char* kDqtHelp =
     "the residuals trimmed at each end, mm.";
 constexpr const char* kZHelp = "DQT's Z accuracy: (distance - ground truth) / ground truth, %.";
 constexpr const char* kSubpixelHelp = "DQT's subpixel RMS: the plane-fit error as disparity, pixels.";
+constexpr const char* kExpectedHelp =
+    "The stereo model's noise at this distance, z^2 sd / (f B), for the design subpixel accuracy sd: "
+    "a plane-fit RMS well above it at every distance is a calibration fault, not the design.";
 constexpr const char* kTemporalHelp =
     "Each pixel's standard deviation over the window, median over the pixels "
     "valid in every frame of it, mm.";
@@ -100,6 +103,8 @@ void drawFigures(const processing::ShownQuality& q) {
             kZHelp);
         if (p->subpixelRms)
             row("Subpixel RMS", format("%.3f px", *p->subpixelRms), kSubpixelHelp);
+        if (p->expectedNoiseMm)
+            row("Expected noise", format("%.2f mm", *p->expectedNoiseMm), kExpectedHelp);
     }
     row("Temporal noise", q.temporalNoiseMm ? format("%.2f mm", *q.temporalNoiseMm) : "-", kTemporalHelp);
     row("Spatial noise", q.spatialNoiseMm ? format("%.2f mm", *q.spatialNoiseMm) : "-", kSpatialHelp);
@@ -163,6 +168,11 @@ bool drawSettings(QualitySettings& s) {
     changed |= ImGui::InputFloat("ground truth mm", &s.groundTruthMm, 10.0f, 100.0f, "%.1f");
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("The target's true distance, for the Z accuracy; 0: none.");
+    changed |= ImGui::InputFloat("stereo baseline mm", &s.baselineMm, 1.0f, 10.0f, "%.1f");
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "A stereo camera's baseline, for the subpixel RMS and the expected noise; 0: none.");
+    changed |= ImGui::InputFloat("design subpixel px", &s.designSubpixelRms, 0.01f, 0.05f, "%.3f");
     changed |= ImGui::DragFloatRange2("range m", &s.nearMeters, &s.farMeters, 0.01f, 0.0f, 100.0f, "%.2f");
     changed |= ImGui::InputFloat("flying threshold mm", &s.flyingThresholdMm, 1.0f, 10.0f, "%.0f");
     if (changed)

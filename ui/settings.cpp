@@ -63,6 +63,8 @@ void sanitize(QualitySettings& q) {
     q.roiHeight = std::clamp(q.roiHeight, 0, kMaxPixels);
     q.windowFrames = std::clamp(q.windowFrames, 2, 600);
     q.groundTruthMm = std::clamp(finiteOr(q.groundTruthMm, 0.0f), 0.0f, 100000.0f);
+    q.baselineMm = std::clamp(finiteOr(q.baselineMm, 0.0f), 0.0f, 10000.0f);
+    q.designSubpixelRms = std::clamp(finiteOr(q.designSubpixelRms, d.designSubpixelRms), 0.001f, 10.0f);
     q.nearMeters = std::clamp(finiteOr(q.nearMeters, d.nearMeters), 0.0f, 99.0f);
     q.farMeters = std::clamp(finiteOr(q.farMeters, d.farMeters), q.nearMeters + 0.01f, 100.0f);
     q.flyingThresholdMm = std::clamp(finiteOr(q.flyingThresholdMm, d.flyingThresholdMm), 1.0f, 10000.0f);

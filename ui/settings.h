@@ -100,6 +100,8 @@ struct QualitySettings {
     float nearMeters = 0.0f;    // samples outside [near, far] count as out of range
     float farMeters = 10.0f;
     float flyingThresholdMm = 50.0f; // processing::QualityParams::flyingThresholdMeters, in mm
+    float baselineMm = 0.0f; // a stereo camera's baseline, for subpixel RMS and the expected noise; 0: none
+    float designSubpixelRms = 0.08f; // the camera's design subpixel accuracy, pixels (the expected noise)
 };
 
 // Where the window was and how large, in screen coordinates, as it was closed (width 0: never saved).

@@ -113,6 +113,8 @@ std::vector<SettingField> cloudFields() {
         field("quality", "roiHeight", DC_FIELD(quality.roiHeight), 48),
         field("quality", "windowFrames", DC_FIELD(quality.windowFrames), 60),
         field("quality", "groundTruthMm", DC_FIELD(quality.groundTruthMm), 1000.0),
+        field("quality", "baselineMm", DC_FIELD(quality.baselineMm), 50.0),
+        field("quality", "designSubpixelRms", DC_FIELD(quality.designSubpixelRms), 0.125),
         field("quality", "nearMeters", DC_FIELD(quality.nearMeters), 0.25),
         field("quality", "farMeters", DC_FIELD(quality.farMeters), 4.5),
         field("quality", "flyingThresholdMm", DC_FIELD(quality.flyingThresholdMm), 25.0),

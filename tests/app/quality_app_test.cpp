@@ -36,6 +36,7 @@ TEST_F(Quality, HeldExpectationsExitZeroAndTheJsonHasEveryFigure) {
         EXPECT_TRUE(std::isfinite(j[key].get<double>())) << key;
     }
     EXPECT_TRUE(j["subpixelRms"].is_number());
+    EXPECT_TRUE(j["expectedNoiseMm"].is_number());
     EXPECT_TRUE(j["zAccuracyPercent"].is_number());
     EXPECT_EQ(j["frames"], 6);
     for (const char* cause : {"noMeasurement", "outOfRange", "lowConfidence", "flyingPixel"}) {
@@ -61,6 +62,7 @@ TEST_F(Quality, FiguresWithoutWhatTheyNeedAreNull) {
     ASSERT_EQ(r.exitCode, 0) << r.err;
     const nlohmann::json j = nlohmann::json::parse(readFile(dir_ / "q.json"));
     EXPECT_TRUE(j["subpixelRms"].is_null());
+    EXPECT_TRUE(j["expectedNoiseMm"].is_null());
     EXPECT_TRUE(j["zAccuracyPercent"].is_null());
 }
 

@@ -101,6 +101,19 @@ TEST_F(QualityPanelTest, AWallAtOneMeterReadsOneMeterFullyFilledAsTheShownFrameM
     EXPECT_DOUBLE_EQ(p.planeFitRmsMm, here.plane->planeFitRmsMm);
     EXPECT_DOUBLE_EQ(p.dqtPlaneFitRmsMm, here.plane->dqtPlaneFitRmsMm);
     EXPECT_DOUBLE_EQ(p.inlierFraction, here.plane->inlierFraction);
+    EXPECT_FALSE(p.subpixelRms || p.expectedNoiseMm) << "no baseline entered";
+
+    // A stereo baseline entered: the next figures have the subpixel RMS and the model's expected noise.
+    viewer_->settings().quality.baselineMm = 50.0f;
+    viewer_->settings().quality.designSubpixelRms = 0.125f;
+    ASSERT_TRUE(frameUntil([this] {
+        const processing::ShownQuality* s = viewer_->quality();
+        return s && s->figures && s->figures->plane && s->figures->plane->expectedNoiseMm;
+    }));
+    const processing::PlaneFigures& stereo = *viewer_->quality()->figures->plane;
+    EXPECT_TRUE(stereo.subpixelRms);
+    const double z = stereo.distanceMm / 1000.0, fx = viewer_->shown()->depth.intrinsics.fx;
+    EXPECT_NEAR(*stereo.expectedNoiseMm, 1000.0 * z * z * 0.125 / (fx * 0.05), 1e-6);
     // The noise window fills with the frames that follow; the wall's noise is 1 mm.
     ASSERT_TRUE(frameUntil([this] { return viewer_->quality() && viewer_->quality()->windowFilled >= 10; }));
     const processing::ShownQuality& later = *viewer_->quality();

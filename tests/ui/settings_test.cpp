@@ -188,7 +188,7 @@ TEST(Settings, SanitizeRemovesNonFiniteValues) {
 TEST(Settings, TheQualitySectionRoundTripsAndTakesSets) {
     Settings s;
     s.panels.quality = true;
-    s.quality = {0, 10, 20, 30, 40, 45, 1234.5f, 0.3f, 3.5f, 20.0f};
+    s.quality = {0, 10, 20, 30, 40, 45, 1234.5f, 0.3f, 3.5f, 20.0f, 50.0f, 0.125f};
     const auto back = settingsFromJson(settingsToJson(s));
     ASSERT_TRUE(back.ok());
     const QualitySettings& q = back->quality;
@@ -203,6 +203,8 @@ TEST(Settings, TheQualitySectionRoundTripsAndTakesSets) {
     EXPECT_FLOAT_EQ(q.nearMeters, 0.3f);
     EXPECT_FLOAT_EQ(q.farMeters, 3.5f);
     EXPECT_FLOAT_EQ(q.flyingThresholdMm, 20.0f);
+    EXPECT_FLOAT_EQ(q.baselineMm, 50.0f);
+    EXPECT_FLOAT_EQ(q.designSubpixelRms, 0.125f);
 
     Settings t;
     ASSERT_TRUE(applySetting(t, "quality.roiPercent=80"));

@@ -316,6 +316,26 @@ TEST(DepthQuality, ZAccuracyOfAFlatTargetAgainstGroundTruth) {
     EXPECT_FALSE(q->plane->subpixelRms.has_value());
 }
 
+// sigmaZ = z^2 sigmaD / (f B): 2 m, 0.08 px, 640 px x 0.05 m = 4 x 0.08 / 32 = 0.01 m. A flat target at
+// 2 m reads it at its fitted distance once a baseline is known, and not without one.
+TEST(DepthQuality, ExpectedStereoNoiseIsTheDisparityModelAtTheMeasuredDistance) {
+    EXPECT_NEAR(expectedStereoNoiseMeters(2.0, 640.0, 0.05, 0.08), 0.01, 1e-15);
+    EXPECT_NEAR(expectedStereoNoiseMeters(4.0, 640.0, 0.05, 0.08), 0.04, 1e-15) << "quadratic in distance";
+    const frame::Intrinsics k = intrinsics(40, 30);
+    QualityParams params;
+    params.roi = centredRoi(40, 30, 50.0);
+    const auto without = measureFrameQuality(flat(40, 30, 2.0f), k, params);
+    ASSERT_TRUE(without.ok() && without->plane.has_value());
+    EXPECT_FALSE(without->plane->expectedNoiseMm.has_value());
+    params.baselineMeters = 0.05;
+    params.designSubpixelRms = 0.1;
+    const auto with = measureFrameQuality(flat(40, 30, 2.0f), k, params);
+    ASSERT_TRUE(with.ok() && with->plane.has_value());
+    ASSERT_TRUE(with->plane->expectedNoiseMm.has_value());
+    const double z = with->plane->distanceMm / 1000.0;
+    EXPECT_NEAR(*with->plane->expectedNoiseMm, 1000.0 * z * z * 0.1 / (k.fx * 0.05), 1e-9);
+}
+
 TEST(DepthQuality, CentredRoiIsDqtsPercentOfEachSide) {
     EXPECT_EQ(centredRoi(1280, 720, 40.0), (Roi{384, 216, 512, 288}));
     EXPECT_EQ(centredRoi(10, 10, 0.0), (Roi{4, 4, 1, 1}));
