@@ -132,14 +132,19 @@ def realsense(path, color_encoding):
             bag.write(s1 + "/Color_0/image/data", color(i, color_encoding), stamp(i, 1_000_000))
 
 
+def write_driver_camera_info(bag, t0):
+    """A ROS camera driver's camera_info beside its depth and colour images."""
+    bag.write("/camera/depth/camera_info",
+              camera_info(DEPTH_W, DEPTH_H, 50, 52, 32, 24, "plumb_bob", [0.01, 0, 0, 0, 0]), t0)
+    bag.write("/camera/color/camera_info",
+              camera_info(COLOR_W, COLOR_H, 62.5, 65, 40, 30, "plumb_bob", [0, 0, 0, 0, 0]), t0)
+
+
 def generic(path):
     """A ROS camera driver's layout, recorded with rosbag record: namespaces with camera_info beside."""
     t0 = rospy.Time(START_S)
     with rosbag.Bag(path, "w") as bag:
-        bag.write("/camera/depth/camera_info",
-                  camera_info(DEPTH_W, DEPTH_H, 50, 52, 32, 24, "plumb_bob", [0.01, 0, 0, 0, 0]), t0)
-        bag.write("/camera/color/camera_info",
-                  camera_info(COLOR_W, COLOR_H, 62.5, 65, 40, 30, "plumb_bob", [0, 0, 0, 0, 0]), t0)
+        write_driver_camera_info(bag, t0)
         bag.write("/status", String("running"), t0)
         for i in range(FRAMES):
             bag.write("/camera/depth/image_rect_raw", depth32(i), stamp(i))
@@ -162,10 +167,7 @@ def compressed(path):
     ROS 1's transports spell their formats: millimetre depth behind the 12-byte compressedDepth header."""
     t0 = rospy.Time(START_S)
     with rosbag.Bag(path, "w") as bag:
-        bag.write("/camera/depth/camera_info",
-                  camera_info(DEPTH_W, DEPTH_H, 50, 52, 32, 24, "plumb_bob", [0.01, 0, 0, 0, 0]), t0)
-        bag.write("/camera/color/camera_info",
-                  camera_info(COLOR_W, COLOR_H, 62.5, 65, 40, 30, "plumb_bob", [0, 0, 0, 0, 0]), t0)
+        write_driver_camera_info(bag, t0)
         for i in range(FRAMES):
             rows = [b"".join(struct.pack(">H", depth_units(x, y, i)) for x in range(DEPTH_W))
                     for y in range(DEPTH_H)]
