@@ -168,7 +168,11 @@ TEST_F(FrameProcessorTest, AfterASeekFramesDecodedBeforeItAreDroppedAndSmoothing
 
     processor_.afterSeek(1);
     device_->push(asReplayed(frames[2], 0)); // still on its way when the seek was asked for
-    ASSERT_TRUE(waitUntil([&] { return processor_.counts().framesSkipped == 1; }));
+    ASSERT_TRUE(waitUntil([&] { return processor_.counts().framesSkipped == 1; }))
+        << "skipped " << processor_.counts().framesSkipped << ", processed "
+        << processor_.counts().framesProcessed << ", captured " << session_->stats().framesCaptured
+        << ", dropped in the slot " << session_->stats().framesDropped << ", still queued "
+        << device_->pending();
     // A change now has no frame to redo: the one before the seek is gone.
     d.fog = true;
     const std::uint64_t fog = processor_.setDemand(d);
