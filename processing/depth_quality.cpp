@@ -4,7 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <limits>
+#include <mutex>
 #include <numbers>
 #include <random>
 #include <string>
@@ -26,6 +28,8 @@ constexpr double kMadToSigma = 1.4826;
 // The adaptive sampling's bounds: a chance of never drawing three inliers, and the fewest samples drawn.
 constexpr double kMissProbability = 1e-9;
 constexpr int kMinIterations = 20;
+// Fewer rows than twice this are classified on one core.
+constexpr int kClassifyRowsPerPiece = 16;
 
 Error notEnough(const std::string& why) {
     return Error{std::string(kNotEnoughSamples) + ": " + why};
@@ -88,11 +92,11 @@ double median(std::vector<double> values) {
            (upper + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
 }
 
-std::vector<Point3d> select(std::span<const Point3d> points, const std::vector<std::size_t>& indices) {
+std::vector<Point3d> inliersOf(std::span<const Point3d> points, const RobustPlaneFit& fit) {
     std::vector<Point3d> out;
-    out.reserve(indices.size());
-    for (std::size_t i : indices)
-        out.push_back(points[i]);
+    out.reserve(points.size());
+    std::copy_if(points.begin(), points.end(), std::back_inserter(out),
+                 [&](const Point3d& p) { return fit.isInlier(p); });
     return out;
 }
 
@@ -132,6 +136,7 @@ int samplesNeeded(const std::vector<double>& residuals, double medianResidual) {
 struct RandomPlane {
     PlaneModel plane;
     double medianResidual = 0.0;
+    std::vector<Point3d> scored; // the subset it was scored on
 };
 
 // The minimal-sample plane with the smallest median |residual| over a random subset of the points (random,
@@ -139,9 +144,9 @@ struct RandomPlane {
 std::optional<RandomPlane> bestRandomPlane(std::span<const Point3d> points, const RobustFitParams& params) {
     std::mt19937_64 random(params.seed);
     std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
-    std::vector<std::size_t> scored(std::min(points.size(), kScoreSamples));
+    std::vector<Point3d> scored(std::min(points.size(), kScoreSamples));
     for (std::size_t k = 0; k < scored.size(); ++k)
-        scored[k] = points.size() <= kScoreSamples ? k : pick(random);
+        scored[k] = points[points.size() <= kScoreSamples ? k : pick(random)];
     std::vector<double> residuals(scored.size());
     std::optional<RandomPlane> best;
     int needed = params.iterations;
@@ -153,19 +158,35 @@ std::optional<RandomPlane> bestRandomPlane(std::span<const Point3d> points, cons
         if (!plane)
             continue;
         for (std::size_t k = 0; k < scored.size(); ++k)
-            residuals[k] = std::abs(plane->signedDistance(points[scored[k]]));
+            residuals[k] = std::abs(plane->signedDistance(scored[k]));
+        // Fewer than half the residuals below the best median puts this plane's median at or above it:
+        // a count rejects most planes without ordering their residuals.
+        if (best && static_cast<std::size_t>(std::count_if(residuals.begin(), residuals.end(), [&](double r) {
+                        return r < best->medianResidual;
+                    })) < residuals.size() / 2)
+            continue;
         const double m = median(residuals);
         if (best && m >= best->medianResidual)
             continue;
-        best = RandomPlane{*plane, m};
+        best = RandomPlane{*plane, m, {}};
         needed = samplesNeeded(residuals, m);
     }
+    if (best)
+        best->scored = std::move(scored);
     return best;
 }
 
+// A total least-squares plane and what it leaves: the sum of the points' squared perpendicular distances to
+// it is the scatter matrix's smallest eigenvalue, so the fit's RMS costs no second pass over the points.
+struct LeastSquaresFit {
+    PlaneModel plane;
+    double sumOfSquaredResiduals = 0.0;
+    std::size_t count = 0;
+};
+
 // The least-squares plane of n points whose sums about `o` are s1 (x y z) and s2 (xx xy xz yy yz zz).
-Expected<PlaneModel> planeOfSums(const Point3d& o, const std::array<double, 3>& s1,
-                                 const std::array<double, 6>& s2, double n) {
+Expected<LeastSquaresFit> planeOfSums(const Point3d& o, const std::array<double, 3>& s1,
+                                      const std::array<double, 6>& s2, double n) {
     const Point3d c{o.x + s1[0] / n, o.y + s1[1] / n, o.z + s1[2] / n};
     const auto covariance = [&](int i, int j, int k) {
         return s2[static_cast<std::size_t>(k)] - s1[i] * s1[j] / n;
@@ -181,7 +202,8 @@ Expected<PlaneModel> planeOfSums(const Point3d& o, const std::array<double, 3>& 
     if (!(values[order[1]] > 1e-12 * values[order[2]]))
         return notEnough("the points are collinear or coincident");
     const int k = order[0];
-    return orientedPlane({vectors[0][k], vectors[1][k], vectors[2][k]}, c);
+    return LeastSquaresFit{orientedPlane({vectors[0][k], vectors[1][k], vectors[2][k]}, c),
+                           std::max(values[k], 0.0), static_cast<std::size_t>(n)};
 }
 
 // Where a rank falls among many values without sorting them: the values counted into equal bins between
@@ -243,8 +265,9 @@ double sumOfSquaresTrimmed(std::span<const double> values, std::size_t trim) {
     return sum;
 }
 
-// The median of many values (as median() gives it) through RankBins: only the middle bin is ordered.
-double medianOfMany(std::span<const double> values) {
+// The two values in the middle of many values in ascending order (the same value twice for an odd count),
+// through RankBins: only the middle bin is ordered.
+std::pair<double, double> middleOfMany(std::span<const double> values) {
     const RankBins bins(values);
     const std::size_t mid = values.size() / 2;
     const auto [bin, below] = bins.binOfRank(mid);
@@ -256,38 +279,32 @@ double medianOfMany(std::span<const double> values) {
     const auto at = middle.begin() + static_cast<std::ptrdiff_t>(mid - below);
     std::nth_element(middle.begin(), at, middle.end());
     if (values.size() % 2 == 1)
-        return *at;
+        return {*at, *at};
     // The value ranked just below the middle: the largest below it in this bin, or else the largest value
     // of the bins below.
     if (at != middle.begin())
-        return 0.5 * (*at + *std::max_element(middle.begin(), at));
+        return {*std::max_element(middle.begin(), at), *at};
     double lower = -std::numeric_limits<double>::infinity();
     for (double v : values)
         if (bins.binOf(v) < bin)
             lower = std::max(lower, v);
-    return 0.5 * (*at + lower);
+    return {lower, *at};
 }
 
-bool finite(const Point3d& p) {
-    return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z);
-}
-
-// The plane of the points for which keep(p) holds, by total least squares, without copying them: one pass
-// of sums about the first kept point (the offsets are as small as the region, so the covariance
-// S2 - S1 S1' / n keeps its precision however far the plane is), then the covariance's smallest eigenvector.
-template <class Keep> Expected<PlaneModel> leastSquaresWhere(std::span<const Point3d> points, Keep&& keep) {
-    std::optional<Point3d> origin;
+template <class Keep>
+Expected<LeastSquaresFit> leastSquaresWhere(std::span<const Point3d> points, Keep&& keep) {
+    const auto first = std::find_if(points.begin(), points.end(), keep);
+    if (first == points.end())
+        return notEnough("0 points, a plane needs 3");
+    const Point3d origin = *first;
     std::array<double, 3> s1{};
     std::array<double, 6> s2{}; // xx xy xz yy yz zz
     std::size_t count = 0;
-    bool allFinite = true;
-    for (const Point3d& p : points) {
+    for (auto it = first; it != points.end(); ++it) {
+        const Point3d& p = *it;
         if (!keep(p))
             continue;
-        allFinite &= finite(p);
-        if (!origin)
-            origin = p;
-        const double x = p.x - origin->x, y = p.y - origin->y, z = p.z - origin->z;
+        const double x = p.x - origin.x, y = p.y - origin.y, z = p.z - origin.z;
         s1[0] += x;
         s1[1] += y;
         s1[2] += z;
@@ -301,9 +318,71 @@ template <class Keep> Expected<PlaneModel> leastSquaresWhere(std::span<const Poi
     }
     if (count < 3)
         return notEnough(std::to_string(count) + " points, a plane needs 3");
-    if (!allFinite)
+    // A point that is not finite leaves a sum that is not (checked once here, not per point).
+    const bool finiteSums = std::isfinite(s1[0] + s1[1] + s1[2]) &&
+                            std::all_of(s2.begin(), s2.end(), [](double v) { return std::isfinite(v); });
+    if (!finiteSums)
         return Error{"a point of the plane fit is not finite"};
-    return planeOfSums(*origin, s1, s2, static_cast<double>(count));
+    return planeOfSums(origin, s1, s2, static_cast<double>(count));
+}
+
+// DQT's trim removes a few hundredths of the residuals; where the points are many, their ends are found
+// among candidates beyond bounds estimated on a random subset, in the same pass that sums the middle.
+constexpr std::size_t kTailSamples = 4096;
+constexpr std::size_t kTailSearchMinPoints = 20000;
+constexpr std::uint64_t kTailSeed = 5;
+
+struct TailBounds {
+    double low = 0.0;
+    double high = 0.0;
+};
+
+// The subset's residual quantiles at three times the trimmed fraction: each end's candidates are then about
+// 1.5 % of the points, and fewer than the trim beyond a bound is a five-sigma event. None when the bounds do
+// not separate (a noise-free plane).
+std::optional<TailBounds> tailBounds(std::span<const Point3d> points, const PlaneModel& plane) {
+    std::mt19937_64 random(kTailSeed);
+    std::uniform_int_distribution<std::size_t> pick(0, points.size() - 1);
+    std::vector<double> sample(kTailSamples);
+    for (double& r : sample)
+        r = plane.signedDistance(points[pick(random)]);
+    std::sort(sample.begin(), sample.end());
+    const auto q = static_cast<std::size_t>(std::ceil(3.0 * kDqtTrimFraction * kTailSamples));
+    const TailBounds bounds{sample[q], sample[kTailSamples - 1 - q]};
+    if (!(bounds.low < bounds.high))
+        return std::nullopt;
+    return bounds;
+}
+
+// The sum of the squared residuals without the `trim` smallest and the `trim` largest, from one pass over
+// the points; none when an end has fewer candidates than the trim (the exact selection then runs).
+std::optional<double> trimmedSumByTails(std::span<const Point3d> points, const PlaneModel& plane,
+                                        std::size_t trim) {
+    const auto bounds = tailBounds(points, plane);
+    if (!bounds)
+        return std::nullopt;
+    double sum = 0.0;
+    std::vector<double> low, high;
+    for (const Point3d& p : points) {
+        const double r = plane.signedDistance(p);
+        if (r <= bounds->low)
+            low.push_back(r);
+        else if (r >= bounds->high)
+            high.push_back(r);
+        else
+            sum += r * r;
+    }
+    if (low.size() < trim || high.size() < trim)
+        return std::nullopt;
+    const auto lowKept = low.begin() + static_cast<std::ptrdiff_t>(trim);
+    std::nth_element(low.begin(), lowKept, low.end());
+    const auto highKept = high.end() - static_cast<std::ptrdiff_t>(trim);
+    std::nth_element(high.begin(), highKept, high.end());
+    for (auto it = lowKept; it != low.end(); ++it)
+        sum += *it * *it;
+    for (auto it = high.begin(); it != highKept; ++it)
+        sum += *it * *it;
+    return sum;
 }
 
 } // namespace
@@ -321,7 +400,10 @@ bool roiInside(const Roi& roi, int imageWidth, int imageHeight) {
 }
 
 Expected<PlaneModel> fitPlaneLeastSquares(std::span<const Point3d> points) {
-    return leastSquaresWhere(points, [](const Point3d&) { return true; });
+    const auto fit = leastSquaresWhere(points, [](const Point3d&) { return true; });
+    if (!fit)
+        return fit.error();
+    return fit->plane;
 }
 
 Expected<RobustPlaneFit> fitPlaneRobust(std::span<const Point3d> points, const RobustFitParams& params) {
@@ -332,31 +414,26 @@ Expected<RobustPlaneFit> fitPlaneRobust(std::span<const Point3d> points, const R
         return notEnough("no three points span a plane");
     const double threshold = params.inlierThresholdMeters.value_or(
         std::max(3.0 * kMadToSigma * best->medianResidual, kMinInlierThresholdMeters));
-    // Least squares on the inliers of the random plane, then on the inliers of that plane: the points are
-    // chosen by their distance as they are summed, never copied.
+    const auto within = [&threshold](const PlaneModel& plane) {
+        return
+            [&threshold, plane](const Point3d& p) { return std::abs(plane.signedDistance(p)) <= threshold; };
+    };
+    // The random plane refined by least squares on its inliers among the scored subset (its offset then
+    // moves by noise / sqrt(2000), far inside the threshold), then least squares over every point within
+    // the threshold of that: one pass over the points, which are chosen as they are summed, never copied.
     // The RMS is over the points of the last fit, against the plane they gave.
-    PlaneModel chooser = best->plane, plane = best->plane;
-    for (int pass = 0; pass < 2; ++pass) {
-        chooser = plane;
-        const auto fit = leastSquaresWhere(
-            points, [&](const Point3d& p) { return std::abs(chooser.signedDistance(p)) <= threshold; });
-        if (!fit)
-            return fit.error();
-        plane = *fit;
-    }
+    PlaneModel chooser = best->plane;
+    if (const auto refined = leastSquaresWhere(std::span<const Point3d>(best->scored), within(chooser)))
+        chooser = refined->plane;
+    const auto fit = leastSquaresWhere(points, within(chooser));
+    if (!fit)
+        return fit.error();
+    const LeastSquaresFit& last = *fit;
     RobustPlaneFit result;
-    result.inliers.reserve(points.size());
-    result.plane = plane;
-    double sum = 0.0;
-    for (std::size_t i = 0; i < points.size(); ++i) {
-        if (std::abs(chooser.signedDistance(points[i])) <= threshold) {
-            const double r = plane.signedDistance(points[i]);
-            sum += r * r;
-            result.inliers.push_back(i);
-        }
-    }
-    const double inliers = static_cast<double>(result.inliers.size());
-    result.rmsMeters = result.inliers.empty() ? 0.0 : std::sqrt(sum / inliers);
+    result.plane = last.plane;
+    result.selectedBy = chooser;
+    const double inliers = static_cast<double>(last.count);
+    result.rmsMeters = std::sqrt(last.sumOfSquaredResiduals / inliers);
     result.inlierFraction = inliers / static_cast<double>(points.size());
     result.inlierThresholdMeters = threshold;
     return result;
@@ -366,13 +443,18 @@ Expected<double> dqtPlaneFitRms(std::span<const Point3d> points) {
     const auto plane = fitPlaneLeastSquares(points);
     if (!plane)
         return plane.error();
+    const auto trim =
+        static_cast<std::size_t>(std::floor(kDqtTrimFraction * static_cast<double>(points.size())));
+    const auto kept = static_cast<double>(points.size() - 2 * trim);
+    if (points.size() >= kTailSearchMinPoints) {
+        if (const auto sum = trimmedSumByTails(points, *plane, trim))
+            return std::sqrt(*sum / kept);
+    }
     std::vector<double> residuals;
     residuals.reserve(points.size());
     for (const Point3d& p : points)
         residuals.push_back(plane->signedDistance(p));
-    const auto trim =
-        static_cast<std::size_t>(std::floor(kDqtTrimFraction * static_cast<double>(points.size())));
-    return std::sqrt(sumOfSquaresTrimmed(residuals, trim) / static_cast<double>(residuals.size() - 2 * trim));
+    return std::sqrt(sumOfSquaresTrimmed(residuals, trim) / kept);
 }
 
 Expected<double> distanceAlongOpticalAxis(const PlaneModel& plane) {
@@ -428,20 +510,33 @@ struct RowView {
     int width;
 };
 
-SampleCause classify(const RowView& v, int x, const QualityParams& params) {
-    const float d = v.row[x];
-    if (!frame::isMeasured(d))
-        return SampleCause::NoMeasurement;
-    if (d < params.nearMeters || d > params.farMeters)
-        return SampleCause::OutOfRange;
-    if (v.confidence && v.confidence[x] < static_cast<std::uint8_t>(params.minConfidence))
-        return SampleCause::LowConfidence;
-    const float t = params.flyingThresholdMeters;
-    if ((x > 0 && x + 1 < v.width && differsSameSense(d, v.row[x - 1], v.row[x + 1], t)) ||
-        (v.above && v.below && differsSameSense(d, v.above[x], v.below[x], t)))
-        return SampleCause::FlyingPixel;
-    return SampleCause::Valid;
-}
+// The thresholds copied into values of its own: the causes are written as bytes, which may alias anything,
+// and a threshold read through the parameters would be loaded again for every sample.
+struct Classifier {
+    float nearMeters;
+    float farMeters;
+    float flyingThresholdMeters;
+    std::uint8_t minConfidence;
+
+    explicit Classifier(const QualityParams& p)
+        : nearMeters(p.nearMeters), farMeters(p.farMeters), flyingThresholdMeters(p.flyingThresholdMeters),
+          minConfidence(static_cast<std::uint8_t>(p.minConfidence)) {}
+
+    SampleCause operator()(const RowView& v, int x) const {
+        const float d = v.row[x];
+        if (!frame::isMeasured(d))
+            return SampleCause::NoMeasurement;
+        if (d < nearMeters || d > farMeters)
+            return SampleCause::OutOfRange;
+        if (v.confidence && v.confidence[x] < minConfidence)
+            return SampleCause::LowConfidence;
+        const float t = flyingThresholdMeters;
+        if ((x > 0 && x + 1 < v.width && differsSameSense(d, v.row[x - 1], v.row[x + 1], t)) ||
+            (v.above && v.below && differsSameSense(d, v.above[x], v.below[x], t)))
+            return SampleCause::FlyingPixel;
+        return SampleCause::Valid;
+    }
+};
 
 RowView rowView(const frame::DepthData& depth, int y) {
     const frame::Plane<float>& map = depth.depthMeters;
@@ -487,7 +582,7 @@ Expected<PlaneFigures> planeFigures(const std::vector<Point3d>& points, const fr
         f.zAccuracyPercent = zAccuracyPercent(*distance, *params.groundTruthMeters);
     if (params.baselineMeters) {
         const auto subpixel =
-            subpixelRms(select(points, robust.inliers), robust.plane, k.fx, *params.baselineMeters);
+            subpixelRms(inliersOf(points, robust), robust.plane, k.fx, *params.baselineMeters);
         if (subpixel)
             f.subpixelRms = *subpixel;
         f.expectedNoiseMm =
@@ -508,22 +603,36 @@ std::vector<SampleCause> classifySamples(const frame::DepthData& depth, const Qu
                                          FillBreakdown& counts) {
     const Roi& r = params.roi;
     std::vector<SampleCause> causes(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
-    std::array<std::size_t, 5> perCause{};
-    SampleCause* out = causes.data();
-    for (int y = r.y; y < r.y + r.height; ++y) {
-        const RowView view = rowView(depth, y);
-        for (int x = r.x; x < r.x + r.width; ++x, ++out) {
-            *out = classify(view, x, params);
-            ++perCause[static_cast<std::size_t>(*out)];
+    FillBreakdown total;
+    std::mutex countsMutex;
+    const Classifier classify(params);
+    // Rows on both cores: each piece counts its causes in locals (not an array indexed by the cause, whose
+    // every increment would wait for the last) and adds them once.
+    parallelRanges(r.height, kClassifyRowsPerPiece, [&](int begin, int end) {
+        std::size_t valid = 0, none = 0, range = 0, confidence = 0, flying = 0;
+        SampleCause* out =
+            causes.data() + static_cast<std::size_t>(begin) * static_cast<std::size_t>(r.width);
+        for (int y = r.y + begin; y < r.y + end; ++y) {
+            const RowView view = rowView(depth, y);
+            for (int x = r.x; x < r.x + r.width; ++x, ++out) {
+                const SampleCause c = classify(view, x);
+                *out = c;
+                valid += c == SampleCause::Valid;
+                none += c == SampleCause::NoMeasurement;
+                range += c == SampleCause::OutOfRange;
+                confidence += c == SampleCause::LowConfidence;
+                flying += c == SampleCause::FlyingPixel;
+            }
         }
-    }
-    counts = {};
-    counts.roiSamples = causes.size();
-    counts.valid = perCause[static_cast<std::size_t>(SampleCause::Valid)];
-    counts.noMeasurement = perCause[static_cast<std::size_t>(SampleCause::NoMeasurement)];
-    counts.outOfRange = perCause[static_cast<std::size_t>(SampleCause::OutOfRange)];
-    counts.lowConfidence = perCause[static_cast<std::size_t>(SampleCause::LowConfidence)];
-    counts.flyingPixel = perCause[static_cast<std::size_t>(SampleCause::FlyingPixel)];
+        const std::lock_guard lock(countsMutex);
+        total.valid += valid;
+        total.noMeasurement += none;
+        total.outOfRange += range;
+        total.lowConfidence += confidence;
+        total.flyingPixel += flying;
+    });
+    total.roiSamples = causes.size();
+    counts = total;
     return causes;
 }
 
@@ -538,16 +647,21 @@ Expected<FrameQuality> measureFrameQuality(const frame::DepthData& depth, const 
     FrameQuality q;
     q.causes = classifySamples(depth, params, q.fill);
     const std::vector<SampleCause>& causes = q.causes;
+    // Each column's ray slope once, not a division per sample.
+    std::vector<double> slopeX(static_cast<std::size_t>(r.width));
+    for (int x = 0; x < r.width; ++x)
+        slopeX[static_cast<std::size_t>(x)] = (r.x + x - intrinsics.cx) / intrinsics.fx;
     std::vector<Point3d> points;
     points.reserve(q.fill.valid);
     std::size_t i = 0;
     for (int y = r.y; y < r.y + r.height; ++y) {
-        for (int x = r.x; x < r.x + r.width; ++x, ++i) {
+        const double slopeY = (y - intrinsics.cy) / intrinsics.fy;
+        const float* row = &depth.depthMeters.pixels[static_cast<std::size_t>(y) * depth.depthMeters.width];
+        for (int x = 0; x < r.width; ++x, ++i) {
             if (causes[i] != SampleCause::Valid)
                 continue;
-            const double z = depth.depthMeters.at(x, y);
-            points.push_back(
-                {(x - intrinsics.cx) * z / intrinsics.fx, (y - intrinsics.cy) * z / intrinsics.fy, z});
+            const double z = row[r.x + x];
+            points.push_back({slopeX[static_cast<std::size_t>(x)] * z, slopeY * z, z});
         }
     }
     auto figures = planeFigures(points, intrinsics, params);
@@ -637,14 +751,20 @@ void NoiseWindow::leave(const WindowFrame& f) {
 Expected<double> NoiseWindow::temporalNoiseMm() const {
     if (window_.size() < 2)
         return notEnough("temporal noise needs at least 2 frames");
-    std::vector<double> deviations;
+    // Every pixel counted has the same count (the window's length), so its deviation sqrt(m2 / (n - 1))
+    // grows with m2: the middle pixels by m2, and only their square roots taken.
+    const auto n = static_cast<std::uint32_t>(window_.size());
+    std::vector<double> m2;
+    m2.reserve(pixels_.size());
     for (const Running& p : pixels_) {
-        if (p.count == window_.size())
-            deviations.push_back(std::sqrt(p.m2 / (p.count - 1)) * kMetersToMm);
+        if (p.count == n)
+            m2.push_back(p.m2);
     }
-    if (deviations.empty())
+    if (m2.empty())
         return notEnough("no pixel is valid in every frame of the window");
-    return medianOfMany(deviations);
+    const auto [lower, upper] = middleOfMany(m2);
+    const auto deviationMm = [n](double v) { return std::sqrt(v / (n - 1)) * kMetersToMm; };
+    return 0.5 * (deviationMm(lower) + deviationMm(upper));
 }
 
 Expected<double> NoiseWindow::spatialNoiseMm() const {

@@ -4,6 +4,7 @@
 #include "frame/frame.h"
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <deque>
@@ -65,7 +66,12 @@ struct RobustPlaneFit {
     double rmsMeters = 0.0;      // perpendicular residuals of the inliers
     double inlierFraction = 0.0; // inliers / points
     double inlierThresholdMeters = 0.0;
-    std::vector<std::size_t> inliers; // indices into the points
+    // The plane the inliers were chosen against (the fit before the last): a point is an inlier when
+    // it lies within the threshold of it.
+    PlaneModel selectedBy;
+    bool isInlier(const Point3d& p) const {
+        return std::abs(selectedBy.signedDistance(p)) <= inlierThresholdMeters;
+    }
 };
 
 // RANSAC with least-median-of-squares scoring (LMedS): minimal 3-point samples drawn with a seeded generator,
