@@ -22,6 +22,7 @@ struct QualityDemand {
     std::optional<double> groundTruthMeters; // the target's true distance, for the Z accuracy
     std::optional<double> baselineMeters;    // a stereo camera's, for subpixel RMS and the expected noise
     double designSubpixelRms = 0.08;         // processing::QualityParams::designSubpixelRms
+    bool causeOverlay = false;               // the missing samples coloured by cause on the panels
     bool operator==(const QualityDemand&) const = default;
 };
 

@@ -387,6 +387,7 @@ ProcessingGraph::measureQuality(const QualityKey& key, const frame::Intrinsics& 
     out->sequence = frame.sequence;
     QualityKey question = key;
     question.depth = nullptr;
+    question.quality.causeOverlay = false; // showing the causes or not asks nothing new of the window
     if (!noise_ || noiseKey_ != question) {
         noise_.emplace(params, key.quality.windowFrames);
         noiseKey_ = question;
@@ -399,6 +400,9 @@ ProcessingGraph::measureQuality(const QualityKey& key, const frame::Intrinsics& 
         if (noiseFedNs_ != frame.timestampNs)
             noise_->add(*key.depth, measured->causes, rms);
         noiseFedNs_ = frame.timestampNs;
+        if (key.quality.causeOverlay)
+            out->causeOverlay = std::make_shared<const processing::RgbaImage>(
+                processing::causeOverlay(measured->causes, key.roi.width, key.roi.height));
         out->figures = std::move(*measured);
     } else {
         out->error = measured.error().message;

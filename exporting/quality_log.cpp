@@ -4,7 +4,9 @@
 
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cstdio>
+#include <limits>
 #include <utility>
 
 namespace dc::exporting {
@@ -162,6 +164,59 @@ std::vector<double> qualitySeries(const QualityLog& log, QualityFigure figure) {
             series.push_back(*value);
     }
     return series;
+}
+
+namespace {
+
+double medianOf(std::vector<double> values) {
+    const std::size_t mid = values.size() / 2;
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
+    const double upper = values[mid];
+    if (values.size() % 2 == 1)
+        return upper;
+    return 0.5 *
+           (upper + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
+
+struct DistanceBin {
+    std::vector<double> distances, rms, expected;
+};
+
+} // namespace
+
+std::vector<NoiseAtDistance> noiseOverDistance(const QualityLog& log, int bins) {
+    double nearest = std::numeric_limits<double>::infinity();
+    double farthest = -nearest;
+    for (const QualityLog::Row& r : log.rows()) {
+        if (r.plane) {
+            nearest = std::min(nearest, r.plane->distanceMm);
+            farthest = std::max(farthest, r.plane->distanceMm);
+        }
+    }
+    if (!(nearest <= farthest) || bins < 1)
+        return {};
+    const double step = (farthest - nearest) / bins;
+    std::vector<DistanceBin> binned(static_cast<std::size_t>(bins));
+    for (const QualityLog::Row& r : log.rows()) {
+        if (!r.plane)
+            continue;
+        const auto at = step > 0.0 ? static_cast<std::size_t>((r.plane->distanceMm - nearest) / step) : 0;
+        DistanceBin& b = binned[std::min(at, binned.size() - 1)];
+        b.distances.push_back(r.plane->distanceMm);
+        b.rms.push_back(r.plane->planeFitRmsMm);
+        if (r.plane->expectedNoiseMm)
+            b.expected.push_back(*r.plane->expectedNoiseMm);
+    }
+    std::vector<NoiseAtDistance> out;
+    for (const DistanceBin& b : binned) {
+        if (b.distances.empty())
+            continue;
+        NoiseAtDistance n{medianOf(b.distances), medianOf(b.rms), std::nullopt, b.distances.size()};
+        if (!b.expected.empty())
+            n.expectedNoiseMm = medianOf(b.expected);
+        out.push_back(n);
+    }
+    return out;
 }
 
 std::string qualityCsv(const QualityLog& log) {

@@ -54,6 +54,18 @@ const char* toString(QualityFigure figure); // "fill rate %", "plane-fit RMS mm"
 // One figure of every row that measured it, oldest first (the fill rate as a percentage).
 std::vector<double> qualitySeries(const QualityLog& log, QualityFigure figure);
 
+// The plane-fit RMS against distance, the figure that tells a camera at its design noise from one with a
+// calibration fault: the rows with a plane fit in `bins` equal steps of distance between the nearest and the
+// farthest, each non-empty step's median distance, median RMS and median expected noise (where the rows had
+// one), nearest first. One step when every row is at the same distance.
+struct NoiseAtDistance {
+    double distanceMm = 0.0;
+    double planeFitRmsMm = 0.0;
+    std::optional<double> expectedNoiseMm;
+    std::size_t frames = 0;
+};
+std::vector<NoiseAtDistance> noiseOverDistance(const QualityLog& log, int bins);
+
 // Every row as CSV: a header, then one line per frame; an unmeasured figure is an empty cell.
 std::string qualityCsv(const QualityLog& log);
 // The rows as JSON with what they were measured on: the source, the settings (the JSON the window saves),

@@ -599,6 +599,44 @@ double expectedStereoNoiseMeters(double zMeters, double focalPixels, double base
     return zMeters * zMeters * subpixelSigmaPixels / (focalPixels * baselineMeters);
 }
 
+std::array<std::uint8_t, 3> causeColour(SampleCause cause) {
+    switch (cause) {
+    case SampleCause::NoMeasurement:
+        return {255, 0, 255};
+    case SampleCause::OutOfRange:
+        return {255, 140, 0};
+    case SampleCause::LowConfidence:
+        return {0, 200, 255};
+    case SampleCause::FlyingPixel:
+        return {255, 0, 0};
+    case SampleCause::Valid:
+        break;
+    }
+    return {0, 0, 0};
+}
+
+RgbaImage causeOverlay(std::span<const SampleCause> causes, int width, int height) {
+    RgbaImage image;
+    if (width <= 0 || height <= 0 ||
+        causes.size() != static_cast<std::size_t>(width) * static_cast<std::size_t>(height))
+        return image;
+    image.width = width;
+    image.height = height;
+    image.pixels.assign(causes.size() * 4, 0);
+    std::uint8_t* out = image.pixels.data();
+    for (const SampleCause cause : causes) {
+        if (cause != SampleCause::Valid) {
+            const auto rgb = causeColour(cause);
+            out[0] = rgb[0];
+            out[1] = rgb[1];
+            out[2] = rgb[2];
+            out[3] = 255;
+        }
+        out += 4;
+    }
+    return image;
+}
+
 std::vector<SampleCause> classifySamples(const frame::DepthData& depth, const QualityParams& params,
                                          FillBreakdown& counts) {
     const Roi& r = params.roi;

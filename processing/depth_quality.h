@@ -2,6 +2,7 @@
 
 #include "base/expected.h"
 #include "frame/frame.h"
+#include "processing/camera_image.h"
 
 #include <array>
 #include <cmath>
@@ -107,6 +108,14 @@ double expectedStereoNoiseMeters(double zMeters, double focalPixels, double base
 
 // Why an ROI sample is not valid. Each sample has one cause, checked in this order.
 enum class SampleCause : std::uint8_t { Valid, NoMeasurement, OutOfRange, LowConfidence, FlyingPixel };
+
+// Each cause's colour where the panels show why samples are missing: saturated hues that none of the
+// depth colormaps' ends resemble (no measurement magenta, out of range orange, low confidence cyan, flying
+// pixel red). A valid sample has none.
+std::array<std::uint8_t, 3> causeColour(SampleCause cause);
+// The region's samples as an overlay for the image panels: each missing sample in its cause's colour, opaque,
+// every valid one transparent. `causes` are roi.width x roi.height (classifySamples).
+RgbaImage causeOverlay(std::span<const SampleCause> causes, int width, int height);
 
 struct QualityParams {
     Roi roi;

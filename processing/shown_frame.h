@@ -66,6 +66,9 @@ struct ShownQuality {
     std::string noiseError;
     std::size_t windowFilled = 0; // frames in the noise window
     std::size_t windowFrames = 0; // of its length
+    // The region's missing samples in their causes' colours (processing::causeOverlay), roi-sized; null
+    // unless asked for (engine::QualityDemand::causeOverlay) or without figures.
+    std::shared_ptr<const RgbaImage> causeOverlay;
 };
 
 // What one frame looks like under one demand: everything the GL thread uploads and draws, and nothing it

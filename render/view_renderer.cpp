@@ -81,6 +81,10 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
     uploadOnce(shown.colourOverDepth, colourOverDepthUploaded_, [this](const processing::RgbaImage& image) {
         colourOverDepth_.upload(image.width, image.height, image.pixels.data());
     });
+    uploadOnce(shown.quality ? shown.quality->causeOverlay : nullptr, causeOverlayUploaded_,
+               [this](const processing::RgbaImage& image) {
+                   causeOverlay_.upload(image.width, image.height, image.pixels.data());
+               });
 }
 
 const FrameTextures& ViewRenderer::texturesFor(UploadedDepth& uploaded, const processing::ShownDepth& depth,

@@ -8,6 +8,8 @@ namespace {
 
 constexpr int kBackgroundChannel = 0;
 constexpr int kContentChannel = 1;
+// The causes of missing samples over the region: strong enough to read, weak enough to see the image under.
+constexpr float kCauseOpacity = 0.7f;
 
 // Fills [min, max) with `colour` except where `hole` (clamped to it) lies: up to four strips that share
 // the hole's edges exactly, so the two cover every pixel once between them.
@@ -97,8 +99,10 @@ void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelR
 void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result,
                        const RoiOverlay& roi) {
     const bool shownAtAll = shown.max.x > shown.min.x;
-    if (roi.outline && shownAtAll)
+    if (roi.outline && shownAtAll) {
+        drawOverlayAt(roi.causes, shown, *roi.outline, kCauseOpacity);
         outlineImageRect(shown, *roi.outline, IM_COL32(255, 255, 0, 255));
+    }
     interactWithImage(shown, source, result, roi.drawable && shownAtAll);
 }
 

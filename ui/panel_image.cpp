@@ -55,6 +55,17 @@ void drawOverlay(const PanelImage& overlay, const ImageRect& shown, float opacit
                                          tint);
 }
 
+void drawOverlayAt(const PanelImage& overlay, const ImageRect& shown, ImVec4 fractions, float opacity) {
+    if (overlay.empty() || shown.max.x <= shown.min.x)
+        return;
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->PushClipRect(shown.min, shown.max, true);
+    draw->AddImage(textureOf(overlay), screenAtFraction(shown, {fractions.x, fractions.y}),
+                   screenAtFraction(shown, {fractions.z, fractions.w}), uvOf(overlay, {0.0f, 0.0f}),
+                   uvOf(overlay, {1.0f, 1.0f}), ImGui::GetColorU32(ImVec4(1.0f, 1.0f, 1.0f, opacity)));
+    draw->PopClipRect();
+}
+
 std::optional<ImVec2> imageFractionUnderMouse(const ImageRect& shown) {
     const ImVec2 m = ImGui::GetIO().MousePos;
     if (!ImGui::IsWindowHovered() || m.x < shown.min.x || m.y < shown.min.y || m.x >= shown.max.x ||

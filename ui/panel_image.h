@@ -38,6 +38,10 @@ ImageRect drawImage(const PanelImage& image, ImageFit fit, const char* emptyMess
 // Draws `overlay` over exactly the part of the image `shown` covers, at the given opacity.
 void drawOverlay(const PanelImage& overlay, const ImageRect& shown, float opacity);
 
+// Draws `overlay` stretched over the part `fractions` (left, top, right, bottom) of the image, clipped to
+// what `shown` shows of it.
+void drawOverlayAt(const PanelImage& overlay, const ImageRect& shown, ImVec4 fractions, float opacity);
+
 // Where the mouse is over a drawn image, as a fraction of the whole image; nothing when it is elsewhere or
 // the window is not hovered.
 std::optional<ImVec2> imageFractionUnderMouse(const ImageRect& shown);

@@ -68,6 +68,7 @@ struct PanelResult {
 struct RoiOverlay {
     bool drawable = false;
     std::optional<ImVec4> outline; // the region measured, fractions of the image: (left, top, right, bottom)
+    PanelImage causes;             // the region's missing samples coloured by cause, laid over the outline
 };
 
 // A mark drawn over the cloud: an anchor (a label at a point) or a measured segment between two.

@@ -35,6 +35,7 @@ engine::QualityDemand qualityDemand(const QualitySettings& s) {
     if (s.baselineMm > 0.0f)
         q.baselineMeters = static_cast<double>(s.baselineMm) * 1e-3;
     q.designSubpixelRms = s.designSubpixelRms;
+    q.causeOverlay = s.causeOverlay;
     return q;
 }
 

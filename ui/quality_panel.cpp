@@ -1,6 +1,7 @@
 #include "ui/panels.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <string>
 
@@ -46,6 +47,20 @@ void row(const char* name, const std::string& value, const char* help) {
     ImGui::TextUnformatted(value.c_str());
 }
 
+// A shortfall's row: its cause's colour on the panels beside its name.
+void causeRow(const char* name, processing::SampleCause cause, double fraction) {
+    ImGui::TableNextRow();
+    ImGui::TableNextColumn();
+    const auto rgb = processing::causeColour(cause);
+    ImGui::ColorButton(name, ImVec4(rgb[0] / 255.0f, rgb[1] / 255.0f, rgb[2] / 255.0f, 1.0f),
+                       ImGuiColorEditFlags_NoTooltip | ImGuiColorEditFlags_NoPicker,
+                       ImVec2(ImGui::GetTextLineHeight(), ImGui::GetTextLineHeight()));
+    ImGui::SameLine();
+    ImGui::TextUnformatted(name);
+    ImGui::TableNextColumn();
+    ImGui::Text("%.1f %%", 100.0 * fraction);
+}
+
 std::string format(const char* pattern, double value) {
     char text[64];
     std::snprintf(text, sizeof text, pattern, value);
@@ -71,6 +86,9 @@ bool drawRegion(const processing::ShownQuality* quality, QualitySettings& s) {
             ImGui::PopStyleColor();
         ImGui::PopID();
     }
+    changed |= ImGui::Checkbox("Causes on the panels", &s.causeOverlay);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("The region's missing samples in their causes' colours on the image panels.");
     if (quality)
         ImGui::TextDisabled("%s %d,%d %dx%d px (drag on Depth to draw one)",
                             s.roiPercent > 0 ? "centred" : "drawn", quality->roi.x, quality->roi.y,
@@ -88,10 +106,11 @@ void drawFigures(const processing::ShownQuality& q) {
     if (!ImGui::BeginTable("##figures", 2, ImGuiTableFlags_RowBg))
         return;
     row("Fill rate", format("%.1f %%", 100.0 * f.fillRate()), kFillHelp);
-    row("  no measurement", format("%.1f %%", 100.0 * f.fraction(f.noMeasurement)), kFillHelp);
-    row("  out of range", format("%.1f %%", 100.0 * f.fraction(f.outOfRange)), kFillHelp);
-    row("  low confidence", format("%.1f %%", 100.0 * f.fraction(f.lowConfidence)), kFillHelp);
-    row("  flying pixels", format("%.1f %%", 100.0 * f.fraction(f.flyingPixel)), kFillHelp);
+    using processing::SampleCause;
+    causeRow("no measurement", SampleCause::NoMeasurement, f.fraction(f.noMeasurement));
+    causeRow("out of range", SampleCause::OutOfRange, f.fraction(f.outOfRange));
+    causeRow("low confidence", SampleCause::LowConfidence, f.fraction(f.lowConfidence));
+    causeRow("flying pixels", SampleCause::FlyingPixel, f.fraction(f.flyingPixel));
     if (const auto& p = q.figures->plane) {
         row("Distance", format("%.1f mm", p->distanceMm), kDistanceHelp);
         row("Angle", format("%.2f deg", p->angleDeg), kAngleHelp);
@@ -141,12 +160,77 @@ void drawPlot(QualityPanelState& state) {
                      static_cast<float>(*low), static_cast<float>(*high), ImVec2(-1.0f, 60.0f));
 }
 
+// Where a distance step's point lies in the plot's frame.
+struct DistanceAxes {
+    ImVec2 min, max;
+    double nearMm, farMm, topMm;
+    ImVec2 at(double distanceMm, double valueMm) const {
+        const double fx = farMm > nearMm ? (distanceMm - nearMm) / (farMm - nearMm) : 0.5;
+        const double fy = topMm > 0.0 ? valueMm / topMm : 0.0;
+        return {min.x + static_cast<float>(fx) * (max.x - min.x),
+                max.y - static_cast<float>(fy) * (max.y - min.y)};
+    }
+};
+
+// The plane-fit RMS of the kept frames against their distance (dots, each a step's median) with the stereo
+// model's expected noise (a line) where a baseline is set: a camera at its design noise follows the line,
+// a calibration fault sits above it at every distance.
+void drawNoiseOverDistance(const exporting::QualityLog& log) {
+    constexpr int kSteps = 48;
+    constexpr double kMinSpan = 1.1;
+    const std::vector<exporting::NoiseAtDistance> steps = exporting::noiseOverDistance(log, kSteps);
+    // A camera held still measures one distance, give or take its noise: there is no curve to draw.
+    if (steps.size() < 2 || steps.back().distanceMm < kMinSpan * steps.front().distanceMm)
+        return;
+    double top = 0.0;
+    for (const auto& s : steps)
+        top = std::max({top, s.planeFitRmsMm, s.expectedNoiseMm.value_or(0.0)});
+    ImGui::TextDisabled("RMS over distance: %.0f .. %.0f mm, up to %.2f mm", steps.front().distanceMm,
+                        steps.back().distanceMm, top);
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    const ImVec2 size(std::max(ImGui::GetContentRegionAvail().x, 50.0f), 70.0f);
+    ImGui::InvisibleButton("##over distance", size);
+    const DistanceAxes axes{origin,
+                            {origin.x + size.x, origin.y + size.y},
+                            steps.front().distanceMm,
+                            steps.back().distanceMm,
+                            top * 1.1};
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled(axes.min, axes.max, ImGui::GetColorU32(ImGuiCol_FrameBg));
+    const auto rgb = processing::causeColour(processing::SampleCause::OutOfRange);
+    const ImU32 expectedColour = IM_COL32(rgb[0], rgb[1], rgb[2], 255);
+    for (std::size_t i = 1; i < steps.size(); ++i) {
+        if (steps[i - 1].expectedNoiseMm && steps[i].expectedNoiseMm)
+            draw->AddLine(axes.at(steps[i - 1].distanceMm, *steps[i - 1].expectedNoiseMm),
+                          axes.at(steps[i].distanceMm, *steps[i].expectedNoiseMm), expectedColour, 1.5f);
+    }
+    for (const auto& s : steps)
+        draw->AddCircleFilled(axes.at(s.distanceMm, s.planeFitRmsMm), 2.5f, IM_COL32(255, 255, 255, 255));
+    if (!ImGui::IsItemHovered())
+        return;
+    // The step nearest the mouse along the distance axis, in words.
+    const float mouse = ImGui::GetIO().MousePos.x;
+    const auto nearest = std::min_element(steps.begin(), steps.end(), [&](const auto& a, const auto& b) {
+        return std::abs(axes.at(a.distanceMm, 0.0).x - mouse) <
+               std::abs(axes.at(b.distanceMm, 0.0).x - mouse);
+    });
+    if (nearest->expectedNoiseMm)
+        ImGui::SetTooltip("%.0f mm: plane-fit RMS %.2f mm, expected %.2f mm (%zu frames)",
+                          nearest->distanceMm, nearest->planeFitRmsMm, *nearest->expectedNoiseMm,
+                          nearest->frames);
+    else
+        ImGui::SetTooltip("%.0f mm: plane-fit RMS %.2f mm (%zu frames; a stereo baseline gives the expected)",
+                          nearest->distanceMm, nearest->planeFitRmsMm, nearest->frames);
+}
+
 // The figures of every frame shown since the source opened (or the last Clear): plotted, saved on request.
 void drawLog(QualityPanelState& state, QualityPanelResult& result) {
     ImGui::Separator();
     const std::size_t frames = state.log.rows().size();
-    if (frames > 0)
+    if (frames > 0) {
         drawPlot(state);
+        drawNoiseOverDistance(state.log);
+    }
     ImGui::Text("%zu frames kept", frames);
     ImGui::SameLine();
     ImGui::BeginDisabled(frames == 0);

@@ -102,6 +102,7 @@ struct QualitySettings {
     float flyingThresholdMm = 50.0f; // processing::QualityParams::flyingThresholdMeters, in mm
     float baselineMm = 0.0f; // a stereo camera's baseline, for subpixel RMS and the expected noise; 0: none
     float designSubpixelRms = 0.08f; // the camera's design subpixel accuracy, pixels (the expected noise)
+    bool causeOverlay = true;        // the region's missing samples coloured by cause on the image panels
 };
 
 // Where the window was and how large, in screen coordinates, as it was closed (width 0: never saved).

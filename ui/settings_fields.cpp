@@ -118,6 +118,7 @@ std::vector<SettingField> cloudFields() {
         field("quality", "nearMeters", DC_FIELD(quality.nearMeters), 0.25),
         field("quality", "farMeters", DC_FIELD(quality.farMeters), 4.5),
         field("quality", "flyingThresholdMm", DC_FIELD(quality.flyingThresholdMm), 25.0),
+        field("quality", "causeOverlay", DC_FIELD(quality.causeOverlay), false),
         field("", "recentSources", DC_FIELD(recentSources),
               json::array({"replay:/data/a.dcrec", "synthetic"})),
     };

@@ -596,6 +596,8 @@ RoiOverlay Viewer::roiOverlay() const {
     overlay.outline = ImVec4(static_cast<float>(q->roi.x) / w, static_cast<float>(q->roi.y) / h,
                              static_cast<float>(q->roi.x + q->roi.width) / w,
                              static_cast<float>(q->roi.y + q->roi.height) / h);
+    if (settings_.quality.causeOverlay && q->causeOverlay)
+        overlay.causes = imageOf(renderer_.causeOverlayTexture());
     return overlay;
 }
 

@@ -267,6 +267,21 @@ TEST_F(ProcessingGraphTest, QualityIsMeasuredOncePerFrameAndRegionAndOnlyWhileAs
     EXPECT_EQ(runOn(1, d, true).at(quality), 1u);
     EXPECT_EQ(last_->quality->windowFilled, 2u);
     EXPECT_EQ(last_->quality->sequence, frames_[1]->sequence);
+    // The causes' overlay asked for: the same frame measured again with it, without entering the window
+    // twice.
+    d.quality->causeOverlay = true;
+    EXPECT_EQ(runOn(1, d).at(quality), 1u);
+    ASSERT_TRUE(last_->quality->causeOverlay);
+    const processing::RgbaImage& causes = *last_->quality->causeOverlay;
+    EXPECT_EQ(causes.width, last_->quality->roi.width);
+    EXPECT_EQ(causes.height, last_->quality->roi.height);
+    std::size_t opaque = 0;
+    for (std::size_t i = 3; i < causes.pixels.size(); i += 4)
+        opaque += causes.pixels[i] == 255;
+    const processing::FillBreakdown& fill = last_->quality->figures->fill;
+    EXPECT_EQ(opaque, fill.roiSamples - fill.valid) << "one opaque pixel per missing sample";
+    EXPECT_EQ(last_->quality->windowFilled, 2u) << "showing the causes does not start the window over";
+    d.quality->causeOverlay = false;
     d.quality->roiPercent = 0;
     d.quality->roi = {250, 180, 40, 40}; // partly off the 256x192 map
     EXPECT_EQ(runOn(1, d).at(quality), 1u);

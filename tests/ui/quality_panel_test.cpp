@@ -8,9 +8,12 @@
 
 #include <nlohmann/json.hpp>
 
+#include <array>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <unistd.h>
 
@@ -317,6 +320,85 @@ TEST_F(QualityPanelTest, TheRegionIsOutlinedAndDrawnOnEveryPanelOfTheDepthsView)
     picture = gui_.target().readRgba();
     EXPECT_EQ(outlinePixelsIn(kConfidenceTitle, picture, width), 0);
     EXPECT_EQ(outlinePixelsIn(kCameraTitle, picture, width), 0);
+}
+
+// The region's outline (pure yellow) inside a panel: (left, top, right, bottom) in picture pixels, from the
+// rows and columns that hold one of its edges (the depth legend's jet strip has a few yellow pixels too, in
+// no row or column long enough to count); empty when there is none.
+std::optional<std::array<int, 4>> outlineBox(const char* title, const std::vector<std::uint8_t>& rgba,
+                                             int width) {
+    constexpr int kEdgePixels = 20;
+    const ImGuiWindow* w = ImGui::FindWindowByName(title);
+    if (!w)
+        return std::nullopt;
+    const int x0 = static_cast<int>(w->Pos.x), y0 = static_cast<int>(w->Pos.y);
+    const int x1 = static_cast<int>(w->Pos.x + w->Size.x), y1 = static_cast<int>(w->Pos.y + w->Size.y);
+    std::vector<int> rows(static_cast<std::size_t>(y1 - y0)), columns(static_cast<std::size_t>(x1 - x0));
+    for (int y = y0; y < y1; ++y)
+        for (int x = x0; x < x1; ++x) {
+            const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 4;
+            const bool yellow =
+                i + 2 < rgba.size() && rgba[i] == 255 && rgba[i + 1] == 255 && rgba[i + 2] == 0;
+            rows[static_cast<std::size_t>(y - y0)] += yellow;
+            columns[static_cast<std::size_t>(x - x0)] += yellow;
+        }
+    const auto edges = [](const std::vector<int>& counts) -> std::optional<std::pair<int, int>> {
+        const auto long_ = [](int n) { return n >= kEdgePixels; };
+        const auto first = std::find_if(counts.begin(), counts.end(), long_);
+        if (first == counts.end())
+            return std::nullopt;
+        const auto last = std::find_if(counts.rbegin(), counts.rend(), long_);
+        return std::pair{static_cast<int>(first - counts.begin()),
+                         static_cast<int>(counts.rend() - last) - 1};
+    };
+    const auto ys = edges(rows), xs = edges(columns);
+    if (!ys || !xs)
+        return std::nullopt;
+    return std::array<int, 4>{x0 + xs->first, y0 + ys->first, x0 + xs->second, y0 + ys->second};
+}
+
+// A wall at 1 m measured with the range ending at 0.5 m: every sample of the region is out of range, and
+// the depth panel shows the region in that cause's colour over its own picture (the overlay's opacity
+// blended with the picture the panel shows without it).
+TEST_F(QualityPanelTest, MissingSamplesAreShownInTheirCausesColourInsideTheRegion) {
+    Settings settings = qualityShown();
+    settings.quality.farMeters = 0.5f;
+    // A fixed range: the automatic one stretches the wall's noise over the colormap, a picture of its own
+    // every frame.
+    settings.depthRange.automatic = false;
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), settings));
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    ASSERT_TRUE(frameUntil([this] {
+        const processing::ShownQuality* q = viewer_->quality();
+        return q && q->figures && q->causeOverlay;
+    }));
+    const processing::FillBreakdown fill = viewer_->quality()->figures->fill;
+    EXPECT_EQ(fill.outOfRange, fill.roiSamples) << "every sample is beyond 0.5 m";
+    frame(0.0);
+    const int width = gui_.target().width();
+    const std::vector<std::uint8_t> with = gui_.target().readRgba();
+    viewer_->settings().quality.causeOverlay = false;
+    frame(0.0);
+    frame(0.0);
+    const std::vector<std::uint8_t> without = gui_.target().readRgba();
+    const auto box = outlineBox(kDepthTitle, with, width);
+    ASSERT_TRUE(box.has_value());
+    ASSERT_GT((*box)[2] - (*box)[0], 10);
+    const auto orange = processing::causeColour(processing::SampleCause::OutOfRange);
+    int inside = 0, blended = 0;
+    for (int y = (*box)[1] + 3; y <= (*box)[3] - 3; ++y)
+        for (int x = (*box)[0] + 3; x <= (*box)[2] - 3; ++x) {
+            const std::size_t i = (static_cast<std::size_t>(y) * width + x) * 4;
+            bool near = true;
+            for (std::size_t c = 0; c < 3; ++c) {
+                const float expected = 0.7f * orange[c] + 0.3f * without[i + c];
+                near &= std::abs(expected - static_cast<float>(with[i + c])) <= 8.0f;
+            }
+            ++inside;
+            blended += near;
+        }
+    ASSERT_GT(inside, 100);
+    EXPECT_GE(blended, inside * 95 / 100) << blended << " of " << inside << " pixels";
 }
 
 TEST_F(QualityPanelTest, WithThePanelHiddenNothingIsMeasured) {

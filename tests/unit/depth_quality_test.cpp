@@ -13,6 +13,7 @@
 #include <limits>
 #include <numbers>
 #include <random>
+#include <set>
 #include <vector>
 
 namespace dc::processing {
@@ -334,6 +335,31 @@ TEST(DepthQuality, ExpectedStereoNoiseIsTheDisparityModelAtTheMeasuredDistance) 
     ASSERT_TRUE(with->plane->expectedNoiseMm.has_value());
     const double z = with->plane->distanceMm / 1000.0;
     EXPECT_NEAR(*with->plane->expectedNoiseMm, 1000.0 * z * z * 0.1 / (k.fx * 0.05), 1e-9);
+}
+
+// The overlay shows each missing sample in its cause's colour, opaque, and lets every valid one through.
+TEST(DepthQuality, TheCauseOverlayColoursEachMissingSampleByItsCause) {
+    const std::vector<SampleCause> causes{SampleCause::Valid,       SampleCause::NoMeasurement,
+                                          SampleCause::OutOfRange,  SampleCause::LowConfidence,
+                                          SampleCause::FlyingPixel, SampleCause::Valid};
+    const RgbaImage overlay = causeOverlay(causes, 3, 2);
+    ASSERT_EQ(overlay.width, 3);
+    ASSERT_EQ(overlay.height, 2);
+    ASSERT_EQ(overlay.pixels.size(), 24u);
+    std::set<std::array<std::uint8_t, 3>> colours;
+    for (std::size_t i = 0; i < causes.size(); ++i) {
+        const std::uint8_t* p = &overlay.pixels[i * 4];
+        if (causes[i] == SampleCause::Valid) {
+            EXPECT_EQ(p[3], 0) << "sample " << i;
+            continue;
+        }
+        EXPECT_EQ(p[3], 255) << "sample " << i;
+        const auto rgb = causeColour(causes[i]);
+        EXPECT_EQ((std::array<std::uint8_t, 3>{p[0], p[1], p[2]}), rgb) << "sample " << i;
+        colours.insert(rgb);
+    }
+    EXPECT_EQ(colours.size(), 4u) << "every cause has a colour of its own";
+    EXPECT_TRUE(causeOverlay(causes, 4, 2).empty()) << "causes that are not width x height";
 }
 
 TEST(DepthQuality, CentredRoiIsDqtsPercentOfEachSide) {

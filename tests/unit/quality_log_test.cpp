@@ -65,6 +65,44 @@ TEST(QualityLog, TheSeriesHoldsTheFramesThatMeasuredTheFigure) {
     EXPECT_TRUE(qualitySeries(log, QualityFigure::TemporalNoiseMm).empty());
 }
 
+// Frames at 1.0 .. 2.0 m whose RMS follows the stereo model (z^2 scaled), with its expected noise half of it:
+// each distance step holds the rows within it, its medians are those rows' medians, and a row without a
+// plane fit is left out.
+TEST(QualityLog, NoiseOverDistanceIsEachDistanceStepsMedians) {
+    QualityLog log;
+    const auto at = [](std::uint64_t frame, double distanceMm, bool plane = true) {
+        auto q = std::const_pointer_cast<processing::ShownQuality>(figures(frame, 0.0, plane));
+        if (plane) {
+            q->figures->plane->distanceMm = distanceMm;
+            q->figures->plane->planeFitRmsMm = distanceMm * distanceMm * 1e-6;
+            q->figures->plane->expectedNoiseMm = 0.5 * distanceMm * distanceMm * 1e-6;
+        }
+        return std::shared_ptr<const processing::ShownQuality>(q);
+    };
+    std::uint64_t frame = 0;
+    for (double d : {1000.0, 1010.0, 1020.0, 1990.0, 2000.0, 1500.0})
+        log.add(at(++frame, d), 0);
+    log.add(at(++frame, 0.0, false), 0);
+    const std::vector<NoiseAtDistance> bins = noiseOverDistance(log, 4);
+    ASSERT_EQ(bins.size(), 3u) << "1.0-1.25 m, 1.5-1.75 m and 1.75-2.0 m; 1.25-1.5 m is empty";
+    EXPECT_DOUBLE_EQ(bins[0].distanceMm, 1010.0);
+    EXPECT_EQ(bins[0].frames, 3u);
+    EXPECT_DOUBLE_EQ(bins[0].planeFitRmsMm, 1010.0 * 1010.0 * 1e-6);
+    EXPECT_DOUBLE_EQ(*bins[0].expectedNoiseMm, 0.5 * 1010.0 * 1010.0 * 1e-6);
+    EXPECT_DOUBLE_EQ(bins[1].distanceMm, 1500.0);
+    EXPECT_DOUBLE_EQ(bins[2].distanceMm, 1995.0) << "the farthest row is in the last step";
+    EXPECT_DOUBLE_EQ(bins[2].planeFitRmsMm, 0.5 * (1990.0 * 1990.0 + 2000.0 * 2000.0) * 1e-6);
+
+    QualityLog still;
+    still.add(figures(1, 1.0), 0);
+    still.add(figures(1, 3.0), 0);
+    const auto one = noiseOverDistance(still, 8);
+    ASSERT_EQ(one.size(), 1u) << "one distance, one step";
+    EXPECT_DOUBLE_EQ(one[0].planeFitRmsMm, 2.0);
+    EXPECT_FALSE(one[0].expectedNoiseMm) << "no baseline, no expected noise";
+    EXPECT_TRUE(noiseOverDistance(QualityLog{}, 8).empty());
+}
+
 TEST(QualityLog, CsvLeavesUnmeasuredFiguresEmptyAndRoundTripsTheRest) {
     QualityLog log;
     log.add(figures(4, 0.1), 123456789);
