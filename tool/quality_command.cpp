@@ -6,7 +6,10 @@
 #include "base/files.h"
 #include "base/log.h"
 #include "devices/source_spec.h"
+#include "frame/jpeg_codec.h"
 #include "processing/depth_quality.h"
+#include "processing/edge_alignment.h"
+#include "processing/registration.h"
 #include "tool/options.h"
 
 #include <nlohmann/json.hpp>
@@ -26,9 +29,11 @@ namespace {
 using nlohmann::json;
 
 // The figures in the order they are printed; every one may be an --expect key.
-const char* const kFigures[] = {"fillRate",    "planeFitRmsMm",    "planeFitRmsPercent", "dqtPlaneFitRmsMm",
-                                "subpixelRms", "zAccuracyPercent", "temporalNoiseMm",    "spatialNoiseMm",
-                                "distanceMm",  "angleDeg",         "inlierFraction",     "frames"};
+const char* const kFigures[] = {"fillRate",         "planeFitRmsMm",  "planeFitRmsPercent",
+                                "dqtPlaneFitRmsMm", "subpixelRms",    "zAccuracyPercent",
+                                "temporalNoiseMm",  "spatialNoiseMm", "distanceMm",
+                                "angleDeg",         "inlierFraction", "alignmentPx",
+                                "alignmentMm",      "frames"};
 
 // A live camera may take a while to deliver its first frame; a source that sends nothing this long failed.
 constexpr std::chrono::seconds kNoFrameLimit{10};
@@ -152,7 +157,7 @@ json report(const Collected& c, const processing::NoiseWindow& noise, const proc
     j["fillRate"] = c.fill.fillRate();
     for (const char* key :
          {"planeFitRmsMm", "planeFitRmsPercent", "dqtPlaneFitRmsMm", "subpixelRms", "expectedNoiseMm",
-          "zAccuracyPercent", "distanceMm", "angleDeg", "inlierFraction"}) {
+          "zAccuracyPercent", "distanceMm", "angleDeg", "inlierFraction", "alignmentPx", "alignmentMm"}) {
         const auto it = c.figures.find(key);
         j[key] = it == c.figures.end() ? json(nullptr) : medianOf(it->second);
     }
@@ -195,6 +200,8 @@ struct Capture {
     Collected collected;
     std::optional<processing::NoiseWindow> noise;
     processing::Roi roi;
+    processing::CameraColourTable colourTable; // filled as colours are met, kept across frames
+    frame::JpegDecoder jpeg;
 };
 
 // The first frame fixes the ROI (from --roi or --roi-percent of its depth map); the reason if it cannot.
@@ -215,6 +222,31 @@ std::string startWith(const frame::Frame& f, const QualityOptions& o, processing
     c.roi = p.roi;
     c.noise.emplace(p, o.frames);
     return {};
+}
+
+// The colour-to-depth alignment of a frame with a camera image over the ROI, per frame like the other
+// figures. A frame without an image adds nothing, nor does one without a matched depth edge (a flat target
+// has none): the figure is then null rather than a number that measured nothing.
+void collectAlignment(const frame::Frame& f, const processing::Roi& roi, Capture& c) {
+    if (f.capturedImage.empty())
+        return;
+    // Registration reads pixels as captured, so a camera's MJPEG is decoded first (other formats pass as
+    // they are); it needs nothing of the frame but the image and the cameras.
+    auto image = c.jpeg.decode(f.capturedImage);
+    if (!image)
+        return;
+    frame::Frame colour;
+    colour.capturedImage = std::move(*image);
+    colour.cameraIntrinsics = f.cameraIntrinsics;
+    colour.rig = f.rig;
+    const frame::Plane<float>& depth = f.sceneDepth->depthMeters;
+    const processing::RgbImage onDepth =
+        processing::colourAlignedToDepth(colour, depth, depth.width, depth.height, c.colourTable);
+    const auto a = processing::measureEdgeAlignment(depth, onDepth, f.depthIntrinsics(), roi);
+    if (!a)
+        return;
+    c.collected.figures["alignmentPx"].push_back(a->medianPx);
+    c.collected.figures["alignmentMm"].push_back(a->medianMm);
 }
 
 // Captures o.frames frames with depth and measures each; the failure, or a bad --roi (prefixed "--").
@@ -244,6 +276,7 @@ std::string capture(devices::Device& device, const QualityOptions& o, processing
         if (!q)
             return q.error().message;
         collect(*q, c.collected);
+        collectAlignment(*r.frame, p.roi, c);
         c.noise->add(*r.frame->sceneDepth, q->causes,
                      q->plane ? std::optional<double>(q->plane->planeFitRmsMm) : std::nullopt);
     }
