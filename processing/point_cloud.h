@@ -2,6 +2,7 @@
 
 #include "frame/frame.h"
 #include "processing/camera_image.h"
+#include "processing/depth_quality.h"
 
 #include <array>
 #include <cstdint>
@@ -38,7 +39,7 @@ inline std::array<int, 2> cameraPixelOf(int u, int v, int depthWidth, int depthH
 // takes the same samples, so they all see the same points.
 struct CloudSamples {
     const frame::DepthData* depth = nullptr;
-    frame::Intrinsics intrinsics;     // of depth's resolution
+    frame::Intrinsics intrinsics;      // of depth's resolution
     const RgbImage* colours = nullptr; // depth's size; null: every point mid-gray
     bool usable() const;
 };
@@ -50,5 +51,18 @@ std::vector<CloudPoint> buildPointCloud(const CloudSamples& samples, frame::Conf
 // The raw frame's cloud: sceneDepth coloured by framePointColours() (registered for a two-sensor camera).
 std::vector<CloudPoint> buildPointCloud(const frame::Frame& frame, frame::Confidence minLevel,
                                         float nearMeters);
+
+// A polyline in the depth camera's frame (OpenCV axes, meters).
+using Polyline3 = std::vector<std::array<float, 3>>;
+
+// The outline of `roi` on the surface the cloud draws: its border pixels walked from the top-left corner
+// along the top row, the right column, the bottom row and the left column, every one of them or, on a
+// long border, evenly spaced ones (about `maxVertices` in all, the four corners always among them), each
+// placed by unproject() as the cloud places it. A border sample the cloud does not draw (keepSample)
+// breaks the outline rather than pulling it to the camera: the result is its unbroken runs of two
+// vertices or more, and a single run, back to its first vertex, when nothing breaks it. Empty for a
+// region not inside the map or invalid intrinsics.
+std::vector<Polyline3> roiOutline(const frame::DepthData& depth, const frame::Intrinsics& k, const Roi& roi,
+                                  frame::Confidence minLevel, float nearMeters, int maxVertices);
 
 } // namespace dc::processing

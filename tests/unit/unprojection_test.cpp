@@ -3,7 +3,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <set>
 
 namespace dc::processing {
 namespace {
@@ -75,6 +79,139 @@ TEST(Unprojection, DegenerateIntrinsicsGiveNoCloudRatherThanGarbage) {
     frame.cameraIntrinsics = {0.0, 0.0, 0.0, 0.0, 0, 0};
     frame.sceneDepth = frame::DepthData{frame::Plane<float>(4, 4, 1.0f), {}};
     EXPECT_TRUE(buildPointCloud(frame, frame::Confidence::Low, 0.0f).empty());
+}
+
+// A tilted wall n . p = offset seen through `k`: each pixel's depth is where its ray meets the wall.
+struct TiltedWall {
+    frame::Intrinsics k{100.0, 98.0, 59.5, 44.2, 120, 90};
+    std::array<double, 3> n{0.2 / std::sqrt(1.05), -0.1 / std::sqrt(1.05), 1.0 / std::sqrt(1.05)};
+    double offsetMeters = 1.5;
+
+    frame::DepthData depth() const {
+        frame::DepthData d{frame::Plane<float>(k.width, k.height),
+                           frame::Plane<std::uint8_t>(k.width, k.height, 2)};
+        for (int v = 0; v < k.height; ++v)
+            for (int u = 0; u < k.width; ++u) {
+                const double rx = (u - k.cx) / k.fx, ry = (v - k.cy) / k.fy;
+                d.depthMeters.at(u, v) = static_cast<float>(offsetMeters / (n[0] * rx + n[1] * ry + n[2]));
+            }
+        return d;
+    }
+    double distanceMeters(const std::array<float, 3>& p) const {
+        return n[0] * p[0] + n[1] * p[1] + n[2] * p[2] - offsetMeters;
+    }
+    // The pixel whose ray `p` lies on, rounded.
+    std::array<int, 2> pixelOf(const std::array<float, 3>& p) const {
+        return {static_cast<int>(std::lround(k.fx * p[0] / p[2] + k.cx)),
+                static_cast<int>(std::lround(k.fy * p[1] / p[2] + k.cy))};
+    }
+    // How far `p` is from the ray of pixel (u, v), in pixels.
+    double pixelsFromRay(const std::array<float, 3>& p, int u, int v) const {
+        return std::hypot(k.fx * p[0] / p[2] + k.cx - u, k.fy * p[1] / p[2] + k.cy - v);
+    }
+};
+
+bool onBorder(const std::array<int, 2>& p, const Roi& r) {
+    const bool inside = p[0] >= r.x && p[0] < r.x + r.width && p[1] >= r.y && p[1] < r.y + r.height;
+    return inside && (p[0] == r.x || p[0] == r.x + r.width - 1 || p[1] == r.y || p[1] == r.y + r.height - 1);
+}
+
+TEST(RoiOutline, WalksEveryBorderPixelOnTheSurfaceFromTheTopLeftCornerClockwiseAndBack) {
+    const TiltedWall wall;
+    const frame::DepthData depth = wall.depth();
+    const Roi roi{10, 8, 30, 20};
+    const auto lines = roiOutline(depth, wall.k, roi, frame::Confidence::Low, 0.0f, 200);
+    ASSERT_EQ(lines.size(), 1u);
+    const Polyline3& line = lines[0];
+    // 2 x 29 + 2 x 19 border pixels, fewer than 200: every one, and the first again to close the loop.
+    ASSERT_EQ(line.size(), 97u);
+    EXPECT_EQ(line.front(), line.back());
+    std::set<std::array<int, 2>> seen;
+    for (const auto& p : line) {
+        EXPECT_NEAR(wall.distanceMeters(p), 0.0, 1e-5) << "on the wall";
+        const std::array<int, 2> pixel = wall.pixelOf(p);
+        EXPECT_LT(wall.pixelsFromRay(p, pixel[0], pixel[1]), 1e-3) << "on a pixel's ray";
+        EXPECT_TRUE(onBorder(pixel, roi)) << pixel[0] << "," << pixel[1];
+        seen.insert(pixel);
+    }
+    EXPECT_EQ(seen.size(), 96u);
+    // Top row, right column, bottom row, left column: the corners at 0, 29, 29 + 19, 2 x 29 + 19.
+    const std::array<std::pair<std::size_t, std::array<int, 2>>, 4> corners{
+        {{0, {10, 8}}, {29, {39, 8}}, {48, {39, 27}}, {77, {10, 27}}}};
+    for (const auto& [i, pixel] : corners)
+        EXPECT_LT(wall.pixelsFromRay(line[i], pixel[0], pixel[1]), 1e-3) << "corner " << i;
+    EXPECT_LT(wall.pixelsFromRay(line[1], 11, 8), 1e-3) << "along the top row first";
+}
+
+TEST(RoiOutline, ALongBorderIsSampledEvenlyWithItsCorners) {
+    TiltedWall wall;
+    wall.k = {500.0, 500.0, 319.5, 239.5, 640, 480};
+    const frame::DepthData depth = wall.depth();
+    const Roi roi{20, 30, 500, 400};
+    const auto lines = roiOutline(depth, wall.k, roi, frame::Confidence::Low, 0.0f, 200);
+    ASSERT_EQ(lines.size(), 1u);
+    const Polyline3& line = lines[0];
+    EXPECT_LE(line.size(), 205u) << "about 200, the corners and the closing vertex";
+    EXPECT_GE(line.size(), 190u);
+    for (const std::array<int, 2> corner : {std::array{20, 30}, {519, 30}, {519, 429}, {20, 429}})
+        EXPECT_TRUE(
+            std::any_of(line.begin(), line.end(),
+                        [&](const auto& p) { return wall.pixelsFromRay(p, corner[0], corner[1]) < 1e-3; }))
+            << corner[0] << "," << corner[1];
+    for (std::size_t i = 0; i < line.size(); ++i) {
+        EXPECT_NEAR(wall.distanceMeters(line[i]), 0.0, 1e-5);
+        EXPECT_TRUE(onBorder(wall.pixelOf(line[i]), roi));
+        if (i > 0) {
+            const auto a = wall.pixelOf(line[i - 1]), b = wall.pixelOf(line[i]);
+            const int apart = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]);
+            EXPECT_GE(apart, 1);
+            EXPECT_LE(apart, 9) << "1796 border pixels in steps of at most ceil(1796 / 200)";
+        }
+    }
+}
+
+TEST(RoiOutline, SamplesTheCloudDoesNotDrawBreakTheOutline) {
+    const TiltedWall wall;
+    frame::DepthData depth = wall.depth();
+    const Roi roi{10, 8, 30, 20};
+    depth.depthMeters.at(20, 8) = 0.0f;                                     // top row: no measurement
+    depth.depthMeters.at(10, 15) = std::numeric_limits<float>::quiet_NaN(); // left column
+    depth.confidence.at(39, 20) = static_cast<std::uint8_t>(frame::Confidence::Low); // right column
+    const auto ends = [&](const Polyline3& run) {
+        return std::pair{wall.pixelOf(run.front()), wall.pixelOf(run.back())};
+    };
+    const auto low = roiOutline(depth, wall.k, roi, frame::Confidence::Low, 0.0f, 200);
+    ASSERT_EQ(low.size(), 2u) << "the low-confidence sample is drawn at the lowest level";
+    const auto medium = roiOutline(depth, wall.k, roi, frame::Confidence::Medium, 0.0f, 200);
+    ASSERT_EQ(medium.size(), 3u);
+    std::size_t vertices = 0;
+    for (const Polyline3& run : medium) {
+        vertices += run.size();
+        for (const auto& p : run) {
+            EXPECT_TRUE(std::isfinite(p[2]) && p[2] > 0.0f);
+            EXPECT_NEAR(wall.distanceMeters(p), 0.0, 1e-5);
+        }
+    }
+    EXPECT_EQ(vertices, 93u) << "every border pixel but the three, none twice";
+    using Ends = std::pair<std::array<int, 2>, std::array<int, 2>>;
+    EXPECT_EQ(ends(medium[0]), (Ends{{21, 8}, {39, 19}}));
+    EXPECT_EQ(ends(medium[1]), (Ends{{39, 21}, {10, 16}}));
+    EXPECT_EQ(ends(medium[2]), (Ends{{10, 14}, {19, 8}})) << "one run through the walk's first corner";
+
+    // Nothing drawn past 1.6 m: the border's far part is gone, its near part kept.
+    const auto near = roiOutline(wall.depth(), wall.k, roi, frame::Confidence::Low, 1.6f, 200);
+    ASSERT_FALSE(near.empty()) << "the wall is nearer than 1.6 m at the region's right";
+    for (const Polyline3& run : near)
+        for (const auto& p : run)
+            EXPECT_GE(p[2], 1.6f);
+}
+
+TEST(RoiOutline, NothingForARegionOffTheMapOrInvalidIntrinsics) {
+    const TiltedWall wall;
+    const frame::DepthData depth = wall.depth();
+    EXPECT_TRUE(roiOutline(depth, wall.k, {100, 8, 30, 20}, frame::Confidence::Low, 0.0f, 200).empty());
+    EXPECT_TRUE(roiOutline(depth, wall.k, {10, 8, 0, 20}, frame::Confidence::Low, 0.0f, 200).empty());
+    EXPECT_TRUE(roiOutline(depth, {}, {10, 8, 30, 20}, frame::Confidence::Low, 0.0f, 200).empty());
 }
 
 } // namespace
