@@ -3,6 +3,7 @@
 #include "frame/frame.h"
 #include "processing/depth_quality.h"
 #include "processing/pipeline.h"
+#include "processing/quality_maps.h"
 
 #include <cstddef>
 #include <optional>
@@ -23,6 +24,8 @@ struct QualityDemand {
     std::optional<double> baselineMeters;    // a stereo camera's, for subpixel RMS and the expected noise
     double designSubpixelRms = 0.08;         // processing::QualityParams::designSubpixelRms
     bool causeOverlay = false;               // the missing samples coloured by cause on the panels
+    processing::QualityMap map = processing::QualityMap::None; // the per-pixel map the panel shows
+    bool alignment = false; // the colour-to-depth edge alignment (a registration of the colour per frame)
     bool operator==(const QualityDemand&) const = default;
 };
 
@@ -82,7 +85,7 @@ struct Demand {
     // The camera image, for any product above or as the guide of upsampling.
     bool needsCameraImage() const {
         return needsPointColours() || cameraPanelWidth > 0 || colourOverDepth || fog || aura ||
-               (processing.upsampling && needsDepth());
+               (processing.upsampling && needsDepth()) || (quality && quality->alignment);
     }
 };
 

@@ -7,6 +7,7 @@
 #include "processing/depth_statistics.h"
 #include "processing/fog.h"
 #include "processing/infrared_image.h"
+#include "processing/registration.h"
 
 #include <algorithm>
 #include <chrono>
@@ -63,6 +64,26 @@ processing::QualityParams qualityParams(const QualityDemand& q, const processing
     p.baselineMeters = q.baselineMeters;
     p.designSubpixelRms = q.designSubpixelRms;
     return p;
+}
+
+// The per-pixel map of `kind`, from the frame's figures (the residual) or the noise window (the
+// temporal deviation, the fill); null when none is asked for or a residual has no plane.
+std::shared_ptr<const processing::QualityMapImage>
+qualityMap(processing::QualityMap kind, const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
+           const processing::ShownQuality& quality, const processing::NoiseWindow& noise) {
+    using processing::QualityMap;
+    frame::Plane<float> values;
+    if (kind == QualityMap::PlaneResidual && quality.figures && quality.figures->plane)
+        values = processing::planeResidualMm(depth, intrinsics, quality.roi, quality.figures->causes,
+                                             quality.figures->plane->plane);
+    else if (kind == QualityMap::TemporalStd)
+        values = noise.temporalStdMapMm();
+    else if (kind == QualityMap::FillOverWindow)
+        values = noise.fillMapPercent();
+    if (values.empty())
+        return nullptr;
+    return std::make_shared<const processing::QualityMapImage>(
+        processing::colourMap(kind, std::move(values)));
 }
 
 } // namespace
@@ -375,6 +396,23 @@ void ProcessingGraph::addQuality(processing::ShownFrame& shown, const Demand& de
                            [&] { return measureQuality(key, depth.intrinsics, *shown.frame); });
 }
 
+// The colour registered onto the shown depth and its edges compared with the depth's over the region.
+void ProcessingGraph::addAlignment(processing::ShownQuality& quality, const frame::Frame& frame,
+                                   const frame::DepthData& depth, const frame::Intrinsics& intrinsics) {
+    if (frame.capturedImage.empty()) {
+        quality.alignmentError = "the frame has no camera image";
+        return;
+    }
+    const frame::Plane<float>& map = depth.depthMeters;
+    const processing::RgbImage colour =
+        processing::colourAlignedToDepth(frame, map, map.width, map.height, colourTable_);
+    auto alignment = processing::measureEdgeAlignment(map, colour, intrinsics, quality.roi);
+    if (alignment)
+        quality.alignment = *alignment;
+    else
+        quality.alignmentError = alignment.error().message;
+}
+
 // Runs once per shown depth and question (the memo's key): a new capture's depth enters the noise window
 // once; a redo of the same frame for another panel's sake, or the same capture delivered again, does not
 // count it twice.
@@ -387,7 +425,9 @@ ProcessingGraph::measureQuality(const QualityKey& key, const frame::Intrinsics& 
     out->sequence = frame.sequence;
     QualityKey question = key;
     question.depth = nullptr;
-    question.quality.causeOverlay = false; // showing the causes or not asks nothing new of the window
+    question.quality.causeOverlay = false; // showing the causes or a map asks nothing new of the window
+    question.quality.map = processing::QualityMap::None;
+    question.quality.alignment = false;
     if (!noise_ || noiseKey_ != question) {
         noise_.emplace(params, key.quality.windowFrames);
         noiseKey_ = question;
@@ -416,6 +456,9 @@ ProcessingGraph::measureQuality(const QualityKey& key, const frame::Intrinsics& 
     out->noiseError = !temporal ? temporal.error().message : !spatial ? spatial.error().message : "";
     out->windowFilled = noise_->frames();
     out->windowFrames = static_cast<std::size_t>(std::max(key.quality.windowFrames, 1));
+    out->map = qualityMap(key.quality.map, *key.depth, intrinsics, *out, *noise_);
+    if (key.quality.alignment)
+        addAlignment(*out, frame, *key.depth, intrinsics);
     return out;
 }
 

@@ -147,6 +147,8 @@ private:
     void addPanelSamples(processing::ShownFrame& shown, const Demand& demand);
     std::shared_ptr<const processing::ShownQuality>
     measureQuality(const QualityKey& key, const frame::Intrinsics& intrinsics, const frame::Frame& frame);
+    void addAlignment(processing::ShownQuality& quality, const frame::Frame& frame,
+                      const frame::DepthData& depth, const frame::Intrinsics& intrinsics);
 
     processing::Pipeline pipeline_;
     processing::CameraColourTable colourTable_;

@@ -26,7 +26,9 @@ json rowJson(const QualityLog::Row& r) {
            {"roi", {r.roi.x, r.roi.y, r.roi.width, r.roi.height}},
            {"temporalNoiseMm", optionalJson(r.temporalNoiseMm)},
            {"spatialNoiseMm", optionalJson(r.spatialNoiseMm)},
-           {"noiseWindowFrames", r.windowFilled}};
+           {"noiseWindowFrames", r.windowFilled},
+           {"alignmentPx", r.alignment ? json(r.alignment->medianPx) : json(nullptr)},
+           {"alignmentMm", r.alignment ? json(r.alignment->medianMm) : json(nullptr)}};
     for (const char* key :
          {"fillRate", "distanceMm", "angleDeg", "planeFitRmsMm", "planeFitRmsPercent", "inlierFraction",
           "dqtPlaneFitRmsMm", "zAccuracyPercent", "subpixelRms", "expectedNoiseMm"})
@@ -57,7 +59,7 @@ constexpr const char* kCsvHeader =
     "low_confidence,flying_pixel,distance_mm,angle_deg,plane_fit_rms_mm,plane_fit_rms_percent,"
     "inlier_fraction,dqt_plane_fit_rms_mm,z_accuracy_percent,subpixel_rms,expected_noise_mm,temporal_noise_"
     "mm,"
-    "spatial_noise_mm,noise_window_frames\n";
+    "spatial_noise_mm,noise_window_frames,alignment_px,alignment_mm\n";
 
 // A figure as a CSV cell: round-trip precision, empty where not measured.
 std::string cell(const std::optional<double>& value) {
@@ -92,7 +94,10 @@ std::string csvLine(const QualityLog::Row& r) {
     line += cell(p ? p->zAccuracyPercent : std::nullopt);
     line += cell(p ? p->subpixelRms : std::nullopt);
     line += cell(p ? p->expectedNoiseMm : std::nullopt);
-    line += cell(r.temporalNoiseMm) + cell(r.spatialNoiseMm) + "," + std::to_string(r.windowFilled) + "\n";
+    line += cell(r.temporalNoiseMm) + cell(r.spatialNoiseMm) + "," + std::to_string(r.windowFilled);
+    const auto& a = r.alignment;
+    line += cell(a ? std::optional(a->medianPx) : std::nullopt) +
+            cell(a ? std::optional(a->medianMm) : std::nullopt) + "\n";
     return line;
 }
 
@@ -110,7 +115,8 @@ bool QualityLog::add(const std::shared_ptr<const processing::ShownQuality>& qual
             std::nullopt,
             quality->temporalNoiseMm,
             quality->spatialNoiseMm,
-            quality->windowFilled};
+            quality->windowFilled,
+            quality->alignment};
     if (quality->figures) {
         row.fill = quality->figures->fill;
         row.plane = quality->figures->plane;

@@ -29,6 +29,7 @@ public:
         std::optional<double> temporalNoiseMm;
         std::optional<double> spatialNoiseMm;
         std::size_t windowFilled = 0;
+        std::optional<processing::EdgeAlignment> alignment;
     };
 
     // Adds the figures unless they are the very ones added last (the panel draws them every UI frame).

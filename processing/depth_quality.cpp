@@ -805,6 +805,28 @@ Expected<double> NoiseWindow::temporalNoiseMm() const {
     return 0.5 * (deviationMm(lower) + deviationMm(upper));
 }
 
+frame::Plane<float> NoiseWindow::temporalStdMapMm() const {
+    if (window_.empty())
+        return {};
+    frame::Plane<float> map(params_.roi.width, params_.roi.height, std::numeric_limits<float>::quiet_NaN());
+    const auto n = static_cast<std::uint32_t>(window_.size());
+    for (std::size_t i = 0; i < pixels_.size(); ++i) {
+        if (n >= 2 && pixels_[i].count == n)
+            map.pixels[i] = static_cast<float>(std::sqrt(pixels_[i].m2 / (n - 1)) * kMetersToMm);
+    }
+    return map;
+}
+
+frame::Plane<float> NoiseWindow::fillMapPercent() const {
+    if (window_.empty())
+        return {};
+    frame::Plane<float> map(params_.roi.width, params_.roi.height);
+    const double scale = 100.0 / static_cast<double>(window_.size());
+    for (std::size_t i = 0; i < pixels_.size(); ++i)
+        map.pixels[i] = static_cast<float>(pixels_[i].count * scale);
+    return map;
+}
+
 Expected<double> NoiseWindow::spatialNoiseMm() const {
     std::vector<double> rms;
     for (const WindowFrame& f : window_) {

@@ -195,6 +195,11 @@ public:
     Expected<double> temporalNoiseMm() const;
     Expected<double> spatialNoiseMm() const;
     std::size_t frames() const { return window_.size(); }
+    // Per pixel of the region (roi.width x roi.height): the temporal deviation, mm, where the pixel was valid
+    // in every frame of the window (NaN elsewhere, as temporalNoiseMm counts them), and the percentage of the
+    // window's frames in which it was valid. Empty before the first frame.
+    frame::Plane<float> temporalStdMapMm() const;
+    frame::Plane<float> fillMapPercent() const;
 
 private:
     struct Running {

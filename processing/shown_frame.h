@@ -3,9 +3,11 @@
 #include "frame/frame.h"
 #include "processing/camera_image.h"
 #include "processing/depth_quality.h"
+#include "processing/edge_alignment.h"
 #include "processing/infrared_image.h"
 #include "processing/pipeline.h"
 #include "processing/point_cloud.h"
+#include "processing/quality_maps.h"
 
 #include <cstddef>
 #include <cstdint>
@@ -69,6 +71,13 @@ struct ShownQuality {
     // The region's missing samples in their causes' colours (processing::causeOverlay), roi-sized; null
     // unless asked for (engine::QualityDemand::causeOverlay) or without figures.
     std::shared_ptr<const RgbaImage> causeOverlay;
+    // The per-pixel map asked for (engine::QualityDemand::map), roi-sized; null when none was asked for or
+    // it has nothing to show yet (a residual without a plane fit).
+    std::shared_ptr<const QualityMapImage> map;
+    // The colour-to-depth edge alignment over the region, when asked for (engine::QualityDemand::alignment)
+    // and the frame has a camera image; else `alignmentError` says why not (empty when not asked).
+    std::optional<EdgeAlignment> alignment;
+    std::string alignmentError;
 };
 
 // What one frame looks like under one demand: everything the GL thread uploads and draws, and nothing it

@@ -85,6 +85,10 @@ void ViewRenderer::sync(const processing::ShownFrame& shown) {
                [this](const processing::RgbaImage& image) {
                    causeOverlay_.upload(image.width, image.height, image.pixels.data());
                });
+    uploadOnce(shown.quality ? shown.quality->map : nullptr, qualityMapUploaded_,
+               [this](const processing::QualityMapImage& map) {
+                   qualityMap_.upload(map.image.width, map.image.height, map.image.pixels.data());
+               });
 }
 
 const FrameTextures& ViewRenderer::texturesFor(UploadedDepth& uploaded, const processing::ShownDepth& depth,

@@ -122,6 +122,8 @@ public:
     // The Quality region's missing samples in their causes' colours (ShownQuality::causeOverlay), when the
     // shown frame has them.
     const RgbaTexture& causeOverlayTexture() const { return causeOverlay_; }
+    // The Quality panel's per-pixel map (ShownQuality::map), when the shown frame has one.
+    const RgbaTexture& qualityMapTexture() const { return qualityMap_; }
     // The shown depth as textures, uploaded if it was not yet (the depth panel and GL_POINTS read them).
     const FrameTextures& textures();
     // Work done, for tests that check that nothing is redone for nothing.
@@ -232,12 +234,14 @@ private:
     RgbaTexture aura_;
     RgbaTexture colourOverDepth_{Sampling::Nearest}; // one colour per depth sample, as the depth panel
     RgbaTexture causeOverlay_{Sampling::Nearest};    // one colour per region sample
+    RgbaTexture qualityMap_{Sampling::Nearest};
     std::shared_ptr<const processing::RgbImage> cameraUploaded_;
     std::shared_ptr<const processing::RgbImage> infraredUploaded_;
     std::shared_ptr<const processing::RgbaImage> fogUploaded_;
     std::shared_ptr<const processing::RgbaImage> auraUploaded_;
     std::shared_ptr<const processing::RgbaImage> colourOverDepthUploaded_;
     std::shared_ptr<const processing::RgbaImage> causeOverlayUploaded_;
+    std::shared_ptr<const processing::QualityMapImage> qualityMapUploaded_;
     std::optional<PanelParams> panelsDrawnWith_;  // reset by a new depth map
     std::optional<PanelParams> overlayDrawnWith_; // reset by a new aligned depth
     std::uint64_t uploads_ = 0;

@@ -66,6 +66,21 @@ ImVec2 centroid(const std::vector<ImVec2>& p) {
     return {static_cast<float>(cx / (3.0 * area2)), static_cast<float>(cy / (3.0 * area2))};
 }
 
+// The Quality panel's region in the yellow that outlines it on the image panels, under the anchors.
+void drawRoiOutline(const CloudOverlay& overlay, ImVec2 origin, ImVec2 size) {
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->PushClipRect(origin, {origin.x + size.x, origin.y + size.y}, true);
+    std::vector<ImVec2> points;
+    for (const std::vector<ImVec2>& line : overlay.roiOutline) {
+        points.clear();
+        for (const ImVec2 f : line)
+            points.emplace_back(origin.x + f.x * size.x, origin.y + f.y * size.y);
+        draw->AddPolyline(points.data(), static_cast<int>(points.size()), IM_COL32(255, 255, 0, 255), 0,
+                          2.0f);
+    }
+    draw->PopClipRect();
+}
+
 // Anchors as numbered dots, the edges between them (closed into a polygon from three on), each edge's
 // length at its midpoint and the area at the centroid, on dark backdrops, moved apart where they collide.
 std::vector<LabelBox> drawOverlay(const CloudOverlay& overlay, ImVec2 origin, ImVec2 size) {
@@ -228,6 +243,7 @@ CloudPanelResult drawCloudPanel(const render::RenderTarget& picture, CloudSettin
         result.viewChanged = applyMouse(cloud);
         readPointer(result, origin, avail);
         drawPicture(picture, origin, {origin.x + avail.x, origin.y + avail.y});
+        drawRoiOutline(overlay, origin, avail);
         result.labels = drawOverlay(overlay, origin, avail);
         ImGui::SetCursorScreenPos(
             {origin.x + avail.x - ImGui::CalcTextSize("Restore").x - 24.0f, origin.y + 8.0f});

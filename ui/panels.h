@@ -77,6 +77,9 @@ struct CloudOverlay {
     // (first anchor of the edge, label); the edge from the last anchor back to the first closes a polygon
     std::vector<std::pair<int, std::string>> segments;
     std::string summary; // the polygon's area, drawn at its centroid
+    // The Quality panel's region on the measured surface: polylines in the cloud image, fractions of its
+    // size, broken where the region's border has no point.
+    std::vector<std::vector<ImVec2>> roiOutline;
 };
 
 // A measurement label as drawn on screen: its box and the point it labels (an edge's midpoint, the
@@ -292,16 +295,24 @@ struct QualityPanelState {
     exporting::QualityFigure plotted = exporting::QualityFigure::PlaneFitRmsMm;
     std::string savedTo;
 };
+// A pixel of the Quality panel's map under the mouse: its place in the region and its value.
+struct QualityMapHover {
+    int x = 0; // region pixels from its left
+    int y = 0;
+    float value = 0.0f; // in the map's unit; NaN where the pixel has none
+};
 // What the Quality panel asked for this frame.
 struct QualityPanelResult {
     bool settingsChanged = false;
     bool save = false;  // write the kept figures (CSV and JSON)
     bool clear = false; // forget them
+    std::optional<QualityMapHover> mapHover;
 };
 // The depth-quality figures of the frame shown over the region of interest (null: none measured yet),
-// with the presets and settings that choose them, and the kept figures' save and clear buttons.
+// with the presets and settings that choose them, the per-pixel map chosen (`map`: the frame's
+// ShownQuality::map as a texture; empty when it has none), and the kept figures' save and clear buttons.
 QualityPanelResult drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings,
-                                    QualityPanelState& state, bool* open);
+                                    QualityPanelState& state, const PanelImage& map, bool* open);
 
 // What the Camera controls panel keeps between frames: the source's controls (null: it has none), their
 // values as last read, and what the driver last refused.

@@ -36,6 +36,8 @@ engine::QualityDemand qualityDemand(const QualitySettings& s) {
         q.baselineMeters = static_cast<double>(s.baselineMm) * 1e-3;
     q.designSubpixelRms = s.designSubpixelRms;
     q.causeOverlay = s.causeOverlay;
+    q.map = processing::kQualityMaps[static_cast<std::size_t>(s.map)];
+    q.alignment = s.alignment;
     return q;
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
 #include <string>
 
@@ -33,6 +34,10 @@ constexpr const char* kTemporalHelp =
     "Each pixel's standard deviation over the window, median over the pixels "
     "valid in every frame of it, mm.";
 constexpr const char* kSpatialHelp = "Median over the window of each frame's plane-fit RMS, mm.";
+constexpr const char* kAlignmentHelp =
+    "Colour registered onto the depth; the median distance from each depth silhouette pixel (the nearer "
+    "side of a depth jump) to the nearest colour edge, px and mm at its depth, and the share of silhouette "
+    "pixels with a colour edge within 10 px. Turn it on in Settings.";
 
 // One figure: its name with a (?) that defines it, and its value.
 void row(const char* name, const std::string& value, const char* help) {
@@ -127,12 +132,21 @@ void drawFigures(const processing::ShownQuality& q) {
     }
     row("Temporal noise", q.temporalNoiseMm ? format("%.2f mm", *q.temporalNoiseMm) : "-", kTemporalHelp);
     row("Spatial noise", q.spatialNoiseMm ? format("%.2f mm", *q.spatialNoiseMm) : "-", kSpatialHelp);
+    if (const auto& a = q.alignment)
+        row("Colour alignment",
+            format("%.2f px", a->medianPx) + format(" (%.1f mm)", a->medianMm) +
+                format(", %.0f %% matched", 100.0 * a->matchedFraction()),
+            kAlignmentHelp);
+    else
+        row("Colour alignment", q.alignmentError.empty() ? "off" : "-", kAlignmentHelp);
     ImGui::EndTable();
     ImGui::TextDisabled("noise over %zu of %zu frames", q.windowFilled, q.windowFrames);
     if (!q.figures->plane)
         ImGui::TextColored(ImVec4(1.0f, 0.4f, 0.4f, 1.0f), "plane: %s", q.figures->planeError.c_str());
     if (!q.noiseError.empty())
         ImGui::TextDisabled("noise: %s", q.noiseError.c_str());
+    if (!q.alignmentError.empty())
+        ImGui::TextDisabled("alignment: %s", q.alignmentError.c_str());
 }
 
 // One figure of the kept frames over time, the figure chosen beside it.
@@ -223,14 +237,82 @@ void drawNoiseOverDistance(const exporting::QualityLog& log) {
                           nearest->distanceMm, nearest->planeFitRmsMm, nearest->frames);
 }
 
+// The map's colours from its low to its high end, with both values and the unit.
+void drawMapLegend(const processing::QualityMapImage& map) {
+    constexpr int kSegments = 16;
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    const ImVec2 p = ImGui::GetCursorScreenPos();
+    const float width = ImGui::GetContentRegionAvail().x;
+    const float height = ImGui::GetTextLineHeight() * 0.6f;
+    const auto colourAt = [&](int i) {
+        const auto rgb = processing::mapColour(map.kind, static_cast<float>(i) / kSegments);
+        return IM_COL32(rgb[0], rgb[1], rgb[2], 255);
+    };
+    for (int i = 0; i < kSegments; ++i) {
+        const float x0 = p.x + width * static_cast<float>(i) / kSegments;
+        const float x1 = p.x + width * static_cast<float>(i + 1) / kSegments;
+        draw->AddRectFilledMultiColor({x0, p.y}, {x1, p.y + height}, colourAt(i), colourAt(i + 1),
+                                      colourAt(i + 1), colourAt(i));
+    }
+    ImGui::Dummy({width, height});
+    const char* unit = processing::unitOf(map.kind);
+    ImGui::Text("%.2f %s", map.low, unit);
+    char high[32];
+    std::snprintf(high, sizeof high, "%.2f %s", map.high, unit);
+    ImGui::SameLine(std::max(0.0f, width - ImGui::CalcTextSize(high).x));
+    ImGui::TextUnformatted(high);
+}
+
+// The chosen per-pixel map of the region, fitted to the panel's width, with its legend; the pixel under the
+// mouse is read out.
+std::optional<QualityMapHover> drawMap(const processing::ShownQuality* quality, QualitySettings& s,
+                                       const PanelImage& image, bool& changed) {
+    ImGui::SetNextItemWidth(180.0f);
+    if (ImGui::BeginCombo("Map",
+                          processing::toString(processing::kQualityMaps[static_cast<std::size_t>(s.map)]))) {
+        for (int i = 0; i < static_cast<int>(std::size(processing::kQualityMaps)); ++i) {
+            if (ImGui::Selectable(processing::toString(processing::kQualityMaps[static_cast<std::size_t>(i)]),
+                                  i == s.map)) {
+                changed |= s.map != i;
+                s.map = i;
+            }
+        }
+        ImGui::EndCombo();
+    }
+    if (s.map == 0 || !quality || !quality->map || image.empty()) {
+        if (s.map != 0)
+            ImGui::TextDisabled("no map yet (a residual needs a plane fit)");
+        return std::nullopt;
+    }
+    const processing::QualityMapImage& map = *quality->map;
+    const float width = ImGui::GetContentRegionAvail().x;
+    const float height = std::min(width * static_cast<float>(map.values.height) / map.values.width, 240.0f);
+    const float shownWidth = height * static_cast<float>(map.values.width) / map.values.height;
+    const ImVec2 origin = ImGui::GetCursorScreenPos();
+    ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(image.textureId)),
+                 {shownWidth, height});
+    const bool hovered = ImGui::IsItemHovered();
+    drawMapLegend(map);
+    if (!hovered)
+        return std::nullopt;
+    const ImVec2 m = ImGui::GetIO().MousePos;
+    QualityMapHover hover;
+    hover.x = std::clamp(static_cast<int>((m.x - origin.x) / shownWidth * map.values.width), 0,
+                         map.values.width - 1);
+    hover.y =
+        std::clamp(static_cast<int>((m.y - origin.y) / height * map.values.height), 0, map.values.height - 1);
+    hover.value = map.values.at(hover.x, hover.y);
+    if (std::isfinite(hover.value))
+        ImGui::SetTooltip("%d,%d: %.3f %s", hover.x, hover.y, hover.value, processing::unitOf(map.kind));
+    else
+        ImGui::SetTooltip("%d,%d: no value", hover.x, hover.y);
+    return hover;
+}
+
 // The figures of every frame shown since the source opened (or the last Clear): plotted, saved on request.
 void drawLog(QualityPanelState& state, QualityPanelResult& result) {
     ImGui::Separator();
     const std::size_t frames = state.log.rows().size();
-    if (frames > 0) {
-        drawPlot(state);
-        drawNoiseOverDistance(state.log);
-    }
     ImGui::Text("%zu frames kept", frames);
     ImGui::SameLine();
     ImGui::BeginDisabled(frames == 0);
@@ -243,6 +325,10 @@ void drawLog(QualityPanelState& state, QualityPanelResult& result) {
     ImGui::EndDisabled();
     if (!state.savedTo.empty())
         ImGui::TextDisabled("saved to %s", state.savedTo.c_str());
+    if (frames > 0) {
+        drawPlot(state);
+        drawNoiseOverDistance(state.log);
+    }
 }
 
 bool drawSettings(QualitySettings& s) {
@@ -259,6 +345,10 @@ bool drawSettings(QualitySettings& s) {
     changed |= ImGui::InputFloat("design subpixel px", &s.designSubpixelRms, 0.01f, 0.05f, "%.3f");
     changed |= ImGui::DragFloatRange2("range m", &s.nearMeters, &s.farMeters, 0.01f, 0.0f, 100.0f, "%.2f");
     changed |= ImGui::InputFloat("flying threshold mm", &s.flyingThresholdMm, 1.0f, 10.0f, "%.0f");
+    changed |= ImGui::Checkbox("colour-to-depth alignment", &s.alignment);
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip(
+            "Registers the camera's colour onto the depth every frame: off unless you need it.");
     if (changed)
         sanitize(s);
     return changed;
@@ -267,7 +357,7 @@ bool drawSettings(QualitySettings& s) {
 } // namespace
 
 QualityPanelResult drawQualityPanel(const processing::ShownQuality* quality, QualitySettings& settings,
-                                    QualityPanelState& state, bool* open) {
+                                    QualityPanelState& state, const PanelImage& map, bool* open) {
     QualityPanelResult result;
     if (!ImGui::Begin(kQualityTitle, open)) {
         ImGui::End();
@@ -280,6 +370,10 @@ QualityPanelResult drawQualityPanel(const processing::ShownQuality* quality, Qua
     else
         ImGui::TextDisabled("No depth measured yet.");
     drawLog(state, result);
+    ImGui::Separator();
+    bool mapChanged = false;
+    result.mapHover = drawMap(quality, settings, map, mapChanged);
+    result.settingsChanged |= mapChanged;
     result.settingsChanged |= drawSettings(settings);
     ImGui::End();
     return result;

@@ -68,6 +68,7 @@ void sanitize(QualitySettings& q) {
     q.nearMeters = std::clamp(finiteOr(q.nearMeters, d.nearMeters), 0.0f, 99.0f);
     q.farMeters = std::clamp(finiteOr(q.farMeters, d.farMeters), q.nearMeters + 0.01f, 100.0f);
     q.flyingThresholdMm = std::clamp(finiteOr(q.flyingThresholdMm, d.flyingThresholdMm), 1.0f, 10000.0f);
+    q.map = std::clamp(q.map, 0, static_cast<int>(std::size(processing::kQualityMaps)) - 1);
 }
 
 void sanitize(CloudSettings& c) {

@@ -103,6 +103,8 @@ struct QualitySettings {
     float baselineMm = 0.0f; // a stereo camera's baseline, for subpixel RMS and the expected noise; 0: none
     float designSubpixelRms = 0.08f; // the camera's design subpixel accuracy, pixels (the expected noise)
     bool causeOverlay = true;        // the region's missing samples coloured by cause on the image panels
+    int map = 0;            // the per-pixel map shown: an index into processing::kQualityMaps (0: none)
+    bool alignment = false; // the colour-to-depth edge alignment (registers the colour every frame)
 };
 
 // Where the window was and how large, in screen coordinates, as it was closed (width 0: never saved).

@@ -119,6 +119,8 @@ std::vector<SettingField> cloudFields() {
         field("quality", "farMeters", DC_FIELD(quality.farMeters), 4.5),
         field("quality", "flyingThresholdMm", DC_FIELD(quality.flyingThresholdMm), 25.0),
         field("quality", "causeOverlay", DC_FIELD(quality.causeOverlay), false),
+        field("quality", "map", DC_FIELD(quality.map), 2),
+        field("quality", "alignment", DC_FIELD(quality.alignment), true),
         field("", "recentSources", DC_FIELD(recentSources),
               json::array({"replay:/data/a.dcrec", "synthetic"})),
     };

@@ -74,6 +74,8 @@ public:
     const processing::ShownQuality* quality() const { return shown() ? shown()->quality.get() : nullptr; }
     // The Quality panel's figures of every frame it showed since the source opened or Clear was pressed.
     const exporting::QualityLog& qualityLog() const { return quality_.log; }
+    // The Quality panel's map pixel under the mouse in the last frame drawn, as the panel read it out.
+    const std::optional<QualityMapHover>& qualityMapHover() const { return qualityMapHover_; }
     // Writes them (the panel's "Save CSV + JSON"): a new folder under `parent`, logged; returns it.
     Expected<std::string> saveQualityFigures(const std::string& parent);
     // A rectangle drawn on the depth panel (fractions of its image) becomes the Quality panel's region, in
@@ -171,8 +173,9 @@ private:
     RecordPanelState recordState_;
     std::vector<SourceEntry> liveSources_;
     QualityPanelState quality_;
-    std::optional<StatsView> measured_; // the figures on screen (kMeasureInterval)
-    std::uint64_t measuredVersion_ = 0; // ViewRenderer::contentVersion() when they were taken
+    std::optional<QualityMapHover> qualityMapHover_; // the Quality panel's map pixel under the mouse
+    std::optional<StatsView> measured_;              // the figures on screen (kMeasureInterval)
+    std::uint64_t measuredVersion_ = 0;              // ViewRenderer::contentVersion() when they were taken
     std::chrono::steady_clock::time_point measuredAt_;
 };
 

@@ -3,6 +3,7 @@
 #include "base/files.h"
 #include "base/log.h"
 #include "devices/source_spec.h"
+#include "processing/point_cloud.h"
 #include "render/cloud_pick.h"
 
 #include <imgui_internal.h>
@@ -93,6 +94,39 @@ PanelImage dataPanelImage(const render::RenderTarget& target, const render::View
 
 PanelImage imageOf(const render::RgbaTexture& texture) {
     return {texture.id(), texture.width(), texture.height(), false};
+}
+
+// A clip-space point of the cloud's view in the cloud image, as fractions of its size (NDC y points up,
+// image rows go down).
+ImVec2 cloudFraction(const glm::vec4& clip) {
+    const float w = clip.w > 1e-6f ? clip.w : 1e-6f;
+    return {0.5f * (clip.x / w + 1.0f), 0.5f * (1.0f - clip.y / w)};
+}
+
+// The Quality panel's region on the cloud's surface (processing::roiOutline), in the cloud image. A vertex
+// behind the view breaks its line as a missing sample does: projected, it would land mirrored on the image.
+std::vector<std::vector<ImVec2>> roiOutlineOnCloud(const processing::ShownDepth& depth,
+                                                   const processing::Roi& roi, const CloudSettings& cloud,
+                                                   const glm::mat4& viewProjection) {
+    // Smooth at any panel size, and few enough to project every frame.
+    constexpr int kMaxVertices = 200;
+    std::vector<std::vector<ImVec2>> lines;
+    for (const processing::Polyline3& run : processing::roiOutline(
+             *depth.data, depth.intrinsics, roi, cloud.minConfidence, cloud.nearMeters, kMaxVertices)) {
+        lines.emplace_back();
+        for (const auto& [x, y, z] : run) {
+            const glm::vec4 clip = viewProjection * glm::vec4(x, y, z, 1.0f);
+            if (clip.w > 0.0f)
+                lines.back().push_back(cloudFraction(clip));
+            else if (lines.back().size() >= 2)
+                lines.emplace_back();
+            else
+                lines.back().clear();
+        }
+        if (lines.back().size() < 2)
+            lines.pop_back();
+    }
+    return lines;
 }
 
 } // namespace
@@ -533,8 +567,11 @@ void Viewer::drawQuality(float x, float y) {
     placePanel(kQualityTitle, x, y, 360.0f, 470.0f);
     if (const processing::ShownFramePtr& s = shown(); s && s->frame)
         quality_.log.add(s->quality, s->frame->timestampNs);
+    const processing::ShownQuality* q = quality();
+    const PanelImage map = q && q->map ? imageOf(renderer_.qualityMapTexture()) : PanelImage{};
     const QualityPanelResult r =
-        drawQualityPanel(quality(), settings_.quality, quality_, &settings_.panels.quality);
+        drawQualityPanel(q, settings_.quality, quality_, map, &settings_.panels.quality);
+    qualityMapHover_ = r.mapHover;
     if (r.clear) {
         quality_.log.clear();
         quality_.savedTo.clear();
@@ -737,16 +774,22 @@ std::string Viewer::cloudMessage() {
     return {};
 }
 
+// The cloud is drawn in the shown frame's camera frame: the region's points, in that frame already, take
+// the cloud's view as they are; the anchors, kept in the world, are brought into it first.
 CloudOverlay Viewer::cloudOverlay() const {
     CloudOverlay overlay;
-    const Anchors& anchors = presenter_.anchors();
-    if (anchors.empty() || !shown())
+    if (!shown())
         return overlay;
-    for (const glm::vec3& p : anchors.inCameraFrame(shown()->frame->pose)) {
-        const glm::vec4 clip = presenter_.cloudViewProjection() * glm::vec4(p, 1.0f);
-        const float w = clip.w > 1e-6f ? clip.w : 1e-6f;
-        overlay.anchors.emplace_back(0.5f * (clip.x / w + 1.0f), 0.5f * (1.0f - clip.y / w));
-    }
+    // Outlined where the image panels outline it (roiOverlay).
+    if (const processing::ShownQuality* q = quality();
+        settings_.panels.quality && q && q->roi.width > 0 && shown()->depth.data)
+        overlay.roiOutline =
+            roiOutlineOnCloud(shown()->depth, q->roi, settings_.cloud, presenter_.cloudViewProjection());
+    const Anchors& anchors = presenter_.anchors();
+    if (anchors.empty())
+        return overlay;
+    for (const glm::vec3& p : anchors.inCameraFrame(shown()->frame->pose))
+        overlay.anchors.push_back(cloudFraction(presenter_.cloudViewProjection() * glm::vec4(p, 1.0f)));
     for (std::size_t i = 0; i + 1 < anchors.size(); ++i)
         overlay.segments.emplace_back(static_cast<int>(i), formatLength(anchors.segmentMeters(i)));
     if (anchors.size() >= 3) {

@@ -8,7 +8,9 @@
 #include "processing/camera_image.h"
 #include "processing/confidence_estimator.h"
 #include "processing/decimation.h"
+#include "processing/edge_alignment.h"
 #include "processing/fog.h"
+#include "processing/registration.h"
 #include "tests/small_rig.h"
 
 #include <gtest/gtest.h>
@@ -578,6 +580,59 @@ TEST(ProcessingGraphShaderColours, ADecimatedCloudIsColouredOnlyWhereItsPointsAr
         processing::framePointColours(*frame, cloud.data->depthMeters, cloud.intrinsics, table).colours;
     EXPECT_EQ(shown->cloud.colours->pixels, expected->pixels);
     EXPECT_EQ(graph.runs(kPointColoursStage), 1u);
+}
+
+} // namespace
+} // namespace dc::engine::test
+
+namespace dc::engine::test {
+namespace {
+
+// The Quality panel's colour-to-depth alignment of a two-sensor frame: only when asked, equal to the colour
+// registered onto the shown depth and scored here, and asking for it does not start the noise window over.
+TEST(ProcessingGraphRig, TheColourAlignmentIsMeasuredOnTheShownDepthOnlyWhenAsked) {
+    const frame::FramePtr frame = smallRigFrame();
+    ASSERT_TRUE(frame && frame->rig);
+    ProcessingGraph graph;
+    Demand demand = cloudOnly();
+    demand.quality = QualityDemand{};
+    demand.quality->roiPercent = 80;
+    const processing::ShownFramePtr off = graph.run(frame, demand, 1, true);
+    ASSERT_TRUE(off->quality);
+    EXPECT_FALSE(off->quality->alignment);
+    EXPECT_TRUE(off->quality->alignmentError.empty()) << "not asked, not measured";
+
+    demand.quality->alignment = true;
+    const processing::ShownFramePtr on = graph.run(frame, demand, 2, false);
+    ASSERT_TRUE(on->quality && on->depth.data);
+    ASSERT_TRUE(on->quality->alignment) << on->quality->alignmentError;
+    processing::CameraColourTable table;
+    const frame::Plane<float>& depth = on->depth.data->depthMeters;
+    const processing::RgbImage colour =
+        processing::colourAlignedToDepth(*frame, depth, depth.width, depth.height, table);
+    const auto expected =
+        processing::measureEdgeAlignment(depth, colour, on->depth.intrinsics, on->quality->roi);
+    ASSERT_TRUE(expected.ok()) << expected.error().message;
+    EXPECT_DOUBLE_EQ(on->quality->alignment->medianPx, expected->medianPx);
+    EXPECT_DOUBLE_EQ(on->quality->alignment->medianMm, expected->medianMm);
+    EXPECT_EQ(on->quality->alignment->matched, expected->matched);
+    EXPECT_LT(on->quality->alignment->medianPx, 1.5) << "the synthetic rig is registered by construction";
+    EXPECT_EQ(on->quality->windowFilled, 1u) << "the same frame again, the window not started over";
+}
+
+// A frame without a camera image says so rather than scoring nothing.
+TEST(ProcessingGraphRig, WithoutACameraImageTheAlignmentSaysWhy) {
+    auto frame = std::make_shared<frame::Frame>(*smallRigFrame());
+    frame->capturedImage = frame::CapturedImage{};
+    ProcessingGraph graph;
+    Demand demand = cloudOnly();
+    demand.pointColours = false;
+    demand.quality = QualityDemand{};
+    demand.quality->alignment = true;
+    const processing::ShownFramePtr shown = graph.run(frame, demand, 1, true);
+    ASSERT_TRUE(shown->quality);
+    EXPECT_FALSE(shown->quality->alignment);
+    EXPECT_EQ(shown->quality->alignmentError, "the frame has no camera image");
 }
 
 } // namespace

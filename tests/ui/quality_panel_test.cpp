@@ -401,6 +401,52 @@ TEST_F(QualityPanelTest, MissingSamplesAreShownInTheirCausesColourInsideTheRegio
     EXPECT_GE(blended, inside * 95 / 100) << blended << " of " << inside << " pixels";
 }
 
+// The plane-residual map of a wall: the panel shows it and reads out the pixel under the mouse, whose value
+// is that sample's distance to the wall's plane as measured here from the shown depth.
+TEST_F(QualityPanelTest, TheResidualMapReadsOutEachPixelsDistanceToThePlane) {
+    Settings settings = qualityShown();
+    settings.quality.map = 1; // plane residual
+    ASSERT_EQ(processing::kQualityMaps[1], processing::QualityMap::PlaneResidual);
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), settings));
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    ASSERT_TRUE(frameUntil([this] {
+        const processing::ShownQuality* q = viewer_->quality();
+        return q && q->figures && q->figures->plane && q->map;
+    }));
+    frame(0.0);
+    // Down the middle of the Quality panel until the mouse is over the map (scrolled into view if need be).
+    ImGuiWindow* w = ImGui::FindWindowByName(kQualityTitle);
+    ASSERT_NE(w, nullptr);
+    const auto hoverMap = [&] {
+        for (float y = w->Pos.y; y < w->Pos.y + w->Size.y; y += 4.0f) {
+            gui_.io().MousePos = ImVec2(w->Pos.x + w->Size.x * 0.4f, y);
+            gui_.newFrame(1.0f / 60.0f);
+            viewer_->drawUi();
+            ImGui::EndFrame();
+            if (viewer_->qualityMapHover())
+                return true;
+        }
+        return false;
+    };
+    if (!hoverMap()) {
+        ImGui::SetScrollY(w, w->ScrollMax.y);
+        frame(0.0);
+        ASSERT_TRUE(hoverMap());
+    }
+    const QualityMapHover hover = *viewer_->qualityMapHover();
+    const processing::ShownQuality& q = *viewer_->quality();
+    const processing::FrameQuality here = measuredHere(q.roi);
+    ASSERT_TRUE(here.plane);
+    const processing::ShownDepth& depth = viewer_->shown()->depth;
+    const int x = q.roi.x + hover.x, y = q.roi.y + hover.y;
+    const double z = depth.data->depthMeters.at(x, y);
+    const processing::Point3d p{(x - depth.intrinsics.cx) * z / depth.intrinsics.fx,
+                                (y - depth.intrinsics.cy) * z / depth.intrinsics.fy, z};
+    ASSERT_TRUE(std::isfinite(hover.value)) << "a wall's sample has a residual";
+    EXPECT_NEAR(hover.value, here.plane->plane.signedDistance(p) * 1000.0, 1e-3);
+    EXPECT_GT(std::abs(hover.value), 0.0f) << "a noisy wall's sample is off its plane";
+}
+
 TEST_F(QualityPanelTest, WithThePanelHiddenNothingIsMeasured) {
     ASSERT_NO_FATAL_FAILURE(startViewer(wallScene()));
     for (int i = 0; i < 5; ++i)
@@ -424,6 +470,51 @@ TEST_F(QualityPanelTest, ARegionOffTheMapIsClampedToIt) {
     ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), settings));
     ASSERT_TRUE(frameUntil([this] { return viewer_->quality() != nullptr; }));
     EXPECT_EQ(viewer_->quality()->roi, (processing::Roi{250, 10, 6, 20}));
+}
+
+// Where depth pixel (u, v) of the shown frame is drawn in the cloud panel, on screen: placed as the cloud
+// places it and projected with the view the cloud was drawn with, over the panel's picture.
+ImVec2 cloudScreenAt(const Viewer& viewer, int u, int v) {
+    const processing::ShownDepth& depth = viewer.shown()->depth;
+    const auto [x, y, z] = processing::unproject(u, v, depth.data->depthMeters.at(u, v), depth.intrinsics);
+    const glm::vec4 clip = viewer.cloudViewProjection() * glm::vec4(x, y, z, 1.0f);
+    const ImRect picture = ImGui::FindWindowByName(kCloudTitle)->InnerRect;
+    return {picture.Min.x + 0.5f * (clip.x / clip.w + 1.0f) * picture.GetWidth(),
+            picture.Min.y + 0.5f * (1.0f - clip.y / clip.w) * picture.GetHeight()};
+}
+
+// The region is outlined on the cloud too, where its corners' points are drawn: a region off the centre
+// (the top right of the map) so that a mirrored or misplaced outline cannot pass, right of where the
+// Quality panel opens over the cloud. The wall's camera image is gray (a flat target's), so with the default
+// colouring no point is pure yellow: the yellow is the outline.
+TEST_F(QualityPanelTest, TheRegionIsOutlinedOnTheCloudWhereItsPointsAreDrawn) {
+    Settings settings = qualityShown();
+    settings.quality.roiPercent = 0;
+    settings.quality.roiX = 160; // the map is 256x192
+    settings.quality.roiY = 20;
+    settings.quality.roiWidth = 60;
+    settings.quality.roiHeight = 100;
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), settings));
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    ASSERT_TRUE(figuresShown());
+    ASSERT_EQ(viewer_->quality()->roi, (processing::Roi{160, 20, 60, 100}));
+    frame(0.0);
+    const int width = gui_.target().width();
+    std::vector<std::uint8_t> picture = gui_.target().readRgba();
+    EXPECT_GT(outlinePixelsIn(kCloudTitle, picture, width), 40);
+    const auto box = outlineBox(kCloudTitle, picture, width);
+    ASSERT_TRUE(box.has_value()) << "the outline's edges are straight on the wall";
+    const ImVec2 topLeft = cloudScreenAt(*viewer_, 160, 20), bottomRight = cloudScreenAt(*viewer_, 219, 119);
+    EXPECT_NEAR((*box)[0], topLeft.x, 2.0f);
+    EXPECT_NEAR((*box)[1], topLeft.y, 2.0f);
+    EXPECT_NEAR((*box)[2], bottomRight.x, 2.0f);
+    EXPECT_NEAR((*box)[3], bottomRight.y, 2.0f);
+
+    viewer_->settings().panels.quality = false;
+    frame(0.0);
+    frame(0.0);
+    picture = gui_.target().readRgba();
+    EXPECT_EQ(outlinePixelsIn(kCloudTitle, picture, width), 0);
 }
 
 } // namespace

@@ -4,10 +4,12 @@
 #include "exporting/quality_log.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <memory>
 #include <sstream>
+#include <string>
 
 namespace dc::exporting {
 namespace {
@@ -101,6 +103,28 @@ TEST(QualityLog, NoiseOverDistanceIsEachDistanceStepsMedians) {
     EXPECT_DOUBLE_EQ(one[0].planeFitRmsMm, 2.0);
     EXPECT_FALSE(one[0].expectedNoiseMm) << "no baseline, no expected noise";
     EXPECT_TRUE(noiseOverDistance(QualityLog{}, 8).empty());
+}
+
+// The colour alignment travels with its frame into the CSV's last two columns and the JSON's keys, and
+// stays empty (null) for a frame that did not measure it.
+TEST(QualityLog, TheColourAlignmentIsSavedWhereMeasured) {
+    QualityLog log;
+    auto aligned = std::const_pointer_cast<processing::ShownQuality>(figures(1, 1.0));
+    aligned->alignment = processing::EdgeAlignment{0.75, 0.8, 3.25, 100, 90};
+    log.add(aligned, 0);
+    log.add(figures(2, 1.0), 0);
+    std::istringstream csv(qualityCsv(log));
+    std::string header, first, second;
+    std::getline(csv, header);
+    std::getline(csv, first);
+    std::getline(csv, second);
+    EXPECT_TRUE(header.ends_with(",alignment_px,alignment_mm"));
+    EXPECT_TRUE(first.ends_with(",0.75,3.25")) << first;
+    EXPECT_TRUE(second.ends_with(",,")) << second;
+    const auto j = nlohmann::json::parse(qualityJson(log, "synthetic", "{}"));
+    EXPECT_EQ(j["frames"][0]["alignmentPx"], 0.75);
+    EXPECT_EQ(j["frames"][0]["alignmentMm"], 3.25);
+    EXPECT_TRUE(j["frames"][1]["alignmentPx"].is_null());
 }
 
 TEST(QualityLog, CsvLeavesUnmeasuredFiguresEmptyAndRoundTripsTheRest) {
