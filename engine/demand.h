@@ -11,11 +11,14 @@
 namespace dc::engine {
 
 // The Quality panel's question: the region of interest and how its samples are judged. The region is a
-// centred preset or a rectangle; the frame processor fits either to the depth map it is given, so a source
-// that changes size never gets a region outside its map.
+// centred preset, a rectangle or a polygon; the frame processor fits either to the depth map it is given, so
+// a source that changes size never gets a region outside its map.
 struct QualityDemand {
-    int roiPercent = 40;     // DQT's centred region, percent of width and height; 0: `roi`
-    processing::Roi roi;     // in the shown depth's pixels, when roiPercent is 0
+    int roiPercent = 40; // DQT's centred region, percent of width and height; 0: `roi`
+    processing::Roi roi; // in the shown depth's pixels, when roiPercent is 0
+    // A lasso, in the shown depth's pixel coordinates, when roiPercent is 0: the region is the samples
+    // inside it and `roi` is ignored (its bounds are measured). Empty: the rectangle.
+    processing::Polygon polygon;
     int windowFrames = 30;   // the noise window's length
     float nearMeters = 0.0f; // samples outside [near, far] are out of range
     float farMeters = 10.0f;

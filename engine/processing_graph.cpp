@@ -39,14 +39,27 @@ processing::ProcessingSettings depthSettings(const processing::ProcessingSetting
     return depth;
 }
 
-// The region of interest fitted to a width x height map: a preset centred in it, a rectangle clamped into
-// it (a source that changed size keeps a region, never one outside its map).
+// The polygon of `q` fitted to a width x height map: each vertex clamped into it (empty for a preset).
+processing::Polygon fittedPolygon(const QualityDemand& q, int width, int height) {
+    if (q.roiPercent > 0 || width <= 0 || height <= 0)
+        return {};
+    processing::Polygon polygon = q.polygon;
+    for (auto& [x, y] : polygon) {
+        x = std::clamp(x, 0.0, static_cast<double>(width));
+        y = std::clamp(y, 0.0, static_cast<double>(height));
+    }
+    return polygon;
+}
+
+// The region of interest fitted to a width x height map: a preset centred in it, a rectangle or a polygon's
+// bounding box clamped into it (a source that changed size keeps a region, never one outside its map).
 processing::Roi fittedRoi(const QualityDemand& q, int width, int height) {
     if (q.roiPercent > 0)
         return processing::centredRoi(width, height, q.roiPercent);
     if (width <= 0 || height <= 0)
         return {};
-    processing::Roi r = q.roi;
+    processing::Roi r =
+        q.polygon.empty() ? q.roi : processing::polygonBounds(fittedPolygon(q, width, height));
     r.x = std::clamp(r.x, 0, width - 1);
     r.y = std::clamp(r.y, 0, height - 1);
     r.width = std::clamp(r.width, 1, width - r.x);
@@ -54,9 +67,11 @@ processing::Roi fittedRoi(const QualityDemand& q, int width, int height) {
     return r;
 }
 
-processing::QualityParams qualityParams(const QualityDemand& q, const processing::Roi& roi) {
+processing::QualityParams qualityParams(const QualityDemand& q, const processing::Roi& roi,
+                                        processing::Polygon polygon) {
     processing::QualityParams p;
     p.roi = roi;
+    p.polygon = std::move(polygon);
     p.nearMeters = q.nearMeters;
     p.farMeters = q.farMeters;
     p.flyingThresholdMeters = q.flyingThresholdMeters;
@@ -419,9 +434,12 @@ void ProcessingGraph::addAlignment(processing::ShownQuality& quality, const fram
 std::shared_ptr<const processing::ShownQuality>
 ProcessingGraph::measureQuality(const QualityKey& key, const frame::Intrinsics& intrinsics,
                                 const frame::Frame& frame) {
-    const processing::QualityParams params = qualityParams(key.quality, key.roi);
+    const frame::Plane<float>& map = key.depth->depthMeters;
+    const processing::QualityParams params =
+        qualityParams(key.quality, key.roi, fittedPolygon(key.quality, map.width, map.height));
     auto out = std::make_shared<processing::ShownQuality>();
     out->roi = key.roi;
+    out->polygon = params.polygon;
     out->sequence = frame.sequence;
     QualityKey question = key;
     question.depth = nullptr;

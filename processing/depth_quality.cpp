@@ -15,6 +15,34 @@ namespace dc::processing {
 
 namespace {
 
+// Where each edge crossing the horizontal line at y crosses it, ascending. An edge crosses when one end is
+// above y and the other at or below it (PNPOLY's test), so a vertex on the line is counted once or twice,
+// never ambiguously, and a horizontal edge never.
+std::vector<double> crossingsAt(const Polygon& polygon, double y) {
+    std::vector<double> crossings;
+    for (std::size_t i = 0, j = polygon.size() - 1; i < polygon.size(); j = i++) {
+        const auto& [xi, yi] = polygon[i];
+        const auto& [xj, yj] = polygon[j];
+        if ((yi > y) != (yj > y))
+            crossings.push_back((xj - xi) * (y - yi) / (yj - yi) + xi);
+    }
+    std::sort(crossings.begin(), crossings.end());
+    return crossings;
+}
+
+// For the pixels x0 .. x0 + inside.size() - 1 of row y: whether each centre is inside `polygon`, decided as
+// insidePolygon decides it (an odd count of crossings to its right) from one set of crossings per row.
+void markInside(const Polygon& polygon, int y, int x0, std::vector<char>& inside) {
+    const std::vector<double> crossings = crossingsAt(polygon, y + 0.5);
+    std::size_t left = 0; // crossings at or left of the centre
+    for (std::size_t i = 0; i < inside.size(); ++i) {
+        const double centre = x0 + static_cast<double>(i) + 0.5;
+        while (left < crossings.size() && crossings[left] <= centre)
+            ++left;
+        inside[i] = (crossings.size() - left) % 2 == 1;
+    }
+}
+
 using Matrix3 = std::array<std::array<double, 3>, 3>;
 
 constexpr double kMetersToMm = 1000.0;
@@ -399,6 +427,29 @@ bool roiInside(const Roi& roi, int imageWidth, int imageHeight) {
            roi.y <= imageHeight - roi.height;
 }
 
+bool insidePolygon(const Polygon& polygon, double x, double y) {
+    if (polygon.size() < 3)
+        return false;
+    const std::vector<double> crossings = crossingsAt(polygon, y);
+    const auto right = std::count_if(crossings.begin(), crossings.end(), [x](double c) { return x < c; });
+    return right % 2 == 1;
+}
+
+Roi polygonBounds(const Polygon& polygon) {
+    if (polygon.empty())
+        return {};
+    double minX = polygon[0][0], maxX = minX, minY = polygon[0][1], maxY = minY;
+    for (const auto& [x, y] : polygon) {
+        minX = std::min(minX, x);
+        maxX = std::max(maxX, x);
+        minY = std::min(minY, y);
+        maxY = std::max(maxY, y);
+    }
+    const int x0 = static_cast<int>(std::floor(minX));
+    const int y0 = static_cast<int>(std::floor(minY));
+    return {x0, y0, static_cast<int>(std::ceil(maxX)) - x0, static_cast<int>(std::ceil(maxY)) - y0};
+}
+
 Expected<PlaneModel> fitPlaneLeastSquares(std::span<const Point3d> points) {
     const auto fit = leastSquaresWhere(points, [](const Point3d&) { return true; });
     if (!fit)
@@ -610,6 +661,7 @@ std::array<std::uint8_t, 3> causeColour(SampleCause cause) {
     case SampleCause::FlyingPixel:
         return {255, 0, 0};
     case SampleCause::Valid:
+    case SampleCause::OutsideRegion:
         break;
     }
     return {0, 0, 0};
@@ -625,7 +677,7 @@ RgbaImage causeOverlay(std::span<const SampleCause> causes, int width, int heigh
     image.pixels.assign(causes.size() * 4, 0);
     std::uint8_t* out = image.pixels.data();
     for (const SampleCause cause : causes) {
-        if (cause != SampleCause::Valid) {
+        if (cause != SampleCause::Valid && cause != SampleCause::OutsideRegion) {
             const auto rgb = causeColour(cause);
             out[0] = rgb[0];
             out[1] = rgb[1];
@@ -642,19 +694,26 @@ std::vector<SampleCause> classifySamples(const frame::DepthData& depth, const Qu
     const Roi& r = params.roi;
     std::vector<SampleCause> causes(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height));
     FillBreakdown total;
+    std::size_t outsideTotal = 0;
     std::mutex countsMutex;
     const Classifier classify(params);
     // Rows on both cores: each piece counts its causes in locals (not an array indexed by the cause, whose
     // every increment would wait for the last) and adds them once.
+    const bool withPolygon = !params.polygon.empty();
     parallelRanges(r.height, kClassifyRowsPerPiece, [&](int begin, int end) {
-        std::size_t valid = 0, none = 0, range = 0, confidence = 0, flying = 0;
+        std::size_t valid = 0, none = 0, range = 0, confidence = 0, flying = 0, outside = 0;
         SampleCause* out =
             causes.data() + static_cast<std::size_t>(begin) * static_cast<std::size_t>(r.width);
+        std::vector<char> inside(static_cast<std::size_t>(r.width), 1);
         for (int y = r.y + begin; y < r.y + end; ++y) {
             const RowView view = rowView(depth, y);
+            if (withPolygon)
+                markInside(params.polygon, y, r.x, inside);
             for (int x = r.x; x < r.x + r.width; ++x, ++out) {
-                const SampleCause c = classify(view, x);
+                const SampleCause c = inside[static_cast<std::size_t>(x - r.x)] ? classify(view, x)
+                                                                                : SampleCause::OutsideRegion;
                 *out = c;
+                outside += c == SampleCause::OutsideRegion;
                 valid += c == SampleCause::Valid;
                 none += c == SampleCause::NoMeasurement;
                 range += c == SampleCause::OutOfRange;
@@ -668,8 +727,9 @@ std::vector<SampleCause> classifySamples(const frame::DepthData& depth, const Qu
         total.outOfRange += range;
         total.lowConfidence += confidence;
         total.flyingPixel += flying;
+        outsideTotal += outside;
     });
-    total.roiSamples = causes.size();
+    total.roiSamples = causes.size() - outsideTotal; // a polygon's region is its box less what is outside
     counts = total;
     return causes;
 }
@@ -717,6 +777,16 @@ NoiseWindow::NoiseWindow(const QualityParams& params, int windowFrames)
       inverse_(windowFrames_ + 1) {
     for (std::size_t n = 1; n < inverse_.size(); ++n)
         inverse_[n] = 1.0 / static_cast<double>(n);
+    outside_.assign(pixels_.size(), false);
+    if (params.polygon.empty() || pixels_.empty())
+        return;
+    const Roi& r = params.roi;
+    std::vector<char> inside(static_cast<std::size_t>(r.width));
+    for (int y = 0; y < r.height; ++y) {
+        markInside(params.polygon, r.y + y, r.x, inside);
+        for (int x = 0; x < r.width; ++x)
+            outside_[static_cast<std::size_t>(y) * r.width + x] = !inside[static_cast<std::size_t>(x)];
+    }
 }
 
 void NoiseWindow::add(const frame::DepthData& depth, std::optional<double> planeFitRmsMm) {
@@ -823,7 +893,8 @@ frame::Plane<float> NoiseWindow::fillMapPercent() const {
     frame::Plane<float> map(params_.roi.width, params_.roi.height);
     const double scale = 100.0 / static_cast<double>(window_.size());
     for (std::size_t i = 0; i < pixels_.size(); ++i)
-        map.pixels[i] = static_cast<float>(pixels_[i].count * scale);
+        map.pixels[i] = outside_[i] ? std::numeric_limits<float>::quiet_NaN()
+                                    : static_cast<float>(pixels_[i].count * scale);
     return map;
 }
 

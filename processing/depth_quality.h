@@ -32,6 +32,17 @@ Roi centredRoi(int imageWidth, int imageHeight, double percent);
 // Whether `roi` is non-empty and lies inside a width x height image.
 bool roiInside(const Roi& roi, int imageWidth, int imageHeight);
 
+// A polygon's vertices (x, y) in depth-map pixel coordinates: pixel (x, y) spans [x, x + 1) x [y, y + 1).
+using Polygon = std::vector<std::array<double, 2>>;
+// Whether (x, y) is inside `polygon` by the even-odd rule (a self-crossing lasso's overlaps are outside).
+// A point exactly on an edge is inside when the polygon lies to its right or below it (larger x or y) and
+// outside otherwise, as a rasterizer decides: two polygons sharing an edge never both hold a point on it.
+// Fewer than 3 vertices hold nothing.
+bool insidePolygon(const Polygon& polygon, double x, double y);
+// The pixels that can hold a centre inside `polygon`: floor of its smallest x and y to the ceiling of its
+// largest, unclamped; empty for no vertices.
+Roi polygonBounds(const Polygon& polygon);
+
 struct Point3d {
     double x = 0.0, y = 0.0, z = 0.0;
 };
@@ -107,18 +118,32 @@ double expectedStereoNoiseMeters(double zMeters, double focalPixels, double base
                                  double subpixelSigmaPixels);
 
 // Why an ROI sample is not valid. Each sample has one cause, checked in this order.
-enum class SampleCause : std::uint8_t { Valid, NoMeasurement, OutOfRange, LowConfidence, FlyingPixel };
+// OutsideRegion: a sample of the polygon's bounding box whose centre is outside the polygon; it belongs to no
+// count of the region (not even roiSamples) and is never valid.
+enum class SampleCause : std::uint8_t {
+    Valid,
+    NoMeasurement,
+    OutOfRange,
+    LowConfidence,
+    FlyingPixel,
+    OutsideRegion
+};
 
 // Each cause's colour where the panels show why samples are missing: saturated hues that none of the
 // depth colormaps' ends resemble (no measurement magenta, out of range orange, low confidence cyan, flying
-// pixel red). A valid sample has none.
+// pixel red). A valid sample, or one outside the region, has none.
 std::array<std::uint8_t, 3> causeColour(SampleCause cause);
 // The region's samples as an overlay for the image panels: each missing sample in its cause's colour, opaque,
-// every valid one transparent. `causes` are roi.width x roi.height (classifySamples).
+// every valid one and every one outside the region transparent. `causes` are roi.width x roi.height
+// (classifySamples).
 RgbaImage causeOverlay(std::span<const SampleCause> causes, int width, int height);
 
 struct QualityParams {
     Roi roi;
+    // Empty: the region is `roi`. Else the region is the samples whose pixel centres (x + 0.5, y + 0.5) are
+    // inside this polygon (insidePolygon), and `roi` is the rectangle classified: the polygon's bounds
+    // (polygonBounds) clamped to the map.
+    Polygon polygon;
     float nearMeters = 0.0f;
     float farMeters = std::numeric_limits<float>::infinity();
     frame::Confidence minConfidence = frame::Confidence::Low;
@@ -138,7 +163,7 @@ struct QualityParams {
 };
 
 struct FillBreakdown {
-    std::size_t roiSamples = 0;
+    std::size_t roiSamples = 0; // the region's samples: a polygon's bounding box counts only those inside
     std::size_t valid = 0;
     std::size_t noMeasurement = 0; // 0, NaN, inf or negative
     std::size_t outOfRange = 0;    // outside [nearMeters, farMeters]
@@ -197,7 +222,7 @@ public:
     std::size_t frames() const { return window_.size(); }
     // Per pixel of the region (roi.width x roi.height): the temporal deviation, mm, where the pixel was valid
     // in every frame of the window (NaN elsewhere, as temporalNoiseMm counts them), and the percentage of the
-    // window's frames in which it was valid. Empty before the first frame.
+    // window's frames in which it was valid (NaN outside a polygon). Empty before the first frame.
     frame::Plane<float> temporalStdMapMm() const;
     frame::Plane<float> fillMapPercent() const;
 
@@ -218,6 +243,7 @@ private:
     std::size_t windowFrames_;
     std::deque<WindowFrame> window_;
     std::vector<Running> pixels_;
+    std::vector<bool> outside_;   // per pixel: outside the polygon (all false without one)
     std::vector<double> inverse_; // 1 / n for every count a pixel can reach: multiplications, not divisions
 };
 

@@ -9,6 +9,7 @@
 #include "processing/point_cloud.h"
 #include "processing/quality_maps.h"
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <memory>
@@ -59,8 +60,11 @@ struct DepthRangeMeters {
 // The depth-quality figures of one shown frame over a region of interest (the Quality panel), with the
 // noise over the last frames measured with the same region and settings.
 struct ShownQuality {
-    Roi roi;                    // the region measured, in the shown depth's pixels (clamped to the map)
-    std::uint64_t sequence = 0; // the frame measured
+    Roi roi; // the region measured, in the shown depth's pixels (clamped to the map)
+    // The polygon measured (its vertices clamped to the map; `roi` is its bounding box); empty for a
+    // rectangle.
+    std::vector<std::array<double, 2>> polygon;
+    std::uint64_t sequence = 0;          // the frame measured
     std::optional<FrameQuality> figures; // unset: `error` says why (a region outside the map, ...)
     std::string error;
     std::optional<double> temporalNoiseMm; // unset: noiseError says why (too few frames yet, ...)

@@ -112,6 +112,26 @@ std::optional<processing::Roi> parseRoi(const std::string& text) {
     return processing::Roi{v[0], v[1], v[2], v[3]};
 }
 
+// "x,y;x,y;..." as at least 3 finite, non-negative vertices; none when it is not such a list.
+std::optional<processing::Polygon> parsePolygon(const std::string& text) {
+    processing::Polygon polygon;
+    for (const std::string& vertex : split(text, ';')) {
+        const std::vector<std::string> parts = split(vertex, ',');
+        if (parts.size() != 2)
+            return std::nullopt;
+        const auto x = parseNumber(parts[0]);
+        const auto y = parseNumber(parts[1]);
+        if (!x || !y || !std::isfinite(*x) || !std::isfinite(*y) || *x < 0 || *y < 0)
+            return std::nullopt;
+        polygon.push_back({*x, *y});
+    }
+    if (polygon.size() < 3)
+        return std::nullopt;
+    return polygon;
+}
+
+constexpr const char* kPolygonForm = ": expected at least 3 vertices x,y;x,y;... (depth pixel coordinates)";
+
 json medianOf(std::vector<double> values) {
     if (values.empty())
         return nullptr;
@@ -152,7 +172,8 @@ void collect(const processing::FrameQuality& q, Collected& c) {
         c.figures["zAccuracyPercent"].push_back(*f.zAccuracyPercent);
 }
 
-json report(const Collected& c, const processing::NoiseWindow& noise, const processing::Roi& roi) {
+json report(const Collected& c, const processing::NoiseWindow& noise, const processing::Roi& roi,
+            const processing::Polygon& polygon) {
     json j;
     j["fillRate"] = c.fill.fillRate();
     for (const char* key :
@@ -167,6 +188,7 @@ json report(const Collected& c, const processing::NoiseWindow& noise, const proc
     j["spatialNoiseMm"] = spatial ? json(*spatial) : json(nullptr);
     j["frames"] = c.frames;
     j["roi"] = {{"x", roi.x}, {"y", roi.y}, {"width", roi.width}, {"height", roi.height}};
+    j["roiPolygon"] = polygon.empty() ? json(nullptr) : json(polygon);
     j["roiSamples"] = c.fill.roiSamples;
     json shortfall;
     const std::pair<const char*, std::size_t> causes[] = {{"noMeasurement", c.fill.noMeasurement},
@@ -200,15 +222,38 @@ struct Capture {
     Collected collected;
     std::optional<processing::NoiseWindow> noise;
     processing::Roi roi;
+    processing::Polygon polygon;
     processing::CameraColourTable colourTable; // filled as colours are met, kept across frames
     frame::JpegDecoder jpeg;
 };
 
-// The first frame fixes the ROI (from --roi or --roi-percent of its depth map); the reason if it cannot.
+// The polygon of --roi-polygon and its bounding box as the ROI; the reason if it leaves the depth map.
+std::string startWithPolygon(const std::string& text, const frame::Plane<float>& depth,
+                             processing::QualityParams& p) {
+    const auto polygon = parsePolygon(text);
+    if (!polygon)
+        return "--roi-polygon " + text + kPolygonForm;
+    for (const auto& [x, y] : *polygon) {
+        if (x > depth.width || y > depth.height)
+            return "--roi-polygon " + text + ": outside the " + std::to_string(depth.width) + "x" +
+                   std::to_string(depth.height) + " depth map";
+    }
+    p.polygon = *polygon;
+    p.roi = processing::polygonBounds(*polygon);
+    if (!processing::roiInside(p.roi, depth.width, depth.height))
+        return "--roi-polygon " + text + ": encloses no pixel";
+    return {};
+}
+
+// The first frame fixes the ROI (from --roi, --roi-percent or --roi-polygon of its depth map); the reason if
+// it cannot.
 std::string startWith(const frame::Frame& f, const QualityOptions& o, processing::QualityParams& p,
                       Capture& c) {
     const frame::Plane<float>& depth = f.sceneDepth->depthMeters;
-    if (o.roi.empty()) {
+    if (!o.roiPolygon.empty()) {
+        if (std::string problem = startWithPolygon(o.roiPolygon, depth, p); !problem.empty())
+            return problem;
+    } else if (o.roi.empty()) {
         p.roi = processing::centredRoi(depth.width, depth.height, o.roiPercent);
     } else {
         const auto roi = parseRoi(o.roi);
@@ -220,6 +265,7 @@ std::string startWith(const frame::Frame& f, const QualityOptions& o, processing
         p.roi = *roi;
     }
     c.roi = p.roi;
+    c.polygon = p.polygon;
     c.noise.emplace(p, o.frames);
     return {};
 }
@@ -312,6 +358,8 @@ std::string checkArguments(const QualityOptions& o, std::vector<Expectation>& ex
         return "--expect " + problem;
     if (!o.roi.empty() && !parseRoi(o.roi))
         return "--roi " + o.roi + ": expected X,Y,W,H (whole pixels)";
+    if (!o.roiPolygon.empty() && !parsePolygon(o.roiPolygon))
+        return "--roi-polygon " + o.roiPolygon + kPolygonForm;
     std::error_code ec;
     if (!o.jsonPath.empty() && !o.overwrite && std::filesystem::exists(o.jsonPath, ec))
         return "--json " + o.jsonPath + " already exists (pass --overwrite to replace it)";
@@ -326,10 +374,17 @@ CLI::App* addQualityCommand(CLI::App& app, QualityOptions& o) {
     cmd->add_option("--source", o.source, std::string("what to measure: ") + devices::kSourceSpecHelp)
         ->capture_default_str();
     auto* roi = cmd->add_option("--roi", o.roi, "region of interest X,Y,W,H in depth pixels");
-    cmd->add_option("--roi-percent", o.roiPercent, "centred ROI: percent of the depth map's width and height")
-        ->check(CLI::Range(1.0, 100.0))
+    auto* percent = cmd->add_option("--roi-percent", o.roiPercent,
+                                    "centred ROI: percent of the depth map's width and height")
+                        ->check(CLI::Range(1.0, 100.0))
+                        ->excludes(roi)
+                        ->capture_default_str();
+    cmd->add_option(
+           "--roi-polygon", o.roiPolygon,
+           "region of interest: the depth pixels whose centres lie inside the polygon \"x,y;x,y;...\" "
+           "(depth pixel coordinates, at least 3 vertices)")
         ->excludes(roi)
-        ->capture_default_str();
+        ->excludes(percent);
     cmd->add_option("--frames", o.frames, "frames to measure (the temporal noise window)")
         ->check(CLI::Range(1, 100000))
         ->capture_default_str();
@@ -376,7 +431,7 @@ int runQuality(const QualityOptions& o) {
     if (!problem.empty())
         return commandFailed("quality", problem,
                              problem.rfind("--", 0) == 0 ? kExitBadArguments : kExitFailure);
-    const json j = report(c.collected, *c.noise, c.roi);
+    const json j = report(c.collected, *c.noise, c.roi, c.polygon);
     print(j);
     if (!o.jsonPath.empty()) {
         if (Status s = base::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s)

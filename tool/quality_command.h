@@ -11,6 +11,7 @@ struct QualityOptions {
     std::string source = "synthetic";
     std::string roi;          // "X,Y,W,H" in depth pixels; empty: roiPercent
     double roiPercent = 40.0; // DQT's centred ROI, percent of width and of height
+    std::string roiPolygon;   // "x,y;x,y;..." in depth pixel coordinates, at least 3 vertices; empty: none
     int frames = 30;          // frames captured; the noise window spans them all
     std::optional<double> groundTruthMm;
     std::optional<double> baselineMm; // a stereo camera's baseline: enables the subpixel RMS, expected noise

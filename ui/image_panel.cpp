@@ -1,6 +1,7 @@
 #include "ui/image_panel.h"
 
 #include <algorithm>
+#include <vector>
 
 namespace dc::ui {
 
@@ -53,6 +54,55 @@ void endImagePanel(const ImageRect& opaque) {
 
 namespace {
 
+constexpr ImU32 kDrawingColour = IM_COL32(255, 255, 255, 255);
+constexpr ImU32 kRegionColour = IM_COL32(255, 255, 0, 255);
+// A lasso's vertices are at least this far apart on screen: a slow drag does not pile up hundreds of them.
+constexpr float kLassoSpacingPixels = 3.0f;
+
+// The lasso being drawn: one at a time, as ImGui holds one active item at a time; `owner` is the button
+// drawing it, so a drag started on another panel starts a new one.
+struct Lasso {
+    ImGuiID owner = 0;
+    bool active = false;
+    std::vector<ImVec2> screen;
+};
+Lasso& lasso() {
+    static Lasso l;
+    return l;
+}
+
+// Shift held as the drag starts: vertices where the mouse goes, a polyline while it drags, closed on
+// release into result.drawnPolygon (fewer than 3 vertices draw nothing). Whether the button's drag is a
+// lasso, up to and including the frame it is released on.
+bool dragLasso(const ImageRect& shown, ImGuiID id, PanelResult& result) {
+    Lasso& l = lasso();
+    const ImGuiIO& io = ImGui::GetIO();
+    if (ImGui::IsItemActivated())
+        l = {id, io.KeyShift, {io.MouseClickedPos[0]}};
+    // A lasso whose button let go unseen (its window closed mid-drag) is over, not waiting for a release.
+    const bool held = ImGui::IsItemActive() || ImGui::IsItemDeactivated();
+    if (l.owner != id || !l.active || !held)
+        return false;
+    const ImVec2 last = l.screen.back();
+    const float dx = io.MousePos.x - last.x, dy = io.MousePos.y - last.y;
+    if (dx * dx + dy * dy >= kLassoSpacingPixels * kLassoSpacingPixels &&
+        l.screen.size() < kMaxPolygonVertices)
+        l.screen.push_back(io.MousePos);
+    if (ImGui::IsItemActive() && l.screen.size() >= 2)
+        ImGui::GetWindowDrawList()->AddPolyline(l.screen.data(), static_cast<int>(l.screen.size()),
+                                                kDrawingColour, ImDrawFlags_None, 2.0f);
+    if (!ImGui::IsItemDeactivated())
+        return true;
+    l.active = false;
+    if (l.screen.size() >= 3) {
+        std::vector<ImVec2> fractions;
+        for (const ImVec2& p : l.screen)
+            fractions.push_back(imageFractionAt(shown, p));
+        result.drawnPolygon = std::move(fractions);
+    }
+    return true;
+}
+
 // An invisible button over the image holds the mouse while it drags, so the drag draws rather than moves
 // the window; the rectangle goes from where the button was pressed to where it is released.
 void dragRectangle(const ImageRect& shown, PanelResult& result) {
@@ -61,8 +111,11 @@ void dragRectangle(const ImageRect& shown, PanelResult& result) {
         return;
     const ImVec2 cursor = ImGui::GetCursorScreenPos();
     ImGui::SetCursorScreenPos(shown.min);
+    const ImGuiID id = ImGui::GetID("##drawRect");
     ImGui::InvisibleButton("##drawRect", size);
     ImGui::SetCursorScreenPos(cursor);
+    if (dragLasso(shown, id, result))
+        return;
     const ImGuiIO& io = ImGui::GetIO();
     const ImVec2 a = imageFractionAt(shown, io.MouseClickedPos[0]);
     const ImVec2 b = imageFractionAt(shown, io.MousePos);
@@ -71,7 +124,7 @@ void dragRectangle(const ImageRect& shown, PanelResult& result) {
     const ImVec2 delta = ImGui::GetMouseDragDelta(ImGuiMouseButton_Left);
     const bool dragged = delta.x != 0.0f || delta.y != 0.0f;
     if (ImGui::IsItemActive() && dragged)
-        outlineImageRect(shown, rect, IM_COL32(255, 255, 255, 255));
+        outlineImageRect(shown, rect, kDrawingColour);
     if (!ImGui::IsItemDeactivated())
         return;
     if (dragged)
@@ -101,9 +154,22 @@ void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelR
     const bool shownAtAll = shown.max.x > shown.min.x;
     if (roi.outline && shownAtAll) {
         drawOverlayAt(roi.causes, shown, *roi.outline, kCauseOpacity);
-        outlineImageRect(shown, *roi.outline, IM_COL32(255, 255, 0, 255));
+        if (roi.polygon.empty())
+            outlineImageRect(shown, *roi.outline, kRegionColour);
+        else
+            outlineImagePolygon(shown, roi.polygon, kRegionColour);
     }
     interactWithImage(shown, source, result, roi.drawable && shownAtAll);
+}
+
+void outlineImagePolygon(const ImageRect& shown, const std::vector<ImVec2>& fractions, ImU32 colour) {
+    std::vector<ImVec2> screen;
+    for (const ImVec2& f : fractions)
+        screen.push_back(screenAtFraction(shown, f));
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->PushClipRect(shown.min, shown.max, true);
+    draw->AddPolyline(screen.data(), static_cast<int>(screen.size()), colour, ImDrawFlags_Closed, 2.0f);
+    draw->PopClipRect();
 }
 
 void outlineImageRect(const ImageRect& shown, ImVec4 fractions, ImU32 colour) {

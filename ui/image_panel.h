@@ -17,10 +17,13 @@ void endImagePanel(const ImageRect& opaque);
 
 // The width the image is shown at, the hover readout (the depth sample under the mouse, into
 // result.probe) and click-to-zoom, over an image drawn with drawImage(). With `dragDraws`, a left drag
-// across the image draws a rectangle (into result.drawnRect) and only a click that does not drag zooms.
+// across the image draws a rectangle (into result.drawnRect) and only a click that does not drag zooms; with
+// Shift held as it starts, the drag draws a lasso (into result.drawnPolygon).
 void interactWithImage(const ImageRect& shown, const ProbeSource& source, PanelResult& result,
                        bool dragDraws = false);
 
+// Outlines a closed polygon of the image (vertices as fractions of it), clipped to the part shown.
+void outlineImagePolygon(const ImageRect& shown, const std::vector<ImVec2>& fractions, ImU32 colour);
 // Outlines a rectangle of the image (fractions: left, top, right, bottom), clipped to the part shown.
 void outlineImageRect(const ImageRect& shown, ImVec4 fractions, ImU32 colour);
 

@@ -60,14 +60,18 @@ struct PanelResult {
     // A rectangle dragged across the image (the depth panel's region of interest), as fractions of the
     // whole image: (left, top, right, bottom).
     std::optional<ImVec4> drawnRect;
+    // A lasso drawn with Shift held (the region as a polygon): its vertices, fractions of the whole image, at
+    // least 3.
+    std::optional<std::vector<ImVec2>> drawnPolygon;
 };
 
 // The Quality panel's region on an image panel that covers the depth map's field of view (depth,
 // confidence, infrared, a single camera's image): outlined there and, while it can be drawn, a left drag
-// across the image draws a new one (a click that does not drag still zooms).
+// across the image draws a new one (a click that does not drag still zooms), with Shift held a lasso.
 struct RoiOverlay {
     bool drawable = false;
     std::optional<ImVec4> outline; // the region measured, fractions of the image: (left, top, right, bottom)
+    std::vector<ImVec2> polygon;   // a polygon region's vertices, fractions of the image: outlined instead
     PanelImage causes;             // the region's missing samples coloured by cause, laid over the outline
 };
 

@@ -26,6 +26,10 @@ engine::QualityDemand qualityDemand(const QualitySettings& s) {
     engine::QualityDemand q;
     q.roiPercent = s.roiPercent;
     q.roi = {s.roiX, s.roiY, s.roiWidth, s.roiHeight};
+    if (s.roiPercent == 0) {
+        for (std::size_t i = 0; i + 1 < s.polygon.size(); i += 2)
+            q.polygon.push_back({s.polygon[i], s.polygon[i + 1]});
+    }
     q.windowFrames = s.windowFrames;
     q.nearMeters = s.nearMeters;
     q.farMeters = s.farMeters;

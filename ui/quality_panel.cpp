@@ -85,6 +85,7 @@ bool drawRegion(const processing::ShownQuality* quality, QualitySettings& s) {
             ImGui::PushStyleColor(ImGuiCol_Button, ImGui::GetStyleColorVec4(ImGuiCol_ButtonActive));
         if (ImGui::Button(label.c_str())) {
             s.roiPercent = percent;
+            s.polygon.clear();
             changed = true;
         }
         if (current)
@@ -94,7 +95,11 @@ bool drawRegion(const processing::ShownQuality* quality, QualitySettings& s) {
     changed |= ImGui::Checkbox("Causes on the panels", &s.causeOverlay);
     if (ImGui::IsItemHovered())
         ImGui::SetTooltip("The region's missing samples in their causes' colours on the image panels.");
-    if (quality)
+    if (quality && !quality->polygon.empty())
+        ImGui::TextDisabled("polygon, %zu vertices, %zu samples (Shift-drag on Depth to draw one)",
+                            quality->polygon.size(),
+                            quality->figures ? quality->figures->fill.roiSamples : 0);
+    else if (quality)
         ImGui::TextDisabled("%s %d,%d %dx%d px (drag on Depth to draw one)",
                             s.roiPercent > 0 ? "centred" : "drawn", quality->roi.x, quality->roi.y,
                             quality->roi.width, quality->roi.height);

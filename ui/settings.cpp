@@ -47,6 +47,22 @@ void sanitize(processing::ProcessingSettings& p) {
     p.aura.ringPixels = std::clamp(p.aura.ringPixels, 1, 100);
 }
 
+// A lasso's vertices as pairs: a vertex with a non-finite coordinate (or an odd coordinate left over)
+// dropped, the rest clamped to [0, maxPixels], at most kMaxPolygonVertices, and none at all if fewer than 3
+// remain.
+void sanitizePolygon(std::vector<float>& polygon, float maxPixels) {
+    std::vector<float> kept;
+    for (std::size_t i = 0; i + 1 < polygon.size() && kept.size() < 2 * kMaxPolygonVertices; i += 2) {
+        if (!std::isfinite(polygon[i]) || !std::isfinite(polygon[i + 1]))
+            continue;
+        kept.push_back(std::clamp(polygon[i], 0.0f, maxPixels));
+        kept.push_back(std::clamp(polygon[i + 1], 0.0f, maxPixels));
+    }
+    if (kept.size() < 6)
+        kept.clear();
+    polygon = std::move(kept);
+}
+
 } // namespace
 
 // A preset outside the list, a rectangle off the map or a range upside down: each put back, so that the
@@ -61,6 +77,7 @@ void sanitize(QualitySettings& q) {
     q.roiY = std::clamp(q.roiY, 0, kMaxPixels);
     q.roiWidth = std::clamp(q.roiWidth, 0, kMaxPixels);
     q.roiHeight = std::clamp(q.roiHeight, 0, kMaxPixels);
+    sanitizePolygon(q.polygon, static_cast<float>(kMaxPixels));
     q.windowFrames = std::clamp(q.windowFrames, 2, 600);
     q.groundTruthMm = std::clamp(finiteOr(q.groundTruthMm, 0.0f), 0.0f, 100000.0f);
     q.baselineMm = std::clamp(finiteOr(q.baselineMm, 0.0f), 0.0f, 10000.0f);

@@ -7,6 +7,7 @@
 #include "render/orbit_camera.h"
 #include "render/point_cloud_renderer.h"
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -89,8 +90,9 @@ struct DepthView {
 
 // The Quality panel's region of interest and how its samples are judged (engine::QualityDemand).
 inline constexpr int kQualityRoiPresets[] = {20, 40, 60, 80};
+inline constexpr std::size_t kMaxPolygonVertices = 256; // a lasso's, as drawn or read from the file
 struct QualitySettings {
-    int roiPercent = 40; // a centred preset (kQualityRoiPresets); 0: the rectangle below
+    int roiPercent = 40; // a centred preset (kQualityRoiPresets); 0: the rectangle below (or the polygon)
     int roiX = 0;        // the rectangle, in the shown depth's pixels (drawn on the depth panel)
     int roiY = 0;
     int roiWidth = 0;
@@ -105,6 +107,9 @@ struct QualitySettings {
     bool causeOverlay = true;        // the region's missing samples coloured by cause on the image panels
     int map = 0;            // the per-pixel map shown: an index into processing::kQualityMaps (0: none)
     bool alignment = false; // the colour-to-depth edge alignment (registers the colour every frame)
+    // A lasso drawn instead of the rectangle (Shift + drag): x, y, x, y, ... in the shown depth's pixel
+    // coordinates, at least 3 vertices; empty: the rectangle. A plain drag or a preset clears it.
+    std::vector<float> polygon;
 };
 
 // Where the window was and how large, in screen coordinates, as it was closed (width 0: never saved).

@@ -111,6 +111,8 @@ std::vector<SettingField> cloudFields() {
         field("quality", "roiY", DC_FIELD(quality.roiY), 8),
         field("quality", "roiWidth", DC_FIELD(quality.roiWidth), 64),
         field("quality", "roiHeight", DC_FIELD(quality.roiHeight), 48),
+        field("quality", "polygon", DC_FIELD(quality.polygon),
+              json::array({10.5, 4.0, 60.0, 8.25, 20.0, 40.0})),
         field("quality", "windowFrames", DC_FIELD(quality.windowFrames), 60),
         field("quality", "groundTruthMm", DC_FIELD(quality.groundTruthMm), 1000.0),
         field("quality", "baselineMm", DC_FIELD(quality.baselineMm), 50.0),

@@ -81,6 +81,7 @@ public:
     // A rectangle drawn on the depth panel (fractions of its image) becomes the Quality panel's region, in
     // the shown depth's pixels.
     void setDrawnRoi(const ImVec4& fractions);
+    void setDrawnPolygon(const std::vector<ImVec2>& fractions);
     const engine::Demand& demand() const { return presenter_.demand(); }
 
     // Opens the source a --source spec names; a bad spec leaves the current source running and says why

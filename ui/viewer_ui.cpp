@@ -343,6 +343,8 @@ void Viewer::afterPanel(const char* title, const PanelResult& result) {
         setZoomedPanel(zoomed_ == title ? std::string() : std::string(title));
     if (result.drawnRect)
         setDrawnRoi(*result.drawnRect);
+    if (result.drawnPolygon)
+        setDrawnPolygon(*result.drawnPolygon);
 }
 
 void Viewer::drawUi() {
@@ -633,6 +635,8 @@ RoiOverlay Viewer::roiOverlay() const {
     overlay.outline = ImVec4(static_cast<float>(q->roi.x) / w, static_cast<float>(q->roi.y) / h,
                              static_cast<float>(q->roi.x + q->roi.width) / w,
                              static_cast<float>(q->roi.y + q->roi.height) / h);
+    for (const auto& [x, y] : q->polygon)
+        overlay.polygon.push_back({static_cast<float>(x) / w, static_cast<float>(y) / h});
     if (settings_.quality.causeOverlay && q->causeOverlay)
         overlay.causes = imageOf(renderer_.causeOverlayTexture());
     return overlay;
@@ -649,6 +653,24 @@ void Viewer::setDrawnRoi(const ImVec4& f) {
     q.roiY = static_cast<int>(std::floor(f.y * h));
     q.roiWidth = std::max(static_cast<int>(std::ceil(f.z * w)) - q.roiX, 1);
     q.roiHeight = std::max(static_cast<int>(std::ceil(f.w * h)) - q.roiY, 1);
+    q.roiPercent = 0;
+    q.polygon.clear();
+    sanitize(q);
+}
+
+// The lasso's vertices in the shown depth's pixel coordinates; the region is the samples whose centres are
+// inside it.
+void Viewer::setDrawnPolygon(const std::vector<ImVec2>& fractions) {
+    if (!shown() || !shown()->depth.data)
+        return;
+    const float w = static_cast<float>(shown()->depth.width()),
+                h = static_cast<float>(shown()->depth.height());
+    QualitySettings& q = settings_.quality;
+    q.polygon.clear();
+    for (const ImVec2& f : fractions) {
+        q.polygon.push_back(f.x * w);
+        q.polygon.push_back(f.y * h);
+    }
     q.roiPercent = 0;
     sanitize(q);
 }

@@ -125,6 +125,12 @@ TEST_F(Quality, BadArgumentsExitTwoWithOneLineNamingTheArgument) {
         {"--roi 1,2,3", "--roi"},
         {"--source synthetic:64x48 --roi 60,0,10,10", "--roi"},
         {"--roi 0,0,8,8 --roi-percent 20", "--roi"},
+        {"--roi-polygon \"1,2;3,4\"", "--roi-polygon"},
+        {"--roi-polygon \"a,1;2,3;4,5\"", "--roi-polygon"},
+        {"--roi-polygon \"1,2,3;4,5;6,7\"", "--roi-polygon"},
+        {"--source synthetic:64x48 --roi-polygon \"0,0;70,0;0,10\"", "--roi-polygon"},
+        {"--roi 0,0,8,8 --roi-polygon \"0,0;8,0;0,8\"", "--roi-polygon"},
+        {"--roi-percent 20 --roi-polygon \"0,0;8,0;0,8\"", "--roi-polygon"},
         {"--frames 0", "--frames"},
         {"--source nowhere:at:all", "--source"},
     };
@@ -134,6 +140,27 @@ TEST_F(Quality, BadArgumentsExitTwoWithOneLineNamingTheArgument) {
         EXPECT_NE(r.err.find(c.mentions), std::string::npos) << c.args << "\n" << r.err;
         EXPECT_EQ(lines(r.err), 1u) << c.args << "\n" << r.err;
     }
+}
+
+// The triangle (4, 4), (40, 4), (4, 30): pixel (x, y) is in it when its centre is, i.e. x >= 4, y >= 4 and
+// 26 (x - 3.5) + 36 (y - 3.5) < 936 (the slope's equation; never equal at a centre, 26 x + 36 y being even).
+TEST_F(Quality, APolygonRegionCountsTheSamplesWhoseCentresAreInsideIt) {
+    const RunResult r =
+        run("--source synthetic:64x48 --frames 1 --roi-polygon \"4,4;40,4;4,30\" --json p.json");
+    ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    const nlohmann::json j = nlohmann::json::parse(readFile(dir_ / "p.json"));
+    EXPECT_EQ(j["roiPolygon"], nlohmann::json::parse("[[4, 4], [40, 4], [4, 30]]"));
+    std::size_t inside = 0;
+    for (int y = 0; y < 48; ++y)
+        for (int x = 0; x < 64; ++x)
+            inside += x >= 4 && y >= 4 && 26 * x + 36 * y < 1153;
+    EXPECT_EQ(j["roiSamples"].get<std::size_t>(), inside);
+    EXPECT_EQ(j["roi"], nlohmann::json::parse(R"({"x": 4, "y": 4, "width": 36, "height": 26})"));
+    const RunResult rectangle = run("--source synthetic:64x48 --frames 1 --roi 4,4,36,26 --json r.json");
+    ASSERT_EQ(rectangle.exitCode, 0) << rectangle.err;
+    const nlohmann::json k = nlohmann::json::parse(readFile(dir_ / "r.json"));
+    EXPECT_TRUE(!k.contains("roiPolygon") || k["roiPolygon"].is_null());
+    EXPECT_EQ(k["roiSamples"], 36 * 26);
 }
 
 TEST_F(Quality, AnExistingJsonIsKeptUnlessOverwriteIsGiven) {

@@ -296,6 +296,35 @@ TEST_F(ProcessingGraphTest, QualityIsMeasuredOncePerFrameAndRegionAndOnlyWhileAs
     EXPECT_FALSE(last_->quality->figures->planeError.empty());
 }
 
+// A polygon region: its bounding box measured (the vertices clamped to the 256x192 map first), the polygon
+// echoed as measured, only the samples inside counted, and a new polygon starts the window over.
+TEST_F(ProcessingGraphTest, APolygonDemandMeasuresItsInsideOverItsBoundingBox) {
+    const std::string quality(kQualityStage);
+    Demand d = cloudOnly();
+    d.quality = QualityDemand{};
+    d.quality->roiPercent = 0;
+    d.quality->roi = {0, 0, 8, 8}; // ignored while there is a polygon
+    d.quality->polygon = {{40.5, 30.0}, {120.0, 30.0}, {40.5, 100.25}};
+    EXPECT_EQ(runOn(0, d).at(quality), 1u);
+    ASSERT_TRUE(last_->quality && last_->quality->figures);
+    EXPECT_EQ(last_->quality->roi, (processing::Roi{40, 30, 80, 71}));
+    EXPECT_EQ(last_->quality->polygon, d.quality->polygon);
+    std::size_t inside = 0;
+    const processing::Roi& r = last_->quality->roi;
+    for (int y = r.y; y < r.y + r.height; ++y)
+        for (int x = r.x; x < r.x + r.width; ++x)
+            inside += processing::insidePolygon(d.quality->polygon, x + 0.5, y + 0.5);
+    EXPECT_LT(inside, static_cast<std::size_t>(r.width * r.height));
+    EXPECT_EQ(last_->quality->figures->fill.roiSamples, inside);
+    runOn(1, d, true);
+    EXPECT_EQ(last_->quality->windowFilled, 2u);
+    d.quality->polygon[2] = {300.0, 250.0}; // off the map: clamped to its corner
+    EXPECT_EQ(runOn(1, d).at(quality), 1u);
+    EXPECT_EQ(last_->quality->windowFilled, 1u) << "another polygon starts the noise window over";
+    EXPECT_EQ(last_->quality->roi, (processing::Roi{40, 30, 216, 162}));
+    EXPECT_EQ(last_->quality->polygon[2], (std::array<double, 2>{256.0, 192.0}));
+}
+
 } // namespace
 } // namespace dc::engine::test
 

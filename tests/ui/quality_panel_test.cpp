@@ -517,5 +517,81 @@ TEST_F(QualityPanelTest, TheRegionIsOutlinedOnTheCloudWhereItsPointsAreDrawn) {
     EXPECT_EQ(outlinePixelsIn(kCloudTitle, picture, width), 0);
 }
 
+// Pixel (x, y) of a width x height map is in `polygon` (x, y, x, y, ... in its pixel coordinates) when its
+// centre is, by the even-odd crossing count of a ray to the right (W. R. Franklin's PNPOLY).
+std::size_t centresInside(const std::vector<float>& polygon, int width, int height) {
+    const std::size_t n = polygon.size() / 2;
+    std::size_t count = 0;
+    for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+            const double px = x + 0.5, py = y + 0.5;
+            bool in = false;
+            for (std::size_t i = 0, j = n - 1; i < n; j = i++) {
+                const double xi = polygon[2 * i], yi = polygon[2 * i + 1];
+                const double xj = polygon[2 * j], yj = polygon[2 * j + 1];
+                if ((yi > py) != (yj > py) && px < (xj - xi) * (py - yi) / (yj - yi) + xi)
+                    in = !in;
+            }
+            count += in;
+        }
+    }
+    return count;
+}
+
+TEST_F(QualityPanelTest, AShiftDragDrawsAPolygonWhoseInsideIsMeasuredAndAPlainDragARectangleAgain) {
+    ASSERT_NO_FATAL_FAILURE(startViewer(wallScene(), qualityShown()));
+    viewer_->setRedoWait(std::chrono::seconds(10));
+    ASSERT_TRUE(figuresShown());
+    const ImGuiWindow* depthPanel = ImGui::FindWindowByName(kDepthTitle);
+    ASSERT_NE(depthPanel, nullptr);
+    const ImVec2 c{depthPanel->Pos.x + depthPanel->Size.x * 0.5f,
+                   depthPanel->Pos.y + depthPanel->Size.y * 0.5f};
+    // A triangle by hand, Shift held: pressed at its first corner, along two sides, released at the third.
+    const ImVec2 corners[] = {
+        {c.x - 40.0f, c.y - 25.0f}, {c.x + 35.0f, c.y - 20.0f}, {c.x - 30.0f, c.y + 30.0f}};
+    gui_.io().KeyShift = true;
+    gui_.io().MousePos = corners[0];
+    frame(0.0);
+    gui_.io().MouseDown[0] = true;
+    frame(0.0);
+    for (int side = 0; side < 2; ++side) {
+        for (int i = 1; i <= 4; ++i) {
+            const float t = static_cast<float>(i) / 4.0f;
+            const ImVec2 a = corners[side], b = corners[side + 1];
+            gui_.io().MousePos = ImVec2(a.x + (b.x - a.x) * t, a.y + (b.y - a.y) * t);
+            frame(0.0);
+        }
+    }
+    gui_.io().MouseDown[0] = false;
+    frame(0.0);
+    gui_.io().KeyShift = false;
+    const QualitySettings& s = viewer_->settings().quality;
+    EXPECT_EQ(s.roiPercent, 0);
+    ASSERT_GE(s.polygon.size(), 6u) << "a lasso of at least 3 vertices";
+    EXPECT_EQ(s.polygon.size() % 2, 0u);
+    EXPECT_TRUE(viewer_->zoomedPanel().empty()) << "a drag is no click: the panel is not zoomed";
+    frame(0.0);
+    const processing::ShownQuality* q = viewer_->quality();
+    ASSERT_NE(q, nullptr);
+    ASSERT_TRUE(q->figures);
+    EXPECT_EQ(q->polygon.size(), s.polygon.size() / 2) << "measured in the next frame";
+    const processing::ShownDepth& depth = viewer_->shown()->depth;
+    const std::size_t inside = centresInside(s.polygon, depth.width(), depth.height());
+    EXPECT_GT(inside, 20u);
+    EXPECT_LT(inside, static_cast<std::size_t>(q->roi.width * q->roi.height))
+        << "a triangle fills half its box";
+    EXPECT_EQ(q->figures->fill.roiSamples, inside);
+
+    // A plain drag draws a rectangle again.
+    drag({c.x - 20.0f, c.y - 15.0f}, {c.x + 20.0f, c.y + 10.0f});
+    EXPECT_TRUE(s.polygon.empty());
+    frame(0.0);
+    q = viewer_->quality();
+    ASSERT_TRUE(q && q->figures);
+    EXPECT_TRUE(q->polygon.empty());
+    EXPECT_EQ(q->roi, (processing::Roi{s.roiX, s.roiY, s.roiWidth, s.roiHeight}));
+    EXPECT_EQ(q->figures->fill.roiSamples, static_cast<std::size_t>(s.roiWidth * s.roiHeight));
+}
+
 } // namespace
 } // namespace dc::ui::test

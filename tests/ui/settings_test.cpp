@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -188,7 +189,8 @@ TEST(Settings, SanitizeRemovesNonFiniteValues) {
 TEST(Settings, TheQualitySectionRoundTripsAndTakesSets) {
     Settings s;
     s.panels.quality = true;
-    s.quality = {0, 10, 20, 30, 40, 45, 1234.5f, 0.3f, 3.5f, 20.0f, 50.0f, 0.125f};
+    s.quality = {0,    10,    20,    30,     40,    45, 1234.5f, 0.3f,
+                 3.5f, 20.0f, 50.0f, 0.125f, false, 2,  true,    {1.5f, 2.0f, 30.0f, 2.0f, 1.5f, 20.25f}};
     const auto back = settingsFromJson(settingsToJson(s));
     ASSERT_TRUE(back.ok());
     const QualitySettings& q = back->quality;
@@ -205,6 +207,19 @@ TEST(Settings, TheQualitySectionRoundTripsAndTakesSets) {
     EXPECT_FLOAT_EQ(q.flyingThresholdMm, 20.0f);
     EXPECT_FLOAT_EQ(q.baselineMm, 50.0f);
     EXPECT_FLOAT_EQ(q.designSubpixelRms, 0.125f);
+    EXPECT_EQ(q.polygon, s.quality.polygon);
+    // A lasso read back: a vertex with a non-finite coordinate and an odd coordinate left over dropped, and
+    // fewer than 3 vertices none at all.
+    QualitySettings lasso;
+    lasso.polygon = {1.0f, 2.0f, std::nanf(""), 3.0f, 4.0f, 5.0f, 6.0f, 7.0f, 8.0f};
+    sanitize(lasso);
+    EXPECT_EQ(lasso.polygon, (std::vector<float>{1.0f, 2.0f, 4.0f, 5.0f, 6.0f, 7.0f}));
+    lasso.polygon = {1.0f, 2.0f, 4.0f, 5.0f, std::numeric_limits<float>::infinity(), 7.0f};
+    sanitize(lasso);
+    EXPECT_TRUE(lasso.polygon.empty());
+    lasso.polygon.assign(2 * (kMaxPolygonVertices + 10), 1.0f);
+    sanitize(lasso);
+    EXPECT_EQ(lasso.polygon.size(), 2 * kMaxPolygonVertices);
 
     Settings t;
     ASSERT_TRUE(applySetting(t, "quality.roiPercent=80"));

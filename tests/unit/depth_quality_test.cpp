@@ -446,5 +446,138 @@ TEST(DepthQuality, TemporalNoiseNeedsAPixelValidInEveryFrame) {
     EXPECT_FALSE(window.spatialNoiseMm().ok());
 }
 
+// Pixel centres on a polygon's edges decide by side, as a rasterizer's top-left rule does: on an edge with
+// the polygon to its right or below, inside; to its left or above, outside.
+TEST(DepthQuality, InsidePolygonHandCases) {
+    const Polygon square{{0, 0}, {4, 0}, {4, 4}, {0, 4}};
+    EXPECT_TRUE(insidePolygon(square, 2, 2));
+    EXPECT_FALSE(insidePolygon(square, 5, 2));
+    EXPECT_FALSE(insidePolygon(square, -1, 2));
+    EXPECT_FALSE(insidePolygon(square, 2, -0.5));
+    EXPECT_TRUE(insidePolygon(square, 0, 2)) << "left edge";
+    EXPECT_FALSE(insidePolygon(square, 4, 2)) << "right edge";
+    EXPECT_TRUE(insidePolygon(square, 2, 0)) << "top edge";
+    EXPECT_FALSE(insidePolygon(square, 2, 4)) << "bottom edge";
+    // An L: the notch (1..4, 1..4) is outside though it lies within the bounding box.
+    const Polygon ell{{0, 0}, {4, 0}, {4, 1}, {1, 1}, {1, 4}, {0, 4}};
+    EXPECT_TRUE(insidePolygon(ell, 0.5, 3.5));
+    EXPECT_TRUE(insidePolygon(ell, 3.5, 0.5));
+    EXPECT_TRUE(insidePolygon(ell, 0.5, 0.5));
+    EXPECT_FALSE(insidePolygon(ell, 3, 3));
+    EXPECT_FALSE(insidePolygon(ell, 1.5, 1.5));
+    // A bow tie by the even-odd rule: each lobe inside, the crossing's sides outside.
+    const Polygon bowTie{{0, 0}, {4, 4}, {4, 0}, {0, 4}};
+    EXPECT_TRUE(insidePolygon(bowTie, 0.5, 2));
+    EXPECT_TRUE(insidePolygon(bowTie, 3.5, 2));
+    EXPECT_FALSE(insidePolygon(bowTie, 2, 0.5));
+    EXPECT_FALSE(insidePolygon(Polygon{{0, 0}, {4, 4}}, 2, 2)) << "two vertices hold nothing";
+    EXPECT_EQ(polygonBounds(ell), (Roi{0, 0, 4, 4}));
+    EXPECT_EQ(polygonBounds(Polygon{{1.5, 2.25}, {7.0, 2.5}, {3.0, 9.75}}), (Roi{1, 2, 6, 8}));
+}
+
+// The right triangle (2, 2), (30, 2), (2, 20): a centre (x + 0.5, y + 0.5) is inside when x >= 2, y >= 2 and
+// 18 (x - 1.5) + 28 (y - 1.5) < 504, i.e. 18 x + 28 y < 573 (an odd number, so no centre is on the slope).
+const Polygon kTriangle{{2, 2}, {30, 2}, {2, 20}};
+bool insideTriangle(int x, int y) {
+    return x >= 2 && y >= 2 && 18 * x + 28 * y < 573;
+}
+
+QualityParams triangleParams() {
+    QualityParams params;
+    params.polygon = kTriangle;
+    params.roi = polygonBounds(kTriangle);
+    params.flyingThresholdMeters = 10.0f; // the step at the triangle's border is not what is tested
+    return params;
+}
+
+// Inside: a noisy wall at 1 m with one hole; outside: a wall at 1.5 m with one hole too. The outside samples
+// are in no count and no fit.
+TEST(DepthQuality, APolygonRegionMeasuresOnlyTheSamplesWhoseCentresAreInside) {
+    const frame::Intrinsics k = intrinsics(40, 30);
+    frame::DepthData d = flat(40, 30, 1.5f);
+    std::mt19937 random(7);
+    std::normal_distribution<float> noise(0.0f, 0.002f);
+    for (int y = 0; y < 30; ++y)
+        for (int x = 0; x < 40; ++x)
+            if (insideTriangle(x, y))
+                d.depthMeters.at(x, y) = 1.0f + noise(random);
+    d.depthMeters.at(3, 3) = 0.0f;   // inside
+    d.depthMeters.at(28, 18) = 0.0f; // in the bounding box, outside
+    const QualityParams params = triangleParams();
+    ASSERT_EQ(params.roi, (Roi{2, 2, 28, 18}));
+    const auto q = measureFrameQuality(d, k, params);
+    ASSERT_TRUE(q.ok()) << q.error().message;
+    std::size_t inside = 0;
+    std::vector<Point3d> points;
+    for (int y = params.roi.y; y < params.roi.y + params.roi.height; ++y) {
+        for (int x = params.roi.x; x < params.roi.x + params.roi.width; ++x) {
+            const std::size_t i =
+                static_cast<std::size_t>(y - params.roi.y) * params.roi.width + (x - params.roi.x);
+            if (!insideTriangle(x, y)) {
+                EXPECT_EQ(q->causes[i], SampleCause::OutsideRegion) << x << "," << y;
+                continue;
+            }
+            ++inside;
+            EXPECT_NE(q->causes[i], SampleCause::OutsideRegion) << x << "," << y;
+            const double z = d.depthMeters.at(x, y);
+            if (z > 0.0)
+                points.push_back({(x - k.cx) / k.fx * z, (y - k.cy) / k.fy * z, z});
+        }
+    }
+    EXPECT_EQ(q->fill.roiSamples, inside);
+    EXPECT_EQ(q->fill.valid, inside - 1);
+    EXPECT_EQ(q->fill.noMeasurement, 1u);
+    EXPECT_DOUBLE_EQ(q->fill.fillRate(), static_cast<double>(inside - 1) / static_cast<double>(inside));
+    ASSERT_TRUE(q->plane) << q->planeError;
+    const auto robust = fitPlaneRobust(points, params.fit);
+    const auto dqt = dqtPlaneFitRms(points);
+    ASSERT_TRUE(robust.ok() && dqt.ok());
+    EXPECT_NEAR(q->plane->planeFitRmsMm, robust->rmsMeters * 1000.0, 1e-9);
+    EXPECT_NEAR(q->plane->dqtPlaneFitRmsMm, *dqt * 1000.0, 1e-9);
+    EXPECT_NEAR(q->plane->distanceMm, 1000.0, 1.0);
+    // The overlay: the hole inside in its cause's colour, everything outside (the hole there too)
+    // transparent.
+    const RgbaImage overlay = causeOverlay(q->causes, params.roi.width, params.roi.height);
+    ASSERT_EQ(overlay.pixels.size(), q->causes.size() * 4);
+    for (std::size_t i = 0; i < q->causes.size(); ++i) {
+        const bool missingInside = q->causes[i] == SampleCause::NoMeasurement;
+        EXPECT_EQ(overlay.pixels[i * 4 + 3], missingInside ? 255 : 0) << i;
+    }
+    EXPECT_EQ(overlay.pixels[(1u * 28u + 1u) * 4u + 3u], 255) << "the hole at (3, 3)";
+}
+
+// Inside, each pixel alternates 1 m and 1.002 m (1.414 mm deviation); outside, 1 m and 1.1 m. The window
+// counts only the inside: its median is the inside's deviation, and its maps are NaN outside.
+TEST(DepthQuality, ANoiseWindowOverAPolygonKeepsOnlyTheInside) {
+    const QualityParams params = triangleParams();
+    NoiseWindow window(params, 4);
+    for (int frame = 0; frame < 4; ++frame) {
+        frame::DepthData d = flat(40, 30, frame % 2 ? 1.1f : 1.0f);
+        for (int y = 0; y < 30; ++y)
+            for (int x = 0; x < 40; ++x)
+                if (insideTriangle(x, y))
+                    d.depthMeters.at(x, y) = frame % 2 ? 1.002f : 1.0f;
+        window.add(d, std::nullopt);
+    }
+    const auto temporal = window.temporalNoiseMm();
+    ASSERT_TRUE(temporal.ok()) << temporal.error().message;
+    EXPECT_NEAR(*temporal, 2.0 / std::sqrt(3.0), 1e-3); // sample std of 0, 2, 0, 2 mm
+    const frame::Plane<float> fill = window.fillMapPercent();
+    const frame::Plane<float> deviation = window.temporalStdMapMm();
+    ASSERT_EQ(fill.width, 28);
+    ASSERT_EQ(fill.height, 18);
+    for (int y = 0; y < 18; ++y) {
+        for (int x = 0; x < 28; ++x) {
+            if (insideTriangle(x + 2, y + 2)) {
+                EXPECT_EQ(fill.at(x, y), 100.0f) << x << "," << y;
+                EXPECT_NEAR(deviation.at(x, y), 2.0 / std::sqrt(3.0), 1e-3) << x << "," << y;
+            } else {
+                EXPECT_TRUE(std::isnan(fill.at(x, y))) << x << "," << y;
+                EXPECT_TRUE(std::isnan(deviation.at(x, y))) << x << "," << y;
+            }
+        }
+    }
+}
+
 } // namespace
 } // namespace dc::processing
