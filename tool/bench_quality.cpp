@@ -4,6 +4,8 @@
 #include "base/log.h"
 #include "devices/synthetic/synthetic_scene.h"
 #include "processing/depth_quality.h"
+#include "processing/edge_alignment.h"
+#include "processing/registration.h"
 #include "tool/bench_frames.h"
 #include "tool/bench_median.h"
 #include "tool/options.h"
@@ -106,6 +108,40 @@ nlohmann::json runCase(const char* scene, const std::vector<frame::DepthData>& f
     return row;
 }
 
+// The Quality panel's colour-to-depth alignment, off by default because it registers the colour every
+// frame: its cost on frames with a camera image, the registration and the edge comparison apart.
+nlohmann::json runAlignmentCase(const char* scene, const std::vector<frame::FramePtr>& frames,
+                                double roiPercent, int runs) {
+    const frame::Plane<float>& first = frames.front()->sceneDepth->depthMeters;
+    const processing::Roi roi = processing::centredRoi(first.width, first.height, roiPercent);
+    processing::CameraColourTable table;
+    const auto frameOf = [&](int i) -> const frame::Frame& { return *frames[i % frames.size()]; };
+    const auto registered = [&](int i) {
+        const frame::Plane<float>& depth = frameOf(i).sceneDepth->depthMeters;
+        return processing::colourAlignedToDepth(frameOf(i), depth, depth.width, depth.height, table);
+    };
+    const processing::RgbImage colour = registered(0);
+    const double whole = medianMs(runs, [&](int i) {
+        static_cast<void>(processing::measureEdgeAlignment(frameOf(i).sceneDepth->depthMeters, registered(i),
+                                                           frameOf(i).depthIntrinsics(), roi));
+    });
+    const double registration = medianMs(runs, [&](int i) { static_cast<void>(registered(i)); });
+    const double edges = medianMs(runs, [&](int) {
+        static_cast<void>(
+            processing::measureEdgeAlignment(first, colour, frames.front()->depthIntrinsics(), roi));
+    });
+    std::printf("%s, %dx%d depth, ROI %d%%, colour-to-depth alignment, median of %d frames:\n", scene,
+                first.width, first.height, static_cast<int>(roiPercent), runs);
+    std::printf("  %-84s %8.2f ms\n", "registration and edge comparison", whole);
+    std::printf("  %-84s %8.2f ms\n", "the colour registered onto the depth", registration);
+    std::printf("  %-84s %8.2f ms\n", "the edges compared", edges);
+    return {{"scene", scene},
+            {"roiPercent", roiPercent},
+            {"alignment", whole},
+            {"alignmentRegistration", registration},
+            {"alignmentEdges", edges}};
+}
+
 } // namespace
 
 CLI::App* addBenchQualityCommand(CLI::App& bench, BenchQualityOptions& o) {
@@ -139,6 +175,12 @@ int runBenchQuality(const BenchQualityOptions& o) {
     results.push_back(runCase("flat target", flat, k, 40.0, o.frames));
     results.push_back(runCase("flat target", flat, k, 100.0, o.frames));
     results.push_back(runCase("synthetic scene (cluttered)", scene, k, 40.0, o.frames));
+    results.push_back(runAlignmentCase("synthetic scene (cluttered)", sceneFrames, 40.0, o.frames));
+    const std::vector<frame::FramePtr> rigFrames =
+        syntheticFrames(devices::syntheticRigConfig(), kQualityDistinctFrames);
+    if (!rigFrames.empty() && rigFrames.front()->sceneDepth)
+        results.push_back(
+            runAlignmentCase("synthetic rig (848x480 depth, 1280x720 colour)", rigFrames, 40.0, o.frames));
     if (o.jsonPath.empty())
         return kExitOk;
     if (Status s = base::writeTextFile(
