@@ -33,6 +33,73 @@ std::vector<std::array<int, 2>> borderPixels(const Roi& roi, int step) {
     return pixels;
 }
 
+// The pixels a polygon's edges pass through, a step of at most one pixel along each edge, then every n-th
+// of them so that there are at most `most`.
+std::vector<std::array<int, 2>> polygonPixels(const Polygon& polygon, int width, int height, int most) {
+    std::vector<std::array<int, 2>> pixels;
+    const auto pixelAt = [&](double x, double y) {
+        return std::array<int, 2>{std::clamp(static_cast<int>(std::floor(x)), 0, width - 1),
+                                  std::clamp(static_cast<int>(std::floor(y)), 0, height - 1)};
+    };
+    for (std::size_t i = 0; i < polygon.size(); ++i) {
+        const auto& a = polygon[i];
+        const auto& b = polygon[(i + 1) % polygon.size()];
+        const double length = std::max(std::abs(b[0] - a[0]), std::abs(b[1] - a[1]));
+        const int steps = std::max(1, static_cast<int>(std::ceil(length)));
+        for (int s = 0; s < steps; ++s) {
+            const double t = static_cast<double>(s) / steps;
+            const auto p = pixelAt(a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1]));
+            if (pixels.empty() || pixels.back() != p)
+                pixels.push_back(p);
+        }
+    }
+    const std::size_t step =
+        (pixels.size() + static_cast<std::size_t>(most) - 1) / static_cast<std::size_t>(most);
+    if (step <= 1)
+        return pixels;
+    std::vector<std::array<int, 2>> kept;
+    for (std::size_t i = 0; i < pixels.size(); i += step)
+        kept.push_back(pixels[i]);
+    return kept;
+}
+
+// The outline through `pixels` (a closed walk) on the surface, as roiOutline describes it.
+std::vector<Polyline3> outlineThrough(const std::vector<std::array<int, 2>>& pixels,
+                                      const frame::DepthData& depth, const frame::Intrinsics& k,
+                                      frame::Confidence minLevel, float nearMeters) {
+    const frame::Plane<float>& d = depth.depthMeters;
+    const auto drawn = [&](const std::array<int, 2>& p) {
+        const std::uint8_t c = depth.confidence.empty() ? 2 : depth.confidence.at(p[0], p[1]);
+        return keepSample(d.at(p[0], p[1]), c, minLevel, nearMeters);
+    };
+    const auto place = [&](const std::array<int, 2>& p) {
+        return unproject(p[0], p[1], d.at(p[0], p[1]), k);
+    };
+    const auto gap = std::find_if_not(pixels.begin(), pixels.end(), drawn);
+    if (gap == pixels.end()) {
+        Polyline3 closed;
+        for (const auto& p : pixels)
+            closed.push_back(place(p));
+        closed.push_back(closed.front());
+        return {closed};
+    }
+    // Walked from a gap round to it again, no run is cut in two where the walk began.
+    std::vector<Polyline3> runs;
+    Polyline3 run;
+    const std::size_t start = static_cast<std::size_t>(gap - pixels.begin());
+    for (std::size_t i = 1; i <= pixels.size(); ++i) {
+        const auto& p = pixels[(start + i) % pixels.size()];
+        if (drawn(p)) {
+            run.push_back(place(p));
+            continue;
+        }
+        if (run.size() >= 2)
+            runs.push_back(run);
+        run.clear();
+    }
+    return runs;
+}
+
 } // namespace
 
 bool CloudSamples::usable() const {
@@ -87,37 +154,17 @@ std::vector<Polyline3> roiOutline(const frame::DepthData& depth, const frame::In
     const int perimeter = 2 * (roi.width - 1) + 2 * (roi.height - 1);
     const int most = std::max(maxVertices, 1);
     const int step = std::max(1, (perimeter + most - 1) / most);
-    const std::vector<std::array<int, 2>> pixels = borderPixels(roi, step);
-    const auto drawn = [&](const std::array<int, 2>& p) {
-        const std::uint8_t c = depth.confidence.empty() ? 2 : depth.confidence.at(p[0], p[1]);
-        return keepSample(d.at(p[0], p[1]), c, minLevel, nearMeters);
-    };
-    const auto place = [&](const std::array<int, 2>& p) {
-        return unproject(p[0], p[1], d.at(p[0], p[1]), k);
-    };
-    const auto gap = std::find_if_not(pixels.begin(), pixels.end(), drawn);
-    if (gap == pixels.end()) {
-        Polyline3 closed;
-        for (const auto& p : pixels)
-            closed.push_back(place(p));
-        closed.push_back(closed.front());
-        return {closed};
-    }
-    // Walked from a gap round to it again, no run is cut in two where the walk began.
-    std::vector<Polyline3> runs;
-    Polyline3 run;
-    const std::size_t start = static_cast<std::size_t>(gap - pixels.begin());
-    for (std::size_t i = 1; i <= pixels.size(); ++i) {
-        const auto& p = pixels[(start + i) % pixels.size()];
-        if (drawn(p)) {
-            run.push_back(place(p));
-            continue;
-        }
-        if (run.size() >= 2)
-            runs.push_back(run);
-        run.clear();
-    }
-    return runs;
+    return outlineThrough(borderPixels(roi, step), depth, k, minLevel, nearMeters);
+}
+
+std::vector<Polyline3> roiOutline(const frame::DepthData& depth, const frame::Intrinsics& k,
+                                  const Polygon& polygon, frame::Confidence minLevel, float nearMeters,
+                                  int maxVertices) {
+    const frame::Plane<float>& d = depth.depthMeters;
+    if (!k.valid() || polygon.size() < 3 || d.width <= 0 || d.height <= 0)
+        return {};
+    return outlineThrough(polygonPixels(polygon, d.width, d.height, std::max(maxVertices, 1)), depth, k,
+                          minLevel, nearMeters);
 }
 
 } // namespace dc::processing

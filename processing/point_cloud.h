@@ -64,5 +64,10 @@ using Polyline3 = std::vector<std::array<float, 3>>;
 // region not inside the map or invalid intrinsics.
 std::vector<Polyline3> roiOutline(const frame::DepthData& depth, const frame::Intrinsics& k, const Roi& roi,
                                   frame::Confidence minLevel, float nearMeters, int maxVertices);
+// The same along a polygon region's edges (the pixels they pass through, at most maxVertices of them).
+// Empty for fewer than 3 vertices or invalid intrinsics.
+std::vector<Polyline3> roiOutline(const frame::DepthData& depth, const frame::Intrinsics& k,
+                                  const Polygon& polygon, frame::Confidence minLevel, float nearMeters,
+                                  int maxVertices);
 
 } // namespace dc::processing

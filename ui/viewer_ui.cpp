@@ -106,13 +106,18 @@ ImVec2 cloudFraction(const glm::vec4& clip) {
 // The Quality panel's region on the cloud's surface (processing::roiOutline), in the cloud image. A vertex
 // behind the view breaks its line as a missing sample does: projected, it would land mirrored on the image.
 std::vector<std::vector<ImVec2>> roiOutlineOnCloud(const processing::ShownDepth& depth,
-                                                   const processing::Roi& roi, const CloudSettings& cloud,
+                                                   const processing::ShownQuality& quality,
+                                                   const CloudSettings& cloud,
                                                    const glm::mat4& viewProjection) {
     // Smooth at any panel size, and few enough to project every frame.
     constexpr int kMaxVertices = 200;
+    const std::vector<processing::Polyline3> runs =
+        quality.polygon.empty() ? processing::roiOutline(*depth.data, depth.intrinsics, quality.roi,
+                                                         cloud.minConfidence, cloud.nearMeters, kMaxVertices)
+                                : processing::roiOutline(*depth.data, depth.intrinsics, quality.polygon,
+                                                         cloud.minConfidence, cloud.nearMeters, kMaxVertices);
     std::vector<std::vector<ImVec2>> lines;
-    for (const processing::Polyline3& run : processing::roiOutline(
-             *depth.data, depth.intrinsics, roi, cloud.minConfidence, cloud.nearMeters, kMaxVertices)) {
+    for (const processing::Polyline3& run : runs) {
         lines.emplace_back();
         for (const auto& [x, y, z] : run) {
             const glm::vec4 clip = viewProjection * glm::vec4(x, y, z, 1.0f);
@@ -806,7 +811,7 @@ CloudOverlay Viewer::cloudOverlay() const {
     if (const processing::ShownQuality* q = quality();
         settings_.panels.quality && q && q->roi.width > 0 && shown()->depth.data)
         overlay.roiOutline =
-            roiOutlineOnCloud(shown()->depth, q->roi, settings_.cloud, presenter_.cloudViewProjection());
+            roiOutlineOnCloud(shown()->depth, *q, settings_.cloud, presenter_.cloudViewProjection());
     const Anchors& anchors = presenter_.anchors();
     if (anchors.empty())
         return overlay;

@@ -206,6 +206,44 @@ TEST(RoiOutline, SamplesTheCloudDoesNotDrawBreakTheOutline) {
             EXPECT_GE(p[2], 1.6f);
 }
 
+// A triangle region: the outline walks the pixels its edges pass through, each on the wall, within a pixel of
+// an edge, the three corners' pixels among them, closed; at most the vertices asked for.
+TEST(RoiOutline, APolygonRegionIsWalkedAlongItsEdges) {
+    const TiltedWall wall;
+    const frame::DepthData depth = wall.depth();
+    const Polygon triangle{{10.5, 8.5}, {40.5, 8.5}, {10.5, 28.5}};
+    const auto lines = roiOutline(depth, wall.k, triangle, frame::Confidence::Low, 0.0f, 200);
+    ASSERT_EQ(lines.size(), 1u);
+    const Polyline3& line = lines[0];
+    EXPECT_EQ(line.front(), line.back());
+    const auto distanceToEdge = [&](double x, double y) {
+        double nearest = 1e9;
+        for (std::size_t i = 0; i < triangle.size(); ++i) {
+            const auto& a = triangle[i];
+            const auto& b = triangle[(i + 1) % triangle.size()];
+            const double dx = b[0] - a[0], dy = b[1] - a[1];
+            const double t = std::clamp(((x - a[0]) * dx + (y - a[1]) * dy) / (dx * dx + dy * dy), 0.0, 1.0);
+            nearest = std::min(nearest, std::hypot(x - a[0] - t * dx, y - a[1] - t * dy));
+        }
+        return nearest;
+    };
+    for (const auto& p : line) {
+        EXPECT_NEAR(wall.distanceMeters(p), 0.0, 1e-5) << "on the wall";
+        const std::array<int, 2> pixel = wall.pixelOf(p);
+        EXPECT_LE(distanceToEdge(pixel[0] + 0.5, pixel[1] + 0.5), 1.0) << pixel[0] << "," << pixel[1];
+    }
+    for (const std::array<int, 2> corner : {std::array{10, 8}, {40, 8}, {10, 28}})
+        EXPECT_TRUE(
+            std::any_of(line.begin(), line.end(), [&](const auto& p) { return wall.pixelOf(p) == corner; }))
+            << corner[0] << "," << corner[1];
+    const auto few = roiOutline(depth, wall.k, triangle, frame::Confidence::Low, 0.0f, 20);
+    ASSERT_EQ(few.size(), 1u);
+    EXPECT_LE(few[0].size(), 21u) << "20 vertices and the closing one";
+    EXPECT_TRUE(
+        roiOutline(depth, wall.k, Polygon{{1.0, 1.0}, {5.0, 5.0}}, frame::Confidence::Low, 0.0f, 200).empty())
+        << "two vertices are no region";
+}
+
 TEST(RoiOutline, NothingForARegionOffTheMapOrInvalidIntrinsics) {
     const TiltedWall wall;
     const frame::DepthData depth = wall.depth();
