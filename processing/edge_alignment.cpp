@@ -169,13 +169,16 @@ struct Scores {
 
 // Each depth-edge pixel of the ROI away from unseen colour, and the distances of those that matched.
 Scores scoreDepthEdges(const frame::Plane<float>& depth, const ColourEdges& edges, const cv::Mat& unseen,
-                       const frame::Intrinsics& k, const Roi& roi, const EdgeAlignmentParams& p) {
+                       const cv::Point& origin, const frame::Intrinsics& k, const Roi& roi,
+                       const EdgeAlignmentParams& p) {
     static constexpr int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
     Scores s;
     for (int y = roi.y; y < roi.y + roi.height; ++y) {
         for (int x = roi.x; x < roi.x + roi.width; ++x) {
             const float z = depth.at(x, y);
-            if (!frame::isMeasured(z) || unseen.at<std::uint8_t>(y, x))
+            // The colour's edges and unseen mask cover only the search window at `origin`.
+            const int wx = x - origin.x, wy = y - origin.y;
+            if (!frame::isMeasured(z) || unseen.at<std::uint8_t>(wy, wx))
                 continue;
             bool edge = false;
             double best = kNoEdge;
@@ -185,9 +188,9 @@ Scores scoreDepthEdges(const frame::Plane<float>& depth, const ColourEdges& edge
                     !jumpsBehind(z, depth.at(qx, qy), p))
                     continue;
                 edge = true;
-                const float bx = static_cast<float>(x) + 0.5f * static_cast<float>(dx);
-                const float by = static_cast<float>(y) + 0.5f * static_cast<float>(dy);
-                best = std::min(best, nearestColourEdge(edges, x, y, bx, by, p.maxSearchPx));
+                const float bx = static_cast<float>(wx) + 0.5f * static_cast<float>(dx);
+                const float by = static_cast<float>(wy) + 0.5f * static_cast<float>(dy);
+                best = std::min(best, nearestColourEdge(edges, wx, wy, bx, by, p.maxSearchPx));
             }
             if (!edge)
                 continue;
@@ -199,6 +202,15 @@ Scores scoreDepthEdges(const frame::Plane<float>& depth, const ColourEdges& edge
         }
     }
     return s;
+}
+
+// The part of the colour whose edges can matter: the ROI grown by the search distance, the depth edge's
+// half pixel and the 3x3 support of Canny's and Sobel's gradients (kept whole, so an edge near the window's
+// border is marked as in the whole image; only Canny's hysteresis cannot follow a weak edge out and back in).
+cv::Rect searchWindow(const Roi& roi, double maxSearchPx, const cv::Size& image) {
+    const int margin = static_cast<int>(std::ceil(maxSearchPx)) + 4;
+    const cv::Rect grown(roi.x - margin, roi.y - margin, roi.width + 2 * margin, roi.height + 2 * margin);
+    return grown & cv::Rect(0, 0, image.width, image.height);
 }
 
 double median(std::vector<double> values) {
@@ -221,9 +233,13 @@ Expected<EdgeAlignment> measureEdgeAlignment(const frame::Plane<float>& depthMet
     // OpenCV only reads through this header.
     const cv::Mat rgb(colourOnDepth.height, colourOnDepth.width, CV_8UC3,
                       const_cast<std::uint8_t*>(colourOnDepth.pixels.data()));
-    const cv::Mat unseen = nearUnseen(rgb);
-    const ColourEdges edges = colourEdges(rgb, unseen, params);
-    Scores s = scoreDepthEdges(depthMeters, edges, unseen, depthIntrinsics, roi, params);
+    // Only the ROI's neighbourhood: a 40 % region is a sixth of the image, and the edges are most of the
+    // cost.
+    const cv::Rect window = searchWindow(roi, params.maxSearchPx, rgb.size());
+    const cv::Mat part = rgb(window);
+    const cv::Mat unseen = nearUnseen(part);
+    const ColourEdges edges = colourEdges(part, unseen, params);
+    Scores s = scoreDepthEdges(depthMeters, edges, unseen, window.tl(), depthIntrinsics, roi, params);
     if (s.depthEdges == 0)
         return notEnough("no depth edge in the ROI");
     if (s.px.empty())
