@@ -174,16 +174,6 @@ std::vector<double> qualitySeries(const QualityLog& log, QualityFigure figure) {
 
 namespace {
 
-double medianOf(std::vector<double> values) {
-    const std::size_t mid = values.size() / 2;
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-    const double upper = values[mid];
-    if (values.size() % 2 == 1)
-        return upper;
-    return 0.5 *
-           (upper + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
-}
-
 struct DistanceBin {
     std::vector<double> distances, rms, expected;
 };
@@ -217,9 +207,10 @@ std::vector<NoiseAtDistance> noiseOverDistance(const QualityLog& log, int bins) 
     for (const DistanceBin& b : binned) {
         if (b.distances.empty())
             continue;
-        NoiseAtDistance n{medianOf(b.distances), medianOf(b.rms), std::nullopt, b.distances.size()};
+        NoiseAtDistance n{processing::medianOf(b.distances), processing::medianOf(b.rms), std::nullopt,
+                          b.distances.size()};
         if (!b.expected.empty())
-            n.expectedNoiseMm = medianOf(b.expected);
+            n.expectedNoiseMm = processing::medianOf(b.expected);
         out.push_back(n);
     }
     return out;

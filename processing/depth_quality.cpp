@@ -110,16 +110,6 @@ PlaneModel orientedPlane(std::array<double, 3> n, const Point3d& through) {
     return {n, n[0] * through.x + n[1] * through.y + n[2] * through.z};
 }
 
-double median(std::vector<double> values) {
-    const std::size_t mid = values.size() / 2;
-    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
-    const double upper = values[mid];
-    if (values.size() % 2 == 1)
-        return upper;
-    return 0.5 *
-           (upper + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
-}
-
 std::vector<Point3d> inliersOf(std::span<const Point3d> points, const RobustPlaneFit& fit) {
     std::vector<Point3d> out;
     out.reserve(points.size());
@@ -193,7 +183,7 @@ std::optional<RandomPlane> bestRandomPlane(std::span<const Point3d> points, cons
                         return r < best->medianResidual;
                     })) < residuals.size() / 2)
             continue;
-        const double m = median(residuals);
+        const double m = medianOf(residuals);
         if (best && m >= best->medianResidual)
             continue;
         best = RandomPlane{*plane, m, {}};
@@ -414,6 +404,16 @@ std::optional<double> trimmedSumByTails(std::span<const Point3d> points, const P
 }
 
 } // namespace
+
+double medianOf(std::vector<double> values) {
+    const std::size_t mid = values.size() / 2;
+    std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
+    const double upper = values[mid];
+    if (values.size() % 2 == 1)
+        return upper;
+    return 0.5 *
+           (upper + *std::max_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid)));
+}
 
 Roi centredRoi(int imageWidth, int imageHeight, double percent) {
     const double f = std::clamp(percent, 0.0, 100.0) / 100.0;
@@ -906,7 +906,7 @@ Expected<double> NoiseWindow::spatialNoiseMm() const {
     }
     if (rms.empty())
         return notEnough("no frame of the window had a plane fit");
-    return median(std::move(rms));
+    return medianOf(std::move(rms));
 }
 
 } // namespace dc::processing

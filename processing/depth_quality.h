@@ -58,6 +58,9 @@ struct PlaneModel {
 
 inline constexpr const char* kNotEnoughSamples = "not enough valid samples";
 
+// The median of `values`, the mean of the middle two for an even count; `values` must not be empty.
+double medianOf(std::vector<double> values);
+
 // Total least squares: the plane through the centroid whose normal is the covariance's smallest eigenvector
 // (points are centred first, so a plane 20 m away loses no precision). An error with fewer than 3 points or
 // when they are (nearly) collinear, coincident or not finite.

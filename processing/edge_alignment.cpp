@@ -213,14 +213,6 @@ cv::Rect searchWindow(const Roi& roi, double maxSearchPx, const cv::Size& image)
     return grown & cv::Rect(0, 0, image.width, image.height);
 }
 
-double median(std::vector<double> values) {
-    const auto mid = values.begin() + static_cast<std::ptrdiff_t>(values.size() / 2);
-    std::nth_element(values.begin(), mid, values.end());
-    if (values.size() % 2)
-        return *mid;
-    return 0.5 * (*std::max_element(values.begin(), mid) + *mid);
-}
-
 } // namespace
 
 Expected<EdgeAlignment> measureEdgeAlignment(const frame::Plane<float>& depthMeters,
@@ -252,8 +244,8 @@ Expected<EdgeAlignment> measureEdgeAlignment(const frame::Plane<float>& depthMet
     for (double d : s.px)
         sum += d;
     a.meanPx = sum / static_cast<double>(s.px.size());
-    a.medianPx = median(std::move(s.px));
-    a.medianMm = median(std::move(s.mm));
+    a.medianPx = medianOf(std::move(s.px));
+    a.medianMm = medianOf(std::move(s.mm));
     return a;
 }
 
