@@ -45,7 +45,6 @@ void markInside(const Polygon& polygon, int y, int x0, std::vector<char>& inside
 
 using Matrix3 = std::array<std::array<double, 3>, 3>;
 
-constexpr double kMetersToMm = 1000.0;
 // DQT trims this fraction of the residuals from each end before its plane-fit RMS.
 constexpr double kDqtTrimFraction = 0.005;
 // Random planes are scored on at most this many points: the median of 2,000 residuals picks the same
@@ -58,10 +57,6 @@ constexpr double kMissProbability = 1e-9;
 constexpr int kMinIterations = 20;
 // Fewer rows than twice this are classified on one core.
 constexpr int kClassifyRowsPerPiece = 16;
-
-Error notEnough(const std::string& why) {
-    return Error{std::string(kNotEnoughSamples) + ": " + why};
-}
 
 // Cyclic Jacobi rotations on a symmetric 3x3 matrix: the rotations converge quadratically and never produce
 // a NaN for finite input (a vanishing off-diagonal element is skipped, a huge theta makes t = 0). Returns
@@ -218,7 +213,7 @@ Expected<LeastSquaresFit> planeOfSums(const Point3d& o, const std::array<double,
     std::sort(order.begin(), order.end(), [&](int a, int b) { return values[a] < values[b]; });
     // Collinear or coincident points leave two eigenvalues at zero: any plane through the line fits.
     if (!(values[order[1]] > 1e-12 * values[order[2]]))
-        return notEnough("the points are collinear or coincident");
+        return notEnoughSamples("the points are collinear or coincident");
     const int k = order[0];
     return LeastSquaresFit{orientedPlane({vectors[0][k], vectors[1][k], vectors[2][k]}, c),
                            std::max(values[k], 0.0), static_cast<std::size_t>(n)};
@@ -313,7 +308,7 @@ template <class Keep>
 Expected<LeastSquaresFit> leastSquaresWhere(std::span<const Point3d> points, Keep&& keep) {
     const auto first = std::find_if(points.begin(), points.end(), keep);
     if (first == points.end())
-        return notEnough("0 points, a plane needs 3");
+        return notEnoughSamples("0 points, a plane needs 3");
     const Point3d origin = *first;
     std::array<double, 3> s1{};
     std::array<double, 6> s2{}; // xx xy xz yy yz zz
@@ -335,7 +330,7 @@ Expected<LeastSquaresFit> leastSquaresWhere(std::span<const Point3d> points, Kee
         ++count;
     }
     if (count < 3)
-        return notEnough(std::to_string(count) + " points, a plane needs 3");
+        return notEnoughSamples(std::to_string(count) + " points, a plane needs 3");
     // A point that is not finite leaves a sum that is not (checked once here, not per point).
     const bool finiteSums = std::isfinite(s1[0] + s1[1] + s1[2]) &&
                             std::all_of(s2.begin(), s2.end(), [](double v) { return std::isfinite(v); });
@@ -405,6 +400,10 @@ std::optional<double> trimmedSumByTails(std::span<const Point3d> points, const P
 
 } // namespace
 
+Error notEnoughSamples(const std::string& why) {
+    return Error{std::string(kNotEnoughSamples) + ": " + why};
+}
+
 double medianOf(std::vector<double> values) {
     const std::size_t mid = values.size() / 2;
     std::nth_element(values.begin(), values.begin() + static_cast<std::ptrdiff_t>(mid), values.end());
@@ -459,10 +458,10 @@ Expected<PlaneModel> fitPlaneLeastSquares(std::span<const Point3d> points) {
 
 Expected<RobustPlaneFit> fitPlaneRobust(std::span<const Point3d> points, const RobustFitParams& params) {
     if (points.size() < 3)
-        return notEnough(std::to_string(points.size()) + " points, a plane needs 3");
+        return notEnoughSamples(std::to_string(points.size()) + " points, a plane needs 3");
     const auto best = bestRandomPlane(points, params);
     if (!best)
-        return notEnough("no three points span a plane");
+        return notEnoughSamples("no three points span a plane");
     const double threshold = params.inlierThresholdMeters.value_or(
         std::max(3.0 * kMadToSigma * best->medianResidual, kMinInlierThresholdMeters));
     const auto within = [&threshold](const PlaneModel& plane) {
@@ -540,7 +539,7 @@ Expected<double> subpixelRms(std::span<const Point3d> points, const PlaneModel& 
         ++count;
     }
     if (count == 0)
-        return notEnough("no point's ray meets the plane in front of the camera");
+        return notEnoughSamples("no point's ray meets the plane in front of the camera");
     return std::sqrt(sum / static_cast<double>(count));
 }
 
@@ -858,7 +857,7 @@ void NoiseWindow::leave(const WindowFrame& f) {
 
 Expected<double> NoiseWindow::temporalNoiseMm() const {
     if (window_.size() < 2)
-        return notEnough("temporal noise needs at least 2 frames");
+        return notEnoughSamples("temporal noise needs at least 2 frames");
     // Every pixel counted has the same count (the window's length), so its deviation sqrt(m2 / (n - 1))
     // grows with m2: the middle pixels by m2, and only their square roots taken.
     const auto n = static_cast<std::uint32_t>(window_.size());
@@ -869,7 +868,7 @@ Expected<double> NoiseWindow::temporalNoiseMm() const {
             m2.push_back(p.m2);
     }
     if (m2.empty())
-        return notEnough("no pixel is valid in every frame of the window");
+        return notEnoughSamples("no pixel is valid in every frame of the window");
     const auto [lower, upper] = middleOfMany(m2);
     const auto deviationMm = [n](double v) { return std::sqrt(v / (n - 1)) * kMetersToMm; };
     return 0.5 * (deviationMm(lower) + deviationMm(upper));
@@ -905,7 +904,7 @@ Expected<double> NoiseWindow::spatialNoiseMm() const {
             rms.push_back(*f.planeFitRmsMm);
     }
     if (rms.empty())
-        return notEnough("no frame of the window had a plane fit");
+        return notEnoughSamples("no frame of the window had a plane fit");
     return medianOf(std::move(rms));
 }
 

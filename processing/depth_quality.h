@@ -12,6 +12,7 @@
 #include <limits>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 // Depth quality figures of a flat target (issue 29), as Intel's Depth Quality Tool (DQT) reports them, plus a
@@ -57,6 +58,10 @@ struct PlaneModel {
 };
 
 inline constexpr const char* kNotEnoughSamples = "not enough valid samples";
+// kNotEnoughSamples with the reason, as one error line.
+Error notEnoughSamples(const std::string& why);
+
+inline constexpr double kMetersToMm = 1000.0;
 
 // The median of `values`, the mean of the middle two for an even count; `values` must not be empty.
 double medianOf(std::vector<double> values);

@@ -17,7 +17,6 @@ namespace dc::processing {
 
 namespace {
 
-constexpr double kMetersToMm = 1000.0;
 constexpr double kNoEdge = std::numeric_limits<double>::infinity();
 // Colour and depth edges this close (pixels, along either axis) to an unseen pixel are dropped: a gray
 // region's border is marked by Canny at most a pixel from it.
@@ -29,10 +28,6 @@ constexpr double kMaxSearchLimitPx = 100.0;
 // A pinhole focal length under a pixel is a field of view of nearly 180 degrees on any image, no camera's;
 // refusing it also keeps px x z / fx finite for every finite depth.
 constexpr double kMinFocalPx = 1.0;
-
-Error notEnough(const std::string& why) {
-    return Error{std::string(kNotEnoughSamples) + ": " + why};
-}
 
 std::string sizeText(int width, int height) {
     return std::to_string(width) + "x" + std::to_string(height);
@@ -233,10 +228,10 @@ Expected<EdgeAlignment> measureEdgeAlignment(const frame::Plane<float>& depthMet
     const ColourEdges edges = colourEdges(part, unseen, params);
     Scores s = scoreDepthEdges(depthMeters, edges, unseen, window.tl(), depthIntrinsics, roi, params);
     if (s.depthEdges == 0)
-        return notEnough("no depth edge in the ROI");
+        return notEnoughSamples("no depth edge in the ROI");
     if (s.px.empty())
-        return notEnough("no depth edge matched a colour edge within " + numberText(params.maxSearchPx) +
-                         " px");
+        return notEnoughSamples("no depth edge matched a colour edge within " +
+                                numberText(params.maxSearchPx) + " px");
     EdgeAlignment a;
     a.depthEdgePixels = s.depthEdges;
     a.matched = s.px.size();

@@ -10,7 +10,6 @@ namespace dc::processing {
 
 namespace {
 
-constexpr double kMetersToMm = 1000.0;
 // The range's end: the 98th percentile, so that a few wild pixels do not wash out the rest of the map.
 constexpr double kRangePercentile = 0.98;
 

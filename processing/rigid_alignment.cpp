@@ -1,5 +1,7 @@
 #include "processing/rigid_alignment.h"
 
+#include "processing/depth_quality.h"
+
 #include <opencv2/core.hpp>
 
 #include <algorithm>
@@ -15,7 +17,6 @@ namespace {
 
 using Vec3 = std::array<double, 3>;
 
-constexpr double kMetersToMm = 1000.0;
 constexpr double kRadToDeg = 180.0 / std::numbers::pi;
 // 1.4826 x the median |residual| estimates sigma for Gaussian noise; Tukey's biweight reaches zero at 4.685
 // sigma, which keeps 95 % efficiency on Gaussian residuals.
