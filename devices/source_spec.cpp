@@ -97,7 +97,11 @@ Expected<std::unique_ptr<Device>> openSynthetic(const std::vector<std::string>& 
 
 } // namespace
 
-Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec) {
+Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& given) {
+    auto placement = sourcePlacement(given);
+    if (!placement)
+        return placement.error();
+    const std::string& spec = placement->spec;
     const std::vector<std::string> parts = split(spec, ':');
     if (!parts.empty() && parts[0] == "synthetic")
         return openSynthetic(parts);

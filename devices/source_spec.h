@@ -2,6 +2,7 @@
 
 #include "base/expected.h"
 #include "devices/device.h"
+#include "devices/source_pose.h"
 
 #include <memory>
 #include <string>
@@ -14,9 +15,11 @@ inline constexpr const char* kSourceSpecHelp =
     "replay:PATH[:loop][:paused][:speed=X][:calib=FILE] | "
     "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS] | "
     "ros:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:master=http://HOST:PORT][:tolerance=MS][:watchdog=MS]"
-    "[:frame=FIXED_FRAME]";
+    "[:frame=FIXED_FRAME]; any of them [:pose=X,Y,Z,QX,QY,QZ,QW|:pose=FILE] (FILE: YAML or JSON "
+    "`pose: [X, Y, Z, QX, QY, QZ, QW]`)";
 
-// Parses a --source value and builds the device it names. Errors name the offending part.
+// Parses a --source value and builds the device it names. Errors name the offending part. A pose= option is
+// checked and left out: the device does not place itself (sourcePlacement gives its transform).
 Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec);
 // A live camera's spec streaming its depth in `mode`, the rest as it was; an error for other sources.
 Expected<std::string> specWithDepthMode(const std::string& spec, const StreamMode& mode);

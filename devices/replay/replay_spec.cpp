@@ -2,6 +2,7 @@
 
 #include "devices/replay/replay_device.h"
 #include "devices/replay/text_fields.h"
+#include "devices/source_pose.h"
 
 namespace dc::devices::replay {
 
@@ -70,7 +71,12 @@ Expected<std::unique_ptr<Device>> openReplaySpec(const std::string& rest) {
     return std::unique_ptr<Device>(std::make_unique<ReplayDevice>(std::move(*source), spec->replay));
 }
 
-Expected<std::unique_ptr<ReplaySource>> openReplaySpecSource(const std::string& text) {
+Expected<std::unique_ptr<ReplaySource>> openReplaySpecSource(const std::string& given) {
+    // Where the source sits in the world is its reader's business, not the source's.
+    auto placement = sourcePlacement(given);
+    if (!placement)
+        return placement.error();
+    const std::string& text = placement->spec;
     auto spec = parseSpec(text.starts_with("replay:") ? text.substr(7) : text);
     if (!spec)
         return spec.error();

@@ -18,7 +18,7 @@ inline constexpr const char* kReplaySpecHelp =
 Expected<std::unique_ptr<Device>> openReplaySpec(const std::string& rest);
 
 // The source behind a replay spec, for consumers that need random access rather than a paced device
-// (export, benchmarks): "replay:PATH[:options]" or a bare PATH. Playback options are ignored.
+// (export, benchmarks): "replay:PATH[:options]" or a bare PATH. Playback options and pose= are ignored.
 Expected<std::unique_ptr<ReplaySource>> openReplaySpecSource(const std::string& spec);
 
 } // namespace dc::devices::replay

@@ -1,5 +1,6 @@
 #include "devices/uvc/live_source_spec.h"
 
+#include "devices/source_pose.h"
 #include "devices/uvc/live_devices.h"
 #include "devices/uvc/v4l2/node_probe.h"
 #include "devices/uvc/v4l2/pixel_formats.h"
@@ -164,7 +165,13 @@ Expected<std::string> withDepthMode(const std::string& spec, const StreamMode& m
     return out;
 }
 
-Expected<UvcConfig> parseLiveSourceSpec(const std::string& spec) {
+Expected<UvcConfig> parseLiveSourceSpec(const std::string& given) {
+    // pose= places the camera in the world, which is not the camera's business (`depthcloud controls` reads
+    // a spec the viewer took, pose= and all).
+    auto placement = sourcePlacement(given);
+    if (!placement)
+        return placement.error();
+    const std::string& spec = placement->spec;
     const std::vector<std::string> parts = splitColons(spec);
     UvcConfig config;
     const std::size_t options = firstOption(parts);

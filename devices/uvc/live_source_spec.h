@@ -16,7 +16,7 @@ namespace dc::devices {
 // OPTION: WxH[@FPS] (depth mode), format=Z16|Y16, scale=METERS_PER_UNIT, calib=FILE (one camera: OpenCV
 // or ROS camera_info YAML; two sensors, depth and colour: OpenCV stereo YAML/JSON or Kalibr camchain),
 // color=/dev/videoM|none, watchdog=MS (default 2000), preset=FILE (control values set on open, as
-// `depthcloud controls --save` writes them).
+// `depthcloud controls --save` writes them), pose= (checked and left to sourcePlacement).
 inline constexpr const char* kLiveSourceSpecHelp = "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS]";
 
 bool isLiveSourceSpec(const std::string& spec);

@@ -1,8 +1,10 @@
 #include "devices/source_spec.h"
 #include "devices/synthetic/synthetic_device.h"
+#include "devices/uvc/live_source_spec.h"
 
 #include <gtest/gtest.h>
 
+#include <fstream>
 #include <utility>
 
 namespace dc::devices {
@@ -75,6 +77,113 @@ TEST(SourceSpec, UnknownSourceIsRejectedWithTheGrammar) {
     ASSERT_FALSE(d.ok());
     EXPECT_NE(d.error().message.find("unknown source 'kinect'"), std::string::npos);
     EXPECT_NE(d.error().message.find("synthetic[:WxH"), std::string::npos);
+}
+
+std::string writePoseFile(const std::string& name, const std::string& text) {
+    const std::string path = ::testing::TempDir() + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+void expectPoseError(const std::string& spec, const std::string& problem) {
+    auto placement = sourcePlacement(spec);
+    ASSERT_FALSE(placement.ok()) << spec;
+    const std::string& message = placement.error().message;
+    EXPECT_NE(message.find("pose="), std::string::npos) << spec << ": " << message;
+    EXPECT_NE(message.find(problem), std::string::npos) << spec << ": " << message;
+    EXPECT_EQ(message.find('\n'), std::string::npos) << spec << ": " << message;
+}
+
+TEST(SourcePose, SevenNumbersGiveTheCameraToWorldTransform) {
+    // A quarter turn about z (qz = qw = sqrt(1/2)) at (1, 2, 3) m: the camera's x axis points along world y.
+    auto placement = sourcePlacement("synthetic:640x480:pose=1,2,3,0,0,0.70710678,0.70710678:exact");
+    ASSERT_TRUE(placement.ok()) << placement.error().message;
+    EXPECT_EQ(placement->spec, "synthetic:640x480:exact");
+    ASSERT_TRUE(placement->cameraToWorld.has_value());
+    const frame::RigidTransform& pose = *placement->cameraToWorld;
+    const std::array<double, 9> quarterTurn{0, -1, 0, 1, 0, 0, 0, 0, 1};
+    for (int i = 0; i < 9; ++i)
+        EXPECT_NEAR(pose.rotation[i], quarterTurn[i], 1e-8) << i;
+    EXPECT_EQ(pose.translationMeters, (std::array<double, 3>{1, 2, 3}));
+    const auto p = pose.apply({1, 0, 0});
+    EXPECT_NEAR(p[0], 1.0, 1e-8);
+    EXPECT_NEAR(p[1], 3.0, 1e-8);
+    EXPECT_NEAR(p[2], 3.0, 1e-8);
+}
+
+TEST(SourcePose, AQuaternionWithinTheToleranceIsNormalised) {
+    auto placement = sourcePlacement("synthetic:pose=0,0,0,0,0,0,1.0009");
+    ASSERT_TRUE(placement.ok()) << placement.error().message;
+    EXPECT_LT(frame::rotationError(placement->cameraToWorld->rotation), 1e-12);
+    EXPECT_NEAR(placement->cameraToWorld->rotation[0], 1.0, 1e-12);
+}
+
+TEST(SourcePose, TheRestOfTheSpecIsUntouched) {
+    const std::pair<const char*, const char*> cases[] = {
+        {"replay:/data/a:b.dcrec:pose=0,0,1,0,0,0,1:loop", "replay:/data/a:b.dcrec:loop"},
+        {"ros:/cam/depth:pose=0,0,1,0,0,0,1:master=http://robot:11311",
+         "ros:/cam/depth:master=http://robot:11311"},
+        {"usb:8086:0b07::calib=a.yaml:pose=0,0,1,0,0,0,1", "usb:8086:0b07::calib=a.yaml"},
+        {"v4l2:/dev/video2:pose=0,0,1,0,0,0,1", "v4l2:/dev/video2"}};
+    for (const auto& [spec, rest] : cases) {
+        auto placement = sourcePlacement(spec);
+        ASSERT_TRUE(placement.ok()) << spec << ": " << placement.error().message;
+        EXPECT_EQ(placement->spec, rest);
+        EXPECT_TRUE(placement->cameraToWorld.has_value()) << spec;
+    }
+}
+
+TEST(SourcePose, ASpecWithoutPoseGivesNone) {
+    for (const char* spec : {"synthetic", "synthetic:", "replay:/data/pose=x:loop",
+                             "ros:/a:master=http://h:1", "v4l2:/dev/video0::640x480"}) {
+        auto placement = sourcePlacement(spec);
+        ASSERT_TRUE(placement.ok()) << spec << ": " << placement.error().message;
+        EXPECT_EQ(placement->spec, spec);
+        EXPECT_FALSE(placement->cameraToWorld.has_value()) << spec;
+    }
+}
+
+TEST(SourcePose, BadPosesAreOneLineErrorsNamingPose) {
+    expectPoseError("synthetic:pose=", "expected X,Y,Z,QX,QY,QZ,QW or a pose file");
+    expectPoseError("synthetic:pose=0,0,1,0,0,1", "found 6");
+    expectPoseError("synthetic:pose=0,0,1,0,0,0,1,0", "found 8");
+    expectPoseError("synthetic:pose=0,0,x,0,0,0,1", "'x' is not a number");
+    expectPoseError("synthetic:pose=0,0,1,0,0,,1", "'' is not a number");
+    expectPoseError("synthetic:pose=0,0,1,0,0,0,1.01", "norm is 1.01");
+    expectPoseError("synthetic:pose=0,0,1,0,0,0,0", "norm is 0");
+    expectPoseError("synthetic:pose=0,0,inf,0,0,0,1", "not a finite number");
+    expectPoseError("synthetic:pose=/no/such/pose.yaml", "/no/such/pose.yaml");
+    expectPoseError("synthetic:pose=0,0,1,0,0,0,1:pose=0,0,2,0,0,0,1", "given twice");
+}
+
+TEST(SourcePose, APoseFileHoldsTheSameSevenNumbers) {
+    const std::string yaml = writePoseFile("pose.yaml", "pose: [0.5, 0, 1.25, 0, 0, 0, 1]\n");
+    const std::string json = writePoseFile("pose.json", "{\"pose\": [0.5, 0, 1.25, 0, 0, 0, 1]}");
+    for (const std::string& path : {yaml, json}) {
+        auto placement = sourcePlacement("replay:take.dcrec:pose=" + path + ":paused");
+        ASSERT_TRUE(placement.ok()) << path << ": " << placement.error().message;
+        EXPECT_EQ(placement->spec, "replay:take.dcrec:paused");
+        ASSERT_TRUE(placement->cameraToWorld.has_value());
+        EXPECT_TRUE(frame::RigidTransform{}.rotation == placement->cameraToWorld->rotation);
+        EXPECT_EQ(placement->cameraToWorld->translationMeters, (std::array<double, 3>{0.5, 0, 1.25}));
+    }
+    expectPoseError("synthetic:pose=" + writePoseFile("short.yaml", "pose: [0, 0, 1, 0, 0, 1]\n"),
+                    "pose: expected 7 values, found 6");
+    expectPoseError("synthetic:pose=" + writePoseFile("scaled.yaml", "pose: [0, 0, 1, 0, 0, 0, 2]\n"),
+                    "norm is 2");
+    expectPoseError("synthetic:pose=" + writePoseFile("none.yaml", "position: [0, 0, 1]\n"), "pose: missing");
+}
+
+TEST(SourcePose, EveryKindOpensWithAPoseAndABadOneIsRefused) {
+    auto d = openSourceSpec("synthetic:320x240:pose=0,0,1,0,0,0,1");
+    ASSERT_TRUE(d.ok()) << d.error().message;
+    EXPECT_EQ(configOf(*d).depthWidth, 320);
+    auto bad = openSourceSpec("synthetic:pose=0,0,1");
+    ASSERT_FALSE(bad.ok());
+    EXPECT_NE(bad.error().message.find("pose=0,0,1 in --source"), std::string::npos) << bad.error().message;
+    auto live = parseLiveSourceSpec("v4l2:/dev/video2:640x480:pose=0,0,1,0,0,0,1:scale=0.001");
+    ASSERT_TRUE(live.ok()) << live.error().message;
+    EXPECT_EQ(live->width, 640);
 }
 
 } // namespace
