@@ -24,6 +24,7 @@ enum class Section : std::uint8_t {
     Color = 6,
     Rig = 7,      // format 1.1: a two-sensor camera's calibration
     Infrared = 8, // format 1.2: the depth sensor's infrared image
+    Timing = 9,   // format 1.3: what the drivers said about the capture (frame::FrameTiming)
 };
 enum class Codec : std::uint8_t { Raw = 0, Zstd = 1 };
 // Layouts of a section's raw bytes.
@@ -35,6 +36,9 @@ constexpr std::uint8_t kInfraredUint16 = 0; // little-endian raw intensity
 constexpr std::uint8_t kColorJpeg = 3;      // 0..2 are PixelFormat values stored as captured
 constexpr std::size_t kSectionHeaderSize = 36;
 constexpr std::size_t kMaxDescriptionLength = 4096;
+// The timing section's per-stream flags.
+constexpr std::uint8_t kTimingHasDriverSequence = 1;
+constexpr std::uint8_t kTimingMonotonic = 2;
 
 // Metres per unit that importers use: millimetres (Stray, PNG16) and TUM's 1/5000 m.
 constexpr double kKnownScales[] = {0.001, 0.0002};
@@ -288,6 +292,31 @@ std::vector<std::uint8_t> rigBytes(const frame::RigCalibration& rig) {
     return bytes;
 }
 
+// Sources that say nothing about timing (synthetic scenes, importers) get no section: their recordings
+// stay as small as before and read back with the defaults.
+bool hasTiming(const frame::FrameTiming& t) {
+    return t.colour || t.depth.driverSequence || t.depth.sensorNs != 0 ||
+           t.depth.source != frame::TimestampSource::Unknown || t.depth.monotonic;
+}
+
+void putStreamTiming(ByteWriter& w, const frame::StreamTiming& t) {
+    w.put(static_cast<std::uint8_t>((t.driverSequence ? kTimingHasDriverSequence : 0) |
+                                    (t.monotonic ? kTimingMonotonic : 0)));
+    w.put(t.driverSequence.value_or(0));
+    w.put(t.sensorNs);
+    w.put(static_cast<std::uint8_t>(t.source));
+}
+
+std::vector<std::uint8_t> timingBytes(const frame::FrameTiming& timing) {
+    std::vector<std::uint8_t> bytes;
+    ByteWriter w(bytes);
+    putStreamTiming(w, timing.depth);
+    w.put(static_cast<std::uint8_t>(timing.colour.has_value()));
+    if (timing.colour)
+        putStreamTiming(w, *timing.colour);
+    return bytes;
+}
+
 } // namespace
 
 Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& frame) {
@@ -303,6 +332,8 @@ Expected<std::vector<std::uint8_t>> FrameEncoder::encode(const frame::Frame& fra
     impl_->section(out, {Section::Meta, Codec::Raw, 0, 0, 0, 0.0, 0}, meta, false);
     if (frame.rig)
         impl_->section(out, {Section::Rig, Codec::Raw, 0, 0, 0, 0.0, 0}, rigBytes(*frame.rig), false);
+    if (hasTiming(frame.timing))
+        impl_->section(out, {Section::Timing, Codec::Raw, 0, 0, 0, 0.0, 0}, timingBytes(frame.timing), false);
     if (frame.sceneDepth) {
         impl_->depth(out, Section::SceneDepth, frame.sceneDepth->depthMeters);
         if (!frame.sceneDepth->confidence.empty())
@@ -336,6 +367,7 @@ struct FrameDecoder::Impl {
     Status unpack(const SectionHeader& h, std::span<const std::uint8_t> stored, std::uint64_t offset);
     Status decodeMeta(ByteReader r, frame::Frame& frame);
     Status decodeRig(ByteReader r, frame::Frame& frame);
+    Status decodeTiming(ByteReader r, frame::Frame& frame);
     Expected<frame::Plane<float>> decodeDepth(const SectionHeader& h, std::uint64_t offset);
     Expected<frame::Plane<std::uint8_t>> decodePlane8(const SectionHeader& h, std::uint64_t offset);
     Expected<frame::CapturedImage> decodeColor(const SectionHeader& h, std::uint64_t offset);
@@ -432,6 +464,38 @@ Status FrameDecoder::Impl::decodeRig(ByteReader r, frame::Frame& frame) {
     return {};
 }
 
+namespace {
+
+frame::StreamTiming getStreamTiming(ByteReader& r) {
+    frame::StreamTiming t;
+    const auto flags = r.get<std::uint8_t>();
+    const auto sequence = r.get<std::uint32_t>();
+    if (flags & kTimingHasDriverSequence)
+        t.driverSequence = sequence;
+    t.monotonic = (flags & kTimingMonotonic) != 0;
+    t.sensorNs = r.get<std::int64_t>();
+    // A source a newer version defines is one this build cannot name.
+    const auto source = r.get<std::uint8_t>();
+    t.source = source <= static_cast<std::uint8_t>(frame::TimestampSource::Arrival)
+                   ? static_cast<frame::TimestampSource>(source)
+                   : frame::TimestampSource::Unknown;
+    return t;
+}
+
+} // namespace
+
+// Bytes after the colour stream are fields a newer minor version added: skipped, as in the meta section.
+Status FrameDecoder::Impl::decodeTiming(ByteReader r, frame::Frame& frame) {
+    frame::FrameTiming timing;
+    timing.depth = getStreamTiming(r);
+    if (r.get<std::uint8_t>() != 0)
+        timing.colour = getStreamTiming(r);
+    if (!r.ok())
+        return error("frame timing ends early", r.offset());
+    frame.timing = timing;
+    return {};
+}
+
 Expected<frame::Plane<float>> FrameDecoder::Impl::decodeDepth(const SectionHeader& h, std::uint64_t offset) {
     frame::Plane<float> plane(h.width, h.height);
     const std::size_t n = plane.pixels.size();
@@ -491,6 +555,8 @@ Status FrameDecoder::Impl::apply(const SectionHeader& h, std::span<const std::ui
         return decodeMeta(ByteReader(stored, offset), frame);
     if (h.kind == Section::Rig)
         return decodeRig(ByteReader(stored, offset), frame);
+    if (h.kind == Section::Timing)
+        return decodeTiming(ByteReader(stored, offset), frame);
     if ((h.kind < Section::SceneDepth || h.kind > Section::Color) && h.kind != Section::Infrared)
         return {}; // a section a newer minor version added: skipped
     if (h.width <= 0 || h.height <= 0 || h.width > kMaxImageSide || h.height > kMaxImageSide ||

@@ -566,7 +566,7 @@ TEST(RecordingFormat, AnInfraredImageRoundTripsAndAnUnknownSectionIsSkipped) {
     ASSERT_TRUE(without);
     EXPECT_FALSE(FrameDecoder().decode(*without, 0, "mem", 0)->infrared) << "no infrared stays none";
 
-    // The infrared section is the last one; its kind byte made 9, a kind no reader knows yet.
+    // The infrared section is the last one; its kind byte made 200, a kind no reader knows yet.
     frame.infrared = infrared;
     EncodeOptions raw;
     raw.compress = false;
@@ -574,12 +574,97 @@ TEST(RecordingFormat, AnInfraredImageRoundTripsAndAnUnknownSectionIsSkipped) {
     ASSERT_TRUE(payload);
     const std::size_t sectionAt = payload->size() - 36 - 2 * infrared.pixels.size();
     ASSERT_EQ((*payload)[sectionAt], 8);
-    (*payload)[sectionAt] = 9;
+    (*payload)[sectionAt] = 200;
     auto skipped = FrameDecoder().decode(*payload, 0, "mem", 0);
     ASSERT_TRUE(skipped) << skipped.error().message;
     EXPECT_FALSE(skipped->infrared);
     ASSERT_TRUE(skipped->sceneDepth);
     EXPECT_EQ(skipped->sceneDepth->depthMeters.pixels, frame.sceneDepth->depthMeters.pixels);
+}
+
+// What the drivers said about each capture (sequence numbers, sensor stamps and their source, for depth
+// and colour) comes back from a file exactly, so a replay's Timing panel shows the recording's figures.
+TEST(RecordingFormat, FrameTimingRoundTripsExactlyThroughAFile) {
+    const auto frames = test::withTiming(test::syntheticFrames(5));
+    TempDir dir;
+    test::writeRecording(dir.path("t.dcrec"), frames);
+    auto reader = RecordingReader::open(dir.path("t.dcrec"));
+    ASSERT_TRUE(reader) << reader.error().message;
+    EXPECT_EQ(reader->header().versionMinor, kVersionMinor);
+    ASSERT_EQ(reader->frameCount(), frames.size());
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        auto f = reader->frame(i);
+        ASSERT_TRUE(f) << f.error().message;
+        SCOPED_TRACE(i);
+        ASSERT_TRUE(f->timing.depth.driverSequence);
+        test::expectSameTiming(f->timing, frames[i]->timing);
+        expectSameFrame(*frames[i], *f);
+    }
+}
+
+// Format 1.2 had no timing section; such a file (what the 1.2 writer made of these frames, byte for byte)
+// still opens, and its frames carry the defaults: nothing known.
+TEST(RecordingFormat, AFormat12FileWithoutTimingStillReads) {
+    const auto frames = test::syntheticFrames(3);
+    TempDir dir;
+    test::writeRecording(dir.path("old.dcrec"), frames);
+    auto bytes = test::readBytes(dir.path("old.dcrec"));
+    bytes[10] = 2; // version minor, little-endian u16 at offset 10
+    const std::uint32_t checksum = checksumOf(std::span(bytes).first(kFileHeaderSize - 4));
+    std::memcpy(&bytes[kFileHeaderSize - 4], &checksum, 4);
+    auto reader = RecordingReader::fromBytes(bytes, "old.dcrec");
+    ASSERT_TRUE(reader) << reader.error().message;
+    EXPECT_EQ(reader->header().versionMinor, 2);
+    ASSERT_EQ(reader->frameCount(), frames.size());
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        auto f = reader->frame(i);
+        ASSERT_TRUE(f) << f.error().message;
+        expectSameFrame(*frames[i], *f);
+        test::expectSameTiming(f->timing, frame::FrameTiming{});
+    }
+}
+
+// A reader that does not know the timing section (1.2 and older) skips it and reads the rest of the frame;
+// one cut short is an error naming it, never a read past its end.
+TEST(RecordingFormat, TheTimingSectionIsSkippedByOlderReadersAndACutOneIsAnError) {
+    frame::Frame frame = *test::withTiming(test::syntheticFrames(1)).front();
+    auto payload = FrameEncoder().encode(frame);
+    ASSERT_TRUE(payload);
+    // Sections: meta (its stored size is the u64 at byte 28 of its header), then timing.
+    const auto timingAt = [](const std::vector<std::uint8_t>& p) {
+        std::uint64_t metaSize = 0;
+        std::memcpy(&metaSize, p.data() + 28, 8);
+        return 36 + metaSize;
+    };
+    ASSERT_EQ((*payload)[timingAt(*payload)], 9);
+    auto older = *payload;
+    older[timingAt(*payload)] = 200;
+    auto skipped = FrameDecoder().decode(older, 0, "mem", 0);
+    ASSERT_TRUE(skipped) << skipped.error().message;
+    test::expectSameTiming(skipped->timing, frame::FrameTiming{});
+    ASSERT_TRUE(skipped->sceneDepth);
+    EXPECT_TRUE(test::sameBits(skipped->sceneDepth->depthMeters, frame.sceneDepth->depthMeters));
+
+    // Only meta and timing: the timing section is the payload's end and can be cut at every length.
+    frame::Frame bare;
+    bare.timing = frame.timing;
+    auto full = FrameEncoder().encode(bare);
+    ASSERT_TRUE(full);
+    const std::size_t at = timingAt(*full);
+    ASSERT_EQ((*full)[at], 9);
+    std::uint64_t timingSize = 0;
+    std::memcpy(&timingSize, full->data() + at + 28, 8);
+    ASSERT_EQ(full->size(), at + 36 + timingSize);
+    for (std::uint64_t cut = 1; cut <= timingSize; ++cut) {
+        auto shorter = *full;
+        shorter.resize(full->size() - cut);
+        const std::uint64_t size = timingSize - cut;
+        std::memcpy(shorter.data() + at + 28, &size, 8);
+        auto decoded = FrameDecoder().decode(shorter, 0, "mem", 0);
+        ASSERT_FALSE(decoded) << cut;
+        EXPECT_NE(decoded.error().message.find("frame timing ends early"), std::string::npos)
+            << decoded.error().message;
+    }
 }
 
 } // namespace

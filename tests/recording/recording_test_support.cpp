@@ -47,6 +47,38 @@ std::vector<frame::FramePtr> syntheticFrames(int count, int width, int height,
     return frames;
 }
 
+std::vector<frame::FramePtr> withTiming(const std::vector<frame::FramePtr>& frames) {
+    std::vector<frame::FramePtr> timed;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+        auto f = std::make_shared<frame::Frame>(*frames[i]);
+        const auto n = static_cast<std::uint32_t>(i);
+        f->timing.depth = {.driverSequence = 0xffff'fffeu + n + (i > 2 ? 1u : 0u),
+                           .sensorNs = f->timestampNs - 4'000'000,
+                           .source = frame::TimestampSource::StartOfExposure,
+                           .monotonic = true};
+        if (i % 2 == 0)
+            f->timing.colour = frame::StreamTiming{.driverSequence = i == 0 ? std::nullopt : std::optional(n),
+                                                   .sensorNs = f->timestampNs + 2'500'001,
+                                                   .source = frame::TimestampSource::EndOfFrame,
+                                                   .monotonic = false};
+        timed.push_back(std::move(f));
+    }
+    return timed;
+}
+
+void expectSameTiming(const frame::FrameTiming& a, const frame::FrameTiming& b) {
+    const auto same = [](const frame::StreamTiming& x, const frame::StreamTiming& y) {
+        EXPECT_EQ(x.driverSequence, y.driverSequence);
+        EXPECT_EQ(x.sensorNs, y.sensorNs);
+        EXPECT_EQ(x.source, y.source);
+        EXPECT_EQ(x.monotonic, y.monotonic);
+    };
+    same(a.depth, b.depth);
+    ASSERT_EQ(a.colour.has_value(), b.colour.has_value());
+    if (a.colour)
+        same(*a.colour, *b.colour);
+}
+
 void writeRecording(const std::string& path, const std::vector<frame::FramePtr>& frames,
                     devices::recording::WriterOptions options) {
     auto writer = devices::recording::RecordingWriter::create(

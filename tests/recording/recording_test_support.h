@@ -29,6 +29,12 @@ private:
 std::vector<frame::FramePtr> syntheticFrames(int count, int width = 32, int height = 24,
                                              std::int64_t firstTimestampNs = 1'000'000'000);
 
+// The frames again, each with driver timing as a UVC camera reports it: depth sequence numbers that wrap
+// past 2^32 and skip one, sensor stamps, and on even frames a colour stream with a source of its own.
+std::vector<frame::FramePtr> withTiming(const std::vector<frame::FramePtr>& frames);
+// Every field of the two timings is equal (a default FrameTiming when nothing was recorded).
+void expectSameTiming(const frame::FrameTiming& a, const frame::FrameTiming& b);
+
 // Writes the frames as a finished recording.
 void writeRecording(const std::string& path, const std::vector<frame::FramePtr>& frames,
                     devices::recording::WriterOptions options = {});

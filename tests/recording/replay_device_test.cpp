@@ -9,6 +9,7 @@
 
 #include <gtest/gtest.h>
 
+#include <filesystem>
 #include <mutex>
 #include <random>
 #include <string>
@@ -66,6 +67,23 @@ TEST_F(Replay, SeekToEveryIndexDeliversExactlyThatFrame) {
     for (std::size_t i = kFrames; i-- > 0;)
         expectFrame(frameOfGeneration(*d, control->seekToIndex(i)), i);
     EXPECT_EQ(control->status().index, 0u);
+}
+
+// A replayed frame carries the timing its recording kept, for the Timing panel and the hover readout.
+TEST_F(Replay, ReplayedFramesCarryTheRecordedTiming) {
+    frames_ = test::withTiming(frames_);
+    std::filesystem::remove(dir_.path("r.dcrec"));
+    test::writeRecording(dir_.path("r.dcrec"), frames_);
+    auto d = device({.startPlaying = false});
+    ASSERT_TRUE(d->open());
+    ASSERT_TRUE(d->start());
+    auto control = d->control();
+    for (const std::size_t i : {std::size_t{3}, std::size_t{0}, std::size_t{1}, kFrames - 1}) {
+        const auto f = frameOfGeneration(*d, control->seekToIndex(i));
+        expectFrame(f, i);
+        SCOPED_TRACE(i);
+        test::expectSameTiming(f->timing, frames_[i]->timing);
+    }
 }
 
 TEST_F(Replay, StepsForwardAndBackwardOneFrameAtATime) {
