@@ -1,6 +1,7 @@
 #include "devices/source_pose.h"
 
 #include "frame/camera_pose.h"
+#include "frame/multi_camera_extrinsics.h"
 
 #include <array>
 #include <charconv>
@@ -47,12 +48,27 @@ Expected<frame::RigidTransform> inlinePose(const std::string& value) {
     return frame::poseFromQuaternion(numbers);
 }
 
-Expected<frame::RigidTransform> poseOf(const std::string& value) {
+// FILE#CAMERA: that camera of a rig's extrinsics file.
+Expected<frame::RigidTransform> rigCameraPose(const std::string& path, const std::string& camera) {
+    auto rig = frame::loadCameraExtrinsics(path);
+    if (!rig)
+        return rig.error();
+    if (const frame::CameraExtrinsics* found = rig->find(camera))
+        return found->cameraToWorld;
+    std::string names;
+    for (const frame::CameraExtrinsics& c : rig->cameras)
+        names += (names.empty() ? "" : ", ") + c.name;
+    return Error{path + " has no camera '" + camera + "' (it has " + names + ")"};
+}
+
+Expected<frame::RigidTransform> poseFromOption(const std::string& value) {
     if (value.empty())
         return Error{"expected X,Y,Z,QX,QY,QZ,QW or a pose file"};
     // A file's name has no comma in practice; seven numbers always do.
     if (value.find(',') != std::string::npos)
         return inlinePose(value);
+    if (const auto hash = value.rfind('#'); hash != std::string::npos)
+        return rigCameraPose(value.substr(0, hash), value.substr(hash + 1));
     return frame::loadPoseFile(value);
 }
 
@@ -67,7 +83,7 @@ Expected<SourcePlacement> sourcePlacement(const std::string& spec) {
             continue;
         if (placement.cameraToWorld)
             return Error{"pose= is given twice in --source"};
-        auto pose = poseOf(parts[i].substr(kPoseKey.size()));
+        auto pose = poseFromOption(parts[i].substr(kPoseKey.size()));
         if (!pose)
             return Error{parts[i] + " in --source: " + pose.error().message};
         placement.cameraToWorld = *pose;

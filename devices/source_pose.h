@@ -12,7 +12,10 @@ namespace dc::devices {
 //  - pose=X,Y,Z,QX,QY,QZ,QW: the camera's position in meters and its orientation as a unit quaternion
 //    (ROS's order, w last; normalised, refused when its norm is not within 1e-3 of 1);
 //  - pose=FILE: the same seven numbers in a YAML or JSON file as `pose: [X, Y, Z, QX, QY, QZ, QW]`
-//    (frame::loadPoseFile). FILE may not contain ':', which separates the spec's options.
+//    (frame::loadPoseFile);
+//  - pose=FILE#CAMERA: camera CAMERA (cam1, camera_1...) of a rig's extrinsics file, a Kalibr camchain or
+//    OpenCV extrinsics (frame::loadCameraExtrinsics), in that file's world.
+// FILE may not contain ':', which separates the spec's options.
 // The kinds' own parsers never see pose=: openSourceSpec opens `spec`, and whoever places sources in one
 // world (the engine) asks for the transform here.
 struct SourcePlacement {

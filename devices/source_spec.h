@@ -15,8 +15,8 @@ inline constexpr const char* kSourceSpecHelp =
     "replay:PATH[:loop][:paused][:speed=X][:calib=FILE] | "
     "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS] | "
     "ros:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:master=http://HOST:PORT][:tolerance=MS][:watchdog=MS]"
-    "[:frame=FIXED_FRAME]; any of them [:pose=X,Y,Z,QX,QY,QZ,QW|:pose=FILE] (FILE: YAML or JSON "
-    "`pose: [X, Y, Z, QX, QY, QZ, QW]`)";
+    "[:frame=FIXED_FRAME]; any of them [:pose=X,Y,Z,QX,QY,QZ,QW|:pose=FILE|:pose=FILE#CAMERA] (FILE: YAML or "
+    "JSON `pose: [X, Y, Z, QX, QY, QZ, QW]`; with #CAMERA a Kalibr camchain or OpenCV extrinsics)";
 
 // Parses a --source value and builds the device it names. Errors name the offending part. A pose= option is
 // checked and left out: the device does not place itself (sourcePlacement gives its transform).

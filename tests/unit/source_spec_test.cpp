@@ -174,6 +174,20 @@ TEST(SourcePose, APoseFileHoldsTheSameSevenNumbers) {
     expectPoseError("synthetic:pose=" + writePoseFile("none.yaml", "position: [0, 0, 1]\n"), "pose: missing");
 }
 
+TEST(SourcePose, APoseFileWithACameraNameReadsThatCameraOfARig) {
+    // cam1 sees cam0's points 20 cm further along x: it sits 20 cm along cam0's -x.
+    const std::string rig = writePoseFile("rig_camchain.yaml", "cam0: {}\ncam1:\n  T_cn_cnm1:\n"
+                                                               "  - [1, 0, 0, 0.2]\n  - [0, 1, 0, 0]\n"
+                                                               "  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n");
+    auto placement = sourcePlacement("synthetic:pose=" + rig + "#cam1:exact");
+    ASSERT_TRUE(placement.ok()) << placement.error().message;
+    EXPECT_EQ(placement->spec, "synthetic:exact");
+    ASSERT_TRUE(placement->cameraToWorld.has_value());
+    EXPECT_TRUE(frame::RigidTransform{}.rotation == placement->cameraToWorld->rotation);
+    EXPECT_EQ(placement->cameraToWorld->translationMeters, (std::array<double, 3>{-0.2, 0, 0}));
+    expectPoseError("synthetic:pose=" + rig + "#cam4", "has no camera 'cam4' (it has cam0, cam1)");
+}
+
 TEST(SourcePose, EveryKindOpensWithAPoseAndABadOneIsRefused) {
     auto d = openSourceSpec("synthetic:320x240:pose=0,0,1,0,0,0,1");
     ASSERT_TRUE(d.ok()) << d.error().message;
