@@ -421,7 +421,7 @@ void ProcessingGraph::addAlignment(processing::ShownQuality& quality, const fram
     const frame::Plane<float>& map = depth.depthMeters;
     const processing::RgbImage colour =
         processing::colourAlignedToDepth(frame, map, map.width, map.height, colourTable_);
-    auto alignment = processing::measureEdgeAlignment(map, colour, intrinsics, quality.roi);
+    auto alignment = processing::measureEdgeAlignment(map, colour, intrinsics, quality.roi, quality.polygon);
     if (alignment)
         quality.alignment = *alignment;
     else

@@ -29,6 +29,7 @@ json rowJson(const QualityLog::Row& r) {
            {"noiseWindowFrames", r.windowFilled},
            {"alignmentPx", r.alignment ? json(r.alignment->medianPx) : json(nullptr)},
            {"alignmentMm", r.alignment ? json(r.alignment->medianMm) : json(nullptr)}};
+    j["roiPolygon"] = r.polygon ? json(*r.polygon) : json(nullptr);
     for (const char* key :
          {"fillRate", "distanceMm", "angleDeg", "planeFitRmsMm", "planeFitRmsPercent", "inlierFraction",
           "dqtPlaneFitRmsMm", "zAccuracyPercent", "subpixelRms", "expectedNoiseMm"})
@@ -59,7 +60,7 @@ constexpr const char* kCsvHeader =
     "low_confidence,flying_pixel,distance_mm,angle_deg,plane_fit_rms_mm,plane_fit_rms_percent,"
     "inlier_fraction,dqt_plane_fit_rms_mm,z_accuracy_percent,subpixel_rms,expected_noise_mm,temporal_noise_"
     "mm,"
-    "spatial_noise_mm,noise_window_frames,alignment_px,alignment_mm\n";
+    "spatial_noise_mm,noise_window_frames,alignment_px,alignment_mm,roi_polygon\n";
 
 // A figure as a CSV cell: round-trip precision, empty where not measured.
 std::string cell(const std::optional<double>& value) {
@@ -68,6 +69,20 @@ std::string cell(const std::optional<double>& value) {
     char text[40];
     std::snprintf(text, sizeof text, ",%.17g", *value);
     return text;
+}
+
+// A lasso as one quoted CSV cell in `quality --roi-polygon`'s syntax ("x,y;x,y;..."), so a saved region can
+// be measured again headless; empty for a rectangle.
+std::string polygonCell(const std::shared_ptr<const processing::Polygon>& polygon) {
+    if (!polygon)
+        return {};
+    std::string text;
+    for (const auto& [x, y] : *polygon) {
+        char vertex[64];
+        std::snprintf(vertex, sizeof vertex, "%s%.17g,%.17g", text.empty() ? "" : ";", x, y);
+        text += vertex;
+    }
+    return '"' + text + '"';
 }
 
 std::string csvLine(const QualityLog::Row& r) {
@@ -97,7 +112,7 @@ std::string csvLine(const QualityLog::Row& r) {
     line += cell(r.temporalNoiseMm) + cell(r.spatialNoiseMm) + "," + std::to_string(r.windowFilled);
     const auto& a = r.alignment;
     line += cell(a ? std::optional(a->medianPx) : std::nullopt) +
-            cell(a ? std::optional(a->medianMm) : std::nullopt) + "\n";
+            cell(a ? std::optional(a->medianMm) : std::nullopt) + "," + polygonCell(r.polygon) + "\n";
     return line;
 }
 
@@ -108,9 +123,15 @@ bool QualityLog::add(const std::shared_ptr<const processing::ShownQuality>& qual
     if (!quality || quality == last_)
         return false;
     last_ = quality;
+    std::shared_ptr<const processing::Polygon> polygon;
+    if (!quality->polygon.empty())
+        polygon = !rows_.empty() && rows_.back().polygon && *rows_.back().polygon == quality->polygon
+                      ? rows_.back().polygon
+                      : std::make_shared<const processing::Polygon>(quality->polygon);
     Row row{quality->sequence,
             timestampNs,
             quality->roi,
+            std::move(polygon),
             std::nullopt,
             std::nullopt,
             quality->temporalNoiseMm,

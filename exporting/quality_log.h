@@ -23,7 +23,10 @@ public:
     struct Row {
         std::uint64_t frame = 0;
         std::int64_t timestampNs = 0;
-        processing::Roi roi;
+        processing::Roi roi; // a polygon's bounds when there is one
+        // The lasso's vertices; null for a rectangle. Rows share one while it stays the same: a log of
+        // an hour would otherwise hold an hour of copies.
+        std::shared_ptr<const processing::Polygon> polygon;
         std::optional<processing::FillBreakdown> fill; // unset: the frame could not be measured
         std::optional<processing::PlaneFigures> plane;
         std::optional<double> temporalNoiseMm;

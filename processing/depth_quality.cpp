@@ -434,6 +434,19 @@ bool insidePolygon(const Polygon& polygon, double x, double y) {
     return right % 2 == 1;
 }
 
+std::vector<char> polygonMask(const Polygon& polygon, const Roi& roi) {
+    const std::size_t width = static_cast<std::size_t>(std::max(roi.width, 0));
+    std::vector<char> mask(width * static_cast<std::size_t>(std::max(roi.height, 0)), 1);
+    if (polygon.empty() || mask.empty())
+        return mask;
+    std::vector<char> inside(width);
+    for (int y = 0; y < roi.height; ++y) {
+        markInside(polygon, roi.y + y, roi.x, inside);
+        std::copy(inside.begin(), inside.end(), mask.begin() + static_cast<std::ptrdiff_t>(y * width));
+    }
+    return mask;
+}
+
 Roi polygonBounds(const Polygon& polygon) {
     if (polygon.empty())
         return {};
@@ -776,16 +789,7 @@ NoiseWindow::NoiseWindow(const QualityParams& params, int windowFrames)
       inverse_(windowFrames_ + 1) {
     for (std::size_t n = 1; n < inverse_.size(); ++n)
         inverse_[n] = 1.0 / static_cast<double>(n);
-    outside_.assign(pixels_.size(), false);
-    if (params.polygon.empty() || pixels_.empty())
-        return;
-    const Roi& r = params.roi;
-    std::vector<char> inside(static_cast<std::size_t>(r.width));
-    for (int y = 0; y < r.height; ++y) {
-        markInside(params.polygon, r.y + y, r.x, inside);
-        for (int x = 0; x < r.width; ++x)
-            outside_[static_cast<std::size_t>(y) * r.width + x] = !inside[static_cast<std::size_t>(x)];
-    }
+    inside_ = polygonMask(params.polygon, params.roi);
 }
 
 void NoiseWindow::add(const frame::DepthData& depth, std::optional<double> planeFitRmsMm) {
@@ -892,7 +896,7 @@ frame::Plane<float> NoiseWindow::fillMapPercent() const {
     frame::Plane<float> map(params_.roi.width, params_.roi.height);
     const double scale = 100.0 / static_cast<double>(window_.size());
     for (std::size_t i = 0; i < pixels_.size(); ++i)
-        map.pixels[i] = outside_[i] ? std::numeric_limits<float>::quiet_NaN()
+        map.pixels[i] = !inside_[i] ? std::numeric_limits<float>::quiet_NaN()
                                     : static_cast<float>(pixels_[i].count * scale);
     return map;
 }

@@ -43,6 +43,9 @@ bool insidePolygon(const Polygon& polygon, double x, double y);
 // The pixels that can hold a centre inside `polygon`: floor of its smallest x and y to the ceiling of its
 // largest, unclamped; empty for no vertices.
 Roi polygonBounds(const Polygon& polygon);
+// Which samples of `roi` (row-major, roi.width x roi.height) have their centres inside `polygon`, decided
+// as insidePolygon decides; every one for an empty polygon.
+std::vector<char> polygonMask(const Polygon& polygon, const Roi& roi);
 
 struct Point3d {
     double x = 0.0, y = 0.0, z = 0.0;
@@ -251,7 +254,7 @@ private:
     std::size_t windowFrames_;
     std::deque<WindowFrame> window_;
     std::vector<Running> pixels_;
-    std::vector<bool> outside_;   // per pixel: outside the polygon (all false without one)
+    std::vector<char> inside_;    // per pixel: inside the polygon (all without one)
     std::vector<double> inverse_; // 1 / n for every count a pixel can reach: multiplications, not divisions
 };
 

@@ -165,15 +165,17 @@ struct Scores {
 // Each depth-edge pixel of the ROI away from unseen colour, and the distances of those that matched.
 Scores scoreDepthEdges(const frame::Plane<float>& depth, const ColourEdges& edges, const cv::Mat& unseen,
                        const cv::Point& origin, const frame::Intrinsics& k, const Roi& roi,
-                       const EdgeAlignmentParams& p) {
+                       const Polygon& polygon, const EdgeAlignmentParams& p) {
     static constexpr int kSteps[4][2] = {{1, 0}, {-1, 0}, {0, 1}, {0, -1}};
+    const std::vector<char> inRegion = polygonMask(polygon, roi);
     Scores s;
+    const char* region = inRegion.data();
     for (int y = roi.y; y < roi.y + roi.height; ++y) {
         for (int x = roi.x; x < roi.x + roi.width; ++x) {
             const float z = depth.at(x, y);
             // The colour's edges and unseen mask cover only the search window at `origin`.
             const int wx = x - origin.x, wy = y - origin.y;
-            if (!frame::isMeasured(z) || unseen.at<std::uint8_t>(wy, wx))
+            if (!*region++ || !frame::isMeasured(z) || unseen.at<std::uint8_t>(wy, wx))
                 continue;
             bool edge = false;
             double best = kNoEdge;
@@ -213,7 +215,7 @@ cv::Rect searchWindow(const Roi& roi, double maxSearchPx, const cv::Size& image)
 Expected<EdgeAlignment> measureEdgeAlignment(const frame::Plane<float>& depthMeters,
                                              const RgbImage& colourOnDepth,
                                              const frame::Intrinsics& depthIntrinsics, const Roi& roi,
-                                             const EdgeAlignmentParams& params) {
+                                             const Polygon& polygon, const EdgeAlignmentParams& params) {
     if (std::string problem = inputProblem(depthMeters, colourOnDepth, depthIntrinsics, roi, params);
         !problem.empty())
         return Error{problem};
@@ -226,9 +228,11 @@ Expected<EdgeAlignment> measureEdgeAlignment(const frame::Plane<float>& depthMet
     const cv::Mat part = rgb(window);
     const cv::Mat unseen = nearUnseen(part);
     const ColourEdges edges = colourEdges(part, unseen, params);
-    Scores s = scoreDepthEdges(depthMeters, edges, unseen, window.tl(), depthIntrinsics, roi, params);
+    Scores s =
+        scoreDepthEdges(depthMeters, edges, unseen, window.tl(), depthIntrinsics, roi, polygon, params);
     if (s.depthEdges == 0)
-        return notEnoughSamples("no depth edge in the ROI");
+        return notEnoughSamples(polygon.empty() ? "no depth edge in the ROI"
+                                                : "no depth edge in the polygon");
     if (s.px.empty())
         return notEnoughSamples("no depth edge matched a colour edge within " +
                                 numberText(params.maxSearchPx) + " px");

@@ -61,12 +61,20 @@ struct EdgeAlignment {
 // as an edge and a depth edge beside it (the colour camera's occlusion shadow lies beside silhouettes) has
 // its colour edge hidden. A real pixel of exactly that gray drops a few edges, never moves one.
 //
-// Colour edges are found in the whole image, so an edge just outside the ROI counts. Errors: sizes that
-// differ, intrinsics that are not the depth map's or not valid, an ROI outside the image, bad parameters;
-// and, prefixed with kNotEnoughSamples, no depth edge in the ROI or none matched.
+// The region is `polygon`'s samples within `roi` (its bounds, as QualityParams holds them), or all of `roi`
+// for an empty polygon. Colour edges are found in the whole image, so an edge just outside the region counts.
+// Errors: sizes that differ, intrinsics that are not the depth map's or not valid, an ROI outside the image,
+// bad parameters; and, prefixed with kNotEnoughSamples, no depth edge in the region or none matched.
 Expected<EdgeAlignment> measureEdgeAlignment(const frame::Plane<float>& depthMeters,
                                              const RgbImage& colourOnDepth,
                                              const frame::Intrinsics& depthIntrinsics, const Roi& roi,
-                                             const EdgeAlignmentParams& params = {});
+                                             const Polygon& polygon, const EdgeAlignmentParams& params = {});
+// Over the whole rectangle.
+inline Expected<EdgeAlignment> measureEdgeAlignment(const frame::Plane<float>& depthMeters,
+                                                    const RgbImage& colourOnDepth,
+                                                    const frame::Intrinsics& depthIntrinsics, const Roi& roi,
+                                                    const EdgeAlignmentParams& params = {}) {
+    return measureEdgeAlignment(depthMeters, colourOnDepth, depthIntrinsics, roi, Polygon{}, params);
+}
 
 } // namespace dc::processing

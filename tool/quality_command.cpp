@@ -273,7 +273,7 @@ std::string startWith(const frame::Frame& f, const QualityOptions& o, processing
 // The colour-to-depth alignment of a frame with a camera image over the ROI, per frame like the other
 // figures. A frame without an image adds nothing, nor does one without a matched depth edge (a flat target
 // has none): the figure is then null rather than a number that measured nothing.
-void collectAlignment(const frame::Frame& f, const processing::Roi& roi, Capture& c) {
+void collectAlignment(const frame::Frame& f, const processing::QualityParams& p, Capture& c) {
     if (f.capturedImage.empty())
         return;
     // Registration reads pixels as captured, so a camera's MJPEG is decoded first (other formats pass as
@@ -288,7 +288,7 @@ void collectAlignment(const frame::Frame& f, const processing::Roi& roi, Capture
     const frame::Plane<float>& depth = f.sceneDepth->depthMeters;
     const processing::RgbImage onDepth =
         processing::colourAlignedToDepth(colour, depth, depth.width, depth.height, c.colourTable);
-    const auto a = processing::measureEdgeAlignment(depth, onDepth, f.depthIntrinsics(), roi);
+    const auto a = processing::measureEdgeAlignment(depth, onDepth, f.depthIntrinsics(), p.roi, p.polygon);
     if (!a)
         return;
     c.collected.figures["alignmentPx"].push_back(a->medianPx);
@@ -322,7 +322,7 @@ std::string capture(devices::Device& device, const QualityOptions& o, processing
         if (!q)
             return q.error().message;
         collect(*q, c.collected);
-        collectAlignment(*r.frame, p.roi, c);
+        collectAlignment(*r.frame, p, c);
         c.noise->add(*r.frame->sceneDepth, q->causes,
                      q->plane ? std::optional<double>(q->plane->planeFitRmsMm) : std::nullopt);
     }

@@ -649,6 +649,37 @@ TEST(ProcessingGraphRig, TheColourAlignmentIsMeasuredOnTheShownDepthOnlyWhenAske
     EXPECT_EQ(on->quality->windowFilled, 1u) << "the same frame again, the window not started over";
 }
 
+// A lasso's alignment scores the depth edges inside it, not those of its bounds.
+TEST(ProcessingGraphRig, TheColourAlignmentOfALassoScoresOnlyItsSamples) {
+    const frame::FramePtr frame = smallRigFrame();
+    ASSERT_TRUE(frame && frame->rig);
+    ProcessingGraph graph;
+    Demand demand = cloudOnly();
+    demand.quality = QualityDemand{};
+    demand.quality->roiPercent = 0;
+    demand.quality->alignment = true;
+    const frame::Plane<float>& shown = frame->sceneDepth->depthMeters;
+    const double w = shown.width, h = shown.height;
+    demand.quality->polygon = {{0.05 * w, 0.05 * h}, {0.95 * w, 0.05 * h}, {0.05 * w, 0.95 * h}};
+    const processing::ShownFramePtr on = graph.run(frame, demand, 1, true);
+    ASSERT_TRUE(on->quality && on->depth.data);
+    ASSERT_TRUE(on->quality->alignment) << on->quality->alignmentError;
+    ASSERT_EQ(on->quality->polygon.size(), 3u);
+    processing::CameraColourTable table;
+    const frame::Plane<float>& depth = on->depth.data->depthMeters;
+    const processing::RgbImage colour =
+        processing::colourAlignedToDepth(*frame, depth, depth.width, depth.height, table);
+    const auto inLasso = processing::measureEdgeAlignment(depth, colour, on->depth.intrinsics,
+                                                          on->quality->roi, on->quality->polygon);
+    const auto inBounds =
+        processing::measureEdgeAlignment(depth, colour, on->depth.intrinsics, on->quality->roi);
+    ASSERT_TRUE(inLasso.ok() && inBounds.ok());
+    EXPECT_EQ(on->quality->alignment->depthEdgePixels, inLasso->depthEdgePixels);
+    EXPECT_DOUBLE_EQ(on->quality->alignment->meanPx, inLasso->meanPx);
+    EXPECT_LT(inLasso->depthEdgePixels, inBounds->depthEdgePixels)
+        << "the bounds hold edges the lasso does not";
+}
+
 // A frame without a camera image says so rather than scoring nothing.
 TEST(ProcessingGraphRig, WithoutACameraImageTheAlignmentSaysWhy) {
     auto frame = std::make_shared<frame::Frame>(*smallRigFrame());

@@ -158,6 +158,32 @@ TEST(EdgeAlignment, SamplesWithoutAMeasurementFormNoDepthEdge) {
     }
 }
 
+// A lasso around the box's right side whose bounds also hold its left side: the left side's depth edges
+// (whose colour edges are in place, 0 px) are outside the lasso and not scored, so the figure is the right
+// side's 2 px alone, as a rectangle around that side reads it; scored over the bounds, where most edges are
+// in place, it would be 0 px.
+TEST(EdgeAlignment, OnlyTheLassosSamplesAreScoredNotItsBounds) {
+    RgbImage colour = plainColour(kWallColour);
+    paint(colour, kBoxLeft, kBoxRight + 2, kBoxTop, kBoxBottom, kBoxColour);
+    // The right side's rectangle, bridged (an edge there and back, which cancels) to a small square of wall
+    // that puts the bounds' corner at (20, 2).
+    const Polygon lasso{{60, 20}, {80, 20}, {80, 60}, {60, 60}, {60, 20},
+                        {20, 2},  {24, 2},  {24, 4},  {20, 4},  {20, 2}};
+    const Roi bounds = polygonBounds(lasso);
+    ASSERT_LE(bounds.x, kBoxLeft - 1);
+    const auto inLasso = measureEdgeAlignment(boxDepth(), colour, intrinsics(), bounds, lasso);
+    ASSERT_TRUE(inLasso.ok()) << inLasso.error().message;
+    EXPECT_EQ(inLasso->depthEdgePixels, kSideRows);
+    EXPECT_NEAR(inLasso->medianPx, 2.0, 0.25);
+    const auto rightSide = measure(boxDepth(), colour, kRightSide);
+    ASSERT_TRUE(rightSide.ok()) << rightSide.error().message;
+    EXPECT_EQ(inLasso->meanPx, rightSide->meanPx);
+    const auto overBounds = measure(boxDepth(), colour, bounds);
+    ASSERT_TRUE(overBounds.ok()) << overBounds.error().message;
+    EXPECT_GT(overBounds->depthEdgePixels, 2 * kSideRows) << "the bounds hold the left side and the top";
+    EXPECT_LT(overBounds->medianPx, 1.0);
+}
+
 TEST(EdgeAlignment, ARoiBesideTheBoxHasNoDepthEdge) {
     const auto a = measure(boxDepth(), boxColour(2), Roi{90, 10, 25, 60});
     ASSERT_FALSE(a.ok());

@@ -105,7 +105,7 @@ TEST(QualityLog, NoiseOverDistanceIsEachDistanceStepsMedians) {
     EXPECT_TRUE(noiseOverDistance(QualityLog{}, 8).empty());
 }
 
-// The colour alignment travels with its frame into the CSV's last two columns and the JSON's keys, and
+// The colour alignment travels with its frame into the CSV's alignment columns and the JSON's keys, and
 // stays empty (null) for a frame that did not measure it.
 TEST(QualityLog, TheColourAlignmentIsSavedWhereMeasured) {
     QualityLog log;
@@ -118,13 +118,43 @@ TEST(QualityLog, TheColourAlignmentIsSavedWhereMeasured) {
     std::getline(csv, header);
     std::getline(csv, first);
     std::getline(csv, second);
-    EXPECT_TRUE(header.ends_with(",alignment_px,alignment_mm"));
-    EXPECT_TRUE(first.ends_with(",0.75,3.25")) << first;
-    EXPECT_TRUE(second.ends_with(",,")) << second;
+    EXPECT_TRUE(header.ends_with(",alignment_px,alignment_mm,roi_polygon"));
+    EXPECT_TRUE(first.ends_with(",0.75,3.25,")) << first;
+    EXPECT_TRUE(second.ends_with(",,,")) << second;
     const auto j = nlohmann::json::parse(qualityJson(log, "synthetic", "{}"));
     EXPECT_EQ(j["frames"][0]["alignmentPx"], 0.75);
     EXPECT_EQ(j["frames"][0]["alignmentMm"], 3.25);
     EXPECT_TRUE(j["frames"][1]["alignmentPx"].is_null());
+}
+
+// A lasso's region is saved as its vertices beside its bounds (which alone would claim samples the figures
+// never counted); rows measured with the same lasso share one copy of it.
+TEST(QualityLog, ALassosVerticesAreSavedWithEachRowMeasuredInside) {
+    const processing::Polygon lasso{{1.5, 2.0}, {31.0, 2.25}, {16.0, 42.0}};
+    QualityLog log;
+    for (std::uint64_t frame : {1u, 2u}) {
+        auto inside = std::const_pointer_cast<processing::ShownQuality>(figures(frame, 1.0));
+        inside->polygon = lasso;
+        log.add(inside, 0);
+    }
+    log.add(figures(3, 1.0), 0);
+    ASSERT_EQ(log.rows().size(), 3u);
+    ASSERT_TRUE(log.rows()[0].polygon);
+    EXPECT_EQ(*log.rows()[0].polygon, lasso);
+    EXPECT_EQ(log.rows()[0].polygon, log.rows()[1].polygon) << "one copy while the lasso stays";
+    EXPECT_FALSE(log.rows()[2].polygon);
+    std::istringstream csv(qualityCsv(log));
+    std::string header, first, second, third;
+    std::getline(csv, header);
+    std::getline(csv, first);
+    std::getline(csv, second);
+    std::getline(csv, third);
+    EXPECT_TRUE(first.ends_with(",\"1.5,2;31,2.25;16,42\""))
+        << "as quality --roi-polygon takes it: " << first;
+    EXPECT_TRUE(third.ends_with(",")) << third;
+    const auto j = nlohmann::json::parse(qualityJson(log, "synthetic", "{}"));
+    EXPECT_EQ(j["frames"][0]["roiPolygon"], nlohmann::json(lasso));
+    EXPECT_TRUE(j["frames"][2]["roiPolygon"].is_null());
 }
 
 TEST(QualityLog, CsvLeavesUnmeasuredFiguresEmptyAndRoundTripsTheRest) {
