@@ -15,7 +15,7 @@ cmake -S . -B build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=
 cmake --build build-fuzz -j"$(nproc)" --target fuzz_targets
 mkdir -p build-fuzz/artifacts
 total=0
-for corpus in recording frame_payload stray_text tum_text mcap_reader cdr db3_store; do
+for corpus in recording frame_payload stray_text tum_text uvc_metadata mcap_reader cdr db3_store; do
     target=build-fuzz/fuzz/${corpus/recording/recording_reader}_fuzz
     work=build-fuzz/corpus/$corpus # grows between runs; the committed seeds stay as they are
     mkdir -p "$work"
