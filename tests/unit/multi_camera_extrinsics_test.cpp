@@ -32,7 +32,8 @@ cam2:
   - [0.0, 0.0, 0.0, 1.0]
 )";
 
-void expectNear(const RigidTransform& actual, const RigidTransform& expected, const std::string& what) {
+void expectNearTransform(const RigidTransform& actual, const RigidTransform& expected,
+                         const std::string& what) {
     for (int i = 0; i < 9; ++i)
         EXPECT_NEAR(actual.rotation[i], expected.rotation[i], 1e-9) << what << " rotation " << i;
     for (int i = 0; i < 3; ++i)
@@ -57,12 +58,12 @@ void expectSameCameras(const CameraExtrinsicsSet& actual, const CameraExtrinsics
     ASSERT_EQ(actual.cameras.size(), expected.cameras.size());
     for (std::size_t i = 0; i < expected.cameras.size(); ++i) {
         EXPECT_EQ(actual.cameras[i].name, expected.cameras[i].name);
-        expectNear(actual.cameras[i].cameraToWorld, expected.cameras[i].cameraToWorld,
-                   expected.cameras[i].name);
+        expectNearTransform(actual.cameras[i].cameraToWorld, expected.cameras[i].cameraToWorld,
+                            expected.cameras[i].name);
     }
 }
 
-void expectError(const std::string& text, const std::string& problem) {
+void expectExtrinsicsError(const std::string& text, const std::string& problem) {
     auto set = parseCameraExtrinsics(text, "rig.yaml");
     ASSERT_FALSE(set.ok()) << text;
     const std::string& message = set.error().message;
@@ -85,9 +86,9 @@ TEST(MultiCameraExtrinsics, AKalibrChainPlacesEachCameraInCam0sFrame) {
     EXPECT_EQ(set->cameras[0].name, "cam0");
     EXPECT_TRUE(set->cameras[0].cameraToWorld.isIdentity());
     EXPECT_EQ(set->cameras[1].name, "cam1");
-    expectNear(set->cameras[1].cameraToWorld, cam1, "cam1");
+    expectNearTransform(set->cameras[1].cameraToWorld, cam1, "cam1");
     EXPECT_EQ(set->cameras[2].name, "cam2");
-    expectNear(set->cameras[2].cameraToWorld, cam2, "cam2");
+    expectNearTransform(set->cameras[2].cameraToWorld, cam2, "cam2");
     // A point 1 m in front of cam2 lies 1.5 m in front of cam0, 10 cm up its y.
     const auto p = set->cameras[2].cameraToWorld.apply({0, 0, 1});
     EXPECT_NEAR(p[0], 0.0, 1e-12);
@@ -129,17 +130,21 @@ TEST(MultiCameraExtrinsics, KalibrReadsBackWhatItWrote) {
 
 TEST(MultiCameraExtrinsics, MalformedKalibrChainsNameTheCameraAndField) {
     const std::string row = "  - [1, 0, 0, 0]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n  - [0, 0, 0, 1]\n";
-    expectError("cam0: {}\ncam1:\n  T_cn_cnm1:\n" + row + "cam2:\n  camera_model: pinhole\n",
-                "cam2.T_cn_cnm1: missing");
-    expectError("cam0: {}\ncam1:\n  T_cn_cnm1:\n  - [2, 0, 0, 0]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n"
-                "  - [0, 0, 0, 1]\n",
-                "cam1.T_cn_cnm1: not rigid");
-    expectError("cam0: {}\ncam1:\n  T_cn_cnm1:\n  - [1, 0, 0, 0]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n",
-                "cam1.T_cn_cnm1: expected 16 values, found 12");
-    expectError("cam0: {}\ncam1:\n  T_cn_cnm1:\n  - [1, 0, 0, 0]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n"
-                "  - [0, 0, 1, 1]\n",
-                "cam1.T_cn_cnm1: the last row must be [0, 0, 0, 1]");
-    expectError("cam0: {}\ncam2:\n  T_cn_cnm1:\n" + row, "cam1: missing (the chain goes on to cam2)");
+    expectExtrinsicsError("cam0: {}\ncam1:\n  T_cn_cnm1:\n" + row + "cam2:\n  camera_model: pinhole\n",
+                          "cam2.T_cn_cnm1: missing");
+    expectExtrinsicsError(
+        "cam0: {}\ncam1:\n  T_cn_cnm1:\n  - [2, 0, 0, 0]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n"
+        "  - [0, 0, 0, 1]\n",
+        "cam1.T_cn_cnm1: not rigid");
+    expectExtrinsicsError(
+        "cam0: {}\ncam1:\n  T_cn_cnm1:\n  - [1, 0, 0, 0]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n",
+        "cam1.T_cn_cnm1: expected 16 values, found 12");
+    expectExtrinsicsError(
+        "cam0: {}\ncam1:\n  T_cn_cnm1:\n  - [1, 0, 0, 0]\n  - [0, 1, 0, 0]\n  - [0, 0, 1, 0]\n"
+        "  - [0, 0, 1, 1]\n",
+        "cam1.T_cn_cnm1: the last row must be [0, 0, 0, 1]");
+    expectExtrinsicsError("cam0: {}\ncam2:\n  T_cn_cnm1:\n" + row,
+                          "cam1: missing (the chain goes on to cam2)");
 }
 
 TEST(MultiCameraExtrinsics, MalformedOpenCvFilesNameTheCameraAndField) {
@@ -147,17 +152,18 @@ TEST(MultiCameraExtrinsics, MalformedOpenCvFilesNameTheCameraAndField) {
                                  "  data: [1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n";
     const std::string header = "%YAML:1.0\n---\ncamera_count: 2\ncamera_0: " + identity;
     EXPECT_TRUE(parseCameraExtrinsics(header + "camera_1: " + identity, "rig.yaml").ok());
-    expectError(header, "camera_1: missing");
-    expectError(header + "camera_1: !!opencv-matrix\n  rows: 3\n  cols: 3\n  dt: d\n"
-                         "  data: [1, 0, 0, 0, 1, 0, 0, 0, 1]\n",
-                "camera_1: expected 16 values, found 9");
-    expectError(header + "camera_1: !!opencv-matrix\n  rows: 4\n  cols: 4\n  dt: d\n"
-                         "  data: [1, 0.5, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n",
-                "camera_1: not rigid");
-    expectError(header + "camera_1: " + identity + "camera_2: " + identity,
-                "camera_2: beyond camera_count 2");
-    expectError("camera_count: 0\n", "camera_count: expected the number of cameras");
-    expectError("camera_0: " + identity, "not a Kalibr camchain (cam0, cam1...) nor OpenCV extrinsics");
+    expectExtrinsicsError(header, "camera_1: missing");
+    expectExtrinsicsError(header + "camera_1: !!opencv-matrix\n  rows: 3\n  cols: 3\n  dt: d\n"
+                                   "  data: [1, 0, 0, 0, 1, 0, 0, 0, 1]\n",
+                          "camera_1: expected 16 values, found 9");
+    expectExtrinsicsError(header + "camera_1: !!opencv-matrix\n  rows: 4\n  cols: 4\n  dt: d\n"
+                                   "  data: [1, 0.5, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1]\n",
+                          "camera_1: not rigid");
+    expectExtrinsicsError(header + "camera_1: " + identity + "camera_2: " + identity,
+                          "camera_2: beyond camera_count 2");
+    expectExtrinsicsError("camera_count: 0\n", "camera_count: expected the number of cameras");
+    expectExtrinsicsError("camera_0: " + identity,
+                          "not a Kalibr camchain (cam0, cam1...) nor OpenCV extrinsics");
 }
 
 } // namespace

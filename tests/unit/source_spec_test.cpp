@@ -200,5 +200,11 @@ TEST(SourcePose, EveryKindOpensWithAPoseAndABadOneIsRefused) {
     EXPECT_EQ(live->width, 640);
 }
 
+TEST(SourcePose, ALiveCameraKeepsItsPoseInAnotherDepthMode) {
+    auto spec = specWithDepthMode("v4l2:/dev/video2:pose=0,0,1,0,0,0,1:scale=0.001", {"Z16", 848, 480, 30.0});
+    ASSERT_TRUE(spec.ok()) << spec.error().message;
+    EXPECT_EQ(*spec, "v4l2:/dev/video2:848x480@30:format=Z16:pose=0,0,1,0,0,0,1:scale=0.001");
+}
+
 } // namespace
 } // namespace dc::devices
