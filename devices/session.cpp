@@ -139,11 +139,14 @@ void Session::onFrame(frame::FramePtr frame) {
         push({SessionEvent::Kind::StateChanged, DeviceState::Streaming, "frames flow again"});
     }
     const std::int64_t arrivalNs = base::monotonicNowNs();
-    record({FrameRecord::Kind::Delivered, frame->sequence, frame->timestampNs, frame->timing, arrivalNs});
-    frames_.put(std::move(frame), [this, arrivalNs](const frame::FramePtr& unseen, const frame::FramePtr&) {
-        record(
-            {FrameRecord::Kind::Replaced, unseen->sequence, unseen->timestampNs, unseen->timing, arrivalNs});
-    });
+    const auto generation = [](const frame::Frame& f) { return f.replay ? f.replay->seekGeneration : 0; };
+    record({FrameRecord::Kind::Delivered, frame->sequence, frame->timestampNs, frame->timing, arrivalNs,
+            generation(*frame)});
+    frames_.put(std::move(frame),
+                [this, arrivalNs, generation](const frame::FramePtr& unseen, const frame::FramePtr&) {
+                    record({FrameRecord::Kind::Replaced, unseen->sequence, unseen->timestampNs,
+                            unseen->timing, arrivalNs, generation(*unseen)});
+                });
     deliveries_.tick();
     deviceFps_ = deliveries_.perSecond();
     base::MutexLock lock(tapMutex_);

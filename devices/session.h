@@ -46,6 +46,9 @@ struct FrameRecord {
     std::int64_t timestampNs = 0; // Frame::timestampNs
     frame::FrameTiming timing;
     std::int64_t atNs = 0; // CLOCK_MONOTONIC when it happened: for Delivered, the frame's arrival
+    // A replay's seek generation (frame::ReplayPosition), 0 for live sources: a seek makes the driver's
+    // recorded sequence jump, which is no frame lost.
+    std::uint64_t seekGeneration = 0;
 };
 
 // Runs one device on its own capture thread. The thread only captures and posts: frames reach consumers

@@ -81,6 +81,17 @@ std::uint64_t TimingModel::observe(Stream& s, const frame::StreamTiming& t, std:
 
 void TimingModel::delivered(const devices::FrameRecord& r) {
     ++delivered_;
+    if (r.seekGeneration != seekGeneration_) {
+        // After a seek the recorded stream resumes elsewhere: neither its sequence gap nor its interval is
+        // one.
+        seekGeneration_ = r.seekGeneration;
+        for (Stream* s : {&depth_, colour_ ? &*colour_ : nullptr}) {
+            if (s) {
+                s->lastSequence.reset();
+                s->lastNs.reset();
+            }
+        }
+    }
     drops_.cameraUsb += observe(depth_, r.timing.depth, r.timestampNs);
     if (r.timing.colour) {
         if (!colour_)

@@ -108,6 +108,7 @@ private:
 
     Stream depth_;
     std::optional<Stream> colour_;
+    std::uint64_t seekGeneration_ = 0; // of the last delivered frame
     std::map<std::uint64_t, InFlight> inFlight_;
     std::uint64_t delivered_ = 0;
     std::uint64_t shown_ = 0;

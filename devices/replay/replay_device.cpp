@@ -187,6 +187,11 @@ CaptureResult ReplayDevice::deliver(std::size_t index, frame::Frame frame, std::
     status.timestampNs = source_->timestampNs(index);
     frame.sequence = delivered_++;
     frame.replay = frame::ReplayPosition{index, source_->frameCount(), generation};
+    // The recorded sensor stamps are another run's clock: compared with this one's arrival and display times
+    // they would give latencies of hours.
+    frame.timing.depth.monotonic = false;
+    if (frame.timing.colour)
+        frame.timing.colour->monotonic = false;
     lastHadColor_ = !frame.capturedImage.empty();
     status.colorDecodes += lastHadColor_ ? 1 : 0;
     return {CaptureResult::Kind::Frame, std::make_shared<const frame::Frame>(std::move(frame)), {}};

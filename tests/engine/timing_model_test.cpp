@@ -50,6 +50,28 @@ TEST(TimingModelTest, GapsInTheDriversSequenceAreFramesLostInTheCameraAcrossWrap
     EXPECT_DOUBLE_EQ(t.depth.intervals.medianMs, 33.0);
 }
 
+// A replay's recorded sequence jumps where the person seeks; only gaps within one seek generation are frames
+// the camera lost when it was recorded.
+TEST(TimingModelTest, ASeekInAReplayIsNoFrameLost) {
+    TimingModel model;
+    const auto replayed = [](std::uint64_t n, std::uint32_t sequence, std::uint64_t generation) {
+        FrameRecord r = delivered(n, driverTiming(sequence, static_cast<std::int64_t>(n) * 33 * kMs), 0);
+        r.seekGeneration = generation;
+        return r;
+    };
+    // 1 2 4 (1 lost when recorded), a seek to 40 41, a seek back to 3, 5 (1 lost).
+    model.add(replayed(0, 1, 0));
+    model.add(replayed(1, 2, 0));
+    model.add(replayed(2, 4, 0));
+    model.add(replayed(3, 40, 1));
+    model.add(replayed(4, 41, 1));
+    model.add(replayed(5, 3, 2));
+    model.add(replayed(6, 5, 2));
+    const TimingSummary t = model.summary();
+    EXPECT_EQ(t.drops.cameraUsb, 2u);
+    EXPECT_EQ(t.depth.intervals.count, 4u) << "none across a seek";
+}
+
 TEST(TimingModelTest, EachLostFrameIsCountedWhereItWasLostAndShownFramesHaveTheirLatencies) {
     TimingModel model;
     // Frame 0: shown. 1: replaced in the session's slot. 2: processed, its result replaced. 3: a capture
