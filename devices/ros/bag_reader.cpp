@@ -30,16 +30,6 @@ template <class T> boost::shared_ptr<T> first(const rosbag::Bag& bag, const std:
     return nullptr;
 }
 
-// image_transport's compressed and compressedDepth topics, as the plain image the raw topic carries.
-Expected<RosImage> decompressed(const sensor_msgs::CompressedImage& m) {
-    auto image = decompressImage(m.format, m.data.data(), m.data.size());
-    if (!image)
-        return image.error();
-    image->stampNs = toNs(m.header.stamp);
-    image->frameId = m.header.frame_id;
-    return image;
-}
-
 } // namespace
 
 struct BagReader::Impl {

@@ -24,14 +24,6 @@ std::optional<std::string> realsensePrefix(const std::string& imageTopic) {
 
 // camera_info beside an image topic: RealSense's info/camera_info, or the namespace's camera_info as ROS
 // camera drivers publish it (/camera/depth/image_rect_raw -> /camera/depth/camera_info).
-// image_transport publishes an image compressed under its raw topic and the transport's name.
-std::string withoutTransport(const std::string& topic) {
-    for (const std::string suffix : {"/compressedDepth", "/compressed"})
-        if (topic.size() > suffix.size() && topic.ends_with(suffix))
-            return topic.substr(0, topic.size() - suffix.size());
-    return topic;
-}
-
 std::string cameraInfoTopic(const std::string& imageTopic) {
     if (auto prefix = realsensePrefix(imageTopic))
         return *prefix + "/info/camera_info";

@@ -3,11 +3,13 @@
 // ROS 1 messages -> the plain values of ros_messages.h. Includes Debian's generated message headers, so
 // only the C++17 glue files (bag_reader.cpp, ros_node.cpp) may include this header.
 
+#include "devices/ros/compressed_image.h"
 #include "devices/ros/ros_messages.h"
 
 #include <geometry_msgs/Transform.h>
 #include <ros/time.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 
 #include <algorithm>
@@ -28,6 +30,16 @@ inline RosImage toImage(const sensor_msgs::Image& m) {
     image.step = m.step;
     image.bigEndian = m.is_bigendian != 0;
     image.data = m.data;
+    return image;
+}
+
+// image_transport's compressed and compressedDepth topics, as the plain image the raw topic carries.
+inline Expected<RosImage> decompressed(const sensor_msgs::CompressedImage& m) {
+    auto image = decompressImage(m.format, m.data.data(), m.data.size());
+    if (!image)
+        return image.error();
+    image->stampNs = toNs(m.header.stamp);
+    image->frameId = m.header.frame_id;
     return image;
 }
 

@@ -6,6 +6,7 @@
 #include "devices/ros/ros_node.h"
 #include "frame/calibration.h"
 
+#include <algorithm>
 #include <cstdio>
 
 namespace dc::devices::ros {
@@ -68,18 +69,31 @@ Status RosDevice::connect() {
 }
 
 // A topic advertised with another type would subscribe without ever delivering (roscpp refuses the
-// connection): say so now. A topic nobody advertises yet is fine; the watchdog shows it as Stalled.
+// connection): say so now. An image topic may be raw or compressed (image_transport's compressed and
+// compressedDepth); one nobody advertises yet is taken as its name says, and the watchdog shows it as
+// Stalled until it comes.
 Status RosDevice::checkTopicTypes() {
     auto topics = advertisedTopics();
     if (!topics)
         return topics.error();
-    const std::pair<const std::string*, const char*> expected[] = {{&config_.depthTopic, kRosImageType},
-                                                                   {&config_.colorTopic, kRosImageType},
-                                                                   {&config_.infoTopic, kCameraInfoType}};
-    for (const auto& [name, type] : expected)
-        for (const TopicInfo& t : *topics)
-            if (t.name == *name && t.type != type)
-                return Error{"ROS topic " + t.name + " carries " + t.type + ", not " + type};
+    const auto advertised = [&](const std::string& name) -> const TopicInfo* {
+        const auto it =
+            std::find_if(topics->begin(), topics->end(), [&](const TopicInfo& t) { return t.name == name; });
+        return it == topics->end() ? nullptr : &*it;
+    };
+    const std::pair<const std::string*, bool*> images[] = {{&config_.depthTopic, &depthCompressed_},
+                                                           {&config_.colorTopic, &colorCompressed_}};
+    for (const auto& [name, compressed] : images) {
+        *compressed = namesCompressedTransport(*name);
+        if (const TopicInfo* t = advertised(*name)) {
+            if (t->type != kRosImageType && t->type != kRosCompressedImageType)
+                return Error{"ROS topic " + t->name + " carries " + t->type + ", not " + kRosImageType +
+                             " or " + kRosCompressedImageType};
+            *compressed = t->type == kRosCompressedImageType;
+        }
+    }
+    if (const TopicInfo* t = advertised(config_.infoTopic); t && t->type != kCameraInfoType)
+        return Error{"ROS topic " + t->name + " carries " + t->type + ", not " + kCameraInfoType};
     return {};
 }
 
@@ -112,10 +126,11 @@ Status RosDevice::subscribe() {
         [this](RosImage image) { post(DepthMessage{std::move(image)}); },
         [this](RosImage image) { post(ColorMessage{std::move(image)}); },
         [this](RosCameraInfo info) { post(std::move(info)); },
+        [this](std::string problem) { post(Problem{std::move(problem)}); },
     };
-    auto subscription =
-        Subscription::create({config_.depthTopic, config_.colorTopic, config_.infoTopic, config_.fixedFrame},
-                             std::move(callbacks));
+    auto subscription = Subscription::create({config_.depthTopic, config_.colorTopic, config_.infoTopic,
+                                              config_.fixedFrame, depthCompressed_, colorCompressed_},
+                                             std::move(callbacks));
     if (!subscription)
         return subscription.error();
     subscription_ = std::move(*subscription);
@@ -230,6 +245,8 @@ std::optional<CaptureResult> RosDevice::take(Message& message) {
         return takeDepth(depth->image);
     if (auto* color = std::get_if<ColorMessage>(&message))
         return takeColor(color->image);
+    if (auto* problem = std::get_if<Problem>(&message))
+        return report(std::move(problem->message));
     takeInfo(std::get<RosCameraInfo>(message));
     return std::nullopt;
 }

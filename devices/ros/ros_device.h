@@ -55,7 +55,10 @@ private:
     struct ColorMessage {
         RosImage image;
     };
-    using Message = std::variant<DepthMessage, ColorMessage, RosCameraInfo>;
+    struct Problem {
+        std::string message;
+    };
+    using Message = std::variant<DepthMessage, ColorMessage, RosCameraInfo, Problem>;
 
     Status connect();
     Status checkTopicTypes();
@@ -75,6 +78,9 @@ private:
     std::optional<CaptureResult> nextFrame();
 
     RosSourceConfig config_;
+    // The image topics carry sensor_msgs/CompressedImage: as advertised, or by their names until they are.
+    bool depthCompressed_ = false;
+    bool colorCompressed_ = false;
     MasterUri master_;
     std::unique_ptr<Subscription> subscription_;
     std::mutex inboxMutex_;

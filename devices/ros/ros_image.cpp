@@ -163,4 +163,11 @@ Expected<CameraInfoRecord> cameraInfoRecord(const RosCameraInfo& info) {
     return record;
 }
 
+std::string withoutTransport(const std::string& topic) {
+    for (const std::string suffix : {"/compressedDepth", "/compressed"})
+        if (topic.size() > suffix.size() && topic.ends_with(suffix))
+            return topic.substr(0, topic.size() - suffix.size());
+    return topic;
+}
+
 } // namespace dc::devices::ros

@@ -15,6 +15,12 @@ namespace dc::devices::ros {
 inline constexpr const char* kRosImageType = "sensor_msgs/Image";
 // image_transport's compressed and compressedDepth topics: every message store's image() decompresses them.
 inline constexpr const char* kRosCompressedImageType = "sensor_msgs/CompressedImage";
+// image_transport publishes an image compressed under its raw topic and the transport's name
+// (/camera/color/image_raw/compressed): the raw topic's name, and whether the name has such a suffix.
+std::string withoutTransport(const std::string& topic);
+inline bool namesCompressedTransport(const std::string& topic) {
+    return withoutTransport(topic) != topic;
+}
 // A depth stream without camera_info is placed with this horizontal field of view: a RealSense depth
 // sensor's, the camera ROS users record most.
 inline constexpr double kRosFallbackFovDegrees = 87.0;

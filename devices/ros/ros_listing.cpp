@@ -25,7 +25,7 @@ RosListing listRosImageTopics() {
         return listing;
     }
     for (const TopicInfo& t : *topics)
-        if (t.type == kRosImageType)
+        if (t.type == kRosImageType || t.type == kRosCompressedImageType)
             listing.imageTopics.push_back(t.name);
     return listing;
 }

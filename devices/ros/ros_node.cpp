@@ -7,6 +7,7 @@
 #include <ros/master.h>
 #include <ros/ros.h>
 #include <sensor_msgs/CameraInfo.h>
+#include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
 #include <tf2/buffer_core.h>
 #include <tf2/exceptions.h>
@@ -105,6 +106,7 @@ struct Subscription::Impl {
     std::unique_ptr<::ros::NodeHandle> node;
     std::unique_ptr<::ros::AsyncSpinner> spinner;
     std::vector<::ros::Subscriber> subscribers;
+    SubscriptionTopics topics;
     std::string fixedFrame;
     tf2::BufferCore tf{::ros::Duration(kTfCacheSeconds)};
     // /tf kept pace with the images last time (its transform at the image's stamp came): worth waiting for.
@@ -124,6 +126,23 @@ struct Subscription::Impl {
     void onColor(const sensor_msgs::ImageConstPtr& m) {
         guarded([&] { callbacks.color(toImage(*m)); });
     }
+    // Decoded here, on the spinner thread, so that the device sees plain images whatever the transport.
+    void deliverCompressed(const sensor_msgs::CompressedImage& m, const std::string& topic,
+                           const std::function<void(RosImage)>& deliver) {
+        guarded([&] {
+            auto image = decompressed(m);
+            if (image)
+                deliver(std::move(*image));
+            else
+                callbacks.problem(topic + ": " + image.error().message);
+        });
+    }
+    void onDepthCompressed(const sensor_msgs::CompressedImageConstPtr& m) {
+        deliverCompressed(*m, topics.depth, callbacks.depth);
+    }
+    void onColorCompressed(const sensor_msgs::CompressedImageConstPtr& m) {
+        deliverCompressed(*m, topics.color, callbacks.color);
+    }
     void onInfo(const sensor_msgs::CameraInfoConstPtr& m) {
         guarded([&] { callbacks.info(toCameraInfo(*m)); });
     }
@@ -134,14 +153,20 @@ struct Subscription::Impl {
     void onTfDynamic(const tf2_msgs::TFMessageConstPtr& m) { onTf(m, false); }
     void onTfStatic(const tf2_msgs::TFMessageConstPtr& m) { onTf(m, true); }
 
-    void subscribe(const SubscriptionTopics& topics) {
+    void subscribe(const SubscriptionTopics& wanted) {
+        topics = wanted;
         node = std::make_unique<::ros::NodeHandle>();
         node->setCallbackQueue(&queue);
         const auto hints = ::ros::TransportHints().tcpNoDelay();
-        subscribers.push_back(node->subscribe(topics.depth, kImageQueueSize, &Impl::onDepth, this, hints));
+        subscribers.push_back(
+            topics.depthCompressed
+                ? node->subscribe(topics.depth, kImageQueueSize, &Impl::onDepthCompressed, this, hints)
+                : node->subscribe(topics.depth, kImageQueueSize, &Impl::onDepth, this, hints));
         if (!topics.color.empty())
             subscribers.push_back(
-                node->subscribe(topics.color, kImageQueueSize, &Impl::onColor, this, hints));
+                topics.colorCompressed
+                    ? node->subscribe(topics.color, kImageQueueSize, &Impl::onColorCompressed, this, hints)
+                    : node->subscribe(topics.color, kImageQueueSize, &Impl::onColor, this, hints));
         subscribers.push_back(node->subscribe(topics.info, 1, &Impl::onInfo, this, hints));
         fixedFrame = topics.fixedFrame;
         if (!fixedFrame.empty()) {

@@ -31,6 +31,9 @@ struct SubscriptionTopics {
     std::string color;      // empty: none
     std::string info;       // the depth camera's camera_info
     std::string fixedFrame; // non-empty: listen to /tf and /tf_static for poses in this frame
+    // The image topics carry sensor_msgs/CompressedImage (image_transport's compressed or compressedDepth).
+    bool depthCompressed = false;
+    bool colorCompressed = false;
 };
 
 // Called on the subscription's own spinner thread; they must return quickly and not throw.
@@ -38,6 +41,8 @@ struct SubscriptionCallbacks {
     std::function<void(RosImage)> depth;
     std::function<void(RosImage)> color;
     std::function<void(RosCameraInfo)> info;
+    // A message that could not be read (a compressed image that does not decode), in one line.
+    std::function<void(std::string)> problem;
 };
 
 // Subscribes to a depth camera's topics with its own callback queue and spinner thread, so the messages of

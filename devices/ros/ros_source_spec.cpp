@@ -1,6 +1,7 @@
 #include "devices/ros/ros_source_spec.h"
 
 #include "devices/ros/ros_device.h"
+#include "devices/ros/ros_image.h"
 #include "devices/ros/ros_master.h"
 
 #include <cctype>
@@ -91,7 +92,11 @@ Status parseOption(const std::string& part, RosSourceConfig& config, bool& color
 
 } // namespace
 
-DerivedTopics deriveTopics(const std::string& depthTopic) {
+DerivedTopics deriveTopics(const std::string& topic) {
+    // A compressed depth topic's camera_info is its raw topic's; its colour is taken compressed too (a link
+    // that needs depth compressed needs colour so as well).
+    const std::string depthTopic = withoutTransport(topic);
+    const std::string colorTransport = depthTopic != topic ? "/compressed" : "";
     const auto slash = depthTopic.rfind('/');
     const std::string ns = slash == std::string::npos ? std::string() : depthTopic.substr(0, slash);
     DerivedTopics topics{{}, ns + "/camera_info"};
@@ -99,7 +104,7 @@ DerivedTopics deriveTopics(const std::string& depthTopic) {
     if (parentSlash == std::string::npos)
         return topics;
     if (ns.substr(parentSlash + 1).find("depth") != std::string::npos)
-        topics.color = ns.substr(0, parentSlash) + "/color/image_raw";
+        topics.color = ns.substr(0, parentSlash) + "/color/image_raw" + colorTransport;
     return topics;
 }
 

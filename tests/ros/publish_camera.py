@@ -8,14 +8,17 @@ START + i * PERIOD, so a received frame names its own index. Runs until killed (
 import argparse
 import math
 import os
+import struct
 import sys
 
 import numpy as np
 import rospy
 from geometry_msgs.msg import TransformStamped
-from sensor_msgs.msg import CameraInfo, Image
+from sensor_msgs.msg import CameraInfo, CompressedImage, Image
 from std_msgs.msg import String
 from tf2_msgs.msg import TFMessage
+
+from png_writer import png
 
 FX, FY, CX, CY = 50.5, 51.25, 31.5, 23.75  # at the test's 64x48; scaled with the size
 
@@ -57,6 +60,26 @@ def depth_bytes(args, i):
     if args.encoding == "32FC1":
         return (units.astype("<f4") * np.float32(0.001)).tobytes()
     return units.tobytes()
+
+
+def compressed_image(stamp, fmt, data):
+    m = CompressedImage()
+    m.header.stamp = stamp
+    m.header.frame_id = "camera_depth_optical_frame"
+    m.format, m.data = fmt, data
+    return m
+
+
+def compressed_depth(args, i):
+    """image_transport's compressedDepth of 16UC1: the 12-byte header, then a 16-bit gray PNG."""
+    units = depth_units(args.width, args.height, i).astype(">u2")
+    return struct.pack("<iff", 0, 0.0, 0.0) + png(args.width, args.height, 16, 0,
+                                                  [row.tobytes() for row in units])
+
+
+def compressed_color(args, i):
+    rgb = color_rgb(args.color_width, args.color_height, i)
+    return png(args.color_width, args.color_height, 8, 2, [row.tobytes() for row in rgb])
 
 
 def depth_image(args, stamp, data):
@@ -112,21 +135,34 @@ def main():
     p.add_argument("--jump-back-file", default="", help="once this file exists, stamps go 10 s back")
     p.add_argument("--depth-type", default="image", choices=["image", "string"])
     p.add_argument("--tf-root", default="", help="publish /tf_static and /tf from this frame to the camera")
+    p.add_argument("--transport", default="raw", choices=["raw", "compressed"],
+                   help="compressed: 16UC1 depth on .../compressedDepth and colour on .../compressed, both PNG")
     args = p.parse_args()
+    compressed = args.transport == "compressed"
 
     rospy.init_node("depthcloud_test_camera", anonymous=True)
     if args.depth_type == "string":
         depth_pub = rospy.Publisher(args.ns + "/depth/image_rect_raw", String, queue_size=2)
+    elif compressed:
+        depth_pub = rospy.Publisher(args.ns + "/depth/image_rect_raw/compressedDepth", CompressedImage,
+                                    queue_size=2)
     else:
         depth_pub = rospy.Publisher(args.ns + "/depth/image_rect_raw", Image, queue_size=2)
-    color_pub = rospy.Publisher(args.ns + "/color/image_raw", Image, queue_size=2)
+    if compressed:
+        color_pub = rospy.Publisher(args.ns + "/color/image_raw/compressed", CompressedImage, queue_size=2)
+    else:
+        color_pub = rospy.Publisher(args.ns + "/color/image_raw", Image, queue_size=2)
     info_pub = rospy.Publisher(args.ns + "/depth/camera_info", CameraInfo, queue_size=2)
     if args.tf_root:
         static_pub = publish_tf_static(args.tf_root)  # kept: a latched topic lives as long as its publisher
         tf_pub = rospy.Publisher("/tf", TFMessage, queue_size=10)
     period_ns = int(round(1e9 / args.rate))
-    colors = Cached(lambda i: color_rgb(args.color_width, args.color_height, i).tobytes(), 256)
-    depths = Cached(lambda i: depth_bytes(args, i), 50)
+    if compressed:
+        colors = Cached(lambda i: compressed_color(args, i), 256)
+        depths = Cached(lambda i: compressed_depth(args, i), 50)
+    else:
+        colors = Cached(lambda i: color_rgb(args.color_width, args.color_height, i).tobytes(), 256)
+        depths = Cached(lambda i: depth_bytes(args, i), 50)
     rate = rospy.Rate(args.rate)
     i = 0
     while not rospy.is_shutdown():
@@ -142,10 +178,15 @@ def main():
             tf_pub.publish(camera_tf(stamp, i))
         info_pub.publish(camera_info(args, stamp))
         color_stamp = rospy.Time(nsecs=stamp_ns + int(args.color_skew_ms * 1e6))
-        color_pub.publish(image(color_stamp, "rgb8", args.color_width, args.color_height,
-                                3 * args.color_width, color_data))
+        if compressed:
+            color_pub.publish(compressed_image(color_stamp, "rgb8; png compressed rgb8", color_data))
+        else:
+            color_pub.publish(image(color_stamp, "rgb8", args.color_width, args.color_height,
+                                    3 * args.color_width, color_data))
         if args.depth_type == "string":
             depth_pub.publish(String(data="not an image"))
+        elif compressed:
+            depth_pub.publish(compressed_image(stamp, "16UC1; compressedDepth", depth_data))
         else:
             depth_pub.publish(depth_image(args, stamp, depth_data))
         i += 1

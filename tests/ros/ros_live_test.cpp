@@ -167,9 +167,11 @@ protected:
         EXPECT_NEAR(k.cx, kCx, 1e-9);
         EXPECT_NEAR(k.cy, kCy, 1e-9);
     }
-    void expectStream(const std::string& encoding, bool meters) {
-        publish({"--encoding", encoding, "--color-skew-ms", "4"});
-        auto device = openDevice(kDepthTopic);
+    void expectStream(const std::string& encoding, bool meters, const std::string& transport = "raw") {
+        publish({"--encoding", encoding, "--color-skew-ms", "4", "--transport", transport});
+        // The colour and camera_info are found beside the depth topic, compressed beside compressed.
+        auto device =
+            openDevice(transport == "raw" ? kDepthTopic : kDepthTopic + std::string("/compressedDepth"));
         ASSERT_TRUE(device);
         const Captured got = capture(*device, 8);
         ASSERT_EQ(got.frames.size(), 8u) << publisherLog();
@@ -209,6 +211,9 @@ TEST(RosSourceSpec, FindsColorAndCameraInfoBesideTheDepthTopic) {
     const DerivedTopics aligned = deriveTopics("/cam1/aligned_depth_to_color/image_raw");
     EXPECT_EQ(aligned.color, "/cam1/color/image_raw");
     EXPECT_EQ(aligned.info, "/cam1/aligned_depth_to_color/camera_info");
+    const DerivedTopics compressed = deriveTopics("/camera/depth/image_rect_raw/compressedDepth");
+    EXPECT_EQ(compressed.color, "/camera/color/image_raw/compressed");
+    EXPECT_EQ(compressed.info, "/camera/depth/camera_info");
     const DerivedTopics plain = deriveTopics("/kinect/image_depth");
     EXPECT_EQ(plain.color, "");
     EXPECT_EQ(plain.info, "/kinect/camera_info");
@@ -360,6 +365,20 @@ TEST_F(RosLive, DepthIn16UC1MillimetresArrivesPixelForPixelWithColorAndIntrinsic
 
 TEST_F(RosLive, DepthIn32FC1MetersArrivesPixelForPixel) {
     expectStream("32FC1", true);
+}
+
+// image_transport's compressedDepth and compressed topics (PNG: lossless, so pixel for pixel), decoded on
+// arrival, paired and placed as the raw topics are.
+TEST_F(RosLive, CompressedDepthAndColourTopicsArrivePixelForPixel) {
+    expectStream("16UC1", false, "compressed");
+    // Streaming, so every topic is advertised: `devices` lists the compressed ones to open too.
+    const RunResult listed = runDepthcloud(dir_->path(), "", "devices");
+    ASSERT_EQ(listed.exitCode, 0) << listed.err;
+    EXPECT_NE(
+        listed.out.find("  /camera/depth/image_rect_raw/compressedDepth  open with: depthcloud --source "
+                        "ros:/camera/depth/image_rect_raw/compressedDepth\n"),
+        std::string::npos)
+        << listed.out;
 }
 
 TEST_F(RosLive, ColorBeyondTheToleranceIsNotPaired) {
