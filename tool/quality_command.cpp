@@ -29,11 +29,10 @@ namespace {
 using nlohmann::json;
 
 // The figures in the order they are printed; every one may be an --expect key.
-const char* const kFigures[] = {"fillRate",         "planeFitRmsMm",  "planeFitRmsPercent",
-                                "dqtPlaneFitRmsMm", "subpixelRms",    "zAccuracyPercent",
-                                "temporalNoiseMm",  "spatialNoiseMm", "distanceMm",
-                                "angleDeg",         "inlierFraction", "alignmentPx",
-                                "alignmentMm",      "frames"};
+const char* const kFigures[] = {"fillRate",    "planeFitRmsMm",    "planeFitRmsPercent", "dqtPlaneFitRmsMm",
+                                "subpixelRms", "zAccuracyPercent", "temporalNoiseMm",    "spatialNoiseMm",
+                                "distanceMm",  "angleDeg",         "inlierFraction",     "alignmentPx",
+                                "alignmentMm", "frames",           "planeFrames",        "alignmentFrames"};
 
 // A live camera may take a while to deliver its first frame; a source that sends nothing this long failed.
 constexpr std::chrono::seconds kNoFrameLimit{10};
@@ -187,6 +186,14 @@ json report(const Collected& c, const processing::NoiseWindow& noise, const proc
     j["temporalNoiseMm"] = temporal ? json(*temporal) : json(nullptr);
     j["spatialNoiseMm"] = spatial ? json(*spatial) : json(nullptr);
     j["frames"] = c.frames;
+    // How many frames each median is over: a frame without a plane (too few samples) or without an alignment
+    // score (no colour, no depth edge) adds nothing to those figures.
+    const auto framesOf = [&](const char* key) {
+        const auto it = c.figures.find(key);
+        return it == c.figures.end() ? std::size_t{0} : it->second.size();
+    };
+    j["planeFrames"] = framesOf("distanceMm");
+    j["alignmentFrames"] = framesOf("alignmentPx");
     j["roi"] = {{"x", roi.x}, {"y", roi.y}, {"width", roi.width}, {"height", roi.height}};
     j["roiPolygon"] = polygon.empty() ? json(nullptr) : json(polygon);
     j["roiSamples"] = c.fill.roiSamples;

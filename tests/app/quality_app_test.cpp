@@ -80,6 +80,8 @@ TEST_F(Quality, TheSyntheticRigsColourLiesOnItsDepthEdges) {
     EXPECT_TRUE(std::isfinite(j["alignmentPx"].get<double>()));
     EXPECT_TRUE(std::isfinite(j["alignmentMm"].get<double>()));
     EXPECT_LE(j["alignmentPx"].get<double>(), 0.25);
+    EXPECT_EQ(j["alignmentFrames"], 5) << "every frame has colour and the desk's edges";
+    EXPECT_EQ(j["planeFrames"], 5);
     const RunResult noisy = run("--source synthetic:rig=rgbd --frames 5 --expect \"alignmentPx<=1.5\"");
     EXPECT_EQ(noisy.exitCode, 0) << noisy.out << noisy.err;
 }
@@ -97,6 +99,7 @@ TEST_F(Quality, AlignmentIsNullWithoutAColourImageOrADepthEdge) {
     const nlohmann::json d = nlohmann::json::parse(readFile(dir_ / "d.json"));
     EXPECT_TRUE(d["alignmentPx"].is_null()) << d["alignmentPx"];
     EXPECT_TRUE(d["alignmentMm"].is_null()) << d["alignmentMm"];
+    EXPECT_EQ(d["alignmentFrames"], 0);
     ASSERT_EQ(run("--source replay:take.mcap --frames 3 --json c.json").exitCode, 0);
     EXPECT_TRUE(nlohmann::json::parse(readFile(dir_ / "c.json"))["alignmentPx"].is_number());
     ASSERT_EQ(run("--source synthetic:64x48:plane=1,0,1 --frames 2 --json p.json").exitCode, 0);
