@@ -617,6 +617,13 @@ TEST(ProcessingGraphShaderColours, ADecimatedCloudIsColouredOnlyWhereItsPointsAr
 namespace dc::engine::test {
 namespace {
 
+// The frame's colour registered onto the depth it was shown with, as the alignment scores it.
+processing::RgbImage colourOnShownDepth(const frame::Frame& frame, const processing::ShownFrame& shown) {
+    processing::CameraColourTable table;
+    const frame::Plane<float>& depth = shown.depth.data->depthMeters;
+    return processing::colourAlignedToDepth(frame, depth, depth.width, depth.height, table);
+}
+
 // The Quality panel's colour-to-depth alignment of a two-sensor frame: only when asked, equal to the colour
 // registered onto the shown depth and scored here, and asking for it does not start the noise window over.
 TEST(ProcessingGraphRig, TheColourAlignmentIsMeasuredOnTheShownDepthOnlyWhenAsked) {
@@ -635,12 +642,9 @@ TEST(ProcessingGraphRig, TheColourAlignmentIsMeasuredOnTheShownDepthOnlyWhenAske
     const processing::ShownFramePtr on = graph.run(frame, demand, 2, false);
     ASSERT_TRUE(on->quality && on->depth.data);
     ASSERT_TRUE(on->quality->alignment) << on->quality->alignmentError;
-    processing::CameraColourTable table;
     const frame::Plane<float>& depth = on->depth.data->depthMeters;
-    const processing::RgbImage colour =
-        processing::colourAlignedToDepth(*frame, depth, depth.width, depth.height, table);
-    const auto expected =
-        processing::measureEdgeAlignment(depth, colour, on->depth.intrinsics, on->quality->roi);
+    const auto expected = processing::measureEdgeAlignment(depth, colourOnShownDepth(*frame, *on),
+                                                           on->depth.intrinsics, on->quality->roi);
     ASSERT_TRUE(expected.ok()) << expected.error().message;
     EXPECT_DOUBLE_EQ(on->quality->alignment->medianPx, expected->medianPx);
     EXPECT_DOUBLE_EQ(on->quality->alignment->medianMm, expected->medianMm);
@@ -665,10 +669,8 @@ TEST(ProcessingGraphRig, TheColourAlignmentOfALassoScoresOnlyItsSamples) {
     ASSERT_TRUE(on->quality && on->depth.data);
     ASSERT_TRUE(on->quality->alignment) << on->quality->alignmentError;
     ASSERT_EQ(on->quality->polygon.size(), 3u);
-    processing::CameraColourTable table;
     const frame::Plane<float>& depth = on->depth.data->depthMeters;
-    const processing::RgbImage colour =
-        processing::colourAlignedToDepth(*frame, depth, depth.width, depth.height, table);
+    const processing::RgbImage colour = colourOnShownDepth(*frame, *on);
     const auto inLasso = processing::measureEdgeAlignment(depth, colour, on->depth.intrinsics,
                                                           on->quality->roi, on->quality->polygon);
     const auto inBounds =
