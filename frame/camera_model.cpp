@@ -38,6 +38,38 @@ bool RigidTransform::isIdentity() const {
     return *this == RigidTransform{};
 }
 
+RigidTransform compose(const RigidTransform& second, const RigidTransform& first) {
+    RigidTransform out;
+    const auto& a = second.rotation;
+    const auto& b = first.rotation;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c)
+            out.rotation[r * 3 + c] = a[r * 3] * b[c] + a[r * 3 + 1] * b[3 + c] + a[r * 3 + 2] * b[6 + c];
+    out.translationMeters = second.apply(first.translationMeters);
+    return out;
+}
+
+RigidTransform inverse(const RigidTransform& t) {
+    RigidTransform out;
+    const auto& r = t.rotation;
+    out.rotation = {r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8]};
+    const std::array<double, 3> moved = out.apply(t.translationMeters);
+    out.translationMeters = {-moved[0], -moved[1], -moved[2]};
+    return out;
+}
+
+std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw) {
+    const auto [x, y, z, w] = xyzw;
+    return {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
+            2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
+            2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
+}
+
+RigidTransform rigidFromQuaternion(const std::array<double, 3>& translationMeters,
+                                   const std::array<double, 4>& xyzw) {
+    return {rotationFromQuaternion(xyzw), translationMeters};
+}
+
 double rotationError(const std::array<double, 9>& r) {
     const double det = r[0] * (r[4] * r[8] - r[5] * r[7]) - r[1] * (r[3] * r[8] - r[5] * r[6]) +
                        r[2] * (r[3] * r[7] - r[4] * r[6]);

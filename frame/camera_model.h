@@ -48,6 +48,18 @@ struct RigidTransform {
     bool operator==(const RigidTransform&) const = default;
 };
 
+// The algebra of rigid transforms, the one copy every layer uses.
+// `first`, then `second`: compose(second, first).apply(p) == second.apply(first.apply(p)).
+RigidTransform compose(const RigidTransform& second, const RigidTransform& first);
+// The transform back: Rᵀ and -Rᵀ t.
+RigidTransform inverse(const RigidTransform& t);
+// The row-major rotation of the quaternion (x, y, z, w), which must already be a unit one: it is used as it
+// is, not normalised.
+std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw);
+// A translation in meters and a unit quaternion (x, y, z, w), as ROS's and TUM's poses give them.
+RigidTransform rigidFromQuaternion(const std::array<double, 3>& translationMeters,
+                                   const std::array<double, 4>& xyzw);
+
 // How far R is from a proper rotation: the largest entry of R Rᵀ - I, or infinity when det R <= 0.
 double rotationError(const std::array<double, 9>& rotation);
 

@@ -19,13 +19,8 @@ Expected<RigidTransform> poseFromQuaternion(const std::array<double, 7>& values)
                       kQuaternionNormTolerance);
         return Error{text};
     }
-    const double x = values[3] / norm, y = values[4] / norm, z = values[5] / norm, w = values[6] / norm;
-    RigidTransform pose;
-    pose.rotation = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-                     2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-                     2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
-    pose.translationMeters = {values[0], values[1], values[2]};
-    return pose;
+    return rigidFromQuaternion({values[0], values[1], values[2]},
+                               {values[3] / norm, values[4] / norm, values[5] / norm, values[6] / norm});
 }
 
 Expected<RigidTransform> loadPoseFile(const std::string& path) {

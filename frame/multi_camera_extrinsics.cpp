@@ -23,27 +23,6 @@ constexpr int kMaxRigCameras = 64;
 constexpr std::string_view kKalibrPrefix = "cam";
 constexpr std::string_view kOpenCvPrefix = "camera_";
 
-RigidTransform extrinsicsInverse(const RigidTransform& t) {
-    const auto& r = t.rotation;
-    RigidTransform out;
-    out.rotation = {r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8]};
-    const auto moved = out.apply(t.translationMeters);
-    out.translationMeters = {-moved[0], -moved[1], -moved[2]};
-    return out;
-}
-
-// `first`, then `second`.
-RigidTransform extrinsicsCompose(const RigidTransform& second, const RigidTransform& first) {
-    RigidTransform out;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            out.rotation[3 * i + j] = second.rotation[3 * i] * first.rotation[j] +
-                                      second.rotation[3 * i + 1] * first.rotation[3 + j] +
-                                      second.rotation[3 * i + 2] * first.rotation[6 + j];
-    out.translationMeters = second.apply(first.translationMeters);
-    return out;
-}
-
 // A 4x4 row-major matrix (a nested list, a flat one or an !!opencv-matrix) that must be rigid.
 Expected<RigidTransform> rigidFromMatrix(const YAML::Node& node, const std::string& field,
                                          const std::string& origin) {
@@ -97,7 +76,7 @@ Expected<CameraExtrinsicsSet> readKalibrChain(const YAML::Node& root, const std:
                 return step.error();
             // T_cn_cnm1 takes the previous camera's points to this one's: back to the previous, then to the
             // world.
-            toWorld = extrinsicsCompose(toWorld, extrinsicsInverse(*step));
+            toWorld = compose(toWorld, inverse(*step));
         }
         set.cameras.push_back({name, toWorld});
     }
@@ -145,8 +124,8 @@ Expected<std::string> writeKalibrChain(const CameraExtrinsicsSet& set) {
     std::ostringstream out;
     out << "# Extrinsics only: each camK's T_cn_cnm1 takes cam(K-1)'s points to camK's.\ncam0: {}\n";
     for (std::size_t k = 1; k < set.cameras.size(); ++k) {
-        const RigidTransform step = extrinsicsCompose(extrinsicsInverse(set.cameras[k].cameraToWorld),
-                                                      set.cameras[k - 1].cameraToWorld);
+        const RigidTransform step =
+            compose(inverse(set.cameras[k].cameraToWorld), set.cameras[k - 1].cameraToWorld);
         out << "cam" << k << ":\n  T_cn_cnm1:\n";
         for (int row = 0; row < 3; ++row)
             out << chainRow(step, row);

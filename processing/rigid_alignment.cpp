@@ -312,7 +312,7 @@ Step solve(const std::vector<Pair>& pairs, const std::vector<double>& weights, d
 // The transform followed by the step: p -> exp(w) (R p + t) + dt.
 frame::RigidTransform applyStep(const frame::RigidTransform& t, const Step& step) {
     const frame::RigidTransform update{exponential(step.rotation), step.translation};
-    frame::RigidTransform out = compose(update, t);
+    frame::RigidTransform out = frame::compose(update, t);
     out.rotation = orthonormalised(out.rotation);
     return out;
 }
@@ -408,30 +408,10 @@ IcpResult refineAlignment(const DepthCloud& a, const DepthCloud& b, const frame:
     if (result.status == IcpStatus::TooFewPoints)
         result.aToB = seed;
     result.after = figure(result.aToB);
-    result.correction = compose(result.aToB, inverse(seed));
+    result.correction = frame::compose(result.aToB, frame::inverse(seed));
     result.correctionDegrees = rotationDegrees(result.correction);
     result.correctionMm = norm(result.correction.translationMeters) * kMetersToMm;
     return result;
-}
-
-frame::RigidTransform compose(const frame::RigidTransform& second, const frame::RigidTransform& first) {
-    frame::RigidTransform out;
-    const auto& a = second.rotation;
-    const auto& b = first.rotation;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c)
-            out.rotation[r * 3 + c] = a[r * 3] * b[c] + a[r * 3 + 1] * b[3 + c] + a[r * 3 + 2] * b[6 + c];
-    out.translationMeters = second.apply(first.translationMeters);
-    return out;
-}
-
-frame::RigidTransform inverse(const frame::RigidTransform& t) {
-    frame::RigidTransform out;
-    const auto& r = t.rotation;
-    out.rotation = {r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8]};
-    const Vec3 moved = out.apply(t.translationMeters);
-    out.translationMeters = {-moved[0], -moved[1], -moved[2]};
-    return out;
 }
 
 double rotationDegrees(const frame::RigidTransform& t) {
@@ -448,7 +428,7 @@ frame::RigidTransform relativeTransform(const frame::Pose& a, const frame::Pose&
         return frame::RigidTransform{{m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]},
                                      {m[12], m[13], m[14]}};
     };
-    return compose(inverse(toTransform(b)), toTransform(a));
+    return frame::compose(frame::inverse(toTransform(b)), toTransform(a));
 }
 
 } // namespace dc::processing

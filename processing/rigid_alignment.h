@@ -114,9 +114,7 @@ struct IcpResult {
 IcpResult refineAlignment(const DepthCloud& a, const DepthCloud& b, const frame::RigidTransform& seed,
                           const IcpParams& params = {});
 
-// Rigid transform algebra: (first then second), the inverse, and the angle of a rotation.
-frame::RigidTransform compose(const frame::RigidTransform& second, const frame::RigidTransform& first);
-frame::RigidTransform inverse(const frame::RigidTransform& t);
+// The angle of a transform's rotation (composing and inverting transforms: frame::compose, frame::inverse).
 double rotationDegrees(const frame::RigidTransform& t);
 // The transform from camera A's frame to camera B's, given both cameras' camera-to-world poses.
 frame::RigidTransform relativeTransform(const frame::Pose& a, const frame::Pose& b);

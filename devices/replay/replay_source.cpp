@@ -3,6 +3,7 @@
 #include "base/log.h"
 #include "devices/recording/format.h"
 #include "devices/replay/importers.h"
+#include "frame/camera_model.h"
 
 #ifdef DC_HAVE_ROS
 #include "devices/ros/bag_source.h"
@@ -117,13 +118,11 @@ frame::Pose poseFromQuaternion(const double t[3], const double q[4]) {
         x /= norm, y /= norm, z /= norm, w /= norm;
     }
     // Row-major rotation from the unit quaternion, stored column-major below.
-    const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
-                            {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
-                            {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+    const std::array<double, 9> r = frame::rotationFromQuaternion({x, y, z, w});
     frame::Pose pose;
     for (int col = 0; col < 3; ++col)
         for (int row = 0; row < 3; ++row)
-            pose.cameraToWorld[col * 4 + row] = r[row][col];
+            pose.cameraToWorld[col * 4 + row] = r[row * 3 + col];
     for (int row = 0; row < 3; ++row)
         pose.cameraToWorld[12 + row] = t[row];
     return pose;

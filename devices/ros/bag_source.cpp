@@ -39,19 +39,12 @@ bool isImageTopic(const MessageStore::Topic& topic) {
     return topic.type == kRosImageType || isCompressedImageTopic(topic);
 }
 
-std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw) {
-    const auto [x, y, z, w] = xyzw;
-    return {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-            2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-            2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
-}
-
 // librealsense records each stream's extrinsics to a reference stream as <prefix>/tf/<reference>: a point
 // in the stream's frame maps to the reference's as p_ref = R p + t. Depth -> colour goes through it:
 // p_color = Rc^T (Rd p + td - tc).
 BagExtrinsics depthToColor(const RosTransform& depth, const RosTransform& color) {
-    const auto rd = rotationFromQuaternion(depth.rotationXyzw);
-    const auto rc = rotationFromQuaternion(color.rotationXyzw);
+    const auto rd = frame::rotationFromQuaternion(depth.rotationXyzw);
+    const auto rc = frame::rotationFromQuaternion(color.rotationXyzw);
     BagExtrinsics out;
     for (int i = 0; i < 3; ++i) {
         for (int j = 0; j < 3; ++j) {
@@ -406,7 +399,7 @@ void BagSource::extrinsicsFromTf() {
     const auto c = tf_.locate(colour->frameId, depth->stampNs, kPoseToleranceNs);
     if (!d || !c || d->root != c->root)
         return;
-    const frame::RigidTransform depthToColour = compose(inverse(c->toRoot), d->toRoot);
+    const frame::RigidTransform depthToColour = frame::compose(frame::inverse(c->toRoot), d->toRoot);
     rig_.depthToColor = BagExtrinsics{depthToColour.rotation, depthToColour.translationMeters};
 }
 

@@ -14,40 +14,7 @@ constexpr int kMaxChain = 64;
 } // namespace
 
 frame::RigidTransform rigidOf(const RosTransform& t) {
-    const auto [x, y, z, w] = t.rotationXyzw;
-    frame::RigidTransform out;
-    out.rotation = {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),
-                    2 * (x * y + z * w),     1 - 2 * (x * x + z * z), 2 * (y * z - x * w),
-                    2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
-    out.translationMeters = t.translationMeters;
-    return out;
-}
-
-frame::RigidTransform compose(const frame::RigidTransform& outer, const frame::RigidTransform& inner) {
-    frame::RigidTransform out;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j) {
-            double r = 0.0;
-            for (int k = 0; k < 3; ++k)
-                r += outer.rotation[i * 3 + k] * inner.rotation[k * 3 + j];
-            out.rotation[i * 3 + j] = r;
-        }
-    out.translationMeters = outer.apply(inner.translationMeters);
-    return out;
-}
-
-frame::RigidTransform inverse(const frame::RigidTransform& t) {
-    frame::RigidTransform out;
-    for (int i = 0; i < 3; ++i)
-        for (int j = 0; j < 3; ++j)
-            out.rotation[i * 3 + j] = t.rotation[j * 3 + i];
-    for (int i = 0; i < 3; ++i) {
-        double v = 0.0;
-        for (int k = 0; k < 3; ++k)
-            v -= out.rotation[i * 3 + k] * t.translationMeters[k];
-        out.translationMeters[i] = v;
-    }
-    return out;
+    return frame::rigidFromQuaternion(t.translationMeters, t.rotationXyzw);
 }
 
 void TfTree::add(const RosTransformStamped& t, bool fixed) {
@@ -91,7 +58,7 @@ std::optional<TfTree::Located> TfTree::locate(const std::string& frameId, std::i
         } else {
             return out;
         }
-        out.toRoot = compose(link->toParent, out.toRoot);
+        out.toRoot = frame::compose(link->toParent, out.toRoot);
         out.root = link->parent;
     }
     return std::nullopt;

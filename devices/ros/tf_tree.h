@@ -44,11 +44,7 @@ private:
 };
 
 // A tf transform (a unit quaternion and a translation) as a rigid transform from the child's frame into the
-// parent's.
+// parent's (composing and inverting them: frame::compose, frame::inverse).
 frame::RigidTransform rigidOf(const RosTransform& transform);
-// outer ∘ inner: a point first through `inner`, then `outer`.
-frame::RigidTransform compose(const frame::RigidTransform& outer, const frame::RigidTransform& inner);
-// The transform back.
-frame::RigidTransform inverse(const frame::RigidTransform& transform);
 
 } // namespace dc::devices::ros

@@ -238,16 +238,6 @@ TEST(Registration, SingleCameraColoursAreTodaysPointColorsBitForBit) {
     EXPECT_FALSE(isSingleCamera(rig));
 }
 
-frame::RigidTransform inverse(const frame::RigidTransform& t) {
-    const auto& r = t.rotation;
-    const auto& p = t.translationMeters;
-    frame::RigidTransform out{{r[0], r[3], r[6], r[1], r[4], r[7], r[2], r[5], r[8]}, {}};
-    for (int i = 0; i < 3; ++i)
-        out.translationMeters[static_cast<std::size_t>(i)] =
-            -(r[i] * p[0] + r[3 + i] * p[1] + r[6 + i] * p[2]);
-    return out;
-}
-
 // The depth map aligned to the colour image is the depth the colour sensor itself would measure: the
 // scene's exact depth through the colour lens, wherever the depth sensor sees that surface too (the scene
 // tells which colour pixels it does). Pixels within two of a depth edge are left out (a sample covers its
@@ -262,7 +252,7 @@ TEST(AlignedDepth, IsTheDepthTheColourSensorWouldSeeThroughItsLens) {
     const frame::Plane<float> truth = s.scene.trueDepth(s.rig.colour, colourPose);
     // The same question the other way round: which colour pixels' surfaces the depth sensor sees.
     const devices::RegistrationTruth seenByDepth =
-        s.scene.registrationTruth(s.rig.colour, s.rig.depth, inverse(s.rig.depthToColour), colourPose);
+        s.scene.registrationTruth(s.rig.colour, s.rig.depth, frame::inverse(s.rig.depthToColour), colourPose);
     const auto nearEdge = [&](int x, int y) {
         for (int dy = -2; dy <= 2; ++dy)
             for (int dx = -2; dx <= 2; ++dx) {
