@@ -173,6 +173,8 @@ void SyntheticDevice::interruptCapture() {
 Status SyntheticDevice::doOpen() {
     if (Status s = checkSyntheticConfig(config_); !s)
         return s;
+    if (rig_ && colourCamera_.directions.empty())
+        colourCamera_ = lensCamera({cameraIntrinsics_, rig_->colour.lens});
     if (config_.flatTarget)
         staticImage_ = greyImage(cameraIntrinsics_.width, cameraIntrinsics_.height);
     else if (!config_.motion)
@@ -239,8 +241,7 @@ std::shared_ptr<frame::Frame> SyntheticDevice::renderFrame(std::uint64_t sequenc
 frame::CapturedImage SyntheticDevice::renderImage(const frame::Pose& depthPose) const {
     if (!rig_)
         return scene_.renderImage(cameraIntrinsics_, depthPose);
-    return scene_.renderImage(frame::CameraModel{cameraIntrinsics_, rig_->colour.lens},
-                              colourSensorPose(depthPose, rig_->depthToColour));
+    return scene_.renderImage(colourCamera_, colourSensorPose(depthPose, rig_->depthToColour));
 }
 
 frame::Intrinsics SyntheticDevice::depthIntrinsics() const {

@@ -76,6 +76,7 @@ private:
     SyntheticScene scene_;
     frame::Intrinsics cameraIntrinsics_;
     std::shared_ptr<const frame::RigCalibration> rig_; // config_.rig only
+    LensCamera colourCamera_;                          // the rig's colour sensor, its lens inverted once
     frame::CapturedImage staticImage_;
     FramePacer pacer_;
     std::uint64_t sequence_ = 0;

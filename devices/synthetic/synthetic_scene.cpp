@@ -160,8 +160,13 @@ struct CameraRays {
     Vec3 origin, right, down, forward;
     frame::Intrinsics k;
     frame::Lens lens;
+    const std::array<double, 2>* directions = nullptr; // LensCamera's, when given
 
     Ray at(int u, int v) const {
+        if (directions) {
+            const auto [x, y] = directions[static_cast<std::size_t>(v) * k.width + u];
+            return {origin, right * x + down * y + forward};
+        }
         const double xn = (u - k.cx) / k.fx;
         const double yn = (v - k.cy) / k.fy;
         if (lens.model == frame::LensModel::None)
@@ -175,6 +180,13 @@ CameraRays raysFor(const frame::CameraModel& camera, const frame::Pose& pose) {
     const auto& m = pose.cameraToWorld;
     return {{m[12], m[13], m[14]}, {m[0], m[1], m[2]}, {m[4], m[5], m[6]},
             {m[8], m[9], m[10]},   camera.intrinsics,  camera.lens};
+}
+
+CameraRays raysFor(const LensCamera& camera, const frame::Pose& pose) {
+    CameraRays rays = raysFor(camera.camera, pose);
+    if (!camera.directions.empty())
+        rays.directions = camera.directions.data();
+    return rays;
 }
 
 CameraRays raysFor(const frame::Intrinsics& k, const frame::Pose& pose) {
@@ -457,9 +469,26 @@ frame::CapturedImage SyntheticScene::renderImage(const frame::Intrinsics& k, con
     return renderImage(frame::CameraModel{k, {}}, pose);
 }
 
+LensCamera lensCamera(const frame::CameraModel& camera) {
+    LensCamera out{camera, {}};
+    if (camera.lens.model == frame::LensModel::None)
+        return out;
+    const frame::Intrinsics& k = camera.intrinsics;
+    out.directions.reserve(static_cast<std::size_t>(k.width) * static_cast<std::size_t>(k.height));
+    for (int v = 0; v < k.height; ++v)
+        for (int u = 0; u < k.width; ++u)
+            out.directions.push_back(
+                frame::undistortPoint(camera.lens, (u - k.cx) / k.fx, (v - k.cy) / k.fy));
+    return out;
+}
+
 frame::CapturedImage SyntheticScene::renderImage(const frame::CameraModel& camera,
                                                  const frame::Pose& pose) const {
-    const frame::Intrinsics& k = camera.intrinsics;
+    return renderImage(lensCamera(camera), pose);
+}
+
+frame::CapturedImage SyntheticScene::renderImage(const LensCamera& camera, const frame::Pose& pose) const {
+    const frame::Intrinsics& k = camera.camera.intrinsics;
     const CameraRays rays = raysFor(camera, pose);
     const SceneCaster caster(rays);
     const int w = k.width, h = k.height;

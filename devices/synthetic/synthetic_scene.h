@@ -62,6 +62,15 @@ inline constexpr double kFlatTargetMaxNoiseMm = 100.0;
 frame::DepthData flatTargetDepth(const frame::Intrinsics& k, const FlatTarget& target, bool noise,
                                  std::uint64_t seed, std::uint64_t sequence);
 
+// A camera and where each of its pixels looks through its lens (the undistorted normalised coordinates,
+// row-major; empty without a lens). Inverting a lens is iterative, most of a frame's rendering through one:
+// a camera that renders many frames inverts it once.
+struct LensCamera {
+    frame::CameraModel camera;
+    std::vector<std::array<double, 2>> directions;
+};
+LensCamera lensCamera(const frame::CameraModel& camera);
+
 // A deterministic procedural scene modelled on the Depth Cloud sample's figure: a desk with an
 // apple-sized sphere and a book on it, a back wall with a window whose opening looks out beyond the
 // sensor's range (no depth), half-open blinds in the window, and a floor. World axes: y up, meters.
@@ -94,6 +103,8 @@ public:
     frame::CapturedImage renderImage(const frame::Intrinsics& intrinsics, const frame::Pose& pose) const;
     // The image through a lens: each pixel shows what its undistorted ray meets.
     frame::CapturedImage renderImage(const frame::CameraModel& camera, const frame::Pose& pose) const;
+    // The same through a camera whose lens was inverted once.
+    frame::CapturedImage renderImage(const LensCamera& camera, const frame::Pose& pose) const;
     // The registration truth for a depth map of depthCamera (at its intrinsics' size) into colourCamera's
     // image, for the depth sensor at depthPose.
     RegistrationTruth registrationTruth(const frame::CameraModel& depthCamera,

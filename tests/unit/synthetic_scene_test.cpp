@@ -148,6 +148,38 @@ TEST(SyntheticScene, CameraImageHasEdgesWhereDepthHasEdges) {
     EXPECT_GT(static_cast<double>(strongEdges) / edges, 0.5);
 }
 
+// The rig's colour sensor inverts its lens once: each pixel's stored direction, put back through the lens,
+// lands on that pixel's centre, and the moving rig's images are the scene's renders through that lens.
+TEST(SyntheticScene, ALensInvertedOnceLooksWhereEachPixelLooks) {
+    const frame::RigCalibration rig = syntheticRigCalibration();
+    const frame::CameraModel colour{rig.colour.intrinsics.scaledTo(160, 90), rig.colour.lens};
+    ASSERT_NE(colour.lens.model, frame::LensModel::None);
+    const LensCamera camera = lensCamera(colour);
+    const frame::Intrinsics& k = colour.intrinsics;
+    ASSERT_EQ(camera.directions.size(), static_cast<std::size_t>(k.width * k.height));
+    for (int v = 0; v < k.height; ++v)
+        for (int u = 0; u < k.width; ++u) {
+            const auto [x, y] = camera.directions[static_cast<std::size_t>(v * k.width + u)];
+            const auto [xd, yd] = frame::distortPoint(colour.lens, x, y);
+            ASSERT_NEAR(xd * k.fx + k.cx, u, 1e-6) << u << "," << v;
+            ASSERT_NEAR(yd * k.fy + k.cy, v, 1e-6) << u << "," << v;
+        }
+    SyntheticConfig config;
+    config.rig = true;
+    config.motion = true;
+    config.cameraWidth = 160;
+    config.cameraHeight = 90;
+    SyntheticDevice device(config);
+    ASSERT_TRUE(device.open());
+    const frame::FramePtr frame = device.makeFrame(0, 1.5);
+    ASSERT_TRUE(frame->pose);
+    const frame::CapturedImage expected =
+        SyntheticScene(config.seed)
+            .renderImage(frame::CameraModel{frame->cameraIntrinsics, rig.colour.lens},
+                         colourSensorPose(*frame->pose, rig.depthToColour));
+    EXPECT_EQ(*frame->capturedImage.bytes, *expected.bytes);
+}
+
 TEST(SyntheticDevice, ExactModeDeliversTheGroundTruthWithPose) {
     SyntheticConfig config;
     config.noise = false;
