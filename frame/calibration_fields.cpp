@@ -135,6 +135,20 @@ Status checkIntrinsics(const Intrinsics& k, const std::string& field, const std:
     return {};
 }
 
+Expected<RigidTransform> homogeneousMatrix(const YAML::Node& node, const std::string& field,
+                                           const std::string& origin) {
+    auto m = numbers(node, field, origin, 16);
+    if (!m)
+        return m.error();
+    const std::vector<double>& v = *m;
+    if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
+        return fieldError(origin, field, "the last row must be [0, 0, 0, 1]");
+    RigidTransform t;
+    t.rotation = {v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10]};
+    t.translationMeters = {v[3], v[7], v[11]};
+    return t;
+}
+
 Status checkTransform(const RigidTransform& transform, const std::string& rotationField,
                       const std::string& translationField, const std::string& origin) {
     const double error = rotationError(transform.rotation);

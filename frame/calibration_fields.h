@@ -45,6 +45,11 @@ Expected<std::vector<double>> numbers(const YAML::Node& node, const std::string&
 Expected<std::array<int, 2>> imageSize(const YAML::Node& node, const std::string& field,
                                        const std::string& origin);
 
+// A 4x4 row-major homogeneous matrix (any form `numbers` reads) whose last row is [0, 0, 0, 1], as a
+// transform; whether its rotation is one is the caller's check.
+Expected<RigidTransform> homogeneousMatrix(const YAML::Node& node, const std::string& field,
+                                           const std::string& origin);
+
 // Positive, finite focal lengths and a finite principal point.
 Status checkIntrinsics(const Intrinsics& k, const std::string& field, const std::string& origin);
 // A proper rotation and a translation of plausible size in meters.

@@ -44,16 +44,10 @@ Expected<CameraModel> readCamera(const YAML::Node& cam, const std::string& name,
 
 Expected<RigidTransform> readTransform(const YAML::Node& cam1, const std::string& origin) {
     const std::string field = "cam1.T_cn_cnm1";
-    auto m = fields::numbers(fields::child(cam1, "T_cn_cnm1"), field, origin, 16);
-    if (!m)
-        return m.error();
-    const std::vector<double>& v = *m;
-    if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
-        return fieldError(origin, field, "the last row must be [0, 0, 0, 1]");
-    RigidTransform t;
-    t.rotation = {v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10]};
-    t.translationMeters = {v[3], v[7], v[11]};
-    if (Status s = fields::checkTransform(t, field, field, origin); !s)
+    auto t = fields::homogeneousMatrix(fields::child(cam1, "T_cn_cnm1"), field, origin);
+    if (!t)
+        return t.error();
+    if (Status s = fields::checkTransform(*t, field, field, origin); !s)
         return s.error();
     return t;
 }

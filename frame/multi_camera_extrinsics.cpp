@@ -26,16 +26,8 @@ constexpr std::string_view kOpenCvPrefix = "camera_";
 // A 4x4 row-major matrix (a nested list, a flat one or an !!opencv-matrix) that must be rigid.
 Expected<RigidTransform> rigidFromMatrix(const YAML::Node& node, const std::string& field,
                                          const std::string& origin) {
-    auto m = fields::numbers(node, field, origin, 16);
-    if (!m)
-        return m.error();
-    const std::vector<double>& v = *m;
-    if (v[12] != 0.0 || v[13] != 0.0 || v[14] != 0.0 || v[15] != 1.0)
-        return fieldError(origin, field, "the last row must be [0, 0, 0, 1]");
-    RigidTransform t;
-    t.rotation = {v[0], v[1], v[2], v[4], v[5], v[6], v[8], v[9], v[10]};
-    t.translationMeters = {v[3], v[7], v[11]};
-    if (!(rotationError(t.rotation) <= kExtrinsicsRotationTolerance))
+    auto t = fields::homogeneousMatrix(node, field, origin);
+    if (t && !(rotationError(t->rotation) <= kExtrinsicsRotationTolerance))
         return fieldError(origin, field, "not rigid (the rotation is not orthonormal with determinant +1)");
     return t;
 }
