@@ -66,6 +66,12 @@ CaptureResult Device::capture(std::chrono::milliseconds timeout) {
     if (state_ != DeviceState::Streaming && state_ != DeviceState::Stalled)
         return {CaptureResult::Kind::Error, nullptr, transitionError("capture from").error().message};
     CaptureResult result = doCapture(timeout);
+    if (result.kind == CaptureResult::Kind::Frame && result.frame && placement_) {
+        auto placed = std::make_shared<frame::Frame>(*result.frame);
+        placed->pose = frame::poseFromRigid(
+            placed->pose ? frame::compose(*placement_, frame::rigidFromPose(*placed->pose)) : *placement_);
+        result.frame = std::move(placed);
+    }
     if (result.kind == CaptureResult::Kind::Disconnected)
         state_ = DeviceState::Disconnected;
     else if (result.kind == CaptureResult::Kind::Stalled)

@@ -2,6 +2,7 @@
 
 #include "base/expected.h"
 #include "devices/sensor_controls.h"
+#include "frame/camera_model.h"
 #include "frame/frame.h"
 
 #include <chrono>
@@ -95,6 +96,10 @@ public:
     virtual void setDemand(const SourceDemand&) {}
     // The camera's controls for the window, or null for a source without any (all but live cameras).
     virtual std::shared_ptr<SensorControls> sensorControls() const { return nullptr; }
+    // Places the source in the world (its spec's pose=): each frame's pose becomes cameraToWorld after the
+    // frame's own pose (a camera that tracks itself moves within the placed frame), or cameraToWorld alone.
+    // Each frame is then a copy of the one the source made.
+    void place(const frame::RigidTransform& cameraToWorld) { placement_ = cameraToWorld; }
 
 protected:
     Device() = default;
@@ -109,6 +114,7 @@ private:
     Status transitionError(const char* action) const;
 
     DeviceState state_ = DeviceState::Closed;
+    std::optional<frame::RigidTransform> placement_;
 };
 
 } // namespace dc::devices

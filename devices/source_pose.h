@@ -16,8 +16,8 @@ namespace dc::devices {
 //  - pose=FILE#CAMERA: camera CAMERA (cam1, camera_1...) of a rig's extrinsics file, a Kalibr camchain or
 //    OpenCV extrinsics (frame::loadCameraExtrinsics), in that file's world.
 // FILE may not contain ':', which separates the spec's options.
-// The kinds' own parsers never see pose=: openSourceSpec opens `spec`, and whoever places sources in one
-// world (the engine) asks for the transform here.
+// The kinds' own parsers never see pose=: openSourceSpec opens `spec` and places the device it made with
+// the transform (Device::place).
 struct SourcePlacement {
     std::string spec; // the spec without its pose= option, every other character as given
     std::optional<frame::RigidTransform> cameraToWorld; // none when the spec gives no pose

@@ -95,13 +95,7 @@ Expected<std::unique_ptr<Device>> openSynthetic(const std::vector<std::string>& 
     return std::unique_ptr<Device>(std::make_unique<SyntheticDevice>(config));
 }
 
-} // namespace
-
-Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& given) {
-    auto placement = sourcePlacement(given);
-    if (!placement)
-        return placement.error();
-    const std::string& spec = placement->spec;
+Expected<std::unique_ptr<Device>> openUnplaced(const std::string& spec) {
     const std::vector<std::string> parts = split(spec, ':');
     if (!parts.empty() && parts[0] == "synthetic")
         return openSynthetic(parts);
@@ -114,6 +108,18 @@ Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& given) {
         return ros::openRosSourceSpec(spec.substr(4));
 #endif
     return Error{"unknown source '" + spec + "' (expected " + kSourceSpecHelp + ")"};
+}
+
+} // namespace
+
+Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& given) {
+    auto placement = sourcePlacement(given);
+    if (!placement)
+        return placement.error();
+    auto device = openUnplaced(placement->spec);
+    if (device && placement->cameraToWorld)
+        (*device)->place(*placement->cameraToWorld);
+    return device;
 }
 
 Expected<std::string> specWithDepthMode(const std::string& spec, const StreamMode& mode) {

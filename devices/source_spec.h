@@ -19,7 +19,7 @@ inline constexpr const char* kSourceSpecHelp =
     "JSON `pose: [X, Y, Z, QX, QY, QZ, QW]`; with #CAMERA a Kalibr camchain or OpenCV extrinsics)";
 
 // Parses a --source value and builds the device it names. Errors name the offending part. A pose= option is
-// checked and left out: the device does not place itself (sourcePlacement gives its transform).
+// taken out before the kind sees the spec and places the device (Device::place).
 Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec);
 // A live camera's spec streaming its depth in `mode`, the rest as it was; an error for other sources.
 Expected<std::string> specWithDepthMode(const std::string& spec, const StreamMode& mode);

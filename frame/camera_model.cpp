@@ -58,6 +58,17 @@ RigidTransform inverse(const RigidTransform& t) {
     return out;
 }
 
+RigidTransform rigidFromPose(const Pose& pose) {
+    const auto& m = pose.cameraToWorld;
+    return {{m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]}, {m[12], m[13], m[14]}};
+}
+
+Pose poseFromRigid(const RigidTransform& t) {
+    const auto& r = t.rotation;
+    const auto& p = t.translationMeters;
+    return {{r[0], r[3], r[6], 0.0, r[1], r[4], r[7], 0.0, r[2], r[5], r[8], 0.0, p[0], p[1], p[2], 1.0}};
+}
+
 std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw) {
     const auto [x, y, z, w] = xyzw;
     return {1 - 2 * (y * y + z * z), 2 * (x * y - z * w),     2 * (x * z + y * w),

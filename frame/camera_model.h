@@ -60,6 +60,10 @@ std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw);
 RigidTransform rigidFromQuaternion(const std::array<double, 3>& translationMeters,
                                    const std::array<double, 4>& xyzw);
 
+// A frame's pose (column-major 4x4) as the rigid transform camera -> world, and back.
+RigidTransform rigidFromPose(const Pose& pose);
+Pose poseFromRigid(const RigidTransform& cameraToWorld);
+
 // How far R is from a proper rotation: the largest entry of R Rᵀ - I, or infinity when det R <= 0.
 double rotationError(const std::array<double, 9>& rotation);
 

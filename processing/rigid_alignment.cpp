@@ -423,12 +423,7 @@ double rotationDegrees(const frame::RigidTransform& t) {
 }
 
 frame::RigidTransform relativeTransform(const frame::Pose& a, const frame::Pose& b) {
-    const auto toTransform = [](const frame::Pose& pose) {
-        const auto& m = pose.cameraToWorld; // column-major
-        return frame::RigidTransform{{m[0], m[4], m[8], m[1], m[5], m[9], m[2], m[6], m[10]},
-                                     {m[12], m[13], m[14]}};
-    };
-    return frame::compose(frame::inverse(toTransform(b)), toTransform(a));
+    return frame::compose(frame::inverse(frame::rigidFromPose(b)), frame::rigidFromPose(a));
 }
 
 } // namespace dc::processing

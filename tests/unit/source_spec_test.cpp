@@ -200,6 +200,38 @@ TEST(SourcePose, EveryKindOpensWithAPoseAndABadOneIsRefused) {
     EXPECT_EQ(live->width, 640);
 }
 
+// The first frame a device captures (the synthetic camera renders it in a few milliseconds).
+frame::FramePtr firstFrame(Device& device) {
+    EXPECT_TRUE(device.open());
+    EXPECT_TRUE(device.start());
+    for (int attempt = 0; attempt < 100; ++attempt) {
+        CaptureResult r = device.capture(std::chrono::milliseconds(100));
+        if (r.kind == CaptureResult::Kind::Frame)
+            return r.frame;
+    }
+    return nullptr;
+}
+
+// pose= places every frame: the synthetic camera's own pose (its place at the desk), then the placement,
+// a quarter turn about z and a step to (1, 2, 3); the pixels are the unplaced source's.
+TEST(SourcePose, APlacedSourcesFramesCarryThePlacementAfterTheirOwnPose) {
+    auto plain = openSourceSpec("synthetic:64x48:exact");
+    auto placed =
+        openSourceSpec("synthetic:64x48:exact:pose=1,2,3,0,0,0.70710678118654752,0.70710678118654752");
+    ASSERT_TRUE(plain.ok() && placed.ok());
+    const frame::FramePtr a = firstFrame(**plain);
+    const frame::FramePtr b = firstFrame(**placed);
+    ASSERT_TRUE(a && b && a->pose && b->pose);
+    const frame::RigidTransform own = frame::rigidFromPose(*a->pose);
+    const std::array<double, 3> p{0.25, -0.5, 2.0}; // a point in the camera's frame
+    const std::array<double, 3> atDesk = own.apply(p);
+    const std::array<double, 3> expected{1.0 - atDesk[1], 2.0 + atDesk[0], 3.0 + atDesk[2]};
+    const std::array<double, 3> got = frame::rigidFromPose(*b->pose).apply(p);
+    for (int i = 0; i < 3; ++i)
+        EXPECT_NEAR(got[i], expected[i], 1e-12) << i;
+    EXPECT_EQ(b->sceneDepth->depthMeters.pixels, a->sceneDepth->depthMeters.pixels);
+}
+
 TEST(SourcePose, ALiveCameraKeepsItsPoseInAnotherDepthMode) {
     auto spec = specWithDepthMode("v4l2:/dev/video2:pose=0,0,1,0,0,0,1:scale=0.001", {"Z16", 848, 480, 30.0});
     ASSERT_TRUE(spec.ok()) << spec.error().message;
