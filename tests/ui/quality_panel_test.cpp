@@ -505,10 +505,13 @@ TEST_F(QualityPanelTest, TheRegionIsOutlinedOnTheCloudWhereItsPointsAreDrawn) {
     const auto box = outlineBox(kCloudTitle, picture, width);
     ASSERT_TRUE(box.has_value()) << "the outline's edges are straight on the wall";
     const ImVec2 topLeft = cloudScreenAt(*viewer_, 160, 20), bottomRight = cloudScreenAt(*viewer_, 219, 119);
-    EXPECT_NEAR((*box)[0], topLeft.x, 2.0f);
-    EXPECT_NEAR((*box)[1], topLeft.y, 2.0f);
-    EXPECT_NEAR((*box)[2], bottomRight.x, 2.0f);
-    EXPECT_NEAR((*box)[3], bottomRight.y, 2.0f);
+    // The box is the outline's extremes along each edge, whose points sit on the wall's noisy depth; the
+    // corners predicted are single points: 3 px (a mirrored or misplaced outline is off by hundreds).
+    constexpr float kTolerancePx = 3.0f;
+    EXPECT_NEAR((*box)[0], topLeft.x, kTolerancePx);
+    EXPECT_NEAR((*box)[1], topLeft.y, kTolerancePx);
+    EXPECT_NEAR((*box)[2], bottomRight.x, kTolerancePx);
+    EXPECT_NEAR((*box)[3], bottomRight.y, kTolerancePx);
 
     viewer_->settings().panels.quality = false;
     frame(0.0);
