@@ -106,6 +106,8 @@ Expected<std::unique_ptr<Device>> openUnplaced(const std::string& spec) {
 #ifdef DC_HAVE_ROS
     if (spec.starts_with("ros:"))
         return ros::openRosSourceSpec(spec.substr(4));
+    if (spec.starts_with("ros2:"))
+        return ros::openRos2SourceSpec(spec.substr(5));
 #endif
     return Error{"unknown source '" + spec + "' (expected " + kSourceSpecHelp + ")"};
 }

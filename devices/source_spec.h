@@ -15,8 +15,9 @@ inline constexpr const char* kSourceSpecHelp =
     "replay:PATH[:loop][:paused][:speed=X][:calib=FILE] | "
     "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS] | "
     "ros:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:master=http://HOST:PORT][:tolerance=MS][:watchdog=MS]"
-    "[:frame=FIXED_FRAME]; any of them [:pose=X,Y,Z,QX,QY,QZ,QW|:pose=FILE|:pose=FILE#CAMERA] (FILE: YAML or "
-    "JSON `pose: [X, Y, Z, QX, QY, QZ, QW]`; with #CAMERA a Kalibr camchain or OpenCV extrinsics)";
+    "[:frame=FIXED_FRAME] | ros2:DEPTH_TOPIC[:domain=N][:the options of ros: but master=]; "
+    "any of them [:pose=X,Y,Z,QX,QY,QZ,QW|:pose=FILE|:pose=FILE#CAMERA] (FILE: YAML or JSON "
+    "`pose: [X, Y, Z, QX, QY, QZ, QW]`; with #CAMERA a Kalibr camchain or OpenCV extrinsics)";
 
 // Parses a --source value and builds the device it names. Errors name the offending part. A pose= option is
 // taken out before the kind sees the spec and places the device (Device::place).

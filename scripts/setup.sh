@@ -15,6 +15,7 @@ packages=(
     xvfb xauth xdotool x11-apps openbox wmctrl python3-open3d
     qemu-system-x86 busybox-static cpio kmod v4l-utils xz-utils patch
     librosbag-storage-dev libsensor-msgs-dev libgeometry-msgs-dev libstd-msgs-dev
+    cyclonedds-dev cyclonedds-tools libfastrtps-dev libfastcdr-dev
     python3-rosbag python3-roslz4 python3-sensor-msgs python3-geometry-msgs python3-std-msgs
     libroscpp-dev libtf2-dev libtf2-msgs-dev python3-roslaunch python3-rosmaster rosout python3-rospy
     python3-numpy python3-tf2-msgs nodejs

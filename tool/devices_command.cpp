@@ -111,13 +111,28 @@ void printRos(const devices::ros::RosListing& ros) {
 nlohmann::json toJson(const devices::ros::RosListing& ros) {
     return {{"master", ros.masterUri}, {"imageTopics", ros.imageTopics}, {"problem", ros.problem}};
 }
+
+void printRos2(const devices::ros::Ros2Listing& ros2) {
+    if (!ros2.problem.empty()) {
+        std::printf("note: %s\n", ros2.problem.c_str());
+        return;
+    }
+    std::printf("ROS 2 domain %d: %zu image topic(s)\n", ros2.domain, ros2.imageTopics.size());
+    for (const std::string& topic : ros2.imageTopics)
+        std::printf("  %s  open with: depthcloud --source ros2:%s\n", topic.c_str(), topic.c_str());
+}
+
+nlohmann::json toJson(const devices::ros::Ros2Listing& ros2) {
+    return {{"domain", ros2.domain}, {"imageTopics", ros2.imageTopics}, {"problem", ros2.problem}};
+}
 #endif
 
 } // namespace
 
 CLI::App* addDevicesCommand(CLI::App& app, DevicesOptions& o) {
     CLI::App* cmd = app.add_subcommand("devices", "list depth cameras: USB identity, V4L2 nodes, modes; with "
-                                                  "ROS_MASTER_URI set, the master's image topics");
+                                                  "ROS_MASTER_URI set, the master's image topics; with "
+                                                  "ROS_DOMAIN_ID set, the ROS 2 domain's");
     cmd->add_flag("--all", o.all, "also list USB devices without a depth node");
     cmd->add_flag("--json", o.json, "print the listing as JSON");
     cmd->add_option("--watch", o.watchSeconds, "then print USB plug/unplug events for this many seconds")
@@ -132,6 +147,7 @@ int runDevices(const DevicesOptions& o) {
 #ifdef DC_HAVE_ROS
     // Only a master the environment names is asked: a desktop without ROS sees nothing of it.
     const devices::ros::RosListing ros = devices::ros::listRosImageTopics();
+    const devices::ros::Ros2Listing ros2 = devices::ros::listRos2ImageTopics();
 #endif
     if (o.json) {
         nlohmann::json devicesJson = nlohmann::json::array();
@@ -141,6 +157,8 @@ int runDevices(const DevicesOptions& o) {
 #ifdef DC_HAVE_ROS
         if (ros.configured)
             out["ros"] = toJson(ros);
+        if (ros2.configured)
+            out["ros2"] = toJson(ros2);
 #endif
         std::printf("%s\n", out.dump(2).c_str());
     } else {
@@ -153,6 +171,8 @@ int runDevices(const DevicesOptions& o) {
 #ifdef DC_HAVE_ROS
         if (ros.configured)
             printRos(ros);
+        if (ros2.configured)
+            printRos2(ros2);
 #endif
     }
     std::fflush(stdout);

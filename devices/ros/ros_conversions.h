@@ -7,6 +7,7 @@
 #include "devices/ros/ros_messages.h"
 
 #include <geometry_msgs/Transform.h>
+#include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/CompressedImage.h>
@@ -56,6 +57,11 @@ inline RosCameraInfo toCameraInfo(const sensor_msgs::CameraInfo& m) {
 inline RosTransform toTransform(const geometry_msgs::Transform& m) {
     return RosTransform{{m.translation.x, m.translation.y, m.translation.z},
                         {m.rotation.x, m.rotation.y, m.rotation.z, m.rotation.w}};
+}
+
+inline RosTransformStamped toTransformStamped(const geometry_msgs::TransformStamped& m) {
+    return RosTransformStamped{toNs(m.header.stamp), m.header.frame_id, m.child_frame_id,
+                               toTransform(m.transform)};
 }
 
 } // namespace dc::devices::ros

@@ -3,7 +3,6 @@
 #include "base/log.h"
 #include "devices/replay/replay_source.h"
 #include "devices/ros/ros_image.h"
-#include "devices/ros/ros_node.h"
 #include "frame/calibration.h"
 
 #include <algorithm>
@@ -16,10 +15,9 @@ namespace {
 using Clock = std::chrono::steady_clock;
 using namespace std::chrono_literals;
 
-constexpr auto kMasterCheckInterval = 1s; // how soon a vanished master shows as Disconnected
-constexpr auto kInfoGrace = 1s;           // depth waits this long for camera_info before a guessed lens
-constexpr std::size_t kMaxInbox = 8;      // messages the capture thread has not taken yet; oldest dropped
-constexpr const char* kCameraInfoType = "sensor_msgs/CameraInfo";
+constexpr auto kLinkCheckInterval = 1s; // how soon a camera that cannot be heard shows as Disconnected
+constexpr auto kInfoGrace = 1s;         // depth waits this long for camera_info before a guessed lens
+constexpr std::size_t kMaxInbox = 8;    // messages the capture thread has not taken yet; oldest dropped
 
 std::string seconds(std::chrono::milliseconds ms) {
     char text[32];
@@ -29,14 +27,19 @@ std::string seconds(std::chrono::milliseconds ms) {
 
 } // namespace
 
-RosDevice::RosDevice(RosSourceConfig config) : config_(std::move(config)) {}
+RosDevice::RosDevice(RosSourceConfig config, std::unique_ptr<RosLink> link)
+    : config_(std::move(config)), topics_{config_.depthTopic, config_.colorTopic, config_.infoTopic,
+                                          config_.fixedFrame},
+      link_(std::move(link)) {}
 
+// The link's thread posts into the inbox: it goes first.
 RosDevice::~RosDevice() {
-    subscription_.reset();
+    link_.reset();
 }
 
 std::string RosDevice::description() const {
-    return "ROS " + config_.depthTopic + (config_.colorTopic.empty() ? "" : " + " + config_.colorTopic);
+    return std::string(config_.ros2 ? "ROS 2 " : "ROS ") + config_.depthTopic +
+           (config_.colorTopic.empty() ? "" : " + " + config_.colorTopic);
 }
 
 Capabilities RosDevice::capabilities() const {
@@ -57,52 +60,10 @@ void RosDevice::interruptCapture() {
     inboxReady_.notify_all();
 }
 
-// Probes the master with a bounded wait before roscpp touches it: roscpp's own calls wait without bound.
-Status RosDevice::connect() {
-    auto master = resolveMasterUri(config_.masterUri);
-    if (!master)
-        return master.error();
-    master_ = *master;
-    if (Status s = probeMaster(master_, kMasterProbeTimeout); !s)
-        return s;
-    return startRosNode(master_);
-}
-
-// A topic advertised with another type would subscribe without ever delivering (roscpp refuses the
-// connection): say so now. An image topic may be raw or compressed (image_transport's compressed and
-// compressedDepth); one nobody advertises yet is taken as its name says, and the watchdog shows it as
-// Stalled until it comes.
-Status RosDevice::checkTopicTypes() {
-    auto topics = advertisedTopics();
-    if (!topics)
-        return topics.error();
-    const auto advertised = [&](const std::string& name) -> const TopicInfo* {
-        const auto it =
-            std::find_if(topics->begin(), topics->end(), [&](const TopicInfo& t) { return t.name == name; });
-        return it == topics->end() ? nullptr : &*it;
-    };
-    const std::pair<const std::string*, bool*> images[] = {{&config_.depthTopic, &depthCompressed_},
-                                                           {&config_.colorTopic, &colorCompressed_}};
-    for (const auto& [name, compressed] : images) {
-        *compressed = namesCompressedTransport(*name);
-        if (const TopicInfo* t = advertised(*name)) {
-            if (t->type != kRosImageType && t->type != kRosCompressedImageType)
-                return Error{"ROS topic " + t->name + " carries " + t->type + ", not " + kRosImageType +
-                             " or " + kRosCompressedImageType};
-            *compressed = t->type == kRosCompressedImageType;
-        }
-    }
-    if (const TopicInfo* t = advertised(config_.infoTopic); t && t->type != kCameraInfoType)
-        return Error{"ROS topic " + t->name + " carries " + t->type + ", not " + kCameraInfoType};
-    return {};
-}
-
 Status RosDevice::doOpen() {
-    if (Status s = connect(); !s)
+    if (Status s = link_->open(topics_); !s)
         return s;
-    if (Status s = checkTopicTypes(); !s)
-        return s;
-    logInfo(description() + ": ROS master " + master_.uri + ", camera_info " + config_.infoTopic);
+    logInfo(description() + ": " + link_->where() + ", camera_info " + config_.infoTopic);
     return {};
 }
 
@@ -116,28 +77,32 @@ void RosDevice::post(Message message) {
     inboxReady_.notify_all();
 }
 
-Status RosDevice::subscribe() {
-    subscription_.reset();
-    {
-        const std::lock_guard lock(inboxMutex_);
-        inbox_.clear();
-    }
-    SubscriptionCallbacks callbacks{
+SubscriptionCallbacks RosDevice::callbacks() {
+    return {
         [this](RosImage image) { post(DepthMessage{std::move(image)}); },
         [this](RosImage image) { post(ColorMessage{std::move(image)}); },
         [this](RosCameraInfo info) { post(std::move(info)); },
         [this](std::string problem) { post(Problem{std::move(problem)}); },
     };
-    auto subscription = Subscription::create({config_.depthTopic, config_.colorTopic, config_.infoTopic,
-                                              config_.fixedFrame, depthCompressed_, colorCompressed_},
-                                             std::move(callbacks));
-    if (!subscription)
-        return subscription.error();
-    subscription_ = std::move(*subscription);
+}
+
+void RosDevice::restartStreams() {
     pairer_ = FramePairer(std::chrono::nanoseconds(config_.pairTolerance).count());
+    depthOnly_.reset();
     lastDepthStampNs_ = 0;
-    startedAt_ = lastFrame_ = lastMasterCheck_ = Clock::now();
+    startedAt_ = lastFrame_ = lastLinkCheck_ = Clock::now();
     stalled_ = false;
+}
+
+Status RosDevice::subscribe() {
+    link_->unsubscribe();
+    {
+        const std::lock_guard lock(inboxMutex_);
+        inbox_.clear();
+    }
+    if (Status s = link_->subscribe(topics_, callbacks()); !s)
+        return s;
+    restartStreams();
     return {};
 }
 
@@ -146,34 +111,30 @@ Status RosDevice::doStart() {
 }
 
 void RosDevice::doStop() {
-    subscription_.reset();
+    link_->unsubscribe();
     pairer_.reset();
     depthOnly_.reset();
 }
 
 void RosDevice::doClose() {
-    subscription_.reset();
+    link_->unsubscribe();
 }
 
 Status RosDevice::doReconnect() {
-    if (Status s = connect(); !s)
+    if (Status s = link_->reconnect(topics_, callbacks()); !s)
         return s;
-    if (Status s = subscribe(); !s)
-        return s;
-    logInfo(description() + ": ROS master " + master_.uri + " is back; subscribed again");
+    restartStreams();
+    logInfo(description() + ": " + link_->where() + " is back; streaming again");
     return {};
 }
 
-std::optional<CaptureResult> RosDevice::checkMaster() {
-    if (Clock::now() - lastMasterCheck_ < kMasterCheckInterval)
+std::optional<CaptureResult> RosDevice::checkLink() {
+    if (Clock::now() - lastLinkCheck_ < kLinkCheckInterval)
         return std::nullopt;
-    lastMasterCheck_ = Clock::now();
-    const Status alive = probeMaster(master_, kMasterProbeTimeout);
+    lastLinkCheck_ = Clock::now();
+    const Status alive = link_->alive();
     if (alive)
         return std::nullopt;
-    // Publishers may keep sending over their own connections, but nothing new can be found without the
-    // master: stop listening until it is back.
-    subscription_.reset();
     pairer_.reset();
     depthOnly_.reset();
     return CaptureResult{CaptureResult::Kind::Disconnected, nullptr, alive.error().message};
@@ -268,9 +229,9 @@ std::optional<frame::Intrinsics> RosDevice::intrinsicsFor(int width, int height)
 // The camera's pose from /tf when a fixed frame was asked for; a missing transform is said once and the
 // frame goes on without a pose.
 std::optional<frame::Pose> RosDevice::poseAt(std::int64_t stampNs) {
-    if (config_.fixedFrame.empty() || !subscription_)
+    if (config_.fixedFrame.empty())
         return std::nullopt;
-    auto t = subscription_->transform(depthFrameId_, stampNs);
+    auto t = link_->transform(depthFrameId_, stampNs);
     if (!t) {
         if (t.error().message != lastPoseProblem_)
             logWarning(description() + ": " + t.error().message);
@@ -317,13 +278,13 @@ std::optional<CaptureResult> RosDevice::nextFrame() {
 }
 
 CaptureResult RosDevice::doCapture(std::chrono::milliseconds timeout) {
-    if (auto gone = checkMaster())
+    if (auto gone = checkLink())
         return *gone;
     if (auto frame = nextFrame())
         return *frame;
     if (auto stalled = checkWatchdog())
         return *stalled;
-    // Bounded so that the master is checked on time even when the caller waits long.
+    // Bounded so that the link is checked on time even when the caller waits long.
     std::deque<Message> messages = waitForMessages(std::min<std::chrono::milliseconds>(timeout, 100ms));
     std::optional<CaptureResult> problem;
     for (Message& message : messages)

@@ -2,7 +2,7 @@
 
 #include "devices/device.h"
 #include "devices/frame_pairer.h"
-#include "devices/ros/ros_master.h"
+#include "devices/ros/ros_link.h"
 #include "devices/ros/ros_messages.h"
 #include "devices/ros/ros_source_spec.h"
 #include "frame/frame.h"
@@ -19,18 +19,17 @@
 
 namespace dc::devices::ros {
 
-class Subscription;
-
-// A depth camera published on ROS 1 topics: sensor_msgs/Image depth (16UC1 in millimetres, 32FC1 in
-// meters), an optional colour image, and the depth camera's camera_info for the intrinsics. roscpp's
-// spinner thread (one per device) only copies each message into a small inbox; the capture thread
-// converts, pairs depth with colour by header stamp within the tolerance, and builds frames. The master is
-// probed once a second: when it goes away the device is Disconnected, and reconnect() subscribes again
-// once it is back. Timestamps are the images' header stamps (ROS time, the publisher's wall clock). With a
-// fixed frame, each frame's pose is the depth image's frame in it, from /tf at the image's stamp.
+// A depth camera published on ROS 1 or ROS 2 topics: sensor_msgs/Image depth (16UC1 in millimetres, 32FC1
+// in meters), an optional colour image, and the depth camera's camera_info for the intrinsics. The link's
+// thread (roscpp's spinner, or the DDS readers', one per device) only copies each message into a small inbox;
+// the capture thread converts, pairs depth with colour by header stamp within the tolerance, and builds
+// frames. The link is checked once a second (ROS 1: the master answers; ROS 2: the depth publisher is still
+// matched): when the camera cannot be heard the device is Disconnected, and reconnect() succeeds once it is
+// back. Timestamps are the images' header stamps (ROS time, the publisher's wall clock). With a fixed frame,
+// each frame's pose is the depth image's frame in it, from /tf at the image's stamp.
 class RosDevice final : public Device {
 public:
-    explicit RosDevice(RosSourceConfig config);
+    RosDevice(RosSourceConfig config, std::unique_ptr<RosLink> link);
     ~RosDevice() override;
 
     std::string description() const override;
@@ -60,8 +59,8 @@ private:
     };
     using Message = std::variant<DepthMessage, ColorMessage, RosCameraInfo, Problem>;
 
-    Status connect();
-    Status checkTopicTypes();
+    SubscriptionCallbacks callbacks();
+    void restartStreams();
     Status subscribe();
     void post(Message message);
     std::deque<Message> waitForMessages(std::chrono::milliseconds timeout);
@@ -69,7 +68,7 @@ private:
     std::optional<CaptureResult> takeDepth(RosImage& image);
     std::optional<CaptureResult> takeColor(RosImage& image);
     void takeInfo(const RosCameraInfo& info);
-    std::optional<CaptureResult> checkMaster();
+    std::optional<CaptureResult> checkLink();
     std::optional<CaptureResult> checkWatchdog();
     std::optional<CaptureResult> report(std::string message);
     std::optional<frame::Intrinsics> intrinsicsFor(int width, int height);
@@ -78,11 +77,9 @@ private:
     std::optional<CaptureResult> nextFrame();
 
     RosSourceConfig config_;
-    // The image topics carry sensor_msgs/CompressedImage: as advertised, or by their names until they are.
-    bool depthCompressed_ = false;
-    bool colorCompressed_ = false;
-    MasterUri master_;
-    std::unique_ptr<Subscription> subscription_;
+    // What the link subscribes to; whether the images are compressed is the link's finding at open.
+    SubscriptionTopics topics_;
+    std::unique_ptr<RosLink> link_;
     std::mutex inboxMutex_;
     std::condition_variable inboxReady_;
     std::deque<Message> inbox_; // guarded by inboxMutex_
@@ -100,7 +97,7 @@ private:
     std::uint64_t sequence_ = 0;
     std::chrono::steady_clock::time_point startedAt_{};
     std::chrono::steady_clock::time_point lastFrame_{};
-    std::chrono::steady_clock::time_point lastMasterCheck_{};
+    std::chrono::steady_clock::time_point lastLinkCheck_{};
     bool stalled_ = false;
 };
 

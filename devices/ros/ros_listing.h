@@ -17,4 +17,15 @@ struct RosListing {
 
 RosListing listRosImageTopics();
 
+// The image topics announced on a ROS 2 domain, for `depthcloud devices`: asked only in a ROS 2 environment
+// (ROS_DOMAIN_ID set, or ROS_VERSION=2), and only for as long as discovery takes on a local network.
+struct Ros2Listing {
+    bool configured = false;
+    int domain = 0;
+    std::vector<std::string> imageTopics; // sensor_msgs/Image or CompressedImage, sorted
+    std::string problem;
+};
+
+Ros2Listing listRos2ImageTopics();
+
 } // namespace dc::devices::ros

@@ -1,6 +1,7 @@
 // Compiled as C++17: includes Debian's ROS 1 headers (ros_messages.h says why).
 #include "devices/ros/ros_node.h"
 
+#include "devices/ros/live_tf.h"
 #include "devices/ros/ros_conversions.h"
 
 #include <ros/callback_queue.h>
@@ -9,15 +10,10 @@
 #include <sensor_msgs/CameraInfo.h>
 #include <sensor_msgs/CompressedImage.h>
 #include <sensor_msgs/Image.h>
-#include <tf2/buffer_core.h>
-#include <tf2/exceptions.h>
 #include <tf2_msgs/TFMessage.h>
 
 #include <algorithm>
-#include <atomic>
-#include <chrono>
 #include <mutex>
-#include <thread>
 
 namespace dc::devices::ros {
 
@@ -28,9 +24,6 @@ namespace {
 constexpr double kMasterRetrySeconds = 2.0;
 constexpr std::uint32_t kImageQueueSize = 2; // latest wins: a slow consumer sees new images, not old ones
 constexpr std::uint32_t kTfQueueSize = 100;  // /tf carries many small messages from many publishers
-constexpr double kTfCacheSeconds = 10.0;
-// How long an image waits for the transform at its stamp: a few messages' transit on a loaded machine.
-constexpr std::chrono::milliseconds kTfWait{100};
 
 std::mutex& nodeMutex() {
     static std::mutex mutex;
@@ -41,22 +34,6 @@ std::string withoutTrailingSlash(std::string uri) {
     if (!uri.empty() && uri.back() == '/')
         uri.pop_back();
     return uri;
-}
-
-::ros::Time rosTime(std::int64_t ns) {
-    ::ros::Time t;
-    t.fromNSec(static_cast<std::uint64_t>(ns));
-    return t;
-}
-
-// tf2's messages span lines; ours are one.
-std::string oneLine(std::string text) {
-    for (char& c : text)
-        if (c == '\n')
-            c = ' ';
-    while (!text.empty() && text.back() == ' ')
-        text.pop_back();
-    return text;
 }
 
 } // namespace
@@ -107,10 +84,7 @@ struct Subscription::Impl {
     std::unique_ptr<::ros::AsyncSpinner> spinner;
     std::vector<::ros::Subscriber> subscribers;
     SubscriptionTopics topics;
-    std::string fixedFrame;
-    tf2::BufferCore tf{::ros::Duration(kTfCacheSeconds)};
-    // /tf kept pace with the images last time (its transform at the image's stamp came): worth waiting for.
-    std::atomic<bool> tfKeepsPace{true};
+    std::unique_ptr<LiveTf> tf;
 
     // An exception thrown into roscpp's spinner would end its thread: a message we cannot copy is dropped.
     template <class Deliver> static void guarded(Deliver&& deliver) {
@@ -148,7 +122,7 @@ struct Subscription::Impl {
     }
     void onTf(const tf2_msgs::TFMessageConstPtr& m, bool isStatic) {
         for (const geometry_msgs::TransformStamped& t : m->transforms)
-            guarded([&] { tf.setTransform(t, "depthcloud", isStatic); });
+            guarded([&] { tf->add(toTransformStamped(t), isStatic); });
     }
     void onTfDynamic(const tf2_msgs::TFMessageConstPtr& m) { onTf(m, false); }
     void onTfStatic(const tf2_msgs::TFMessageConstPtr& m) { onTf(m, true); }
@@ -168,8 +142,8 @@ struct Subscription::Impl {
                     ? node->subscribe(topics.color, kImageQueueSize, &Impl::onColorCompressed, this, hints)
                     : node->subscribe(topics.color, kImageQueueSize, &Impl::onColor, this, hints));
         subscribers.push_back(node->subscribe(topics.info, 1, &Impl::onInfo, this, hints));
-        fixedFrame = topics.fixedFrame;
-        if (!fixedFrame.empty()) {
+        tf = std::make_unique<LiveTf>(topics.fixedFrame);
+        if (!topics.fixedFrame.empty()) {
             subscribers.push_back(node->subscribe("/tf", kTfQueueSize, &Impl::onTfDynamic, this, hints));
             subscribers.push_back(
                 node->subscribe("/tf_static", kTfQueueSize, &Impl::onTfStatic, this, hints));
@@ -194,36 +168,7 @@ Subscription::Subscription(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) 
 Subscription::~Subscription() = default;
 
 Expected<RosTransform> Subscription::transform(const std::string& frameId, std::int64_t stampNs) const {
-    const std::string& fixed = impl_->fixedFrame;
-    if (fixed.empty())
-        return Error{"no fixed frame to look poses up in"};
-    // /tf comes on its own connection, so the transform at an image's stamp can arrive just after the image:
-    // while /tf keeps pace with the images it is waited for a little. A camera whose /tf is slower (or a pose
-    // published once) takes the newest transform at once, but never one newer than the image: that pose is
-    // another moment's.
-    const ::ros::Time stamp = rosTime(stampNs);
-    try {
-        const auto wait = impl_->tfKeepsPace ? kTfWait : std::chrono::milliseconds{0};
-        const auto giveUp = std::chrono::steady_clock::now() + wait;
-        while (true) {
-            try {
-                auto exact = impl_->tf.lookupTransform(fixed, frameId, stamp);
-                impl_->tfKeepsPace = true;
-                return toTransform(exact.transform);
-            } catch (const tf2::ExtrapolationException&) {
-                if (std::chrono::steady_clock::now() >= giveUp)
-                    break;
-                std::this_thread::sleep_for(std::chrono::milliseconds(2));
-            }
-        }
-        impl_->tfKeepsPace = false;
-        const auto latest = impl_->tf.lookupTransform(fixed, frameId, ::ros::Time(0));
-        if (latest.header.stamp > stamp)
-            return Error{"no pose of " + frameId + " in " + fixed + " at the image's stamp yet"};
-        return toTransform(latest.transform);
-    } catch (const std::exception& e) {
-        return Error{"no pose of " + frameId + " in " + fixed + " from /tf: " + oneLine(e.what())};
-    }
+    return impl_->tf->transform(frameId, stampNs);
 }
 
 Expected<std::unique_ptr<Subscription>> Subscription::create(const SubscriptionTopics& topics,

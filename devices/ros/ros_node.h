@@ -1,10 +1,10 @@
 #pragma once
 
 #include "base/expected.h"
+#include "devices/ros/ros_link.h"
 #include "devices/ros/ros_master.h"
 #include "devices/ros/ros_messages.h"
 
-#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,35 +15,11 @@
 // started again after a shutdown. Every roscpp exception is caught here. This header must stay valid C++17.
 namespace dc::devices::ros {
 
-struct TopicInfo {
-    std::string name;
-    std::string type; // "sensor_msgs/Image", ...
-};
-
 // Starts this process's ROS node against `master` (probe it first: roscpp waits for an absent master).
 // Fails if the node already talks to another master: roscpp cannot switch.
 Status startRosNode(const MasterUri& master);
 // The topics that publishers have advertised to the master (after startRosNode).
 Expected<std::vector<TopicInfo>> advertisedTopics();
-
-struct SubscriptionTopics {
-    std::string depth;
-    std::string color;      // empty: none
-    std::string info;       // the depth camera's camera_info
-    std::string fixedFrame; // non-empty: listen to /tf and /tf_static for poses in this frame
-    // The image topics carry sensor_msgs/CompressedImage (image_transport's compressed or compressedDepth).
-    bool depthCompressed = false;
-    bool colorCompressed = false;
-};
-
-// Called on the subscription's own spinner thread; they must return quickly and not throw.
-struct SubscriptionCallbacks {
-    std::function<void(RosImage)> depth;
-    std::function<void(RosImage)> color;
-    std::function<void(RosCameraInfo)> info;
-    // A message that could not be read (a compressed image that does not decode), in one line.
-    std::function<void(std::string)> problem;
-};
 
 // Subscribes to a depth camera's topics with its own callback queue and spinner thread, so the messages of
 // one device never wait behind another's. Destroying it unsubscribes and joins the spinner.
@@ -64,5 +40,10 @@ private:
     explicit Subscription(std::unique_ptr<Impl> impl);
     std::unique_ptr<Impl> impl_;
 };
+
+// A live ROS 1 camera's middleware: the master `masterUri` names (empty: ROS_MASTER_URI), probed with a
+// bounded wait before roscpp touches it (roscpp's own calls wait without bound), and TCPROS subscriptions.
+// The camera cannot be heard while the master does not answer.
+std::unique_ptr<RosLink> makeMasterLink(std::string masterUri);
 
 } // namespace dc::devices::ros

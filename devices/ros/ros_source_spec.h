@@ -20,6 +20,11 @@ namespace dc::devices::ros {
 inline constexpr const char* kRosSourceSpecHelp =
     "ros:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:master=http://HOST:PORT][:tolerance=MS][:watchdog=MS]"
     "[:frame=FIXED_FRAME]";
+// --source ros2:DEPTH_TOPIC[:OPTION...]: the same options, but domain=N (0..232; default ROS_DOMAIN_ID, or 0)
+// for master=. The DDS participant reads Cyclone DDS's configuration from CYCLONEDDS_URI as ROS 2 does.
+inline constexpr const char* kRos2SourceSpecHelp =
+    "ros2:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:domain=N][:tolerance=MS][:watchdog=MS]"
+    "[:frame=FIXED_FRAME]";
 
 struct RosSourceConfig {
     std::string depthTopic;
@@ -29,6 +34,8 @@ struct RosSourceConfig {
     std::chrono::milliseconds pairTolerance{20};
     std::chrono::milliseconds watchdog{2000};
     std::string fixedFrame; // empty: no pose
+    bool ros2 = false;      // ROS 2 over DDS, on `domain`
+    int domain = -1;        // -1: ROS_DOMAIN_ID, or 0
 };
 
 // The topics beside a depth topic, named the way ROS camera drivers (realsense2_camera, openni2,
@@ -42,8 +49,10 @@ struct DerivedTopics {
 };
 DerivedTopics deriveTopics(const std::string& depthTopic);
 
-// Parses the part after "ros:" without contacting ROS. Errors name the offending option.
+// Parse the part after "ros:" or "ros2:" without contacting ROS. Errors name the offending option.
 Expected<RosSourceConfig> parseRosSourceSpec(const std::string& spec);
+Expected<RosSourceConfig> parseRos2SourceSpec(const std::string& spec);
 Expected<std::unique_ptr<Device>> openRosSourceSpec(const std::string& spec);
+Expected<std::unique_ptr<Device>> openRos2SourceSpec(const std::string& spec);
 
 } // namespace dc::devices::ros

@@ -3,14 +3,15 @@
 // every frame is checked pixel for pixel. Also the spec grammar, and what bad input does.
 
 #include "devices/frame_age.h"
-#include "devices/recording/frame_codec.h"
 #include "devices/replay/replay_spec.h"
 #include "devices/ros/ros_device.h"
 #include "devices/ros/ros_master.h"
+#include "devices/ros/ros_node.h"
 #include "devices/ros/ros_source_spec.h"
 #include "devices/session.h"
 #include "devices/source_spec.h"
 #include "tests/recording/recording_test_support.h"
+#include "tests/ros/camera_checks.h"
 #include "tests/ros/ros_processes.h"
 #include "tests/ros/shell_run.h"
 
@@ -42,29 +43,10 @@ using test::runIn;
 using test::RunResult;
 namespace fs = std::filesystem;
 
-// publish_camera.py's defaults and formulas.
+// publish_camera.py's default sizes; its formulas are camera_pattern.h's.
 constexpr int kDepthW = 64, kDepthH = 48, kColorW = 80, kColorH = 60;
-constexpr std::int64_t kStartNs = 1000'000'000'000, kPeriodNs = 33'333'333;
-constexpr double kFx = 50.5, kFy = 51.25, kCx = 31.5, kCy = 23.75;
 constexpr const char* kDepthTopic = "/camera/depth/image_rect_raw";
-
-std::uint16_t depthUnits(int x, int y, std::int64_t i) {
-    return static_cast<std::uint16_t>(x % 100 + 100 * (y % 50) + 1000 * (i % 50) + 1);
-}
-std::array<std::uint8_t, 3> colorRgb(int x, int y, std::int64_t i) {
-    const int n = static_cast<int>(i % 256);
-    return {static_cast<std::uint8_t>((3 * x + n) % 256), static_cast<std::uint8_t>((4 * y) % 256),
-            static_cast<std::uint8_t>((7 * n + x + y) % 256)};
-}
-// The frame index a stamp names; -1 if the stamp is not on publish_camera.py's grid.
-// Which of the publisher's frames carries this stamp; none when it is not a stamp the publisher sent.
-std::optional<std::int64_t> frameIndex(std::int64_t stampNs) {
-    const std::int64_t offset = stampNs - kStartNs;
-    const std::int64_t i = (offset + kPeriodNs / 2) / kPeriodNs;
-    if (offset < 0 || std::llabs(offset - i * kPeriodNs) >= 2)
-        return std::nullopt;
-    return i;
-}
+using test::camera::frameIndex;
 
 // The depthcloud binary, run in `dir` with `environment` (VAR=value ...) before it.
 RunResult runDepthcloud(const std::string& dir, const std::string& environment,
@@ -104,7 +86,7 @@ protected:
         EXPECT_TRUE(config) << config.error().message;
         if (!config)
             return nullptr;
-        auto device = std::make_unique<RosDevice>(*config);
+        auto device = std::make_unique<RosDevice>(*config, makeMasterLink(config->masterUri));
         const Status opened = device->open();
         EXPECT_TRUE(opened) << opened.error().message;
         const Status started = opened ? device->start() : opened;
@@ -132,40 +114,13 @@ protected:
     std::string publisherLog() const { return readText(dir_->path("publisher.log")); }
 
     static void expectDepth(const frame::Frame& f, std::int64_t i, bool meters) {
-        ASSERT_TRUE(f.sceneDepth);
-        const auto& d = f.sceneDepth->depthMeters;
-        ASSERT_EQ(d.width, kDepthW);
-        ASSERT_EQ(d.height, kDepthH);
-        for (int y = 0; y < kDepthH; ++y)
-            for (int x = 0; x < kDepthW; ++x) {
-                const std::uint16_t units = depthUnits(x, y, i);
-                const float expected =
-                    meters ? static_cast<float>(units) * 0.001f : recording::depthFromUnits(units, 0.001);
-                ASSERT_EQ(d.at(x, y), expected) << "frame " << i << " at " << x << "," << y;
-            }
+        test::camera::expectDepth(f, i, kDepthW, kDepthH, meters);
     }
     static void expectColor(const frame::Frame& f, std::int64_t i) {
-        ASSERT_EQ(f.capturedImage.format, frame::PixelFormat::Rgb24);
-        ASSERT_EQ(f.capturedImage.width, kColorW);
-        ASSERT_EQ(f.capturedImage.height, kColorH);
-        const auto& bytes = *f.capturedImage.bytes;
-        for (int y = 0; y < kColorH; ++y)
-            for (int x = 0; x < kColorW; ++x) {
-                const auto rgb = colorRgb(x, y, i);
-                const std::size_t at = 3 * (static_cast<std::size_t>(y) * kColorW + x);
-                ASSERT_EQ(bytes[at], rgb[0]) << "frame " << i << " at " << x << "," << y;
-                ASSERT_EQ(bytes[at + 1], rgb[1]) << "frame " << i << " at " << x << "," << y;
-                ASSERT_EQ(bytes[at + 2], rgb[2]) << "frame " << i << " at " << x << "," << y;
-            }
+        test::camera::expectColor(f, i, kColorW, kColorH);
     }
     static void expectIntrinsics(const frame::Frame& f) {
-        const frame::Intrinsics k = f.depthIntrinsics();
-        EXPECT_EQ(k.width, kDepthW);
-        EXPECT_EQ(k.height, kDepthH);
-        EXPECT_NEAR(k.fx, kFx, 1e-9);
-        EXPECT_NEAR(k.fy, kFy, 1e-9);
-        EXPECT_NEAR(k.cx, kCx, 1e-9);
-        EXPECT_NEAR(k.cy, kCy, 1e-9);
+        test::camera::expectIntrinsics(f, kDepthW, kDepthH);
     }
     void expectStream(const std::string& encoding, bool meters, const std::string& transport = "raw") {
         publish({"--encoding", encoding, "--color-skew-ms", "4", "--transport", transport});
@@ -179,7 +134,7 @@ protected:
         // come alone, and after a second's grace with a guessed lens (a busy machine connects them later);
         // from the first pair with camera_info's lens on, every frame carries its own colour and that lens.
         const auto paired = std::find_if(got.frames.begin(), got.frames.end(), [](const frame::FramePtr& f) {
-            return !f->capturedImage.empty() && f->depthIntrinsics().fx == kFx;
+            return !f->capturedImage.empty() && f->depthIntrinsics().fx == test::camera::kFx;
         });
         ASSERT_GE(std::distance(paired, got.frames.end()), 5)
             << "the colour or camera_info subscription never caught up";
@@ -414,7 +369,7 @@ TEST_F(RosLive, TopicThatIsNoImageIsRefusedAtOpen) {
     publish({"--depth-type", "string"});
     auto config = parseRosSourceSpec(kDepthTopic);
     ASSERT_TRUE(config);
-    RosDevice device(*config);
+    RosDevice device(*config, makeMasterLink(config->masterUri));
     // The publisher needs a moment to advertise; until then the topic is unknown, which is allowed.
     Status opened;
     const auto deadline = Clock::now() + 15s;
