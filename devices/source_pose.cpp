@@ -61,7 +61,9 @@ Expected<frame::RigidTransform> rigCameraPose(const std::string& path, const std
     return Error{path + " has no camera '" + camera + "' (it has " + names + ")"};
 }
 
-Expected<frame::RigidTransform> poseFromOption(const std::string& value) {
+} // namespace
+
+Expected<frame::RigidTransform> parsePoseValue(const std::string& value) {
     if (value.empty())
         return Error{"expected X,Y,Z,QX,QY,QZ,QW or a pose file"};
     // A file's name has no comma in practice; seven numbers always do.
@@ -72,8 +74,6 @@ Expected<frame::RigidTransform> poseFromOption(const std::string& value) {
     return frame::loadPoseFile(value);
 }
 
-} // namespace
-
 Expected<SourcePlacement> sourcePlacement(const std::string& spec) {
     std::vector<std::string> parts = specParts(spec);
     SourcePlacement placement{spec, std::nullopt};
@@ -83,7 +83,7 @@ Expected<SourcePlacement> sourcePlacement(const std::string& spec) {
             continue;
         if (placement.cameraToWorld)
             return Error{"pose= is given twice in --source"};
-        auto pose = poseFromOption(parts[i].substr(kPoseKey.size()));
+        auto pose = parsePoseValue(parts[i].substr(kPoseKey.size()));
         if (!pose)
             return Error{parts[i] + " in --source: " + pose.error().message};
         placement.cameraToWorld = *pose;

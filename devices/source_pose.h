@@ -25,5 +25,7 @@ struct SourcePlacement {
 
 // An error is one line naming pose= and what is wrong (the count, a number, the quaternion, the file).
 Expected<SourcePlacement> sourcePlacement(const std::string& spec);
+// A pose= value alone (seven numbers, FILE or FILE#CAMERA); the error says what is wrong, not where.
+Expected<frame::RigidTransform> parsePoseValue(const std::string& value);
 
 } // namespace dc::devices

@@ -1,6 +1,7 @@
 #include "devices/source_spec.h"
 
 #include "devices/replay/replay_spec.h"
+#include "devices/source_pose.h"
 #include "devices/synthetic/synthetic_device.h"
 #include "devices/uvc/live_source_spec.h"
 #ifdef DC_HAVE_ROS
@@ -86,6 +87,11 @@ Expected<std::unique_ptr<Device>> openSynthetic(const std::vector<std::string>& 
             if (!target)
                 return target.error();
             config.flatTarget = *target;
+        } else if (p.starts_with("view=")) {
+            auto view = parsePoseValue(p.substr(5));
+            if (!view)
+                return Error{p + " in --source: " + view.error().message};
+            config.view = *view;
         } else if (Status s = parseMode(p, config); !s) {
             return s.error();
         }

@@ -76,6 +76,34 @@ std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw) 
             2 * (x * z - y * w),     2 * (y * z + x * w),     1 - 2 * (x * x + y * y)};
 }
 
+std::array<double, 4> quaternionFromRotation(const std::array<double, 9>& r) {
+    // 4x², 4y², 4z², 4w² from the trace and the diagonal; the largest is far from 0, so dividing by it is
+    // safe.
+    const std::array<double, 4> four{1 + r[0] - r[4] - r[8], 1 - r[0] + r[4] - r[8], 1 - r[0] - r[4] + r[8],
+                                     1 + r[0] + r[4] + r[8]};
+    const auto largest = static_cast<std::size_t>(std::max_element(four.begin(), four.end()) - four.begin());
+    const double s = 2.0 * std::sqrt(std::max(four[largest], 0.0)); // 4 times that component
+    std::array<double, 4> q{};
+    switch (largest) {
+    case 0:
+        q = {s / 4, (r[1] + r[3]) / s, (r[2] + r[6]) / s, (r[7] - r[5]) / s};
+        break;
+    case 1:
+        q = {(r[1] + r[3]) / s, s / 4, (r[5] + r[7]) / s, (r[2] - r[6]) / s};
+        break;
+    case 2:
+        q = {(r[2] + r[6]) / s, (r[5] + r[7]) / s, s / 4, (r[3] - r[1]) / s};
+        break;
+    default:
+        q = {(r[7] - r[5]) / s, (r[2] - r[6]) / s, (r[3] - r[1]) / s, s / 4};
+        break;
+    }
+    if (q[3] < 0.0)
+        for (double& v : q)
+            v = -v;
+    return q;
+}
+
 RigidTransform rigidFromQuaternion(const std::array<double, 3>& translationMeters,
                                    const std::array<double, 4>& xyzw) {
     return {rotationFromQuaternion(xyzw), translationMeters};

@@ -56,6 +56,9 @@ RigidTransform inverse(const RigidTransform& t);
 // The row-major rotation of the quaternion (x, y, z, w), which must already be a unit one: it is used as it
 // is, not normalised.
 std::array<double, 9> rotationFromQuaternion(const std::array<double, 4>& xyzw);
+// The unit quaternion (x, y, z, w) of a rotation, w >= 0. Computed from the largest of its four squared
+// components (Shepperd's choice), so that half-turns, whose w is 0, keep their full precision.
+std::array<double, 4> quaternionFromRotation(const std::array<double, 9>& rotation);
 // A translation in meters and a unit quaternion (x, y, z, w), as ROS's and TUM's poses give them.
 RigidTransform rigidFromQuaternion(const std::array<double, 3>& translationMeters,
                                    const std::array<double, 4>& xyzw);

@@ -3,6 +3,7 @@
 #include "base/log.h"
 #include "devices/source_spec.h"
 #include "devices/video/video_codec.h"
+#include "tool/align_command.h"
 #include "tool/bench_camera.h"
 #include "tool/bench_engine.h"
 #include "tool/bench_instrument.h"
@@ -165,6 +166,8 @@ int main(int argc, char** argv) {
     CLI::App* controlsCmd = addControlsCommand(app, controlsOptions);
     QualityOptions qualityOptions;
     CLI::App* qualityCmd = addQualityCommand(app, qualityOptions);
+    AlignOptions alignOptions;
+    CLI::App* alignCmd = addAlignCommand(app, alignOptions);
 
     RecordingCommands recording;
     addRecordingCommands(app, *benchCmd, recording);
@@ -204,5 +207,7 @@ int main(int argc, char** argv) {
         return runControls(controlsOptions);
     if (qualityCmd->parsed())
         return runQuality(qualityOptions);
+    if (alignCmd->parsed())
+        return runAlign(alignOptions);
     return runViewer(viewer);
 }

@@ -123,6 +123,9 @@ Status checkSyntheticConfig(const SyntheticConfig& c) {
         if (!(t->noiseMm >= 0.0 && t->noiseMm <= kFlatTargetMaxNoiseMm))
             return Error{"synthetic source: plane noise must be in [0, 100] mm"};
     }
+    if (c.view && (c.motion || c.flatTarget))
+        return Error{
+            "synthetic source: view= places a still camera in the desk scene, not with motion or plane="};
     return {};
 }
 
@@ -178,7 +181,7 @@ Status SyntheticDevice::doOpen() {
     if (config_.flatTarget)
         staticImage_ = greyImage(cameraIntrinsics_.width, cameraIntrinsics_.height);
     else if (!config_.motion)
-        staticImage_ = renderImage(SyntheticScene::cameraPose(0.0, false));
+        staticImage_ = renderImage(poseAt(0.0));
     return {};
 }
 
@@ -211,11 +214,18 @@ frame::FramePtr SyntheticDevice::makeFrame(std::uint64_t sequence, double timeSe
     return renderFrame(sequence, timeSeconds);
 }
 
+frame::Pose SyntheticDevice::poseAt(double timeSeconds) const {
+    const frame::Pose usual = SyntheticScene::cameraPose(timeSeconds, config_.motion);
+    if (!config_.view)
+        return usual;
+    return frame::poseFromRigid(frame::compose(frame::rigidFromPose(usual), *config_.view));
+}
+
 std::shared_ptr<frame::Frame> SyntheticDevice::renderFrame(std::uint64_t sequence, double timeSeconds) const {
     auto frame = std::make_shared<frame::Frame>();
     frame->sequence = sequence;
     frame->timestampNs = base::monotonicNowNs();
-    const frame::Pose pose = SyntheticScene::cameraPose(timeSeconds, config_.motion);
+    const frame::Pose pose = poseAt(timeSeconds);
     frame->pose = pose;
     frame->cameraIntrinsics = cameraIntrinsics_;
     frame->rig = rig_;

@@ -26,6 +26,9 @@ struct SyntheticConfig {
     bool rig = false;
     // Instead of the desk scene, a flat grey target filling the view (depth-quality measurements).
     std::optional<FlatTarget> flatTarget = std::nullopt;
+    // The still camera moved from its usual place, in its own frame (OpenCV axes: x right, y down, z
+    // forward): several cameras viewing the one scene from known places. Not with motion.
+    std::optional<frame::RigidTransform> view = std::nullopt;
 };
 
 // The rig's native modes: 848x480 depth at 30 Hz, 1280x720 colour.
@@ -71,6 +74,7 @@ private:
     std::shared_ptr<frame::Frame> renderFrame(std::uint64_t sequence, double timeSeconds) const;
     frame::CapturedImage renderImage(const frame::Pose& depthPose) const;
     frame::Intrinsics depthIntrinsics() const;
+    frame::Pose poseAt(double timeSeconds) const;
 
     SyntheticConfig config_;
     SyntheticScene scene_;

@@ -1,12 +1,40 @@
+#include "frame/camera_model.h"
 #include "frame/frame.h"
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
 
 namespace dc::devices {
 namespace {
+
+// A unit quaternion turned into a rotation and back is itself (with w >= 0), for the cases a single
+// formula gets wrong: the identity, half-turns (w = 0) about the axes and between them, a nanoradian turn,
+// and a turn within 1e-9 of a half-turn.
+TEST(QuaternionFromRotation, RoundTripsHalfTurnsAndTheSmallestTurns) {
+    const double h = std::sqrt(0.5);
+    const double tiny = std::sin(0.5e-9), nearHalf = std::cos(0.5 * (M_PI - 1e-9));
+    const std::array<std::array<double, 4>, 9> cases{{{0, 0, 0, 1},
+                                                      {1, 0, 0, 0},
+                                                      {0, 1, 0, 0},
+                                                      {0, 0, 1, 0},
+                                                      {h, h, 0, 0},
+                                                      {0, -h, h, 0},
+                                                      {tiny, 0, 0, std::sqrt(1 - tiny * tiny)},
+                                                      {0, std::sqrt(1 - nearHalf * nearHalf), 0, nearHalf},
+                                                      {0.5, -0.5, 0.5, 0.5}}};
+    for (const auto& q : cases) {
+        const std::array<double, 4> back = frame::quaternionFromRotation(frame::rotationFromQuaternion(q));
+        // q and -q are one rotation: compare with the one whose w is not negative.
+        const double sign =
+            q[3] < 0 || (q[3] == 0 && back[0] * q[0] + back[1] * q[1] + back[2] * q[2] < 0) ? -1 : 1;
+        for (std::size_t i = 0; i < 4; ++i)
+            EXPECT_NEAR(back[i], sign * q[i], 1e-15) << q[0] << " " << q[1] << " " << q[2] << " " << q[3];
+        EXPECT_GE(back[3], 0.0);
+    }
+}
 
 TEST(Intrinsics, ScalingToDepthResolutionScalesEachAxis) {
     const frame::Intrinsics camera{1450.0, 1440.0, 960.0, 720.0, 1920, 1440};
