@@ -21,7 +21,8 @@
 #include <thread>
 #include <unistd.h>
 
-namespace dc::devices::ros {
+// Its own namespace: the unity build compiles it with ros_live_test.cpp, whose names it would repeat.
+namespace dc::devices::ros::dds_test {
 namespace {
 
 using namespace std::chrono_literals;
@@ -211,4 +212,4 @@ TEST_F(Ros2Live, DevicesCommandListsTheImageTopicsOnTheDomain) {
 }
 
 } // namespace
-} // namespace dc::devices::ros
+} // namespace dc::devices::ros::dds_test
