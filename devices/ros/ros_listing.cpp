@@ -11,6 +11,22 @@
 
 namespace dc::devices::ros {
 
+namespace {
+
+// The image topics (raw or compressed) of a listing, or why there is none.
+void keepImageTopics(const Expected<std::vector<TopicInfo>>& topics, std::vector<std::string>& images,
+                     std::string& problem) {
+    if (!topics) {
+        problem = topics.error().message;
+        return;
+    }
+    for (const TopicInfo& t : *topics)
+        if (t.type == kRosImageType || t.type == kRosCompressedImageType)
+            images.push_back(t.name);
+}
+
+} // namespace
+
 RosListing listRosImageTopics() {
     RosListing listing;
     const char* env = std::getenv("ROS_MASTER_URI");
@@ -23,13 +39,7 @@ RosListing listRosImageTopics() {
     if (reached)
         reached = startRosNode(*master);
     auto topics = reached ? advertisedTopics() : Expected<std::vector<TopicInfo>>(reached.error());
-    if (!topics) {
-        listing.problem = topics.error().message;
-        return listing;
-    }
-    for (const TopicInfo& t : *topics)
-        if (t.type == kRosImageType || t.type == kRosCompressedImageType)
-            listing.imageTopics.push_back(t.name);
+    keepImageTopics(topics, listing.imageTopics, listing.problem);
     return listing;
 }
 
@@ -47,13 +57,7 @@ Ros2Listing listRos2ImageTopics() {
     auto topics = domain ? discoverRos2Topics(*domain, kDiscoveryWait)
                          : Expected<std::vector<TopicInfo>>(domain.error());
     listing.domain = domain ? *domain : 0;
-    if (!topics) {
-        listing.problem = topics.error().message;
-        return listing;
-    }
-    for (const TopicInfo& t : *topics)
-        if (t.type == kRosImageType || t.type == kRosCompressedImageType)
-            listing.imageTopics.push_back(t.name);
+    keepImageTopics(topics, listing.imageTopics, listing.problem);
     return listing;
 }
 
