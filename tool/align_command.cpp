@@ -8,6 +8,7 @@
 #include "base/log.h"
 #include "devices/source_pose.h"
 #include "devices/source_spec.h"
+#include "exporting/ply.h"
 #include "frame/multi_camera_extrinsics.h"
 #include "processing/rigid_alignment.h"
 #include "tool/options.h"
@@ -81,6 +82,8 @@ struct Alignment {
     processing::IcpResult icp;
     double icpMs = 0.0;
     frame::RigidTransform placementB; // B's refined placement: pose=FILE#camera_1 gives it back
+    frame::RigidTransform aToWorld;
+    frame::RigidTransform refinedBToWorld;
 };
 
 // B's refined camera-to-world keeps A where it is: A's pose after the refined A -> B, backwards. B's
@@ -101,8 +104,9 @@ Expected<Alignment> align(const Taken& a, const Taken& b) {
         out.icp.status == processing::IcpStatus::TooFewPoints)
         return Error{std::string("ICP: ") + processing::toString(out.icp.status) + " (" +
                      std::to_string(out.icp.before.count) + " overlapping samples)"};
-    const frame::RigidTransform refinedB =
-        frame::compose(frame::rigidFromPose(poseA), frame::inverse(out.icp.aToB));
+    out.aToWorld = frame::rigidFromPose(poseA);
+    out.refinedBToWorld = frame::compose(out.aToWorld, frame::inverse(out.icp.aToB));
+    const frame::RigidTransform& refinedB = out.refinedBToWorld;
     const frame::RigidTransform worldCorrection =
         frame::compose(refinedB, frame::inverse(frame::rigidFromPose(poseB)));
     out.placementB = frame::compose(worldCorrection, b.placement);
@@ -161,12 +165,41 @@ Status save(const AlignOptions& o, const Taken& a, const Alignment& r) {
     return {};
 }
 
+// Every kept sample of `f` with its colour, moved into the world by `toWorld`.
+void appendWorldPoints(const frame::Frame& f, const frame::RigidTransform& toWorld,
+                       std::vector<processing::CloudPoint>& points) {
+    for (processing::CloudPoint p : processing::buildPointCloud(f, frame::Confidence::Low, 0.0f)) {
+        const auto w = toWorld.apply({p.x, p.y, p.z});
+        p.x = static_cast<float>(w[0]);
+        p.y = static_cast<float>(w[1]);
+        p.z = static_cast<float>(w[2]);
+        points.push_back(p);
+    }
+}
+
+Status writeFusedCloud(const AlignOptions& o, const Taken& a, const Taken& b, const Alignment& r) {
+    if (o.plyPath.empty())
+        return {};
+    std::vector<processing::CloudPoint> points;
+    appendWorldPoints(*a.frame, r.aToWorld, points);
+    const std::size_t fromA = points.size();
+    appendWorldPoints(*b.frame, r.refinedBToWorld, points);
+    const std::vector<std::string> comments{"depthcloud align: the world frame; A = " + o.sources[0] + ", " +
+                                                std::to_string(fromA) + " points first",
+                                            "B = " + o.sources[1] + " placed by ICP, " +
+                                                std::to_string(points.size() - fromA) + " points after"};
+    if (Status s = base::writeFileAtomically(o.plyPath, exporting::encodePly(points, comments)); !s)
+        return Error{o.plyPath + ": " + s.error().message};
+    std::printf("wrote %s\n", o.plyPath.c_str());
+    return {};
+}
+
 std::string checkArguments(const AlignOptions& o) {
     if (o.sources.size() != 2)
         return "--source: align takes two sources, A (the reference) then B (found " +
                std::to_string(o.sources.size()) + ")";
     std::error_code ec;
-    for (const std::string* path : {&o.savePath, &o.kalibrPath, &o.jsonPath})
+    for (const std::string* path : {&o.savePath, &o.kalibrPath, &o.jsonPath, &o.plyPath})
         if (!path->empty() && !o.overwrite && std::filesystem::exists(*path, ec))
             return *path + " already exists (pass --overwrite to replace it)";
     return {};
@@ -186,6 +219,7 @@ CLI::App* addAlignCommand(CLI::App& app, AlignOptions& o) {
     cmd->add_option("--save-kalibr", o.kalibrPath,
                     "write them as a Kalibr camchain (A must be at the origin)");
     cmd->add_option("--json", o.jsonPath, "also write every figure as JSON to this file");
+    cmd->add_option("--ply", o.plyPath, "write both clouds fused in the world frame, B where ICP placed it");
     cmd->add_flag("--overwrite", o.overwrite, "replace the files if they exist");
     return cmd;
 }
@@ -210,6 +244,8 @@ int runAlign(const AlignOptions& o) {
         if (Status s = base::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s)
             return commandFailed("align", "--json " + o.jsonPath + ": " + s.error().message);
     if (Status s = save(o, *a, *aligned); !s)
+        return commandFailed("align", s.error().message);
+    if (Status s = writeFusedCloud(o, *a, *b, *aligned); !s)
         return commandFailed("align", s.error().message);
     return kExitOk;
 }

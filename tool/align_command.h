@@ -12,6 +12,7 @@ struct AlignOptions {
     std::string savePath;   // OpenCV extrinsics: camera_0 = A's placement, camera_1 = B's refined one
     std::string kalibrPath; // Kalibr camchain: cam0 = A (which must sit at the world's origin), cam1 = B
     std::string jsonPath;
+    std::string plyPath; // both clouds fused in the world frame, B placed where ICP put it
     bool overwrite = false;
 };
 
