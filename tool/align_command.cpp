@@ -25,7 +25,7 @@ namespace {
 
 using json = nlohmann::json;
 
-constexpr auto kNoFrameLimit = std::chrono::seconds(10);
+constexpr auto kAlignFrameWait = std::chrono::seconds(10);
 
 // A source's first frame with depth, and where its spec placed it (the identity without pose=).
 struct Taken {
@@ -35,7 +35,7 @@ struct Taken {
 
 Expected<frame::FramePtr> firstDepthFrame(devices::Device& device) {
     const auto start = std::chrono::steady_clock::now();
-    while (std::chrono::steady_clock::now() - start < kNoFrameLimit) {
+    while (std::chrono::steady_clock::now() - start < kAlignFrameWait) {
         devices::CaptureResult r = device.capture(std::chrono::milliseconds(500));
         if (r.kind == devices::CaptureResult::Kind::EndOfStream)
             return Error{"the source ended before its first depth frame"};
@@ -50,7 +50,7 @@ Expected<frame::FramePtr> firstDepthFrame(devices::Device& device) {
 }
 
 // An error prefixed "--source" is a bad argument; any other is the source failing.
-Expected<Taken> take(const std::string& spec) {
+Expected<Taken> takeFirstFrame(const std::string& spec) {
     auto placement = devices::sourcePlacement(spec);
     auto device = placement ? devices::openSourceSpec(spec)
                             : Expected<std::unique_ptr<devices::Device>>(placement.error());
@@ -113,7 +113,7 @@ Expected<Alignment> align(const Taken& a, const Taken& b) {
     return out;
 }
 
-json report(const Alignment& r, const Taken& a) {
+json alignmentJson(const Alignment& r, const Taken& a) {
     const processing::IcpResult& icp = r.icp;
     return {{"status", processing::toString(icp.status)},
             {"converged", icp.converged},
@@ -128,7 +128,7 @@ json report(const Alignment& r, const Taken& a) {
             {"placementB", transformJson(r.placementB)}};
 }
 
-void print(const json& j) {
+void printAlignment(const json& j) {
     const auto overlap = [](const json& f) {
         std::printf("median %.2f mm over %.0f %% of A's samples", f["medianMm"].get<double>(),
                     100.0 * f["overlapFraction"].get<double>());
@@ -147,7 +147,7 @@ void print(const json& j) {
     std::printf("\nB's placement: pose=%s\n", pose.c_str());
 }
 
-Status save(const AlignOptions& o, const Taken& a, const Alignment& r) {
+Status saveExtrinsics(const AlignOptions& o, const Taken& a, const Alignment& r) {
     const frame::CameraExtrinsicsSet rig{{{"a", a.placement}, {"b", r.placementB}}, {}};
     const std::pair<const std::string*, frame::ExtrinsicsFormat> files[] = {
         {&o.savePath, frame::ExtrinsicsFormat::OpenCvYaml},
@@ -194,7 +194,7 @@ Status writeFusedCloud(const AlignOptions& o, const Taken& a, const Taken& b, co
     return {};
 }
 
-std::string checkArguments(const AlignOptions& o) {
+std::string checkAlignArguments(const AlignOptions& o) {
     if (o.sources.size() != 2)
         return "--source: align takes two sources, A (the reference) then B (found " +
                std::to_string(o.sources.size()) + ")";
@@ -226,10 +226,10 @@ CLI::App* addAlignCommand(CLI::App& app, AlignOptions& o) {
 
 int runAlign(const AlignOptions& o) {
     setLogQuiet(true);
-    if (std::string problem = checkArguments(o); !problem.empty())
+    if (std::string problem = checkAlignArguments(o); !problem.empty())
         return commandFailed("align", problem, kExitBadArguments);
-    auto a = take(o.sources[0]);
-    auto b = a ? take(o.sources[1]) : a;
+    auto a = takeFirstFrame(o.sources[0]);
+    auto b = a ? takeFirstFrame(o.sources[1]) : a;
     if (!a || !b) {
         const std::string& message = (!a ? a : b).error().message;
         return commandFailed("align", message,
@@ -238,12 +238,12 @@ int runAlign(const AlignOptions& o) {
     auto aligned = align(*a, *b);
     if (!aligned)
         return commandFailed("align", aligned.error().message);
-    const json j = report(*aligned, *a);
-    print(j);
+    const json j = alignmentJson(*aligned, *a);
+    printAlignment(j);
     if (!o.jsonPath.empty())
         if (Status s = base::writeTextFile(o.jsonPath, j.dump(2) + "\n"); !s)
             return commandFailed("align", "--json " + o.jsonPath + ": " + s.error().message);
-    if (Status s = save(o, *a, *aligned); !s)
+    if (Status s = saveExtrinsics(o, *a, *aligned); !s)
         return commandFailed("align", s.error().message);
     if (Status s = writeFusedCloud(o, *a, *b, *aligned); !s)
         return commandFailed("align", s.error().message);
