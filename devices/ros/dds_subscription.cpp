@@ -24,6 +24,9 @@ using namespace std::chrono_literals;
 
 constexpr std::int32_t kImageDepth = 2; // latest wins: a slow consumer sees new images, not old ones
 constexpr std::int32_t kTfDepth = 100;  // /tf carries many small messages from many publishers
+// What the waitset says woke it, besides a reader's index.
+constexpr dds_attach_t kGuard = -1;
+constexpr dds_attach_t kPublications = -2;
 
 std::string ddsProblem(const std::string& what, dds_return_t rc) {
     return what + ": " + dds_strretcode(-rc);
@@ -115,6 +118,7 @@ private:
     void deliver(Stream stream, std::span<const std::uint8_t> message);
     void deliverImage(const std::string& topic, bool compressed, std::span<const std::uint8_t> message,
                       const std::function<void(RosImage)>& to);
+    void checkPublications();
 
     dds_entity_t participant_;
     SubscriptionTopics topics_;
@@ -123,6 +127,10 @@ private:
     std::vector<Entity> topicEntities_;
     std::vector<Entity> readers_;
     std::vector<Stream> streams_; // of readers_, index for index
+    std::vector<ReaderSpec> specs_;
+    // The domain's writers as they are discovered: one on our topic with another type would never match.
+    Entity publications_;
+    std::vector<std::string> reported_; // "topic type" said once
     Entity waitset_;
     Entity guard_;
     std::atomic<bool> stop_{false};
@@ -170,23 +178,59 @@ Status DdsReaders::start() {
     guard_ = Entity(dds_create_guardcondition(participant_));
     if (waitset_.get() < 0 || guard_.get() < 0)
         return Error{"cannot create a DDS waitset"};
-    if (dds_waitset_attach(waitset_.get(), guard_.get(), -1) < 0)
+    if (dds_waitset_attach(waitset_.get(), guard_.get(), kGuard) < 0)
         return Error{"cannot create a DDS waitset"};
-    for (const ReaderSpec& spec : wanted())
+    specs_ = wanted();
+    for (const ReaderSpec& spec : specs_)
         if (Status s = addReader(spec); !s)
             return s;
+    publications_ =
+        Entity(dds_create_reader(participant_, DDS_BUILTIN_TOPIC_DCPSPUBLICATION, nullptr, nullptr));
+    const dds_entity_t discovered = publications_.get() < 0
+                                        ? publications_.get()
+                                        : dds_create_readcondition(publications_.get(), DDS_ANY_STATE);
+    if (discovered < 0 || dds_waitset_attach(waitset_.get(), discovered, kPublications) < 0)
+        return Error{"cannot watch DDS domain's publications"};
     worker_ = base::Worker("DDS " + topics_.depth, [this] { run(); });
     return {};
 }
 
 void DdsReaders::run() {
-    std::vector<dds_attach_t> triggered(readers_.size() + 1);
+    std::vector<dds_attach_t> triggered(readers_.size() + 2);
     while (!stop_) {
         const dds_return_t n =
             dds_waitset_wait(waitset_.get(), triggered.data(), triggered.size(), DDS_SECS(1));
-        for (dds_return_t i = 0; i < n && !stop_; ++i)
-            if (triggered[static_cast<std::size_t>(i)] >= 0)
-                takeAll(static_cast<std::size_t>(triggered[static_cast<std::size_t>(i)]));
+        for (dds_return_t i = 0; i < n && !stop_; ++i) {
+            const dds_attach_t which = triggered[static_cast<std::size_t>(i)];
+            if (which == kPublications)
+                checkPublications();
+            else if (which >= 0)
+                takeAll(static_cast<std::size_t>(which));
+        }
+    }
+}
+
+void DdsReaders::checkPublications() {
+    constexpr std::size_t kBatch = 16;
+    void* samples[kBatch] = {};
+    dds_sample_info_t infos[kBatch];
+    for (dds_return_t n; (n = dds_take(publications_.get(), samples, infos, kBatch, kBatch)) > 0;) {
+        for (dds_return_t i = 0; i < n; ++i) {
+            const auto* writer = static_cast<const dds_builtintopic_endpoint_t*>(samples[i]);
+            if (!infos[i].valid_data)
+                continue;
+            for (const ReaderSpec& spec : specs_) {
+                const std::string type = writer->type_name;
+                const std::string key = spec.rosTopic + " " + type;
+                if (ddsTopicName(spec.rosTopic) != writer->topic_name || type == spec.type->m_typename ||
+                    std::find(reported_.begin(), reported_.end(), key) != reported_.end())
+                    continue;
+                reported_.push_back(key);
+                callbacks_.problem("ROS 2 topic " + spec.rosTopic + " carries " + rosTypeName(type) +
+                                   ", not " + rosTypeName(spec.type->m_typename));
+            }
+        }
+        dds_return_loan(publications_.get(), samples, n);
     }
 }
 

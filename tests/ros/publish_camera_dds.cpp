@@ -46,8 +46,9 @@ struct Options {
     bool loopback = false;
     long frames = 0; // 0: until killed
     int leaseMs = 2000;
-    bool realtimeStamps =
-        false; // stamped with the wall clock when published (for latency), not the pattern's
+    // Stamped with the wall clock when published (for latency), not the pattern's.
+    bool realtimeStamps = false;
+    bool depthIsString = false; // the depth topic carries std_msgs/String: a topic of another type
 };
 
 // A message already serialized, handed to Fast DDS as it is.
@@ -233,7 +234,9 @@ bool Camera::start() {
     const std::uint32_t depthSize = 2u * o_.width * o_.height + 256;
     const std::uint32_t colorSize = 3u * o_.colorWidth * o_.colorHeight + 256;
     writers_["depth"] =
-        writer(o_.ns + "/depth/image_rect_raw", "sensor_msgs::msg::dds_::Image_", depthSize, false);
+        o_.depthIsString
+            ? writer(o_.ns + "/depth/image_rect_raw", "std_msgs::msg::dds_::String_", 256, false)
+            : writer(o_.ns + "/depth/image_rect_raw", "sensor_msgs::msg::dds_::Image_", depthSize, false);
     writers_["color"] =
         writer(o_.ns + "/color/image_raw", "sensor_msgs::msg::dds_::Image_", colorSize, false);
     writers_["info"] =
@@ -263,7 +266,9 @@ void Camera::publish(std::int64_t i) {
     const std::int64_t stampNs = o_.realtimeStamps ? wallClockNs() : kStartNs + i * kPeriodNs;
     const auto colorStamp = stampNs + static_cast<std::int64_t>(std::llround(o_.colorSkewMs * 1e6));
     Serialized color = image(colorStamp, "rgb8", o_.colorWidth, o_.colorHeight, 3, colorPixels);
-    Serialized depth = image(stampNs, "16UC1", o_.width, o_.height, 2, depthPixels);
+    Serialized depth = o_.depthIsString
+                           ? serialized(256, [](Cdr& cdr) { cdr << std::string("not an image"); })
+                           : image(stampNs, "16UC1", o_.width, o_.height, 2, depthPixels);
     Serialized info = cameraInfo(o_, stampNs);
     if (!o_.tfRoot.empty()) { // before the images: a receiver finds the pose when the image comes
         Serialized tf = tfMessage(stampNs, cameraTf(i));
@@ -297,6 +302,8 @@ bool parse(int argc, char** argv, Options& o) {
             o.frames = std::stol(value);
         else if (key == "--lease-ms")
             o.leaseMs = std::stoi(value);
+        else if (key == "--depth-type")
+            o.depthIsString = value == "string";
         else if (key == "--stamps")
             o.realtimeStamps = value == "realtime";
         else
@@ -310,10 +317,10 @@ bool parse(int argc, char** argv, Options& o) {
 int main(int argc, char** argv) {
     Options o;
     if (!parse(argc, argv, o)) {
-        std::fprintf(stderr,
-                     "usage: publish_camera_dds [--domain N] [--ns NS] [--size WxH] [--color-size WxH] "
-                     "[--color-skew-ms MS] [--tf-root FRAME] [--qos sensor-data|default] [--loopback 0|1] "
-                     "[--frames N] [--lease-ms MS] [--stamps pattern|realtime]\n");
+        std::fprintf(
+            stderr, "usage: publish_camera_dds [--domain N] [--ns NS] [--size WxH] [--color-size WxH] "
+                    "[--color-skew-ms MS] [--tf-root FRAME] [--qos sensor-data|default] [--loopback 0|1] "
+                    "[--frames N] [--lease-ms MS] [--stamps pattern|realtime] [--depth-type image|string]\n");
         return 2;
     }
     Camera camera(o);

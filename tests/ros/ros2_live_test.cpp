@@ -196,6 +196,23 @@ TEST_F(Ros2Live, ACameraThatLeavesShowsDisconnectedAndItsReturnStreamsAgain) {
     session.stop();
 }
 
+// A writer of another type on the depth topic never matches our reader: said once, in one line, naming both.
+TEST_F(Ros2Live, ADepthTopicOfAnotherTypeIsReportedInOneLine) {
+    publish({"--depth-type", "string"});
+    auto device = openDevice(":color=none");
+    ASSERT_TRUE(device);
+    std::vector<std::string> problems;
+    const auto deadline = Clock::now() + 20s;
+    while (problems.empty() && Clock::now() < deadline)
+        if (CaptureResult r = device->capture(100ms); r.kind == CaptureResult::Kind::Error)
+            problems.push_back(r.message);
+    ASSERT_EQ(problems.size(), 1u) << cameraLog();
+    EXPECT_EQ(problems[0],
+              std::string("ROS 2 topic ") + kDepthTopic + " carries std_msgs/String, not sensor_msgs/Image");
+    for (auto until = Clock::now() + 2s; Clock::now() < until;)
+        EXPECT_NE(device->capture(100ms).kind, CaptureResult::Kind::Error) << "said more than once";
+}
+
 TEST_F(Ros2Live, DevicesCommandListsTheImageTopicsOnTheDomain) {
     publish({"--size", "64x48", "--color-size", "64x48"});
     const std::string environment =
