@@ -34,7 +34,8 @@ struct SensorControlNode {
     std::vector<SensorControl> controls;
 };
 
-// One way a camera's depth node can stream: its pixel format ("Z16", "Y16"), size and rate.
+// One way a camera's node can stream: its pixel format (depth "Z16", "Y16"; colour "YUYV", "MJPG"...), size
+// and rate.
 struct StreamMode {
     std::string format;
     int width = 0;
@@ -59,6 +60,8 @@ public:
     virtual bool changed() { return false; }
     // Every depth format, size and rate the camera's depth node offers (none: it cannot say).
     virtual std::vector<StreamMode> depthModes() { return {}; }
+    // Every image format, size and rate the camera's colour node offers (none: it has none or cannot say).
+    virtual std::vector<StreamMode> colorModes() { return {}; }
 };
 
 } // namespace dc::devices

@@ -136,4 +136,10 @@ Expected<std::string> specWithDepthMode(const std::string& spec, const StreamMod
     return withDepthMode(spec, mode);
 }
 
+Expected<std::string> specWithColorMode(const std::string& spec, const StreamMode& mode) {
+    if (!isLiveSourceSpec(spec))
+        return Error{spec + " is not a live camera: its colour mode is its recording's"};
+    return withColorMode(spec, mode);
+}
+
 } // namespace dc::devices

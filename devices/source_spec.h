@@ -24,5 +24,7 @@ inline constexpr const char* kSourceSpecHelp =
 Expected<std::unique_ptr<Device>> openSourceSpec(const std::string& spec);
 // A live camera's spec streaming its depth in `mode`, the rest as it was; an error for other sources.
 Expected<std::string> specWithDepthMode(const std::string& spec, const StreamMode& mode);
+// The same for its colour node's mode; an error for other sources and for a camera streaming no colour.
+Expected<std::string> specWithColorMode(const std::string& spec, const StreamMode& mode);
 
 } // namespace dc::devices

@@ -113,19 +113,28 @@ std::string modeText(const devices::StreamMode& m) {
     return text;
 }
 
-void drawModes(CameraControlsState& state) {
-    if (!state.modes)
-        state.modes = state.controls->depthModes();
-    if (state.modes->empty())
+// One node's mode list; a mode picked is left in `chosen` and shown as current from then on.
+void drawModeList(const char* label, const std::vector<devices::StreamMode>& modes,
+                  std::optional<devices::StreamMode>& chosen, std::string& shown) {
+    if (modes.empty())
         return;
-    if (ImGui::BeginCombo("Depth mode", state.modeShown.empty() ? "as opened" : state.modeShown.c_str())) {
-        for (const devices::StreamMode& m : *state.modes)
-            if (ImGui::Selectable(modeText(m).c_str(), modeText(m) == state.modeShown)) {
-                state.chosenMode = m;
-                state.modeShown = modeText(m);
+    if (ImGui::BeginCombo(label, shown.empty() ? "as opened" : shown.c_str())) {
+        for (const devices::StreamMode& m : modes)
+            if (ImGui::Selectable(modeText(m).c_str(), modeText(m) == shown)) {
+                chosen = m;
+                shown = modeText(m);
             }
         ImGui::EndCombo();
     }
+}
+
+void drawModes(CameraControlsState& state) {
+    if (!state.modes)
+        state.modes = state.controls->depthModes();
+    if (!state.colorModes)
+        state.colorModes = state.controls->colorModes();
+    drawModeList("Depth mode", *state.modes, state.chosenMode, state.modeShown);
+    drawModeList("Colour mode", *state.colorModes, state.chosenColorMode, state.colorModeShown);
 }
 
 } // namespace

@@ -329,10 +329,13 @@ struct CameraControlsState {
     std::optional<std::vector<devices::StreamMode>> modes; // the depth node's, read once
     std::optional<devices::StreamMode> chosenMode;         // chosen this frame: the viewer reopens the source
     std::string modeShown;                                 // what the mode list shows as current
+    std::optional<std::vector<devices::StreamMode>> colorModes; // the same for the colour node
+    std::optional<devices::StreamMode> chosenColorMode;
+    std::string colorModeShown;
 };
 // Every control of each node with its type's widget: a change is set at once and read back; an inactive
-// control (an auto control decides it) is greyed; "Reset to defaults" per node. Above them, the depth
-// node's modes: one chosen is left in state.chosenMode.
+// control (an auto control decides it) is greyed; "Reset to defaults" per node. Above them, the depth and
+// colour nodes' modes: one chosen is left in state.chosenMode or state.chosenColorMode.
 void drawCameraControlsPanel(CameraControlsState& state, double nowSeconds, bool* open);
 
 // Per stream the frame intervals' histogram and the timestamps' source, the latency from arrival (and

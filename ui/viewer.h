@@ -131,6 +131,7 @@ private:
     void drawSourcePicker(float x, float y);
     void drawQuality(float x, float y);
     void drawCameraControls(float x, float y);
+    void reopenInMode(const Expected<std::string>& spec);
     RoiOverlay roiOverlay() const;
     void drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, ImVec2 size);
     float drawMenuBar();

@@ -613,18 +613,24 @@ void Viewer::drawCameraControls(float x, float y) {
     for (const std::string& message : cameraControls_.refused)
         logWarning(message);
     cameraControls_.refused.clear();
-    if (const auto mode = std::exchange(cameraControls_.chosenMode, std::nullopt)) {
-        // The camera streams in the new mode without a restart: the source is opened again with it.
-        auto spec = devices::specWithDepthMode(instrument_.spec(), *mode);
-        const std::string shown = cameraControls_.modeShown;
-        if (spec && openSource(*spec)) {
-            cameraControlsSpec_ = instrument_.spec();
-            cameraControls_.controls = instrument_.sensorControls();
-            cameraControls_.modeShown = shown;
-        } else if (!spec) {
-            logWarning(spec.error().message);
-        }
+    if (const auto mode = std::exchange(cameraControls_.chosenMode, std::nullopt))
+        reopenInMode(devices::specWithDepthMode(instrument_.spec(), *mode));
+    if (const auto mode = std::exchange(cameraControls_.chosenColorMode, std::nullopt))
+        reopenInMode(devices::specWithColorMode(instrument_.spec(), *mode));
+}
+
+// The camera streams in the mode chosen without a restart: the source is opened again with it. A mode that
+// does not fit its two-sensor calibration is refused when the camera opens, naming the calibration's field.
+void Viewer::reopenInMode(const Expected<std::string>& spec) {
+    if (!spec) {
+        logWarning(spec.error().message);
+        return;
     }
+    // The same camera: the panel keeps its mode lists and what they show, with the new source's controls.
+    if (!openSource(*spec))
+        return;
+    cameraControlsSpec_ = instrument_.spec();
+    cameraControls_.controls = instrument_.sensorControls();
 }
 
 // The region measured, outlined on the image panels of the depth's field of view, on which a drag draws a

@@ -37,14 +37,26 @@ bool looksLikeMode(const std::string& part) {
            std::isdigit(static_cast<unsigned char>(part[0]));
 }
 
-Status parseMode(const std::string& part, UvcConfig& config) {
+// WxH or WxH@FPS into `width`, `height` and (when given) `fps`; `what` names the part in the error.
+Status parseMode(const std::string& part, const std::string& what, int& width, int& height, double& fps) {
     const auto at = part.find('@');
     const std::string size = part.substr(0, at);
     const auto x = size.find('x');
-    if (!number(size.substr(0, x), config.width) || !number(size.substr(x + 1), config.height) ||
-        config.width <= 0 || config.height <= 0 ||
-        (at != std::string::npos && (!number(part.substr(at + 1), config.fps) || !(config.fps > 0.0))))
-        return Error{"malformed mode '" + part + "' in --source (expected WxH or WxH@FPS, e.g. 640x480@30)"};
+    if (x == std::string::npos || !number(size.substr(0, x), width) || !number(size.substr(x + 1), height) ||
+        width <= 0 || height <= 0 ||
+        (at != std::string::npos && (!number(part.substr(at + 1), fps) || !(fps > 0.0))))
+        return Error{"malformed " + what + " '" + part +
+                     "' in --source (expected WxH or WxH@FPS, e.g. 640x480@30)"};
+    return {};
+}
+
+Status parseColorFormat(const std::string& value, UvcConfig& config) {
+    const auto fourcc = v4l2::parseFourcc(value);
+    const v4l2::FormatRole role = fourcc ? v4l2::roleOf(*fourcc) : v4l2::FormatRole::Other;
+    if (role != v4l2::FormatRole::Color && role != v4l2::FormatRole::Guide)
+        return Error{"colorformat=" + value +
+                     " in --source: the colour format must be YUYV, NV12, RGB3, MJPG or GREY"};
+    config.colorFourcc = fourcc;
     return {};
 }
 
@@ -67,6 +79,10 @@ Status parseOption(const std::string& key, const std::string& value, UvcConfig& 
     } else if (key == "color") {
         config.color = value != "none";
         config.colorNode = config.color ? value : "";
+    } else if (key == "colormode") {
+        return parseMode(value, "colormode", config.colorWidth, config.colorHeight, config.colorFps);
+    } else if (key == "colorformat") {
+        return parseColorFormat(value, config);
     } else if (key == "watchdog") {
         int ms = 0;
         if (!number(value, ms) || ms <= 0)
@@ -80,7 +96,7 @@ Status parseOption(const std::string& key, const std::string& value, UvcConfig& 
         config.presetPath = value;
     } else {
         return Error{"unknown option '" + key +
-                     "' in --source (format, scale, calib, color, watchdog, preset)"};
+                     "' in --source (format, scale, calib, color, colormode, colorformat, watchdog, preset)"};
     }
     return {};
 }
@@ -90,7 +106,7 @@ Status parseOptions(const std::vector<std::string>& parts, std::size_t first, Uv
         const std::string& part = parts[i];
         const auto eq = part.find('=');
         Status s = eq != std::string::npos ? parseOption(part.substr(0, eq), part.substr(eq + 1), config)
-                   : looksLikeMode(part)   ? parseMode(part, config)
+                   : looksLikeMode(part)   ? parseMode(part, "mode", config.width, config.height, config.fps)
                                            : Status(Error{"unknown part '" + part + "' in --source"});
         if (!s)
             return s;
@@ -147,22 +163,50 @@ std::size_t firstOption(const std::vector<std::string>& parts) {
     return hasSerial ? 4 : 3;
 }
 
-Expected<std::string> withDepthMode(const std::string& spec, const StreamMode& mode) {
-    if (auto config = parseLiveSourceSpec(spec); !config)
-        return config.error();
-    const std::vector<std::string> parts = splitColons(spec);
-    const std::size_t options = firstOption(parts);
+namespace {
+
+std::string modeText(const StreamMode& mode) {
     char rate[32];
     std::snprintf(rate, sizeof rate, "%g", mode.fps);
+    return std::to_string(mode.width) + "x" + std::to_string(mode.height) + "@" + rate;
+}
+
+// `spec` with `added` (":OPTION...") right after the camera's name and every option that `replaced` says
+// true of left out.
+template <class Replaced>
+std::string withOptions(const std::string& spec, const std::string& added, Replaced replaced) {
+    const std::vector<std::string> parts = splitColons(spec);
+    const std::size_t options = firstOption(parts);
     std::string out;
     for (std::size_t i = 0; i < options; ++i)
         out += (i ? ":" : "") + parts[i];
-    out += ":" + std::to_string(mode.width) + "x" + std::to_string(mode.height) + "@" + rate +
-           ":format=" + mode.format;
+    out += added;
     for (std::size_t i = options; i < parts.size(); ++i)
-        if (!looksLikeMode(parts[i]) && parts[i].rfind("format=", 0) != 0)
+        if (!replaced(parts[i]))
             out += ":" + parts[i];
     return out;
+}
+
+} // namespace
+
+Expected<std::string> withDepthMode(const std::string& spec, const StreamMode& mode) {
+    if (auto config = parseLiveSourceSpec(spec); !config)
+        return config.error();
+    return withOptions(spec, ":" + modeText(mode) + ":format=" + mode.format, [](const std::string& part) {
+        return looksLikeMode(part) || part.starts_with("format=");
+    });
+}
+
+Expected<std::string> withColorMode(const std::string& spec, const StreamMode& mode) {
+    auto config = parseLiveSourceSpec(spec);
+    if (!config)
+        return config.error();
+    if (!config->color)
+        return Error{spec + " streams no colour (color=none): it has no colour mode to choose"};
+    return withOptions(spec, ":colormode=" + modeText(mode) + ":colorformat=" + mode.format,
+                       [](const std::string& part) {
+                           return part.starts_with("colormode=") || part.starts_with("colorformat=");
+                       });
 }
 
 Expected<UvcConfig> parseLiveSourceSpec(const std::string& given) {

@@ -34,6 +34,18 @@ frame::TimestampSource stampSource(const v4l2::V4l2Buffer& b, bool driverStamp) 
     return b.startOfExposure ? frame::TimestampSource::StartOfExposure : frame::TimestampSource::EndOfFrame;
 }
 
+// What the driver said about a stamped buffer. Its v4l2_buffer.sequence is 32 bits wide; the exposure is
+// the metadata node's, which is not read here.
+frame::StreamTiming driverTiming(std::uint64_t sequence, std::int64_t stampNs,
+                                 frame::TimestampSource source) {
+    frame::StreamTiming t;
+    t.driverSequence = static_cast<std::uint32_t>(sequence);
+    t.sensorNs = stampNs;
+    t.source = source;
+    t.monotonic = true;
+    return t;
+}
+
 std::string formatText(const v4l2::V4l2Format& f) {
     return std::to_string(f.width) + "x" + std::to_string(f.height) + " '" + v4l2::fourccToString(f.fourcc) +
            "'";
@@ -201,13 +213,11 @@ Status UvcDevice::configureDepth() {
     return {};
 }
 
-Status UvcDevice::openColor() {
-    const auto probed = probe(sys_, colorPath_);
-    if (!probed)
-        return Error{"it cannot be opened or does not capture video"};
-    const std::uint32_t fourcc = v4l2::preferredImageFormat(*probed).value_or(0);
-    if (fourcc == 0)
-        return Error{"it offers no YUYV/NV12/RGB24/MJPEG/GREY format"};
+// The colour modes of `fourcc` to try, in order: the one the spec asks for alone, else the default choice.
+std::vector<v4l2::ChosenMode> UvcDevice::colorRequests(std::uint32_t fourcc) const {
+    if (config_.colorWidth > 0)
+        return {{fourcc, config_.colorWidth, config_.colorHeight,
+                 config_.colorFps > 0.0 ? config_.colorFps : depthFps_}};
     // The calibrated colour size first, then the depth size (same aspect, least to resample), else the
     // default choice.
     std::vector<v4l2::ChosenMode> requests{{fourcc, depthFormat_.width, depthFormat_.height, depthFps_},
@@ -215,20 +225,38 @@ Status UvcDevice::openColor() {
     if (rig_)
         requests.insert(requests.begin(),
                         {fourcc, rig_->colour.intrinsics.width, rig_->colour.intrinsics.height, depthFps_});
-    auto mode = firstOffered(probed->modes, requests);
+    return requests;
+}
+
+Status UvcDevice::openColor() {
+    const auto probed = probe(sys_, colorPath_);
+    if (!probed)
+        return Error{"it cannot be opened or does not capture video"};
+    const std::uint32_t fourcc =
+        config_.colorFourcc.value_or(v4l2::preferredImageFormat(*probed).value_or(0));
+    if (fourcc == 0)
+        return Error{"it offers no YUYV/NV12/RGB24/MJPEG/GREY format"};
+    if (!probed->offers(fourcc))
+        return Error{"it offers no '" + v4l2::fourccToString(fourcc) + "' format (colorformat=)"};
+    auto mode = firstOffered(probed->modes, colorRequests(fourcc));
     if (!mode)
         return mode.error();
     return openWithMode(color_, colorPath_, *mode, colorFormat_);
 }
 
-void UvcDevice::configureColor() {
+// Without a colour mode asked for, a colour node that cannot stream leaves depth alone; a mode asked for
+// (the window's mode list) that cannot be had is refused, so that the person sees why.
+Status UvcDevice::configureColor() {
     if (colorPath_.empty())
-        return;
+        return {};
     if (Status s = openColor(); !s) {
-        logWarning("streaming depth without color: " + colorPath_ + ": " + s.error().message);
         color_.close();
+        if (config_.colorFourcc || config_.colorWidth > 0)
+            return Error{colorPath_ + ": " + s.error().message};
+        logWarning("streaming depth without color: " + colorPath_ + ": " + s.error().message);
         colorPath_.clear();
     }
+    return {};
 }
 
 void UvcDevice::chooseDepthScale() {
@@ -285,9 +313,10 @@ Status UvcDevice::configureBoth() {
     Status s = resolveNodes();
     if (s)
         s = configureDepth();
+    if (s)
+        s = configureColor();
     if (!s)
         return s;
-    configureColor();
     return checkRigSizes();
 }
 
@@ -491,12 +520,10 @@ frame::FramePtr UvcDevice::makeFrame(PairedCapture capture) {
     frame->sequence = sequence_++;
     frame->timestampNs = capture.depth.timestampNs;
     frame->cameraIntrinsics = depthIntrinsics_;
-    // Stamped captures carry the driver's v4l2_buffer.sequence, which is 32 bits wide.
-    frame->timing.depth = {static_cast<std::uint32_t>(capture.depth.sequence), capture.depth.timestampNs,
-                           depthStampSource_, true};
+    frame->timing.depth = driverTiming(capture.depth.sequence, capture.depth.timestampNs, depthStampSource_);
     if (capture.color) {
-        frame->timing.colour = frame::StreamTiming{static_cast<std::uint32_t>(capture.color->sequence),
-                                                   capture.color->timestampNs, colorStampSource_, true};
+        frame->timing.colour =
+            driverTiming(capture.color->sequence, capture.color->timestampNs, colorStampSource_);
         frame->capturedImage = std::move(capture.color->image);
         const int w = frame->capturedImage.width, h = frame->capturedImage.height;
         if (rig_) {

@@ -26,7 +26,13 @@ struct UvcConfig {
     std::optional<std::uint32_t> depthFourcc; // 'Z16 ' or 'Y16 '; default: Z16 when offered, else Y16
     int width = 0;                            // 0: the largest depth size up to 1280x720
     int height = 0;
-    double fps = 0.0;                      // 0: 30 when offered, else the highest rate
+    double fps = 0.0; // 0: 30 when offered, else the highest rate
+    // The colour node's mode (colormode=, colorformat=): a mode asked for must be offered. Default: the
+    // preferred image format, at the calibrated colour size, else the depth size, else the default choice.
+    std::optional<std::uint32_t> colorFourcc;
+    int colorWidth = 0; // 0: no size asked for
+    int colorHeight = 0;
+    double colorFps = 0.0;                 // 0: the depth's rate
     std::optional<float> depthScaleMeters; // meters per unit; default: known-camera table, else 1 mm
     // Default: a field-of-view guess, flagged approximate. A two-sensor file (`rig`) places the colour
     // node's image with its own sensor's model and the transform between the sensors.
@@ -80,8 +86,9 @@ private:
     Status resolveUsb(const usb::UsbMatch& match);
     void resolveColorSibling(const std::string& usbName);
     Status configureDepth();
-    void configureColor();
+    Status configureColor();
     Status openColor();
+    std::vector<v4l2::ChosenMode> colorRequests(std::uint32_t fourcc) const;
     void chooseDepthScale();
     void chooseIntrinsics();
     Status checkRigSizes() const;

@@ -48,6 +48,9 @@ public:
     std::vector<devices::StreamMode> depthModes() override {
         return {{"Z16", 640, 480, 30}, {"Z16", 848, 480, 15}};
     }
+    std::vector<devices::StreamMode> colorModes() override {
+        return {{"YUYV", 640, 480, 30}, {"MJPG", 1280, 720, 15}};
+    }
     Status set(const std::string& path, std::uint32_t id, std::int64_t value) override {
         sets.emplace_back(path, id, value);
         if (id == refuse)
@@ -134,6 +137,19 @@ TEST_F(CameraControlsPanelTest, ADepthModeChosenFromTheListIsHandedToTheViewer) 
     ASSERT_TRUE(state_.chosenMode);
     EXPECT_EQ(*state_.chosenMode, (devices::StreamMode{"Z16", 848, 480, 15}));
     EXPECT_EQ(state_.modeShown, "848x480 @ 15 Hz Z16");
+}
+
+TEST_F(CameraControlsPanelTest, AColourModeChosenFromItsOwnListIsHandedToTheViewer) {
+    clickWidget("Colour mode");
+    ASSERT_FALSE(locate("##Combo_00", "848x480 @ 15 Hz Z16")) << "the colour list holds no depth mode";
+    const auto entry = locate("##Combo_00", "1280x720 @ 15 Hz MJPG");
+    ASSERT_TRUE(entry) << "the colour node's modes are listed";
+    click(*entry);
+    ASSERT_TRUE(state_.chosenColorMode);
+    EXPECT_EQ(*state_.chosenColorMode, (devices::StreamMode{"MJPG", 1280, 720, 15}));
+    EXPECT_EQ(state_.colorModeShown, "1280x720 @ 15 Hz MJPG");
+    EXPECT_FALSE(state_.chosenMode) << "the depth mode is left as it was";
+    EXPECT_TRUE(state_.modeShown.empty());
 }
 
 TEST_F(CameraControlsPanelTest, ASourceWithoutControlsSaysSo) {

@@ -238,5 +238,24 @@ TEST(SourcePose, ALiveCameraKeepsItsPoseInAnotherDepthMode) {
     EXPECT_EQ(*spec, "v4l2:/dev/video2:848x480@30:format=Z16:pose=0,0,1,0,0,0,1:scale=0.001");
 }
 
+// The window's colour mode list reopens a live camera only; the depth mode, pose= and the rest stay.
+TEST(SourceSpec, AColourModeIsALiveCamerasAndKeepsTheRestOfItsSpec) {
+    auto spec =
+        specWithColorMode("v4l2:/dev/video2:640x480@30:format=Z16:pose=0,0,1,0,0,0,1:color=/dev/video4",
+                          {"YUYV", 1280, 720, 30.0});
+    ASSERT_TRUE(spec.ok()) << spec.error().message;
+    EXPECT_EQ(*spec, "v4l2:/dev/video2:colormode=1280x720@30:colorformat=YUYV:640x480@30:format=Z16:"
+                     "pose=0,0,1,0,0,0,1:color=/dev/video4");
+    const auto again = specWithColorMode(*spec, {"YUYV", 640, 480, 30.0});
+    ASSERT_TRUE(again.ok()) << again.error().message;
+    EXPECT_EQ(*again, "v4l2:/dev/video2:colormode=640x480@30:colorformat=YUYV:640x480@30:format=Z16:"
+                      "pose=0,0,1,0,0,0,1:color=/dev/video4")
+        << "the spec's own colour mode is replaced, not repeated";
+    const auto replayed = specWithColorMode("synthetic:rig=rgbd", {"YUYV", 640, 480, 30.0});
+    ASSERT_FALSE(replayed.ok());
+    EXPECT_NE(replayed.error().message.find("not a live camera"), std::string::npos)
+        << replayed.error().message;
+}
+
 } // namespace
 } // namespace dc::devices

@@ -1,6 +1,8 @@
 #include "devices/uvc/v4l2/control_preset.h"
 
 #include "base/files.h"
+#include "devices/uvc/v4l2/node_probe.h"
+#include "devices/uvc/v4l2/pixel_formats.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
 
 #include <linux/videodev2.h>
@@ -173,6 +175,29 @@ std::vector<StreamMode> V4l2SensorControls::depthModes() {
             return modes;
     }
     return {};
+}
+
+std::vector<StreamMode> V4l2SensorControls::colorModes() {
+    std::vector<ProbedNode> probed;
+    for (const std::string& path : nodePaths_) {
+        int error = 0;
+        if (auto node = probeNode(sys_, path, error))
+            probed.push_back(std::move(*node));
+    }
+    const std::string color = assignRoles(probed).color;
+    std::vector<StreamMode> modes;
+    for (const ProbedNode& node : probed) {
+        if (node.path != color)
+            continue;
+        for (const V4l2Mode& m : node.modes) {
+            const FormatRole role = roleOf(m.fourcc);
+            if (role != FormatRole::Color && role != FormatRole::Guide)
+                continue;
+            for (const double fps : m.framesPerSecond)
+                modes.push_back({fourccToString(m.fourcc), m.width, m.height, fps});
+        }
+    }
+    return modes;
 }
 
 PresetNode presetNodeOf(const std::string& card, const std::vector<V4l2Control>& controls) {

@@ -55,6 +55,8 @@ public:
     Status set(const std::string& path, std::uint32_t id, std::int64_t value) override;
     // The modes of the first node that offers Z16 or Y16 depth.
     std::vector<StreamMode> depthModes() override;
+    // The image modes of the node that assignRoles() makes the camera's colour node, as the camera opens it.
+    std::vector<StreamMode> colorModes() override;
     // Through V4L2_EVENT_CTRL, subscribed on a node of its own for every control of each node.
     bool changed() override;
 

@@ -392,6 +392,39 @@ TEST(LiveSourceSpec, ADepthModeChosenReplacesTheSpecsModeAndFormatOnly) {
     EXPECT_FALSE(withDepthMode("v4l2:", mode).ok());
 }
 
+// The colour node's mode goes in colormode= and colorformat=, which replace the old ones wherever they
+// stood; the depth mode and every other option stay, and the spec parses back to the mode chosen.
+TEST(LiveSourceSpec, AColourModeChosenReplacesTheSpecsColourModeAndFormatOnly) {
+    const StreamMode mode{"MJPG", 1280, 720, 15};
+    EXPECT_EQ(*withColorMode("v4l2:/dev/video3:color=/dev/video5", mode),
+              "v4l2:/dev/video3:colormode=1280x720@15:colorformat=MJPG:color=/dev/video5");
+    EXPECT_EQ(
+        *withColorMode("usb:8086:0b07:VDC0001:848x480@30:colorformat=YUYV:scale=0.0001:"
+                       "colormode=640x480@30:watchdog=500",
+                       {"NV12", 424, 240, 6}),
+        "usb:8086:0b07:VDC0001:colormode=424x240@6:colorformat=NV12:848x480@30:scale=0.0001:watchdog=500");
+    const auto parsed = parseLiveSourceSpec(*withColorMode("usb:8086:0b07:848x480@30:format=Z16", mode));
+    ASSERT_TRUE(parsed) << parsed.error().message;
+    EXPECT_EQ(parsed->colorWidth, 1280);
+    EXPECT_EQ(parsed->colorHeight, 720);
+    EXPECT_EQ(parsed->colorFps, 15.0);
+    EXPECT_EQ(parsed->colorFourcc, v4l2::parseFourcc("MJPG"));
+    EXPECT_EQ(parsed->width, 848) << "the depth mode stays";
+    EXPECT_EQ(parsed->depthFourcc, V4L2_PIX_FMT_Z16);
+
+    const auto none = withColorMode("v4l2:/dev/video3:color=none", mode);
+    ASSERT_FALSE(none.ok()) << "a camera streaming no colour has no colour mode";
+    EXPECT_NE(none.error().message.find("color=none"), std::string::npos) << none.error().message;
+    const auto depthFormat = parseLiveSourceSpec("v4l2:/dev/video3:colorformat=Z16");
+    ASSERT_FALSE(depthFormat.ok());
+    EXPECT_NE(depthFormat.error().message.find("colorformat=Z16"), std::string::npos)
+        << depthFormat.error().message;
+    const auto badMode = parseLiveSourceSpec("v4l2:/dev/video3:colormode=640");
+    ASSERT_FALSE(badMode.ok());
+    EXPECT_NE(badMode.error().message.find("malformed colormode '640'"), std::string::npos)
+        << badMode.error().message;
+}
+
 TEST(LiveSourceSpec, TakesATwoSensorCalibration) {
     const std::string path = writeTemp("camchain.yaml", kRigCamchain);
     for (const std::string& spec :

@@ -422,6 +422,52 @@ TEST_F(UvcRigTest, AColourSizeChangeKeepsTheRigOnlyWhileItFits) {
         << refused.message;
 }
 
+// A colour mode asked for (the window's list) wins over the calibrated size while it fits the calibration;
+// one of another shape is refused naming the calibration's field, and one not offered names the node.
+TEST_F(UvcRigTest, AColourModeAskedForStreamsOnlyWhereItFitsTheCalibration) {
+    UvcConfig c = rigConfig(rigCalibration());
+    c.colorFourcc = V4L2_PIX_FMT_YUYV;
+    c.colorWidth = kW;
+    c.colorHeight = kH;
+    UvcDevice scaled(c, fake_);
+    ASSERT_TRUE(scaled.open());
+    EXPECT_EQ(scaled.colorFormat().width, kW) << "the mode asked for, not the calibrated 16x12";
+    EXPECT_EQ(scaled.colorFormat().height, kH);
+    scaled.close();
+
+    c.colorWidth = 12;
+    c.colorHeight = 4;
+    UvcDevice otherShape(c, fake_);
+    const Status refused = otherShape.open();
+    ASSERT_FALSE(refused);
+    EXPECT_NE(refused.error().message.find("cam1.resolution 16x12 does not fit the colour stream's 12x4"),
+              std::string::npos)
+        << refused.error().message;
+
+    c.colorWidth = 20;
+    c.colorHeight = 10;
+    UvcDevice notOffered(c, fake_);
+    const Status missing = notOffered.open();
+    ASSERT_FALSE(missing) << "not streamed without colour behind the person's back";
+    EXPECT_NE(missing.error().message.find(kColor), std::string::npos) << missing.error().message;
+    EXPECT_EQ(fake_.openFds(), 3) << "only the three devices' wake-up eventfds";
+}
+
+// What the window's Colour mode list offers: the colour node's image modes, none of the depth node's.
+TEST_F(UvcRigTest, TheColourNodesModesAreListedApartFromTheDepthNodes) {
+    fake_.addNode(kColor,
+                  {.modes = {{V4L2_PIX_FMT_YUYV, 16, 12, {30, 15}}, {V4L2_PIX_FMT_MJPEG, 32, 24, {30}}}});
+    const auto controls = UvcDevice(rigConfig(std::nullopt), fake_).sensorControls();
+    ASSERT_TRUE(controls);
+    EXPECT_EQ(
+        controls->colorModes(),
+        (std::vector<StreamMode>{{"YUYV", 16, 12, 30.0}, {"YUYV", 16, 12, 15.0}, {"MJPG", 32, 24, 30.0}}));
+    EXPECT_EQ(controls->depthModes(), (std::vector<StreamMode>{{"Z16", kW, kH, 30.0}, {"Z16", 4, 3, 30.0}}));
+    UvcConfig depthOnly = config();
+    depthOnly.color = false;
+    EXPECT_TRUE(UvcDevice(depthOnly, fake_).sensorControls()->colorModes().empty());
+}
+
 TEST_F(UvcRigTest, ColourWithoutATwoSensorCalibrationIsSaidToBeUnregistered) {
     frame::Calibration single = rigCalibration();
     single.rig.reset();
