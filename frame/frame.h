@@ -119,6 +119,9 @@ struct StreamTiming {
     TimestampSource source = TimestampSource::Unknown;
     // sensorNs is CLOCK_MONOTONIC of this machine: comparable with arrival and display times.
     bool monotonic = false;
+    // The exposure the frame was taken with, where the camera's metadata says it (V4L2_META_FMT_D4XX's
+    // depth control block); none where it does not.
+    std::optional<std::uint32_t> exposureUs;
 };
 
 // Per-frame metadata for the timing view: what the drivers said about the depth capture and, from a

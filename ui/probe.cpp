@@ -35,6 +35,7 @@ std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
     if (source.frame) {
         probe.frameSequence = source.frame->sequence;
         probe.driverSequence = source.frame->timing.depth.driverSequence;
+        probe.exposureUs = source.frame->timing.depth.exposureUs;
     }
     if (probe.depthMeters > 0.0f && source.intrinsics.valid())
         probe.point = processing::unproject(u, v, probe.depthMeters, source.intrinsics);
@@ -73,14 +74,22 @@ const char* confidenceName(frame::Confidence level) {
     return "low";
 }
 
+std::string frameReadout(const Probe& p) {
+    if (!p.frameSequence)
+        return {};
+    std::string text = "frame " + std::to_string(*p.frameSequence);
+    if (p.driverSequence)
+        text += ", seq " + std::to_string(*p.driverSequence);
+    if (p.exposureUs)
+        text += ", exposure " + std::to_string(*p.exposureUs) + " \u00b5s";
+    return text;
+}
+
 void showProbeTooltip(const Probe& p) {
     ImGui::BeginTooltip();
     ImGui::Text("pixel %d, %d", p.u, p.v);
-    if (p.frameSequence && p.driverSequence)
-        ImGui::Text("frame %llu (driver sequence %u)", static_cast<unsigned long long>(*p.frameSequence),
-                    *p.driverSequence);
-    else if (p.frameSequence)
-        ImGui::Text("frame %llu", static_cast<unsigned long long>(*p.frameSequence));
+    if (const std::string frame = frameReadout(p); !frame.empty())
+        ImGui::TextUnformatted(frame.c_str());
     ImGui::Text("depth %s", formatDepth(p.depthMeters).c_str());
     ImGui::Text("confidence %s", p.confidence ? confidenceName(*p.confidence) : "none (source has none)");
     if (p.depthMeters > 0.0f)

@@ -26,6 +26,7 @@ struct Probe {
     // source and, from a live camera, the driver's sequence number.
     std::optional<std::uint64_t> frameSequence;
     std::optional<std::uint32_t> driverSequence;
+    std::optional<std::uint32_t> exposureUs; // the depth frame's, where its metadata says it
 };
 
 // The depth the panels show, with the intrinsics that place it.
@@ -53,6 +54,10 @@ std::string formatDepth(float meters);
 const char* confidenceName(frame::Confidence level);
 
 inline constexpr const char* kNotSeenByColour = "not seen by the colour camera";
+
+// The readout's line naming the frame sampled: "frame 42, seq 1234, exposure 8500 µs", each part only where
+// known; empty without a frame.
+std::string frameReadout(const Probe& probe);
 
 // The readout as a tooltip next to the mouse.
 void showProbeTooltip(const Probe& probe);

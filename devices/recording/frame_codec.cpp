@@ -24,7 +24,7 @@ enum class Section : std::uint8_t {
     Color = 6,
     Rig = 7,      // format 1.1: a two-sensor camera's calibration
     Infrared = 8, // format 1.2: the depth sensor's infrared image
-    Timing = 9,   // format 1.3: what the drivers said about the capture (frame::FrameTiming)
+    Timing = 9,   // format 1.3: what the drivers said about the capture (frame::FrameTiming); 1.4: exposure
 };
 enum class Codec : std::uint8_t { Raw = 0, Zstd = 1 };
 // Layouts of a section's raw bytes.
@@ -39,6 +39,9 @@ constexpr std::size_t kMaxDescriptionLength = 4096;
 // The timing section's per-stream flags.
 constexpr std::uint8_t kTimingHasDriverSequence = 1;
 constexpr std::uint8_t kTimingMonotonic = 2;
+// Format 1.4: which streams' exposures follow the colour stream.
+constexpr std::uint8_t kTimingDepthExposure = 1;
+constexpr std::uint8_t kTimingColourExposure = 2;
 
 // Metres per unit that importers use: millimetres (Stray, PNG16) and TUM's 1/5000 m.
 constexpr double kKnownScales[] = {0.001, 0.0002};
@@ -296,7 +299,7 @@ std::vector<std::uint8_t> rigBytes(const frame::RigCalibration& rig) {
 // stay as small as before and read back with the defaults.
 bool hasTiming(const frame::FrameTiming& t) {
     return t.colour || t.depth.driverSequence || t.depth.sensorNs != 0 ||
-           t.depth.source != frame::TimestampSource::Unknown || t.depth.monotonic;
+           t.depth.source != frame::TimestampSource::Unknown || t.depth.monotonic || t.depth.exposureUs;
 }
 
 void putStreamTiming(ByteWriter& w, const frame::StreamTiming& t) {
@@ -314,6 +317,16 @@ std::vector<std::uint8_t> timingBytes(const frame::FrameTiming& timing) {
     w.put(static_cast<std::uint8_t>(timing.colour.has_value()));
     if (timing.colour)
         putStreamTiming(w, *timing.colour);
+    // Format 1.4's exposures, only where a stream has one: a 1.3 reader skips them, and a frame without
+    // any is stored as 1.3 stored it.
+    const std::optional<std::uint32_t> colour = timing.colour ? timing.colour->exposureUs : std::nullopt;
+    if (timing.depth.exposureUs || colour) {
+        w.put(static_cast<std::uint8_t>((timing.depth.exposureUs ? kTimingDepthExposure : 0) |
+                                        (colour ? kTimingColourExposure : 0)));
+        for (const std::optional<std::uint32_t>& exposure : {timing.depth.exposureUs, colour})
+            if (exposure)
+                w.put(*exposure);
+    }
     return bytes;
 }
 
@@ -484,12 +497,19 @@ frame::StreamTiming getStreamTiming(ByteReader& r) {
 
 } // namespace
 
-// Bytes after the colour stream are fields a newer minor version added: skipped, as in the meta section.
+// Bytes after the 1.4 exposures are fields a newer minor version added: skipped, as in the meta section.
 Status FrameDecoder::Impl::decodeTiming(ByteReader r, frame::Frame& frame) {
     frame::FrameTiming timing;
     timing.depth = getStreamTiming(r);
     if (r.get<std::uint8_t>() != 0)
         timing.colour = getStreamTiming(r);
+    if (r.ok() && r.remaining() > 0) {
+        const auto exposures = r.get<std::uint8_t>();
+        if (exposures & kTimingDepthExposure)
+            timing.depth.exposureUs = r.get<std::uint32_t>();
+        if ((exposures & kTimingColourExposure) && timing.colour)
+            timing.colour->exposureUs = r.get<std::uint32_t>();
+    }
     if (!r.ok())
         return error("frame timing ends early", r.offset());
     frame.timing = timing;

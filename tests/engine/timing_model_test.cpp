@@ -21,7 +21,11 @@ constexpr std::int64_t kMs = 1'000'000;
 frame::FrameTiming driverTiming(std::uint32_t sequence, std::int64_t sensorNs,
                                 frame::TimestampSource source = frame::TimestampSource::StartOfExposure) {
     frame::FrameTiming t;
-    t.depth = {sequence, sensorNs, source, true};
+    t.depth = {.driverSequence = sequence,
+               .sensorNs = sensorNs,
+               .source = source,
+               .monotonic = true,
+               .exposureUs = std::nullopt};
     return t;
 }
 
@@ -124,8 +128,11 @@ TEST(TimingModelTest, PairedColourHasItsOwnIntervalsAndItsSkewToDepth) {
     TimingModel model;
     for (std::uint32_t s = 0; s < 4; ++s) {
         frame::FrameTiming t = driverTiming(s, (100 + 50 * static_cast<std::int64_t>(s)) * kMs);
-        t.colour =
-            frame::StreamTiming{s + 7, t.depth.sensorNs + 3 * kMs, frame::TimestampSource::EndOfFrame, true};
+        t.colour = frame::StreamTiming{.driverSequence = s + 7,
+                                       .sensorNs = t.depth.sensorNs + 3 * kMs,
+                                       .source = frame::TimestampSource::EndOfFrame,
+                                       .monotonic = true,
+                                       .exposureUs = std::nullopt};
         model.add(delivered(s, t, 0));
     }
     const TimingSummary t = model.summary();

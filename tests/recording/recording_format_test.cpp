@@ -602,6 +602,31 @@ TEST(RecordingFormat, FrameTimingRoundTripsExactlyThroughAFile) {
     }
 }
 
+// Format 1.4: the exposure each stream's metadata gave comes back exactly, and a frame without one is stored
+// as 1.3 stored it, so a 1.3 reader finds nothing after the colour stream that it would not skip.
+TEST(RecordingFormat, ExposuresRoundTripAndAFrameWithoutOneIsStoredAs13StoredIt) {
+    frame::Frame f = *test::withTiming(test::syntheticFrames(1)).front();
+    ASSERT_TRUE(f.timing.colour);
+    const auto without = FrameEncoder().encode(f);
+    ASSERT_TRUE(without);
+    f.timing.depth.exposureUs = 8500;
+    const auto depthOnly = FrameEncoder().encode(f);
+    ASSERT_TRUE(depthOnly);
+    EXPECT_EQ(depthOnly->size(), without->size() + 5) << "a flags byte and the depth exposure";
+    auto decoded = FrameDecoder().decode(*depthOnly, 0, "mem", 0);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    test::expectSameTiming(decoded->timing, f.timing);
+    ASSERT_TRUE(decoded->timing.colour);
+    EXPECT_FALSE(decoded->timing.colour->exposureUs) << "none recorded for colour, none read back";
+
+    f.timing.colour->exposureUs = 16'000;
+    f.timing.depth.exposureUs.reset();
+    decoded = FrameDecoder().decode(*FrameEncoder().encode(f), 0, "mem", 0);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    test::expectSameTiming(decoded->timing, f.timing);
+    EXPECT_FALSE(decoded->timing.depth.exposureUs);
+}
+
 // Format 1.2 had no timing section; such a file (what the 1.2 writer made of these frames, byte for byte)
 // still opens, and its frames carry the defaults: nothing known.
 TEST(RecordingFormat, AFormat12FileWithoutTimingStillReads) {

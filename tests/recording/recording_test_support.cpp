@@ -55,12 +55,14 @@ std::vector<frame::FramePtr> withTiming(const std::vector<frame::FramePtr>& fram
         f->timing.depth = {.driverSequence = 0xffff'fffeu + n + (i > 2 ? 1u : 0u),
                            .sensorNs = f->timestampNs - 4'000'000,
                            .source = frame::TimestampSource::StartOfExposure,
-                           .monotonic = true};
+                           .monotonic = true,
+                           .exposureUs = std::nullopt};
         if (i % 2 == 0)
             f->timing.colour = frame::StreamTiming{.driverSequence = i == 0 ? std::nullopt : std::optional(n),
                                                    .sensorNs = f->timestampNs + 2'500'001,
                                                    .source = frame::TimestampSource::EndOfFrame,
-                                                   .monotonic = false};
+                                                   .monotonic = false,
+                                                   .exposureUs = std::nullopt};
         timed.push_back(std::move(f));
     }
     return timed;
@@ -72,6 +74,7 @@ void expectSameTiming(const frame::FrameTiming& a, const frame::FrameTiming& b) 
         EXPECT_EQ(x.sensorNs, y.sensorNs);
         EXPECT_EQ(x.source, y.source);
         EXPECT_EQ(x.monotonic, y.monotonic);
+        EXPECT_EQ(x.exposureUs, y.exposureUs);
     };
     same(a.depth, b.depth);
     ASSERT_EQ(a.colour.has_value(), b.colour.has_value());

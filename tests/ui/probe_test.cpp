@@ -41,6 +41,29 @@ TEST(Probe, TheReadoutNamesTheFramesSequenceAndTheDriversWhereKnown) {
     EXPECT_FALSE(probeAt(noFrame, 1, 1)->frameSequence);
 }
 
+// The line the tooltip shows: the driver's sequence and the exposure only where the frame carries them,
+// never a 0 standing in for an unknown.
+TEST(Probe, TheReadoutShowsTheSequenceAndExposureOnlyWhereTheFrameCarriesThem) {
+    auto f = std::make_shared<frame::Frame>();
+    f->sequence = 42;
+    f->sceneDepth = frame::DepthData{frame::Plane<float>(4, 2, 1.5f), {}};
+    const ProbeSource source{&*f->sceneDepth, {100.0, 100.0, 2.0, 1.0, 4, 2}, nullptr, f.get()};
+    EXPECT_EQ(frameReadout(*probeAt(source, 1, 1)), "frame 42") << "a frame without driver timing";
+
+    f->timing.depth.driverSequence = 1234u;
+    EXPECT_EQ(frameReadout(*probeAt(source, 1, 1)), "frame 42, seq 1234");
+
+    f->timing.depth.exposureUs = 8500u;
+    EXPECT_EQ(probeAt(source, 1, 1)->exposureUs, 8500u);
+    EXPECT_EQ(frameReadout(*probeAt(source, 1, 1)), "frame 42, seq 1234, exposure 8500 \u00b5s");
+
+    f->timing.depth.driverSequence.reset();
+    EXPECT_EQ(frameReadout(*probeAt(source, 1, 1)), "frame 42, exposure 8500 \u00b5s");
+
+    const ProbeSource noFrame{&*f->sceneDepth, {100.0, 100.0, 2.0, 1.0, 4, 2}, nullptr};
+    EXPECT_EQ(frameReadout(*probeAt(noFrame, 1, 1)), "") << "nothing names a frame it was not given";
+}
+
 // Points the GPU coloured come with no seen mask: the probe asks the frame's rig about the one sample.
 TEST(Probe, WithoutAMaskTheRigDecidesForTheProbedSample) {
     devices::SyntheticDevice device(dc::test::smallRigConfig());

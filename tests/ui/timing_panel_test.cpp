@@ -45,8 +45,11 @@ protected:
             return {devices::CaptureResult::Kind::Timeout, nullptr, {}};
         auto f = std::make_shared<frame::Frame>(*scene_.makeFrame(next_, static_cast<double>(next_) / 60.0));
         f->timestampNs = base::monotonicNowNs();
-        f->timing.depth = {driverSequence(next_), f->timestampNs, frame::TimestampSource::StartOfExposure,
-                           true};
+        f->timing.depth = {.driverSequence = driverSequence(next_),
+                           .sensorNs = f->timestampNs,
+                           .source = frame::TimestampSource::StartOfExposure,
+                           .monotonic = true,
+                           .exposureUs = std::nullopt};
         ++next_;
         return {devices::CaptureResult::Kind::Frame, std::move(f), {}};
     }
