@@ -27,6 +27,14 @@ fi
 [ -n "$KVER" ] || { echo "cannot determine kernel version (apt-get update?)"; exit 1; }
 t "kernel $KVER"
 
+# Debian released another kernel since the last run: drop everything fetched or built for the old one (its
+# debs would be extracted beside the new ones, its modules would not load into the new kernel).
+if [ "$(cat "$WORK/kver" 2>/dev/null)" != "$KVER" ]; then
+	[ -e "$WORK/kver" ] && t "kernel changed from $(cat "$WORK/kver"): fetching and building again"
+	rm -rf "$WORK"/debs/linux-*.deb "$WORK/root" "$WORK/v4l2loopback" "$WORK/dummy_hcd_iso" "$WORK/srcdeb"
+	echo "$KVER" >"$WORK/kver"
+fi
+
 # 1. download + extract (kernel image, headers, kbuild, v4l2loopback-dkms source)
 cd "$WORK/debs"
 KBUILD=$(apt-cache depends linux-headers-$KVER | sed -n 's/.*Depends: \(linux-kbuild-[0-9.]*\)$/\1/p' | head -1)
