@@ -11,7 +11,8 @@ namespace dc::devices {
 
 // The grammar of --source, shown in errors and --help.
 inline constexpr const char* kSourceSpecHelp =
-    "synthetic[:WxH[@FPS]][:motion][:exact][:rig=rgbd][:plane=DIST_M,TILT_DEG[,NOISE_MM]][:view=X,Y,Z,QX,QY,QZ,QW] | "
+    "synthetic[:WxH[@FPS]][:motion][:exact][:rig=rgbd][:plane=DIST_M,TILT_DEG[,NOISE_MM]]"
+    "[:view=X,Y,Z,QX,QY,QZ,QW] | "
     "replay:PATH[:loop][:paused][:speed=X][:calib=FILE] | "
     "v4l2:/dev/videoN[:OPTS] | usb:VID:PID[:SERIAL][:OPTS] | "
     "ros:DEPTH_TOPIC[:color=TOPIC|none][:info=TOPIC][:master=http://HOST:PORT][:tolerance=MS][:watchdog=MS]"
