@@ -30,6 +30,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <mutex>
@@ -62,9 +63,10 @@ CaptureResult nextCapture(Device& device) {
     return r;
 }
 
-// Checks a depth map against the feeder's pattern: every pixel must be exactly raw * scale of the raw
-// value the feeder sent for that frame. Returns the frame number, or what differs.
-Expected<long> patternFrame(const frame::Plane<float>& meters, float scale) {
+// Checks a depth map against the feeder's pattern under a brightness offset (test_pattern.h dc_lit_pattern):
+// every pixel must be exactly raw * scale of the raw value the feeder sent for that frame. Returns the
+// frame number, or what differs.
+Expected<long> patternFrame(const frame::Plane<float>& meters, float scale, int brightnessOffset = 0) {
     const auto raw = [&](int x, int y) { return std::lround(meters.at(x, y) / scale); };
     if (meters.width != kWidth || meters.height != kHeight)
         return Error{"size " + std::to_string(meters.width) + "x" + std::to_string(meters.height)};
@@ -72,7 +74,7 @@ Expected<long> patternFrame(const frame::Plane<float>& meters, float scale) {
     for (int y = 0; y < kHeight; ++y)
         for (int x = 0; x < kWidth; ++x) {
             const std::uint16_t expected =
-                dc_pattern(static_cast<unsigned>(x), static_cast<unsigned>(y), frame);
+                dc_lit_pattern(static_cast<unsigned>(x), static_cast<unsigned>(y), frame, brightnessOffset);
             if (meters.at(x, y) != static_cast<float>(expected) * scale)
                 return Error{"pixel (" + std::to_string(x) + "," + std::to_string(y) + ") of frame " +
                              std::to_string(frame) + " is " + std::to_string(meters.at(x, y)) +
@@ -545,6 +547,182 @@ TEST(Uvc, FramesTheFeederSkipsAreTheTimingModelsCameraLossesExactly) {
     EXPECT_EQ(t.depth.source, frame::TimestampSource::StartOfExposure);
     EXPECT_TRUE(t.depth.monotonic);
     EXPECT_GT(t.depth.intervals.count, 0u);
+}
+
+// ---- the gadget's controls through uvcvideo ------------------------------------------------------
+
+// The feeder's controls (uvcfeeder.c): brightness -64..64, default 0, whose offset from the default is added
+// to the depth pattern; the auto-exposure mode offers manual and aperture priority (its default).
+constexpr std::int64_t kBrightnessMin = -64;
+constexpr std::int64_t kBrightnessMax = 64;
+constexpr std::int64_t kBrightnessDefault = 0;
+constexpr std::int64_t kAutoExposureDefault = V4L2_EXPOSURE_APERTURE_PRIORITY;
+
+// A control's value as the driver reports it now.
+std::optional<std::int64_t> controlValue(const std::string& path, std::uint32_t id) {
+    v4l2::V4l2Node node;
+    if (node.open(path) != 0)
+        return std::nullopt;
+    const auto controls = v4l2::queryControls(v4l2::systemSyscalls(), node.fd(), path);
+    if (!controls)
+        return std::nullopt;
+    for (const v4l2::V4l2Control& c : *controls)
+        if (c.id == id)
+            return c.value;
+    return std::nullopt;
+}
+
+// Which of the brightness offsets a depth frame's pixels are the pattern under.
+std::optional<int> shownOffset(const frame::Frame& f, std::initializer_list<int> offsets) {
+    for (const int offset : offsets)
+        if (patternFrame(f.sceneDepth->depthMeters, kD435Scale, offset))
+            return offset;
+    return std::nullopt;
+}
+
+// Captures until `count` frames show brightness offset `to`. Frames the feeder made before the change
+// reached it show `from`: up to uvcvideo's 4 buffers and the gadget's few, 4 seen under a CPU hog. None
+// after the first that shows `to` goes back.
+void expectFramesTurnTo(Device& device, int from, int to, int count) {
+    int shown = 0, before = 0;
+    while (shown < count) {
+        const CaptureResult r = nextCapture(device);
+        ASSERT_TRUE(r.kind == CaptureResult::Kind::Frame || r.kind == CaptureResult::Kind::Error)
+            << "no frame (" << static_cast<int>(r.kind) << "): " << r.message;
+        if (r.kind != CaptureResult::Kind::Frame)
+            continue;
+        const std::optional<int> offset = shownOffset(*r.frame, {from, to});
+        ASSERT_TRUE(offset) << "frame " << feederNumber(*r.frame) << " is the pattern under neither offset "
+                            << from << " nor " << to;
+        if (*offset == to) {
+            ++shown;
+            continue;
+        }
+        ASSERT_EQ(shown, 0) << "frame " << feederNumber(*r.frame) << " went back to offset " << from;
+        ASSERT_LT(++before, 12) << "offset " << to << " never reached the pixels";
+    }
+    std::printf("brightness offset %d on %d frames, %d in flight before it\n", to, shown, before);
+}
+
+SensorControl findControl(const SensorControlNode& node, std::uint32_t id) {
+    const auto it = std::find_if(node.controls.begin(), node.controls.end(),
+                                 [id](const SensorControl& c) { return c.id == id; });
+    return it == node.controls.end() ? SensorControl{} : *it;
+}
+
+// The window's Camera controls read the feeder's ranges through uvcvideo, and a brightness set there goes
+// to the feeder as SET_CUR and changes the pixels of the frames that arrive after it.
+TEST(Uvc, BrightnessSetThroughUvcvideoChangesTheDepthPixels) {
+    auto device = openLiveSourceSpec("usb:8086:0b07:color=none");
+    ASSERT_TRUE(device) << device.error().message;
+    auto& uvc = dynamic_cast<UvcDevice&>(**device);
+    ASSERT_TRUE(uvc.open());
+    ASSERT_TRUE(uvc.start());
+    const std::string depth = uvc.depthNodePath();
+    const std::shared_ptr<SensorControls> controls = uvc.sensorControls();
+    ASSERT_TRUE(controls);
+    const auto nodes = controls->read();
+    ASSERT_TRUE(nodes) << nodes.error().message;
+    const auto node =
+        std::find_if(nodes->begin(), nodes->end(), [&](const auto& n) { return n.path == depth; });
+    ASSERT_NE(node, nodes->end());
+    const SensorControl brightness = findControl(*node, V4L2_CID_BRIGHTNESS);
+    EXPECT_EQ(brightness.kind, SensorControl::Kind::Integer);
+    EXPECT_EQ(brightness.minimum, kBrightnessMin);
+    EXPECT_EQ(brightness.maximum, kBrightnessMax);
+    EXPECT_EQ(brightness.defaultValue, kBrightnessDefault);
+    EXPECT_EQ(brightness.value, kBrightnessDefault);
+    const SensorControl exposure = findControl(*node, V4L2_CID_EXPOSURE_AUTO);
+    EXPECT_EQ(exposure.kind, SensorControl::Kind::Menu);
+    EXPECT_EQ(exposure.defaultValue, kAutoExposureDefault);
+    const std::vector<std::pair<std::int64_t, std::string>> modes{
+        {V4L2_EXPOSURE_MANUAL, "Manual Mode"}, {kAutoExposureDefault, "Aperture Priority Mode"}};
+    EXPECT_EQ(exposure.menu, modes) << "the modes the feeder's GET_RES offers";
+
+    ASSERT_NO_FATAL_FAILURE(expectFramesTurnTo(uvc, 0, 0, 2)) << "the plain pattern at the default";
+    int from = 0;
+    for (const int to : {23, -41, 0}) {
+        ASSERT_TRUE(controls->set(depth, V4L2_CID_BRIGHTNESS, to));
+        EXPECT_EQ(controlValue(depth, V4L2_CID_BRIGHTNESS), to);
+        ASSERT_NO_FATAL_FAILURE(expectFramesTurnTo(uvc, from, to, 3));
+        from = to;
+    }
+    uvc.close();
+}
+
+// The camera's control values as `depthcloud controls --save` writes them.
+void savePreset(const std::vector<std::string>& paths, const std::string& file) {
+    v4l2::ControlPreset preset{"usb:8086:0b07", {}};
+    for (const std::string& path : paths) {
+        v4l2::V4l2Node node;
+        ASSERT_EQ(node.open(path), 0) << path;
+        const auto controls = v4l2::queryControls(v4l2::systemSyscalls(), node.fd(), path);
+        ASSERT_TRUE(controls) << controls.error().message;
+        preset.nodes.push_back(v4l2::presetNodeOf(node.capability().card, *controls));
+    }
+    ASSERT_TRUE(base::writeTextFile(file, v4l2::presetJson(preset)));
+}
+
+std::optional<LiveDeviceInfo> listedCamera() {
+    LiveDeviceListing listing = listLiveDevices();
+    for (LiveDeviceInfo& d : listing.devices)
+        if (d.usb && d.usb->id() == "8086:0b07")
+            return std::move(d);
+    return std::nullopt;
+}
+
+// Unbinds the gadget from its UDC and binds it again; returns the camera once its depth and colour nodes are
+// listed again.
+std::optional<LiveDeviceInfo> replugCamera() {
+    if (!writeSysfs(env("UDC_FILE"), "") || !waitFor([] { return !listedCamera(); }, 20s) ||
+        !writeSysfs(env("UDC_FILE"), env("UDC_NAME")))
+        return std::nullopt;
+    std::optional<LiveDeviceInfo> camera;
+    waitFor(
+        [&] {
+            camera = listedCamera();
+            return camera && !camera->depthNode.empty() && !camera->colorNode.empty();
+        },
+        30s);
+    return camera;
+}
+
+// A preset saved, the camera unplugged (a replugged camera is at its defaults again) and plugged in, the
+// preset given as preset= sets the same values when the source opens, before the first frame.
+TEST(Uvc, APresetSavedIsAppliedWhenTheCameraOpensAfterAReplug) {
+    ASSERT_FALSE(env("UDC_FILE").empty());
+    const std::string spec = "usb:8086:0b07:color=none";
+    auto config = parseLiveSourceSpec(spec);
+    ASSERT_TRUE(config) << config.error().message;
+    const auto paths = cameraNodePaths(*config);
+    ASSERT_TRUE(paths) << paths.error().message;
+    const auto before = listedCamera();
+    ASSERT_TRUE(before);
+    v4l2::V4l2SensorControls controls(v4l2::systemSyscalls(), *paths);
+    ASSERT_TRUE(controls.set(before->depthNode, V4L2_CID_BRIGHTNESS, 37));
+    ASSERT_TRUE(controls.set(before->depthNode, V4L2_CID_EXPOSURE_AUTO, V4L2_EXPOSURE_MANUAL));
+    const std::string path = std::filesystem::temp_directory_path() / "uvc-preset.json";
+    ASSERT_NO_FATAL_FAILURE(savePreset(*paths, path));
+
+    const auto after = replugCamera();
+    ASSERT_TRUE(after) << "the camera came back";
+    EXPECT_EQ(controlValue(after->depthNode, V4L2_CID_BRIGHTNESS), kBrightnessDefault) << "at its defaults";
+    EXPECT_EQ(controlValue(after->depthNode, V4L2_CID_EXPOSURE_AUTO), kAutoExposureDefault);
+    auto device = openLiveSourceSpec(spec + ":preset=" + path);
+    ASSERT_TRUE(device) << device.error().message;
+    auto& uvc = dynamic_cast<UvcDevice&>(**device);
+    ASSERT_TRUE(uvc.open());
+    EXPECT_EQ(controlValue(uvc.depthNodePath(), V4L2_CID_BRIGHTNESS), 37);
+    EXPECT_EQ(controlValue(uvc.depthNodePath(), V4L2_CID_EXPOSURE_AUTO), V4L2_EXPOSURE_MANUAL);
+    ASSERT_TRUE(uvc.start());
+    ASSERT_NO_FATAL_FAILURE(expectFramesTurnTo(uvc, 37, 37, 3))
+        << "every frame under the preset's brightness";
+    // The checks after this one start from the camera's defaults.
+    const std::shared_ptr<SensorControls> reopened = uvc.sensorControls();
+    ASSERT_TRUE(reopened);
+    EXPECT_TRUE(reopened->set(uvc.depthNodePath(), V4L2_CID_BRIGHTNESS, kBrightnessDefault));
+    EXPECT_TRUE(reopened->set(uvc.depthNodePath(), V4L2_CID_EXPOSURE_AUTO, kAutoExposureDefault));
+    uvc.close();
 }
 
 // ---- v4l2loopback Z16 and vivid Y16 --------------------------------------------------------------

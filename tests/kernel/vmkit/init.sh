@@ -265,6 +265,73 @@ check_controls_preset() {
 	then result controls-preset PASS; else result controls-preset FAIL; fi
 }
 
+# The lines `depthcloud controls` prints for the controls of a `v4l2-ctl --list-ctrls-menus` listing ($1), one
+# extended regular expression each: "  key type min..max step S default D: V [flags]" and a menu's entries.
+# v4l2-ctl prints no step for a menu.
+ours_from_v4l2ctl() {
+	awk 'function f(name,  i) { for (i = 4; i <= NF; i++) if (index($i, name "=") == 1) return substr($i, length(name) + 2) }
+	/ 0x[0-9a-f]+ \(/ { type = $3; gsub(/[()]/, "", type); step = f("step"); if (step == "") step = "[0-9]+"
+		printf "^ +%s +%s +%s\\.\\.%s step %s default %s: %s( .*)?$\n", $1, type, f("min"), f("max"), step, f("default"), f("value") }
+	/^[ \t]+[0-9]+: / { sub(/^[ \t]+/, ""); printf "^ +%s$\n", $0 }' "$1"
+}
+
+# `depthcloud controls` on the USB camera lists its depth node's controls as v4l2-ctl does: the feeder's
+# brightness (-64..64, default 0) and the auto-exposure mode as a menu of the modes the feeder offers.
+check_uvc_controls_listed() {
+	node=$1
+	in_host v4l2-ctl -d $node --list-ctrls-menus > /tmp/uvc-ctrls.txt 2>&1
+	sed 's/^/  uvc controls: v4l2-ctl: /' /tmp/uvc-ctrls.txt
+	in_host $DEPTHCLOUD controls --source usb:$VID:$PID > /tmp/uvc-controls.txt 2>&1; rc=$?
+	sed 's/^/  uvc controls: /' /tmp/uvc-controls.txt
+	# the depth node's part of our listing: from its line to the next node's
+	awk -v node=$node '$1 == node { on = 1; next } /^\// { on = 0 } on' /tmp/uvc-controls.txt > /tmp/uvc-ours.txt
+	ours_from_v4l2ctl /tmp/uvc-ctrls.txt > /tmp/uvc-expected.txt
+	missing=0
+	while read -r line; do
+		grep -Eq -- "$line" /tmp/uvc-ours.txt || { echo "  uvc controls: none of ours is $line"; missing=$((missing+1)); }
+	done < /tmp/uvc-expected.txt
+	theirs=$(grep -c ' 0x[0-9a-f]* (' /tmp/uvc-ctrls.txt) mine=$(grep -Ec '^    [a-z0-9_]+ ' /tmp/uvc-ours.txt)
+	echo "  uvc controls: exit status $rc; v4l2-ctl lists $theirs controls, we list $mine, $missing unlike"
+	if [ $rc = 0 ] && [ $missing = 0 ] && [ "$theirs" = "$mine" ] &&
+		grep -Eq "brightness 0x00980900 \(int\) +: min=-64 max=64 step=1 default=0 " /tmp/uvc-ctrls.txt &&
+		grep -Eq "auto_exposure 0x009a0901 \(menu\) +: min=0 max=3 default=3 " /tmp/uvc-ctrls.txt &&
+		grep -Eq "^[[:space:]]+1: Manual Mode$" /tmp/uvc-ctrls.txt &&
+		grep -Eq "^[[:space:]]+3: Aperture Priority Mode$" /tmp/uvc-ctrls.txt &&
+		! grep -Eq "^[[:space:]]+0: Auto Mode$" /tmp/uvc-ctrls.txt
+	then result uvc-controls-listed PASS; else result uvc-controls-listed FAIL; fi
+}
+
+# The last value the depth feeder took for a control ("brightness", "auto-exposure mode"), from its log.
+feeder_value() { sed -n "s/^feeder: SET_CUR $1 = \(-*[0-9]*\)$/\1/p" /tmp/feeder.log | tail -1; }
+
+# --set, from the defaults the guest test left, goes through uvcvideo to the depth feeder (its log says what
+# it took; the colour feeder's brightness is another sensor's and stays) and v4l2-ctl reads it back; a value
+# out of range is refused naming the control (exit 2) and reaches nobody.
+check_uvc_controls_set() {
+	node=$1
+	in_host $DEPTHCLOUD controls --source usb:$VID:$PID --set brightness=-23 --set auto_exposure=1 \
+		> /tmp/uvc-set.txt 2>&1; rc=$?
+	b=$(in_host v4l2-ctl -d $node -C brightness) a=$(in_host v4l2-ctl -d $node -C auto_exposure)
+	fb=$(feeder_value brightness) fa=$(feeder_value "auto-exposure mode")
+	echo "  uvc controls: --set exit status $rc; v4l2-ctl reads $b, $a; the feeder took brightness $fb, mode $fa"
+	if [ $rc = 0 ] && [ "$b" = "brightness: -23" ] && [ "$a" = "auto_exposure: 1 (Manual Mode)" ] && [ "$fb" = -23 ] &&
+		[ "$fa" = 1 ] && ! grep -q "SET_CUR brightness = -23" /tmp/colour-feeder.log
+	then result uvc-controls-set PASS; else result uvc-controls-set FAIL; fi
+	in_host $DEPTHCLOUD controls --source usb:$VID:$PID --set brightness=65 > /tmp/uvc-bad.txt 2>&1; bad=$?
+	sed 's/^/  uvc controls: /' /tmp/uvc-bad.txt
+	b=$(in_host v4l2-ctl -d $node -C brightness) fb=$(feeder_value brightness)
+	echo "  uvc controls: exit status $bad; v4l2-ctl reads $b; the feeder's brightness $fb"
+	if [ $bad = 2 ] && grep -q "'brightness' takes -64..64, not 65" /tmp/uvc-bad.txt &&
+		[ "$b" = "brightness: -23" ] && [ "$fb" = -23 ]
+	then result uvc-controls-out-of-range PASS; else result uvc-controls-out-of-range FAIL; fi
+}
+
+check_uvc_controls() {
+	node=$(find_node uvcvideo 0 00) || { result uvc-controls-listed FAIL; return; }
+	check_uvc_controls_listed $node
+	check_uvc_controls_set $node
+}
+
 # Everything is set up first and our programs start once each: under TCG, loading their libraries over
 # 9p is what takes longest.
 ENV="" FILTER=""
@@ -282,6 +349,7 @@ case $FILTER in *Loopback*Vivid*) FILTER="$FILTER:Virtual.*" ;; esac # both virt
 [ -n "$FILTER" ] && in_host /usr/bin/env $ENV $GUEST_TEST --gtest_filter="${FILTER#:}" --gtest_color=no
 [ $UVC = 1 ] && check_headless
 [ $UVC = 1 ] && check_headless_rig
+[ $UVC = 1 ] && check_uvc_controls
 [ $VIVID = 1 ] && check_controls
 [ $UVC = 1 ] && tail -5 /tmp/feeder.log /tmp/colour-feeder.log
 finish

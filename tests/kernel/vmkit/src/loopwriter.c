@@ -48,7 +48,7 @@ int main(int argc, char **argv)
 	size_t sz = f.fmt.pix.sizeimage;
 	uint16_t *buf = calloc(1, sz);
 	for (unsigned s = 0; s < n; s++) {
-		dc_fill_pattern(buf, f.fmt.pix.width, f.fmt.pix.height, f.fmt.pix.bytesperline / 2, s);
+		dc_fill_pattern(buf, f.fmt.pix.width, f.fmt.pix.height, f.fmt.pix.bytesperline / 2, s, 0);
 		ssize_t r = write(fd, buf, sz);
 		if (r != (ssize_t)sz) { fprintf(stderr, "write %zd: %s\n", r, strerror(errno)); return 1; }
 		usleep(1000000 / fps);

@@ -16,11 +16,21 @@ static inline uint16_t dc_pattern(unsigned x, unsigned y, unsigned frame)
 	return (uint16_t)(x * 3u + y * 5u + frame * 7u);
 }
 
-static inline void dc_fill_pattern(uint16_t *px, unsigned w, unsigned h, unsigned stride_px, unsigned frame)
+/* The depth pattern as the UVC feeder sends it under a brightness (its processing unit's control): the
+ * brightness minus its default is added to every pixel but the frame number's two, modulo 2^16, so one frame
+ * tells which brightness was in effect when it was made. */
+static inline uint16_t dc_lit_pattern(unsigned x, unsigned y, unsigned frame, int brightness_offset)
+{
+	const uint16_t raw = dc_pattern(x, y, frame);
+	return y == 0 && x < 2 ? raw : (uint16_t)(raw + (unsigned)brightness_offset);
+}
+
+static inline void dc_fill_pattern(uint16_t *px, unsigned w, unsigned h, unsigned stride_px, unsigned frame,
+				   int brightness_offset)
 {
 	for (unsigned y = 0; y < h; y++)
 		for (unsigned x = 0; x < w; x++)
-			px[y * stride_px + x] = dc_pattern(x, y, frame);
+			px[y * stride_px + x] = dc_lit_pattern(x, y, frame, brightness_offset);
 }
 
 /* The colour pattern: packed YUYV whose bytes spell each pixel's own coordinates, so a reader of any one

@@ -15,8 +15,8 @@
  *   multiple of N goes out short, half its bytes: uvcvideo drops a frame shorter than the committed size
  *   as corrupt, yet its sequence counter counts it, so the host's v4l2 sequence has a gap exactly there
  *   (frames a camera lost on the way, as the host sees them).
- * It answers the UVC class requests that the host (uvcvideo) sends
- * (VS PROBE/COMMIT; everything else is stalled), and once the host starts
+ * It answers the UVC class requests that the host (uvcvideo) sends: VS PROBE/COMMIT, and the VideoControl
+ * requests of the controls 6.1's f_uvc declares (see vc_controls); once the host starts
  * streaming (UVC_EVENT_STREAMON) it queues frames.  On the original kernel 6.1
  * gadget the V4L2 side only accepts YUYV/MJPEG, so it falls back to YUYV (also
  * 16 bpp: the same bytes); the host sees the guidFormat configfs advertised (Z16).
@@ -61,6 +61,40 @@ static double next_due;
 static struct uvc_streaming_control probe, commit;
 static int pending_cs; /* control selector of a pending SET_CUR */
 
+/* The VideoControl side. 6.1's f_uvc declares fixed units (f_uvc.c uvc_alloc_inst; their bmControls are
+ * read-only in configfs): camera terminal 1 with the auto-exposure mode, processing unit 2 with brightness,
+ * output terminal 3 with none. Gain and exposure time cannot be declared there, so they are not here. */
+enum { CAMERA_TERMINAL = 1, PROCESSING_UNIT = 2, OUTPUT_TERMINAL = 3 };
+
+/* UVC 1.5 table 4-7: what VC_REQUEST_ERROR_CODE_CONTROL reports of the request before it */
+enum {
+	VC_ERROR_NONE = 0x00,
+	VC_ERROR_OUT_OF_RANGE = 0x04,
+	VC_ERROR_INVALID_UNIT = 0x05,
+	VC_ERROR_INVALID_CONTROL = 0x06,
+	VC_ERROR_INVALID_REQUEST = 0x07,
+	VC_ERROR_INVALID_VALUE = 0x08,
+};
+
+struct vc_control {
+	const char *name;
+	uint8_t unit, selector, size;
+	uint8_t bitmap; /* a set of modes (GET_RES names those offered; no GET_MIN/MAX), else a signed integer */
+	int32_t min, max, res, def, cur;
+};
+
+/* Brightness: -64..64 as many webcams have it, default 0; its offset from the default shows in the depth
+ * pattern (test_pattern.h dc_lit_pattern), not in the colour one, whose bytes spell coordinates. */
+static struct vc_control brightness = {"brightness", PROCESSING_UNIT, UVC_PU_BRIGHTNESS_CONTROL, 2, 0,
+				       -64, 64, 1, 0, 0};
+/* Auto-exposure mode: manual (1) and aperture priority (8, the default), as most webcams offer; with no
+ * exposure time declared it changes nothing in the pattern. */
+static struct vc_control ae_mode = {"auto-exposure mode", CAMERA_TERMINAL, UVC_CT_AE_MODE_CONTROL, 1, 1,
+				    0, 0, 0x09, 8, 8};
+static struct vc_control *const vc_controls[] = {&brightness, &ae_mode};
+static struct vc_control *pending_vc; /* the control of a pending VC SET_CUR, NULL for a VS one */
+static uint8_t vc_error;              /* the last VC request's error code */
+
 static void fill_ctrl(struct uvc_streaming_control *c)
 {
 	memset(c, 0, sizeof *c);
@@ -81,7 +115,7 @@ static void fill_frame(void *p, size_t len)
 	if (colour)
 		dc_fill_colour_pattern(p, W, H);
 	else
-		dc_fill_pattern(p, W, H, W, seq);
+		dc_fill_pattern(p, W, H, W, seq, brightness.cur - brightness.def);
 	seq++;
 }
 
@@ -196,25 +230,96 @@ static int stream_on(void)
 	return 0;
 }
 
-static void handle_setup(const struct usb_ctrlrequest *ctrl, struct uvc_request_data *resp)
+/* A camera powers up with its controls at their defaults: a replugged gadget starts from them too. */
+static void reset_controls(void)
+{
+	for (unsigned i = 0; i < sizeof vc_controls / sizeof vc_controls[0]; i++)
+		vc_controls[i]->cur = vc_controls[i]->def;
+	vc_error = VC_ERROR_NONE;
+}
+
+static struct vc_control *find_control(unsigned unit, unsigned selector)
+{
+	for (unsigned i = 0; i < sizeof vc_controls / sizeof vc_controls[0]; i++)
+		if (vc_controls[i]->unit == unit && vc_controls[i]->selector == selector)
+			return vc_controls[i];
+	return NULL;
+}
+
+/* Puts a value little-endian into the reply, as many bytes as the control has or the host asked for. */
+static void reply_value(struct uvc_request_data *resp, int32_t value, unsigned size, unsigned asked)
+{
+	for (unsigned i = 0; i < size; i++)
+		resp->data[i] = (uint8_t)((uint32_t)value >> (8 * i));
+	resp->length = (int)(asked < size ? asked : size);
+}
+
+/* Answers one request to a declared control and returns its error code: any but VC_ERROR_NONE leaves the
+ * reply a stall. */
+static uint8_t answer_control(struct vc_control *c, const struct usb_ctrlrequest *ctrl,
+			      struct uvc_request_data *resp)
+{
+	switch (ctrl->bRequest) {
+	case UVC_SET_CUR:
+		if (ctrl->wLength != c->size)
+			return VC_ERROR_INVALID_REQUEST;
+		pending_vc = c;
+		resp->length = c->size; /* the value arrives as UVC_EVENT_DATA */
+		return VC_ERROR_NONE;
+	case UVC_GET_CUR: reply_value(resp, c->cur, c->size, ctrl->wLength); return VC_ERROR_NONE;
+	case UVC_GET_RES: reply_value(resp, c->res, c->size, ctrl->wLength); return VC_ERROR_NONE;
+	case UVC_GET_DEF: reply_value(resp, c->def, c->size, ctrl->wLength); return VC_ERROR_NONE;
+	case UVC_GET_INFO:
+		reply_value(resp, UVC_CONTROL_CAP_GET | UVC_CONTROL_CAP_SET, 1, ctrl->wLength);
+		return VC_ERROR_NONE;
+	case UVC_GET_LEN: reply_value(resp, c->size, 2, ctrl->wLength); return VC_ERROR_NONE;
+	case UVC_GET_MIN:
+	case UVC_GET_MAX:
+		if (c->bitmap)
+			return VC_ERROR_INVALID_REQUEST;
+		reply_value(resp, ctrl->bRequest == UVC_GET_MIN ? c->min : c->max, c->size, ctrl->wLength);
+		return VC_ERROR_NONE;
+	}
+	return VC_ERROR_INVALID_REQUEST;
+}
+
+/* A VideoControl request: wIndex's high byte names the unit, 0 the interface itself, whose one control is
+ * the error code of the request before (read-only; reading it leaves it as it is). Whatever is not
+ * answered stalls, and the error code says why, as UVC 1.5 section 4.2.1.2 asks. */
+static void handle_vc(const struct usb_ctrlrequest *ctrl, struct uvc_request_data *resp)
+{
+	const unsigned unit = ctrl->wIndex >> 8, cs = ctrl->wValue >> 8;
+	if (unit == 0 && cs == UVC_VC_REQUEST_ERROR_CODE_CONTROL) {
+		if (ctrl->bRequest == UVC_GET_CUR)
+			reply_value(resp, vc_error, 1, ctrl->wLength);
+		else if (ctrl->bRequest == UVC_GET_INFO)
+			reply_value(resp, UVC_CONTROL_CAP_GET, 1, ctrl->wLength);
+		else
+			vc_error = VC_ERROR_INVALID_REQUEST;
+		return;
+	}
+	struct vc_control *c = find_control(unit, cs);
+	if (c)
+		vc_error = answer_control(c, ctrl, resp);
+	else if (unit == CAMERA_TERMINAL || unit == PROCESSING_UNIT || unit == OUTPUT_TERMINAL)
+		vc_error = VC_ERROR_INVALID_CONTROL;
+	else
+		vc_error = VC_ERROR_INVALID_UNIT;
+}
+
+/* A VideoStreaming request: probe and commit of the one format and frame. */
+static void handle_vs(const struct usb_ctrlrequest *ctrl, struct uvc_request_data *resp)
 {
 	unsigned cs = ctrl->wValue >> 8;
 	unsigned len = ctrl->wLength;
-	resp->length = -EL2HLT; /* default: stall */
-	if (verbose)
-		printf("feeder: setup bRequestType=%02x bRequest=%02x wValue=%04x wIndex=%04x wLength=%u\n",
-		       ctrl->bRequestType, ctrl->bRequest, ctrl->wValue, ctrl->wIndex, ctrl->wLength);
-	if ((ctrl->bRequestType & USB_TYPE_MASK) != USB_TYPE_CLASS)
+	if (cs != UVC_VS_PROBE_CONTROL && cs != UVC_VS_COMMIT_CONTROL)
 		return;
-	/* each function has a VideoControl interface and then its VideoStreaming one (-s) */
-	unsigned intf = ctrl->wIndex & 0xff;
-	if (intf != vs_intf || (cs != UVC_VS_PROBE_CONTROL && cs != UVC_VS_COMMIT_CONTROL))
-		return; /* stall every VC request: no controls implemented */
 	struct uvc_streaming_control *c = cs == UVC_VS_PROBE_CONTROL ? &probe : &commit;
 	unsigned sz = sizeof *c;
 	switch (ctrl->bRequest) {
 	case UVC_SET_CUR:
 		pending_cs = cs;
+		pending_vc = NULL;
 		resp->length = len < sz ? len : sz; /* data arrives as UVC_EVENT_DATA */
 		break;
 	case UVC_GET_CUR:
@@ -246,8 +351,49 @@ static void handle_setup(const struct usb_ctrlrequest *ctrl, struct uvc_request_
 	}
 }
 
+static void handle_setup(const struct usb_ctrlrequest *ctrl, struct uvc_request_data *resp)
+{
+	resp->length = -EL2HLT; /* default: stall */
+	if (verbose)
+		printf("feeder: setup bRequestType=%02x bRequest=%02x wValue=%04x wIndex=%04x wLength=%u\n",
+		       ctrl->bRequestType, ctrl->bRequest, ctrl->wValue, ctrl->wIndex, ctrl->wLength);
+	if ((ctrl->bRequestType & USB_TYPE_MASK) != USB_TYPE_CLASS)
+		return;
+	/* each function has a VideoControl interface and then its VideoStreaming one (-s) */
+	unsigned intf = ctrl->wIndex & 0xff;
+	if (intf == vs_intf)
+		handle_vs(ctrl, resp);
+	else if (intf + 1 == vs_intf)
+		handle_vc(ctrl, resp);
+}
+
+/* The value of a VC SET_CUR. f_uvc on 6.1 has acknowledged its data stage before telling us, so a value
+ * out of range cannot stall any more (uvcvideo clamps integers and checks menus before sending): it is left
+ * unset, and the error code says why. */
+static void set_control(struct vc_control *c, const struct uvc_request_data *d)
+{
+	if (d->length < c->size) {
+		vc_error = VC_ERROR_INVALID_REQUEST;
+		return;
+	}
+	const int32_t v = c->size == 1 ? d->data[0] : (int16_t)(d->data[0] | d->data[1] << 8);
+	if (c->bitmap)
+		vc_error = (v & c->res) == v && v && !(v & (v - 1)) ? VC_ERROR_NONE : VC_ERROR_INVALID_VALUE;
+	else
+		vc_error = v >= c->min && v <= c->max && (v - c->min) % c->res == 0 ? VC_ERROR_NONE
+										      : VC_ERROR_OUT_OF_RANGE;
+	if (vc_error == VC_ERROR_NONE)
+		c->cur = v;
+	printf("feeder: SET_CUR %s = %d%s\n", c->name, v, vc_error ? " refused" : "");
+}
+
 static void handle_data(const struct uvc_request_data *d)
 {
+	if (pending_vc) {
+		set_control(pending_vc, d);
+		pending_vc = NULL;
+		return;
+	}
 	struct uvc_streaming_control *c = pending_cs == UVC_VS_COMMIT_CONTROL ? &commit : &probe;
 	struct uvc_streaming_control in;
 	fill_ctrl(&in);
@@ -333,6 +479,7 @@ static void serve(const char *dev)
 		perror("feeder: open");
 		return;
 	}
+	reset_controls();
 	static const unsigned evs[] = {UVC_EVENT_SETUP, UVC_EVENT_DATA, UVC_EVENT_STREAMON,
 				       UVC_EVENT_STREAMOFF, UVC_EVENT_CONNECT, UVC_EVENT_DISCONNECT};
 	for (unsigned i = 0; i < sizeof evs / sizeof evs[0]; i++) {
