@@ -217,6 +217,11 @@ void Instrument::seekReplay(std::size_t index) {
         processor_->afterSeek(replay_->seekToIndex(index));
 }
 
+void Instrument::seekReplayNear(std::int64_t timestampNs) {
+    if (replay_)
+        processor_->afterSeek(replay_->seekToNearestTime(timestampNs));
+}
+
 void Instrument::stepReplay(int frames) {
     if (replay_)
         processor_->afterSeek(replay_->step(frames));

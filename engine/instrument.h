@@ -117,6 +117,8 @@ public:
     // Seeks exactly: the next result is the frame asked for, with temporal state started over.
     void seekReplay(std::size_t index);
     void stepReplay(int frames);
+    // Seeks exactly to the frame whose timestamp is nearest `timestampNs` (another replay's clock).
+    void seekReplayNear(std::int64_t timestampNs);
 
     Status startRecording(const std::string& path, const devices::recording::RecordingOptions& options = {});
     // Records into the next numbered take in `directory` (depthcloud-recording-001.dcrec, …); returns its

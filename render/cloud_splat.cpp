@@ -26,10 +26,6 @@ std::uint32_t packRgb(float r, float g, float b) {
     return unorm(r) | unorm(g) << 8 | unorm(b) << 16;
 }
 
-std::uint32_t confidenceRgb(std::uint8_t level) {
-    return level == 0 ? 0x0000ffu : level == 1 ? 0x00ff00u : level == 2 ? 0xff0000u : 0u;
-}
-
 constexpr std::uint32_t kOpaque = 0xff000000u;
 
 } // namespace
@@ -261,7 +257,7 @@ void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Int
             return colormapTable_[static_cast<std::size_t>(clamped * (colormapTable_.size() - 1) + 0.5f)];
         }
         case PointColoring::Confidence:
-            return confidenceRgb(level);
+            return confidencePackedRgb(level);
         }
         return kMidGray;
     };

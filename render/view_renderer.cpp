@@ -27,6 +27,9 @@ Status ViewRenderer::init() {
         return s;
     if (Status s = accumulated_.init(); !s)
         return s;
+    if (Status s = fused_.init(); !s)
+        return s;
+    fused_.setCpuCopy(true); // assigned whole each frame: either path may draw it
     if (Status s = cameraColours_.init(); !s)
         return s;
     const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -145,12 +148,14 @@ void ViewRenderer::renderPanelsWhole() {
     renderPanels(whole);
 }
 
-Expected<std::vector<processing::PanelPicture>> ViewRenderer::panelPictures() {
+Expected<std::vector<processing::PanelPicture>> ViewRenderer::panelPictures(bool withCloud) {
     renderPanelsWhole();
     const std::pair<const char*, const RenderTarget*> panels[] = {
         {"cloud.png", &cloudTarget_}, {"depth.png", &depthTarget_}, {"confidence.png", &confidenceTarget_}};
     std::vector<processing::PanelPicture> pictures;
     for (const auto& [name, target] : panels) {
+        if (target == &cloudTarget_ && !withCloud)
+            continue;
         if (target->empty())
             return Error{std::string("cannot write ") + name + ": the panel has not been rendered"};
         pictures.push_back({name, {target->width(), target->height(), target->readRgba()}});
@@ -265,14 +270,26 @@ void ViewRenderer::setCloudPath(CloudPath path) {
     accumulated_.setCpuCopy(path == CloudPath::Splat);
 }
 
-void ViewRenderer::renderCloud(CloudParams params, bool accumulated) {
-    params.accumulated = accumulated ? &accumulated_ : nullptr;
+void ViewRenderer::setFusedPoints(std::shared_ptr<const std::vector<processing::WorldPoint>> points) {
+    if (!points || points == fusedPoints_)
+        return;
+    fused_.assign(*points);
+    fusedPoints_ = std::move(points);
+}
+
+void ViewRenderer::renderCloud(CloudParams params, CloudSource source) {
+    const AccumulatedPoints* world = source == CloudSource::Accumulated ? &accumulated_
+                                     : source == CloudSource::Fused     ? &fused_
+                                                                        : nullptr;
+    const bool accumulated = world != nullptr;
+    params.accumulated = world;
     const bool shaded = shaderColours(params, accumulated);
     CloudDrawing drawing{params,
                          accumulated ? nullptr : cloud_.depth.data,
                          accumulated ? nullptr : cloud_.colours,
                          shaded ? frame_->capturedImage.bytes : nullptr,
-                         accumulated ? accumulated_.version() : 0,
+                         accumulated ? world->version() : 0,
+                         source,
                          path_,
                          cloudTarget_.width(),
                          cloudTarget_.height()};
@@ -308,7 +325,8 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
     const int width = cloudTarget_.width();
     const int height = cloudTarget_.height();
     if (accumulated)
-        splatter_.splatWorld(accumulated_.cpuCopy(), accumulated_.pointCount(), params, width, height);
+        splatter_.splatWorld(params.accumulated->cpuCopy(), params.accumulated->pointCount(), params, width,
+                             height);
     else if (cloud_.depth.data && cloud_.depth.intrinsics.valid())
         splatter_.splatSamples(*cloud_.depth.data, cloud_.depth.intrinsics, cloud_.colours.get(), params,
                                width, height);

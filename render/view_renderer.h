@@ -48,6 +48,9 @@ struct PanelParams {
 // How the cloud reaches the screen: GL_POINTS on the GPU, or splatted on the CPU's cores (CloudSplatter)
 // and shown as one image. On software GL the splat is several times cheaper; on a GPU the points are.
 enum class CloudPath { Points, Splat };
+// What the cloud shows: the shown frame's samples, accumulate mode's world points, or several sources'
+// points fused in one world (ViewRenderer::setFusedPoints).
+enum class CloudSource { Frame, Accumulated, Fused };
 const char* toString(CloudPath path);
 // Whether GL_RENDERER names a software rasteriser (Mesa's llvmpipe, softpipe or swrast, Windows' basic
 // render driver through D3D12), where the splat path wins.
@@ -75,7 +78,8 @@ public:
     // The cloud, depth and confidence panels as cloud.png, depth.png and confidence.png: drawn whole first
     // (renderPanelsWhole), so the depth and confidence keep every sample however small they are shown.
     // An error names a panel not rendered yet.
-    Expected<std::vector<processing::PanelPicture>> panelPictures();
+    // `withCloud` false: the depth and confidence only (a source whose points another's cloud draws).
+    Expected<std::vector<processing::PanelPicture>> panelPictures(bool withCloud = true);
     // The size of the depth map the depth and confidence panels show (their images' shape on screen; the
     // targets may hold every n-th sample of it).
     int panelsMapWidth() const { return panelsMap_.first; }
@@ -87,9 +91,11 @@ public:
     // Whether the camera panel shows cameraTarget() (made here) rather than cameraTexture() (the engine's).
     bool cameraFromGpu() const { return !cameraFromEngine_ && cameraDrawn_.has_value(); }
     const RenderTarget& cameraTarget() const { return cameraTarget_; }
-    // Draws the cloud into cloudTarget() (params.accumulated is filled in by accumulate mode), unless
+    // Draws the cloud into cloudTarget() (params.accumulated is filled in for world points), unless
     // nothing it shows changed since the last time: the same samples, parameters, size and path.
-    void renderCloud(CloudParams params, bool accumulated);
+    void renderCloud(CloudParams params, CloudSource source);
+    // The points CloudSource::Fused draws, in the world frame; uploaded when they are new.
+    void setFusedPoints(std::shared_ptr<const std::vector<processing::WorldPoint>> points);
     void setCloudPath(CloudPath path);
     CloudPath cloudPath() const { return path_; }
     // GL_RENDERER of the context init() ran in, and whether it rasterises in software.
@@ -157,6 +163,7 @@ private:
         std::shared_ptr<const processing::RgbImage> colours;
         std::shared_ptr<const std::vector<std::uint8_t>> cameraBytes; // the image the shader colours from
         std::uint64_t accumulatedVersion = 0;
+        CloudSource source = CloudSource::Frame;
         CloudPath path = CloudPath::Points;
         int width = 0;
         int height = 0;
@@ -211,6 +218,8 @@ private:
     std::optional<CloudDrawing> cloudDrawn_;
     PanelRenderer panels_;
     AccumulatedPoints accumulated_;
+    AccumulatedPoints fused_;
+    std::shared_ptr<const std::vector<processing::WorldPoint>> fusedPoints_; // what fused_ holds
     RenderTarget cloudTarget_;
     RenderTarget depthTarget_{Sampling::Nearest, DepthBuffer::Without};
     RenderTarget confidenceTarget_{Sampling::Nearest, DepthBuffer::Without};

@@ -9,6 +9,7 @@
 #include "tool/bench_gl_points.h"
 #include "tool/bench_median.h"
 #include "tool/options.h"
+#include "ui/companions.h"
 #include "ui/headless_ui.h"
 #include "ui/viewer.h"
 
@@ -19,6 +20,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <optional>
 
 namespace dc::tool {
 
@@ -35,6 +37,7 @@ struct CameraCase {
     std::string name;
     devices::SyntheticConfig config;
     bool upsampling = false;
+    bool pair = false; // a second camera of the same kind beside it, fused in one cloud
 };
 
 devices::SyntheticConfig cameraOf(int depthWidth, int depthHeight, int colourWidth, int colourHeight) {
@@ -54,7 +57,8 @@ std::vector<CameraCase> cameraCases() {
             {"1280x720 + colour 1280x720", cameraOf(1280, 720, 1280, 720), false},
             {"rig 848x480 + colour 1280x720", devices::syntheticRigConfig(), false},
             {"ARKit 256x192 + camera 1920x1440", cameraOf(256, 192, 1920, 1440), false},
-            {"ARKit 256x192 + camera 1920x1440, upsampled", cameraOf(256, 192, 1920, 1440), true}};
+            {"ARKit 256x192 + camera 1920x1440, upsampled", cameraOf(256, 192, 1920, 1440), true},
+            {"two 848x480 + colour 1280x720, fused", cameraOf(848, 480, 1280, 720), false, true}};
 }
 
 // Eight distinct frames, made before anything is timed: the source then costs nothing. The camera sways,
@@ -86,6 +90,8 @@ struct CaseResult {
     std::size_t samples = 0;
     int cloudWidth = 0, cloudHeight = 0;
     double bareGlPointsMs = 0.0;
+    // The second camera of a pair: its own instrument's counts over the same window.
+    std::optional<engine::FrameCounts> second;
 };
 
 // The window's loop (tool/gui.cpp): wait for a new result until a display refresh after the last frame
@@ -152,6 +158,28 @@ void countFrames(CaseResult& r, const engine::FrameCounts& f0, const engine::Fra
     r.inFlight = r.delivered > accounted ? r.delivered - accounted : 0;
 }
 
+// The pair's second camera: the same kind of frames, four frames out of step with the first camera's, placed
+// 20 cm to its right (what it sees does not line up with the first camera's scene; what it costs is a
+// second camera's).
+Status addSecondCamera(const CameraCase& c, const BenchCameraOptions& o, ui::Viewer& viewer) {
+    auto frames = makeFrames(c.config);
+    std::rotate(frames.begin(), frames.begin() + 4, frames.end());
+    auto device = std::make_unique<devices::FrameListDevice>(std::move(frames), o.fps, c.name + ", second");
+    frame::RigidTransform right;
+    right.translationMeters = {0.2, 0.0, 0.0};
+    device->place(right);
+    auto companion = ui::Companion::create(std::move(device), c.name + ", second", viewer.settings());
+    if (!companion)
+        return companion.error();
+    viewer.companions().add(std::move(*companion));
+    return {};
+}
+
+engine::FrameCounts secondCounts(ui::Viewer& viewer) {
+    return viewer.companions().empty() ? engine::FrameCounts{}
+                                       : viewer.companions()[0].instrument().status().frames;
+}
+
 Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
     auto frames = makeFrames(c.config);
     if (frames.size() < 8 || !frames.back())
@@ -168,6 +196,9 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
     ui::Settings settings; // the default view and panels, as a new user meets them
     settings.processing.upsampling = c.upsampling;
     ui::Viewer viewer(instrument, renderer, settings);
+    if (c.pair)
+        if (Status s = addSecondCamera(c, o, viewer); !s)
+            return s.error();
     instrument.start();
     CaseResult r;
     r.name = c.name;
@@ -178,6 +209,7 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
         loop.frame(r, false);
     const engine::FrameCounts f0 = instrument.status().frames;
     const engine::ProcessorCounts p0 = instrument.processor().counts();
+    const engine::FrameCounts second0 = secondCounts(viewer);
     const double cpu0 = base::processCpuMs();
     const auto start = Clock::now();
     const auto end =
@@ -186,6 +218,12 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
         loop.frame(r, true, f0.delivered);
     r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     countFrames(r, f0, instrument.status().frames, p0, instrument.processor().counts());
+    if (c.pair) {
+        const engine::FrameCounts second1 = secondCounts(viewer);
+        r.second = engine::FrameCounts{second1.delivered - second0.delivered, second1.shown - second0.shown,
+                                       second1.dropped - second0.dropped, second1.deliveredPerSecond,
+                                       second1.shownPerSecond};
+    }
     r.processCpuMsPerFrame =
         (base::processCpuMs() - cpu0) / static_cast<double>(std::max<std::uint64_t>(r.delivered, 1));
     r.processingCpuMs = instrument.processor().cpuMs().median();
@@ -222,6 +260,12 @@ void printResult(const CaseResult& r) {
         "every thread's CPU per delivered frame %.1f ms\n",
         latency.median, latency.p99, r.processingLatencyMs, gl.median, gl.p99, r.processingCpuMs,
         r.processCpuMsPerFrame);
+    if (r.second)
+        std::printf("  second camera: shown %llu of %llu delivered (%.3f), dropped %llu\n",
+                    static_cast<unsigned long long>(r.second->shown),
+                    static_cast<unsigned long long>(r.second->delivered),
+                    ratio(r.second->shown, r.second->delivered),
+                    static_cast<unsigned long long>(r.second->dropped));
     std::printf(
         "  bare GL_POINTS of every sample into the %dx%d cloud panel %.2f ms%s; stage medians:", r.cloudWidth,
         r.cloudHeight, r.bareGlPointsMs, gpuClockText(spreadOf(r.gpuClockMhz).median).c_str());
@@ -235,7 +279,7 @@ nlohmann::json toJson(const CaseResult& r) {
     nlohmann::json stages = nlohmann::json::object();
     for (const engine::StageSummary& s : r.stages)
         stages[s.name] = s.medianMs;
-    return {
+    nlohmann::json j{
         {"case", r.name},
         {"seconds", r.seconds},
         {"delivered", r.delivered},
@@ -258,6 +302,12 @@ nlohmann::json toJson(const CaseResult& r) {
         {"bareGlPointsMs", r.bareGlPointsMs},
         {"gpuClockMhz", spreadOf(r.gpuClockMhz).median},
         {"stageMedianMs", stages}};
+    if (r.second)
+        j["secondCamera"] = {{"delivered", r.second->delivered},
+                             {"shown", r.second->shown},
+                             {"dropped", r.second->dropped},
+                             {"shownOverDelivered", ratio(r.second->shown, r.second->delivered)}};
+    return j;
 }
 
 } // namespace

@@ -362,7 +362,7 @@ int writeOutputs(GLFWwindow* window, ui::Viewer& viewer, const std::string& dir)
 
 } // namespace
 
-int runGui(const ViewerOptions& options, std::unique_ptr<devices::Device> device) {
+int runGui(const ViewerOptions& options, std::unique_ptr<devices::Device> device, Devices companions) {
     GlfwLibrary glfw;
     if (!glfw.ok) {
         std::fprintf(stderr, "depthcloud: error: cannot open a window (GLFW failed to initialise); "
@@ -410,6 +410,16 @@ int runGui(const ViewerOptions& options, std::unique_ptr<devices::Device> device
         engine::Instrument instrument(std::move(device), options.source);
         ui::Viewer viewer(instrument, renderer, settings);
         viewer.setAbout(versionLine());
+        for (std::size_t i = 0; i < companions.size(); ++i) {
+            auto c =
+                ui::Companion::create(std::move(companions[i]), options.companions[i], viewer.settings());
+            if (!c) {
+                std::fprintf(stderr, "depthcloud: error: %s\n", c.error().message.c_str());
+                return kExitFailure;
+            }
+            viewer.companions().add(std::move(*c));
+            viewer.settings().panels.sources = true;
+        }
         instrument.start();
         devices::LiveDeviceWatcher cameras;
         const auto start = Clock::now();

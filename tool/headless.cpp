@@ -3,9 +3,11 @@
 #include "render/gl_context.h"
 #include "tool/options.h"
 #include "tool/summary.h"
+#include "ui/companions.h"
 #include "ui/presenter.h"
 
 #include <cstdio>
+#include <thread>
 
 namespace dc::tool {
 
@@ -57,9 +59,12 @@ private:
 
 // Waits for the next frame's result while Patience allows, in short slices so that the end of a recording
 // is noticed at once rather than after the whole timeout.
-bool waitForFrame(ui::Presenter& presenter, double timeSeconds) {
+bool waitForFrame(ui::Presenter& presenter, ui::Companions& companions, double timeSeconds) {
     constexpr std::chrono::milliseconds kSlice{50};
     for (Patience patience(presenter.instrument()); patience.keepWaiting();) {
+        // The companions first, so that the fused cloud has their newest frames.
+        companions.followReplay(presenter.instrument());
+        companions.update(presenter.settings(), timeSeconds);
         if (presenter.update(timeSeconds, kSlice))
             return true;
         // The last frame may have arrived just before the end was flagged.
@@ -67,6 +72,42 @@ bool waitForFrame(ui::Presenter& presenter, double timeSeconds) {
             return presenter.update(timeSeconds, kSlice);
     }
     return false;
+}
+
+void presented(ui::Presenter& presenter, ui::Companions& companions) {
+    presenter.presented();
+    companions.presented();
+}
+
+// Every companion's first frame, so that the fused cloud and each source's panels show it: waited for as
+// long as its source keeps delivering (Patience), each UI frame drawn and presented as in the window.
+Status waitForCompanions(ui::Presenter& presenter, ui::Companions& companions, double timeSeconds) {
+    for (std::size_t i = 0; i < companions.size(); ++i) {
+        for (Patience patience(companions[i].instrument());
+             !companions[i].presenter().shown() && patience.keepWaiting();) {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+            companions.update(presenter.settings(), timeSeconds);
+            presenter.update(timeSeconds);
+            presented(presenter, companions);
+        }
+        if (!companions[i].presenter().shown()) {
+            const engine::InstrumentStatus s = companions[i].instrument().status();
+            return Error{"no frame from " + s.source + (s.message.empty() ? "" : ": " + s.message)};
+        }
+    }
+    return {};
+}
+
+Expected<ui::Companions> startCompanions(const ViewerOptions& options, Devices devices,
+                                         const ui::Settings& settings) {
+    ui::Companions companions;
+    for (std::size_t i = 0; i < devices.size(); ++i) {
+        auto c = ui::Companion::create(std::move(devices[i]), options.companions[i], settings);
+        if (!c)
+            return c.error();
+        companions.add(std::move(*c));
+    }
+    return companions;
 }
 
 // Whether the frame shown has the camera's image, or the source has none to give.
@@ -78,11 +119,12 @@ bool showsColour(ui::Presenter& presenter) {
 // A colour sensor may start later than the depth sensor, and on a busy machine the frames asked for can all
 // come before its first image: the run goes on while Patience allows for one that has it, so camera.png
 // shows the camera. Returns whether one came; says so when none did.
-bool waitForColour(ui::Presenter& presenter, double timeSeconds) {
+bool waitForColour(ui::Presenter& presenter, ui::Companions& companions, double timeSeconds) {
     Patience patience(presenter.instrument());
     while (!showsColour(presenter) && patience.keepWaiting()) {
+        companions.update(presenter.settings(), timeSeconds);
         if (presenter.update(timeSeconds, std::chrono::milliseconds(50)))
-            presenter.presented();
+            presented(presenter, companions);
         if (replayEnded(presenter.instrument()))
             break;
     }
@@ -97,7 +139,8 @@ bool waitForColour(ui::Presenter& presenter, double timeSeconds) {
 
 } // namespace
 
-int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> device) {
+int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> device,
+                Devices companionDevices) {
     setLogQuiet(true);
     auto context = render::EglContext::createHeadless();
     if (!context)
@@ -112,6 +155,10 @@ int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> d
         return commandFailed("", settings.error().message);
     ui::Presenter presenter(instrument, renderer, *settings);
     presenter.resizeCloud(kCloudWidth, kCloudHeight);
+    auto companions = startCompanions(options, std::move(companionDevices), *settings);
+    if (!companions)
+        return commandFailed("", companions.error().message);
+    presenter.setCompanions(&*companions);
     instrument.start();
     // A source that cannot start has said why already (the instrument logs it as an error, naming it).
     if (!instrument.status().running)
@@ -120,8 +167,8 @@ int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> d
     const int frames = options.frames.value_or(60);
     int shown = 0;
     while (shown < frames) {
-        if (waitForFrame(presenter, shown * kHeadlessFrameSeconds)) {
-            presenter.presented();
+        if (waitForFrame(presenter, *companions, shown * kHeadlessFrameSeconds)) {
+            presented(presenter, *companions);
             ++shown;
             continue;
         }
@@ -137,11 +184,23 @@ int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> d
                                      (s.message.empty() ? "" : ": " + s.message));
     }
     if (!showsColour(presenter))
-        (void)waitForColour(presenter, shown * kHeadlessFrameSeconds);
+        (void)waitForColour(presenter, *companions, shown * kHeadlessFrameSeconds);
+    if (Status s = waitForCompanions(presenter, *companions, shown * kHeadlessFrameSeconds); !s)
+        return commandFailed("", s.error().message);
     auto written = presenter.savePanels(options.outDirectory);
     if (!written)
         return commandFailed("", written.error().message);
-    const std::string summary = summaryJson(presenter.summary(), context->rendererName(), "headless");
+    auto companionFiles = companions->savePanels(options.outDirectory);
+    if (!companionFiles)
+        return commandFailed("", companionFiles.error().message);
+    written->insert(written->end(), companionFiles->begin(), companionFiles->end());
+    if (!companions->empty()) {
+        if (Status s = presenter.writeFusedPly(options.outDirectory + "/cloud.ply"); !s)
+            return commandFailed("", s.error().message);
+        written->emplace_back("cloud.ply");
+    }
+    const std::string summary = summaryJson(presenter.summary(), context->rendererName(), "headless",
+                                            companions->summaries(instrument, presenter.shown()));
     if (Status s = base::writeTextFile(options.outDirectory + "/summary.json", summary); !s)
         return commandFailed("", s.error().message);
     written->emplace_back("summary.json");

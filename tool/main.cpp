@@ -65,9 +65,11 @@ std::string checkOutDirectory(const std::string& dir) {
     return {};
 }
 
-void addViewerOptions(CLI::App& app, ViewerOptions& o) {
-    app.add_option("--source", o.source, std::string("depth source: ") + dc::devices::kSourceSpecHelp)
-        ->capture_default_str();
+void addViewerOptions(CLI::App& app, ViewerOptions& o, std::vector<std::string>& sources) {
+    app.add_option("--source", sources,
+                   std::string("depth source (default synthetic); given again, each further source joins the "
+                               "first in one cloud, placed by its pose: ") +
+                       dc::devices::kSourceSpecHelp);
     app.add_flag("--headless", o.headless,
                  "no window: render offscreen and write PNGs + summary.json to --out");
     app.add_option("--frames", o.frames,
@@ -96,10 +98,21 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o) {
         "repeatable, applied after --settings");
 }
 
-int runViewer(ViewerOptions o) {
+int runViewer(ViewerOptions o, const std::vector<std::string>& sources) {
+    if (!sources.empty()) {
+        o.source = sources.front();
+        o.companions.assign(sources.begin() + 1, sources.end());
+    }
     auto device = dc::devices::openSourceSpec(o.source);
     if (!device)
         return sourceCannotOpen(device.error());
+    dc::tool::Devices companions;
+    for (const std::string& spec : o.companions) {
+        auto companion = dc::devices::openSourceSpec(spec);
+        if (!companion)
+            return sourceCannotOpen(dc::Error{spec + ": " + companion.error().message});
+        companions.push_back(std::move(*companion));
+    }
     if (auto settings = chosenSettings({}, o); !settings)
         return badArgument(settings.error().message);
     if (!o.headless && !hasDisplay()) {
@@ -112,7 +125,8 @@ int runViewer(ViewerOptions o) {
         if (const std::string problem = checkOutDirectory(o.outDirectory); !problem.empty())
             return badArgument(problem);
     }
-    return o.headless ? runHeadless(o, std::move(*device)) : runGui(o, std::move(*device));
+    return o.headless ? runHeadless(o, std::move(*device), std::move(companions))
+                      : runGui(o, std::move(*device), std::move(companions));
 }
 
 } // namespace
@@ -126,7 +140,8 @@ int main(int argc, char** argv) {
                  "depthcloud"};
     app.set_version_flag("--version", versionLine());
     ViewerOptions viewer;
-    addViewerOptions(app, viewer);
+    std::vector<std::string> viewerSources;
+    addViewerOptions(app, viewer, viewerSources);
 
     BenchOptions bench;
     CLI::App* benchCmd = app.add_subcommand("bench", "measure performance");
@@ -209,5 +224,5 @@ int main(int argc, char** argv) {
         return runQuality(qualityOptions);
     if (alignCmd->parsed())
         return runAlign(alignOptions);
-    return runViewer(viewer);
+    return runViewer(viewer, viewerSources);
 }

@@ -27,6 +27,7 @@ inline int commandFailed(const char* command, const std::string& message, int co
 
 struct ViewerOptions {
     std::string source = "synthetic";
+    std::vector<std::string> companions; // --source given again: sources fused with the first in one cloud
     bool headless = false;
     std::optional<int> frames; // stop after this many frames (headless default: 60)
     std::string outDirectory;  // where headless runs (and GUI runs given --out) write their files
@@ -51,9 +52,11 @@ Expected<ui::Settings> chosenSettings(ui::Settings saved, const ViewerOptions& o
 
 // Both run `device`, which runViewer opened from options.source once: a second open would repeat its
 // warnings and open a live camera twice.
-int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> device);
+// `companions` are the devices of options.companions, opened there too.
+using Devices = std::vector<std::unique_ptr<devices::Device>>;
+int runHeadless(const ViewerOptions& options, std::unique_ptr<devices::Device> device, Devices companions);
 // Returns kExitFailure with a message when no window can be opened.
-int runGui(const ViewerOptions& options, std::unique_ptr<devices::Device> device);
+int runGui(const ViewerOptions& options, std::unique_ptr<devices::Device> device, Devices companions);
 int runBenchRender(const BenchOptions& options);
 
 } // namespace dc::tool

@@ -6,10 +6,12 @@
 #include "exporting/quality_log.h"
 #include "processing/infrared_image.h"
 #include "processing/pipeline.h"
+#include "processing/rigid_alignment.h"
 #include "processing/shown_frame.h"
 #include "render/render_target.h"
 #include "ui/depth_legend.h"
 #include "ui/file_picker.h"
+#include "ui/fused_cloud.h"
 #include "ui/log_store.h"
 #include "ui/panel_image.h"
 #include "ui/probe.h"
@@ -44,6 +46,7 @@ inline constexpr const char* kAuraTitle = "Aura";
 inline constexpr const char* kQualityTitle = "Quality";
 inline constexpr const char* kCameraControlsTitle = "Camera controls";
 inline constexpr const char* kTimingTitle = "Timing";
+inline constexpr const char* kSourcesTitle = "Sources";
 
 // What every image panel reports back: the window's place (to restore it after a zoom), a request to
 // open it large or bring it back (a click on a 2D panel, the zoom button on the cloud), and the depth
@@ -337,6 +340,36 @@ struct CameraControlsState {
 // control (an auto control decides it) is greyed; "Reset to defaults" per node. Above them, the depth and
 // colour nodes' modes: one chosen is left in state.chosenMode or state.chosenColorMode.
 void drawCameraControlsPanel(CameraControlsState& state, double nowSeconds, bool* open);
+
+// One source of the fused cloud as the Sources panel lists it: the main source (no look: it defines the
+// world's view) or a companion.
+struct SourceRow {
+    std::string name;
+    std::string state; // SourceState::text()
+    engine::FrameCounts frames;
+    std::optional<processing::OverlapFigure> overlap; // with the main source, companions only
+    std::optional<double> skewMs;                     // its frame's time less the main source's
+    CompanionLook* look = nullptr;                    // the companion's; null for the main source
+    PanelImage depth;                                 // its depth panel as last drawn
+};
+
+struct SourcesPanelState {
+    std::array<char, 512> spec{};
+    std::string message; // the last addition's or refinement's outcome
+};
+
+// What the user asked of the Sources panel this frame (companions by their index among the companions).
+struct SourcesActions {
+    std::optional<std::string> add;
+    std::optional<std::size_t> remove;
+    std::optional<std::size_t> refine;
+    std::optional<std::size_t> resetPlacement;
+};
+
+// Every source fused in the cloud: its state and frames (shown, dropped, delivered: its own), its depth
+// panel, and for each companion its visibility, tint, overlap figure with the main source, ICP refinement
+// and removal; "Add source" opens another.
+SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanelState& state, bool* open);
 
 // Per stream the frame intervals' histogram and the timestamps' source, the latency from arrival (and
 // from the sensor, where its clock is this machine's) to the screen, and every lost frame counted where it

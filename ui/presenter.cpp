@@ -1,8 +1,11 @@
 #include "ui/presenter.h"
 
+#include "base/files.h"
 #include "base/log.h"
+#include "exporting/ply.h"
 #include "exporting/snapshot.h"
 #include "processing/depth_statistics.h"
+#include "ui/companions.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -71,7 +74,7 @@ engine::Demand Presenter::demandOf() const {
     engine::Demand d;
     d.cloud = show.cloud;
     d.pointColours = cloud.coloring == render::PointColoring::Camera;
-    d.gpuCameraColours = cloudPath() == render::CloudPath::Points;
+    d.gpuCameraColours = drawsCloud_ && !fusing() && cloudPath() == render::CloudPath::Points;
     d.depthImage = show.depth || (show.camera && settings_.camera.depthOverlay);
     d.confidencePanel = show.confidence;
     d.cameraPanelWidth = show.camera ? cameraShownWidth_ : 0;
@@ -130,7 +133,7 @@ bool Presenter::update(double timeSeconds, std::chrono::milliseconds wait) {
         instrument_.recordStage("panels", millisecondsSince(start));
     start = Clock::now();
     version = renderer_.contentVersion();
-    if (shown_ && show.cloud)
+    if (shown_ && show.cloud && drawsCloud_)
         renderCloud(timeSeconds);
     if (renderer_.contentVersion() != version)
         instrument_.recordStage("cloud", millisecondsSince(start));
@@ -239,10 +242,40 @@ void Presenter::renderCloud(double timeSeconds) {
     if (accumulating())
         renderer_.syncAccumulated(instrument_.accumulation());
     cloudViewProjection_ = params.viewProjection;
-    renderer_.renderCloud(params, accumulating());
+    if (fusing())
+        renderFused(params);
+    else
+        renderer_.renderCloud(params,
+                              accumulating() ? render::CloudSource::Accumulated : render::CloudSource::Frame);
+}
+
+bool Presenter::fusing() const {
+    return companions_ && !companions_->empty();
+}
+
+void Presenter::renderFused(render::CloudParams params) {
+    const CloudSettings& cloud = settings_.cloud;
+    const FusedLook look{cloud.minConfidence, cloud.nearMeters,  cloud.coloring,
+                         legend_.colormap,    legend_.minMeters, legend_.maxMeters};
+    std::vector<FusedSource> sources{
+        {shown_, placeInWorld(*shown_->frame, {}), std::nullopt, instrument_.spec()}};
+    for (FusedSource& s : companions_->fusedSources())
+        sources.push_back(std::move(s));
+    if (!fusedPoints_ || !(sources == fusedFrom_) || !(look == fusedLook_)) {
+        fusedPoints_ =
+            std::make_shared<const std::vector<processing::WorldPoint>>(fusedPoints(sources, look));
+        fusedFrom_ = std::move(sources);
+        fusedLook_ = look;
+    }
+    renderer_.setFusedPoints(fusedPoints_);
+    params.worldToClip = params.viewProjection *
+                         glm::mat4(glm::inverse(toMatrix(frame::poseFromRigid(fusedFrom_[0].cameraToWorld))));
+    renderer_.renderCloud(params, render::CloudSource::Fused);
 }
 
 std::uint64_t Presenter::pointsShown() {
+    if (fusing() && fusedPoints_)
+        return fusedPoints_->size();
     if (accumulating())
         return instrument_.accumulation().size();
     return shown_ ? shown_->pointCount : 0;
@@ -268,7 +301,7 @@ void Presenter::updateLegend() {
 }
 
 Expected<std::vector<std::string>> Presenter::savePanels(const std::string& directory) {
-    auto pictures = renderer_.panelPictures();
+    auto pictures = renderer_.panelPictures(drawsCloud_);
     if (!pictures)
         return pictures.error();
     return exporting::writePanels(directory, *pictures, shown_ ? shown_->frame.get() : nullptr);
@@ -283,9 +316,42 @@ Expected<std::string> Presenter::saveSnapshot(const std::string& parent) {
     return dir;
 }
 
+Expected<std::string> Presenter::writeFusedSnapshot(const std::string& parent) {
+    auto pictures = renderer_.panelPictures();
+    if (!pictures)
+        return pictures.error();
+    auto dir = base::createFreshDirectory(parent, "frame-" + std::to_string(shown_->frame->sequence));
+    if (!dir)
+        return dir.error();
+    if (auto written = exporting::writePanels(*dir, *pictures, shown_->frame.get()); !written)
+        return written.error();
+    if (auto written = companions_->savePanels(*dir); !written)
+        return written.error();
+    if (Status s = writeFusedPly(*dir + "/cloud.ply"); !s)
+        return s.error();
+    return dir;
+}
+
+Status Presenter::writeFusedPly(const std::string& path) const {
+    if (fusedFrom_.empty())
+        return Error{"no fused cloud drawn yet"};
+    const CloudSettings& cloud = settings_.cloud;
+    std::vector<processing::CloudPoint> points;
+    std::vector<std::string> comments{
+        "depthcloud: several sources fused in the world frame, source after source"};
+    for (const FusedSource& source : fusedFrom_) {
+        auto own = worldCloud(source, cloud.minConfidence, cloud.nearMeters);
+        comments.push_back(std::to_string(own.size()) + " points of " + source.name);
+        points.insert(points.end(), own.begin(), own.end());
+    }
+    return base::writeFileAtomically(path, exporting::encodePly(points, comments));
+}
+
 Expected<std::string> Presenter::writeSnapshot(const std::string& parent) {
     if (!shown_)
         return Error{"no frame to save yet"};
+    if (fusing())
+        return writeFusedSnapshot(parent);
     auto pictures = renderer_.panelPictures();
     if (!pictures)
         return pictures.error();
@@ -306,7 +372,9 @@ ViewerSummary Presenter::summary() {
                           0,
                           0,
                           instrument_.stages().all(),
-                          s.latencyMs};
+                          s.latencyMs,
+                          std::nullopt,
+                          std::nullopt};
     if (shown_) {
         summary.depthWidth = shown_->depth.width();
         summary.depthHeight = shown_->depth.height();

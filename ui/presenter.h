@@ -3,10 +3,12 @@
 #include "base/rate_meter.h"
 #include "engine/demand.h"
 #include "engine/instrument.h"
+#include "processing/rigid_alignment.h"
 #include "processing/shown_frame.h"
 #include "render/view_renderer.h"
 #include "ui/anchors.h"
 #include "ui/depth_legend.h"
+#include "ui/fused_cloud.h"
 #include "ui/settings.h"
 
 #include <chrono>
@@ -16,6 +18,8 @@
 #include <vector>
 
 namespace dc::ui {
+
+class Companions;
 
 // What a run measured, for summary.json and the benchmarks.
 struct ViewerSummary {
@@ -30,6 +34,9 @@ struct ViewerSummary {
     int depthHeight = 0;
     std::vector<engine::StageSummary> stages;
     std::optional<double> latencyMs; // device timestamp to screen, median; none for recordings
+    // A companion's overlap consistency figure with the main source (none for the main source).
+    std::optional<processing::OverlapFigure> overlap;
+    std::optional<double> skewMs; // a companion's frame's time less the main source's
 };
 
 // The instrument presented without ImGui: the settings stated as the engine's demand each frame, the
@@ -62,6 +69,13 @@ public:
     // Waits up to `timeout` for the engine's next new frame and keeps it for the next update(), so that a
     // benchmark can time that update (on the CPU and on the GPU) without the wait; false if none came.
     bool awaitFrame(std::chrono::milliseconds timeout);
+    // A companion's presenter draws no cloud of its own (the main one fuses its points), and the engine
+    // colours its points on the CPU for that.
+    void setDrawsCloud(bool draws) { drawsCloud_ = draws; }
+    // The sources whose points the cloud fuses with this one's (none: the cloud is this source's alone).
+    void setCompanions(Companions* companions) { companions_ = companions; }
+    // Whether the cloud shows several sources fused in one world.
+    bool fusing() const;
     // Another source: nothing shown or measured in the old one carries over.
     void forgetShown();
 
@@ -73,6 +87,9 @@ public:
     // named after the frame, new each time (frame-N, frame-N-2, …); returns that directory. Says where it
     // went, or why it failed, in the log (and so, in the window, on screen).
     Expected<std::string> saveSnapshot(const std::string& parent);
+    // The fused cloud as last drawn, as a PLY in the world frame: every source's kept samples with their
+    // own colours, source after source (the comments count each one's points).
+    Status writeFusedPly(const std::string& path) const;
 
     Settings& settings() { return settings_; }
     const Settings& settings() const { return settings_; }
@@ -111,8 +128,13 @@ public:
 private:
     engine::Demand demandOf() const;
     Expected<std::string> writeSnapshot(const std::string& parent);
+    // With companions: the main panels, each companion's in source-N, and the fused cloud.ply.
+    Expected<std::string> writeFusedSnapshot(const std::string& parent);
     void adopt(processing::ShownFramePtr shown);
     void renderCloud(double timeSeconds);
+    // Fuses the companions' points with this source's and draws them, the world through this source's
+    // camera.
+    void renderFused(render::CloudParams params);
     void updateLegend();
     render::CloudParams cloudParams(double timeSeconds) const;
     // How the depth, confidence and overlay panels are drawn this frame.
@@ -138,6 +160,13 @@ private:
     Anchors anchors_;
     base::RateMeter frames_;
     std::uint64_t framesKept_ = 0;
+    bool drawsCloud_ = true;
+    Companions* companions_ = nullptr;
+    // The fused points and what they were made from: made again only when a source shows another frame,
+    // moves, or the look changes.
+    std::shared_ptr<const std::vector<processing::WorldPoint>> fusedPoints_;
+    std::vector<FusedSource> fusedFrom_;
+    FusedLook fusedLook_;
 };
 
 } // namespace dc::ui

@@ -29,6 +29,7 @@ struct PanelVisibility {
     bool quality = false;        // the depth-quality figures (measured only while it is shown)
     bool cameraControls = false; // a live camera's V4L2 controls
     bool timing = false;         // frame intervals, latencies and where lost frames were lost
+    bool sources = false;        // every source fused in the cloud: add, place, refine, remove
 };
 
 // Which cloud path draws (render::CloudPath): automatic picks the CPU splat on software GL.

@@ -66,6 +66,7 @@ std::vector<SettingField> panelFields() {
         field("panels", "quality", DC_FIELD(panels.quality), true),
         field("panels", "cameraControls", DC_FIELD(panels.cameraControls), true),
         field("panels", "timing", DC_FIELD(panels.timing), true),
+        field("panels", "sources", DC_FIELD(panels.sources), true),
         field("window", "x", DC_FIELD(window.x), 40),
         field("window", "y", DC_FIELD(window.y), 30),
         field("window", "width", DC_FIELD(window.width), 1111),

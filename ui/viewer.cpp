@@ -31,6 +31,28 @@ Viewer::Viewer(engine::Instrument& instrument, render::ViewRenderer& renderer, S
     // behind it show through and read as part of its picture.
     if (ImGui::GetCurrentContext())
         ImGui::GetStyle().Colors[ImGuiCol_WindowBg].w = 1.0f;
+    presenter_.setCompanions(&companions_);
+}
+
+bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
+    if (auto index = std::exchange(pendingRemoval_, std::nullopt))
+        companions_.remove(*index);
+    if (auto spec = std::exchange(pendingAddition_, std::nullopt))
+        (void)addSource(*spec);
+    companions_.followReplay(instrument_);
+    companions_.update(settings_, timeSeconds);
+    return presenter_.update(timeSeconds, wait);
+}
+
+Status Viewer::addSource(const std::string& spec) {
+    if (Status s = companions_.add(spec, settings_); !s) {
+        sourcesPanel_.message = s.error().message;
+        logError("source not added: " + s.error().message);
+        return s;
+    }
+    sourcesPanel_.message.clear();
+    logInfo("source added: " + spec);
+    return {};
 }
 
 ProbeSource Viewer::probeSource() const {

@@ -1,5 +1,6 @@
 #pragma once
 
+#include "ui/companions.h"
 #include "ui/log_store.h"
 #include "ui/panels.h"
 #include "ui/presenter.h"
@@ -38,14 +39,20 @@ public:
     Viewer(const Viewer&) = delete;
     Viewer& operator=(const Viewer&) = delete;
 
-    // Once per UI frame, before drawUi() (Presenter::update).
-    bool update(double timeSeconds, std::chrono::milliseconds wait = std::chrono::milliseconds(0)) {
-        return presenter_.update(timeSeconds, wait);
-    }
+    // Once per UI frame, before drawUi() (Presenter::update), the companions first so that the fused cloud
+    // has their newest frames.
+    bool update(double timeSeconds, std::chrono::milliseconds wait = std::chrono::milliseconds(0));
     // The ImGui panels, status line and shortcuts (between ImGui::NewFrame and ImGui::Render).
     void drawUi();
     // What update() drew is on screen now (Presenter::presented).
-    void presented(bool redrawn = true) { presenter_.presented(redrawn); }
+    void presented(bool redrawn = true) {
+        presenter_.presented(redrawn);
+        companions_.presented();
+    }
+    // Opens `spec` beside the main source, its points fused in the cloud (the Sources panel's "Add
+    // source"); a bad spec says why, as openSource() does.
+    Status addSource(const std::string& spec);
+    Companions& companions() { return companions_; }
 
     Presenter& presenter() { return presenter_; }
     Settings& settings() { return settings_; }
@@ -131,6 +138,8 @@ private:
     void drawSourcePicker(float x, float y);
     void drawQuality(float x, float y);
     void drawCameraControls(float x, float y);
+    void drawSources(float x, float y);
+    void applySourcesActions(const SourcesActions& actions);
     void reopenInMode(const Expected<std::string>& spec);
     RoiOverlay roiOverlay() const;
     void drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, ImVec2 size);
@@ -175,6 +184,12 @@ private:
     RecordPanelState recordState_;
     std::vector<SourceEntry> liveSources_;
     QualityPanelState quality_;
+    Companions companions_; // after presenter_: its presenters draw with their own renderers
+    SourcesPanelState sourcesPanel_;
+    // Chosen in the Sources panel during a frame, done at the next update(): the frame's draw lists may
+    // still show a companion's panel.
+    std::optional<std::string> pendingAddition_;
+    std::optional<std::size_t> pendingRemoval_;
     std::optional<QualityMapHover> qualityMapHover_; // the Quality panel's map pixel under the mouse
     std::optional<StatsView> measured_;              // the figures on screen (kMeasureInterval)
     std::uint64_t measuredVersion_ = 0;              // ViewRenderer::contentVersion() when they were taken

@@ -326,7 +326,8 @@ float Viewer::drawMenuBar() {
             {kAuraTitle, "A", &show.aura},
             {kQualityTitle, nullptr, &show.quality},
             {kCameraControlsTitle, nullptr, &show.cameraControls},
-            {kTimingTitle, nullptr, &show.timing}};
+            {kTimingTitle, nullptr, &show.timing},
+            {kSourcesTitle, nullptr, &show.sources}};
         for (const auto& [title, key, shown] : panels)
             ImGui::MenuItem(title, key, shown, shown != &show.infrared || infraredAvailable());
         ImGui::Separator();
@@ -392,6 +393,8 @@ void Viewer::drawUi() {
     drawBottomStrip(l.leftWidth, l.size.y - strip, cloudWidth, strip);
     if (show.source)
         drawSourcePicker(l.leftWidth + 40.0f, 40.0f);
+    if (show.sources)
+        drawSources(l.leftWidth + 100.0f, 100.0f);
     if (show.quality)
         drawQuality(l.leftWidth + 20.0f, 20.0f);
     if (show.cameraControls)
@@ -553,6 +556,41 @@ void Viewer::drawBottomStrip(float x, float y, float w, float h) {
         placePanel(kLogTitle, x + w - half, y, half, h);
         drawLogPanel(logs_.snapshot(), logPanel_, &show.log);
     }
+}
+
+void Viewer::drawSources(float x, float y) {
+    placePanel(kSourcesTitle, x, y, 460.0f, 420.0f);
+    const engine::InstrumentStatus main = instrument_.status();
+    std::vector<SourceRow> rows{{main.source, main.state.text(), main.frames, std::nullopt, std::nullopt,
+                                 nullptr, dataPanelImage(renderer_.depthTarget(), renderer_)}};
+    for (std::size_t i = 0; i < companions_.size(); ++i) {
+        Companion& c = companions_[i];
+        const engine::InstrumentStatus s = c.instrument().status();
+        rows.push_back({s.source, s.state.text(), s.frames, companions_.overlap(i, shown()),
+                        companions_.skewMs(i, instrument_, shown()), &c.look,
+                        dataPanelImage(c.renderer().depthTarget(), c.renderer())});
+    }
+    applySourcesActions(drawSourcesPanel(rows, sourcesPanel_, &settings_.panels.sources));
+}
+
+void Viewer::applySourcesActions(const SourcesActions& actions) {
+    if (actions.add)
+        pendingAddition_ = actions.add;
+    if (actions.remove)
+        pendingRemoval_ = actions.remove;
+    if (actions.resetPlacement && *actions.resetPlacement < companions_.size())
+        companions_[*actions.resetPlacement].look.correction = {};
+    if (!actions.refine)
+        return;
+    auto r = companions_.refine(*actions.refine, shown());
+    char line[200];
+    if (r)
+        std::snprintf(line, sizeof line,
+                      "ICP %s after %d iterations: %.1f mm -> %.1f mm; moved %.2f deg, %.1f mm",
+                      processing::toString(r->status), r->iterations, r->before.medianMm, r->after.medianMm,
+                      r->correctionDegrees, r->correctionMm);
+    sourcesPanel_.message = r ? line : r.error().message;
+    logInfo("source " + std::to_string(*actions.refine + 2) + ": " + sourcesPanel_.message);
 }
 
 void Viewer::drawSourcePicker(float x, float y) {

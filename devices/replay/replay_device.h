@@ -49,6 +49,9 @@ public:
     void setSpeed(double speed);                  // clamped to [kMinSpeed, kMaxSpeed]
     std::uint64_t seekToIndex(std::size_t index); // clamped to the recording; pauses nothing
     std::uint64_t seekToTime(std::int64_t timestampNs);
+    // The frame whose timestamp is nearest (the earlier one of two as near): how a replay follows another's
+    // clock.
+    std::uint64_t seekToNearestTime(std::int64_t timestampNs);
     std::uint64_t step(int frames); // pauses, then moves by `frames` (negative: backwards)
     ReplayStatus status() const;
 

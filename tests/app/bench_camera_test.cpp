@@ -50,6 +50,31 @@ TEST(BenchCamera, EveryDeliveredFrameIsShownDroppedOrInFlightAndBothCountsAgree)
     EXPECT_EQ(n("samples"), 256 * 192);
 }
 
+// Two cameras fused in one cloud: the second camera's frames are counted on their own, and add up.
+TEST(BenchCamera, ThePairsSecondCameraCountsItsOwnFrames) {
+    const fs::path json =
+        fs::temp_directory_path() / ("dc-bench-camera-pair-" + std::to_string(::getpid()) + ".json");
+    const std::string command = std::string(DEPTHCLOUD_BINARY) +
+                                " bench camera --seconds 2 --fps 10 --case 'two 848x480 + colour 1280x720, "
+                                "fused' --json " +
+                                json.string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::ifstream in(json);
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    fs::remove(json);
+    ASSERT_FALSE(j.is_discarded());
+    const nlohmann::json& second = j["cases"][0]["secondCamera"];
+    const auto n = [&](const char* key) { return second[key].get<long long>(); };
+    // 2 s at 10 fps, give or take the edges of the window: the second camera's own rate, not the sum.
+    EXPECT_GE(n("delivered"), 15) << second;
+    EXPECT_LE(n("delivered"), 25) << second;
+    EXPECT_LE(n("shown") + n("dropped"), n("delivered")) << second;
+    EXPECT_GE(n("shown") + n("dropped") + 3, n("delivered")) << "a frame or two on their way at the end";
+    EXPECT_GT(n("shown"), 0);
+    EXPECT_GE(j["cases"][0]["delivered"].get<long long>(), 15) << "the first camera's count is its own";
+    EXPECT_LE(j["cases"][0]["delivered"].get<long long>(), 25);
+}
+
 TEST(BenchCamera, AnUnknownCaseIsRefusedWithExitCode2) {
     const std::string command =
         std::string(DEPTHCLOUD_BINARY) + " bench camera --case nonsense > /dev/null 2>&1";

@@ -151,7 +151,7 @@ protected:
             return ImVec2(static_cast<float>(pick(static_cast<std::size_t>(size.x))),
                           static_cast<float>(pick(static_cast<std::size_t>(size.y))));
         };
-        switch (pick(22)) {
+        switch (pick(24)) {
         case 0: {
             const std::string& spec = sources_[pick(sources_.size())];
             if (spec.find("vanishing") != std::string::npos && pick(2) == 0)
@@ -213,6 +213,20 @@ protected:
         case 12:
             clickInSourcePanel(random);
             return "pick in the Source panel";
+        case 22: {
+            // A second or third source beside the main one, fused in its cloud (any kind, as in the picker).
+            if (viewer_->companions().size() >= 2)
+                return "add a source (two are open already)";
+            viewer_->settings().panels.sources = true;
+            const std::string& spec = sources_[pick(sources_.size())];
+            (void)viewer_->addSource(spec);
+            return "add source " + spec;
+        }
+        case 23:
+            if (viewer_->companions().empty())
+                return "remove a source (none)";
+            viewer_->companions().remove(pick(viewer_->companions().size()));
+            return "remove a source";
         default:
             clickInsideAWindow(random);
             return "click";
@@ -264,6 +278,11 @@ protected:
         const engine::InstrumentStatus s = instrument_->status();
         EXPECT_LE(s.frames.shown + s.frames.dropped, s.frames.delivered)
             << "shown + dropped + in flight = delivered, for " << s.source;
+        for (std::size_t i = 0; i < viewer_->companions().size(); ++i) {
+            const engine::InstrumentStatus c = viewer_->companions()[i].instrument().status();
+            EXPECT_LE(c.frames.shown + c.frames.dropped, c.frames.delivered)
+                << "each source counts its own frames, for " << c.source;
+        }
         const StatusLine line = viewer_->statusLine();
         EXPECT_EQ(line.source, s.source) << "the status line names the current source";
         if (gui_.io().MousePos.x < 0.0f) {

@@ -1,0 +1,144 @@
+// Several sources in the window: companion replays follow the main replay's timeline by their stamps, and
+// the Sources panel's buttons refine a companion's placement by ICP and remove it.
+
+#include "devices/recording/recording_reader.h"
+#include "devices/source_pose.h"
+#include "processing/rigid_alignment.h"
+#include "ui_fixture.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+namespace dc::ui::test {
+namespace {
+
+namespace fs = std::filesystem;
+
+// 3 degrees about the skew axis (1, 2, -1) and (2, -2, 1) cm: a wrong placement.
+const std::string kError =
+    "0.02,-0.02,0.01,0.010686694396250128,0.021373388792500257,-0.010686694396250128,0.9996573249755573";
+
+class SourcesPanelTest : public UiTest {
+protected:
+    void SetUp() override {
+        UiTest::SetUp();
+        ASSERT_FALSE(HasFatalFailure());
+        dir_ = fs::temp_directory_path() / ("dc-sources-" + std::to_string(::getpid()));
+        fs::remove_all(dir_);
+        fs::create_directories(dir_);
+    }
+    void TearDown() override {
+        UiTest::TearDown();
+        fs::remove_all(dir_);
+    }
+
+    // Records `frames` frames of the running synthetic source with the real recorder.
+    std::string record(const std::string& name, std::uint64_t frames) {
+        const std::string path = (dir_ / name).string();
+        EXPECT_TRUE(instrument_->startRecording(path).ok());
+        for (int i = 0; i < 400 && instrument_->recording().frames < frames; ++i)
+            viewer_->update(0.0, std::chrono::milliseconds(20));
+        EXPECT_TRUE(instrument_->stopRecording().ok());
+        return path;
+    }
+
+    static std::vector<std::int64_t> stampsOf(const std::string& path) {
+        auto reader = devices::recording::RecordingReader::open(path);
+        EXPECT_TRUE(reader.ok());
+        std::vector<std::int64_t> stamps;
+        for (std::size_t i = 0; reader && i < reader->frameCount(); ++i)
+            stamps.push_back(reader->timestampNs(i));
+        return stamps;
+    }
+
+    std::optional<std::size_t> companionIndex() {
+        const auto& shown = viewer_->companions()[0].presenter().shown();
+        if (!shown || !shown->frame->replay)
+            return std::nullopt;
+        return shown->frame->replay->index;
+    }
+    std::optional<std::size_t> mainIndex() {
+        const auto& shown = viewer_->shown();
+        if (!shown || !shown->frame->replay)
+            return std::nullopt;
+        return shown->frame->replay->index;
+    }
+
+    fs::path dir_;
+};
+
+// The index in `stamps` nearest `t`, worked out here from the recordings' own stamps.
+std::size_t nearest(const std::vector<std::int64_t>& stamps, std::int64_t t) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < stamps.size(); ++i)
+        if (std::llabs(stamps[i] - t) < std::llabs(stamps[best] - t))
+            best = i;
+    return best;
+}
+
+TEST_F(SourcesPanelTest, ReplaysWithOffsetClocksStepTogetherByStamp) {
+    const std::string a = record("a.dcrec", 20);
+    // Recorded after A: its clock is offset from A's by A's whole span and more, so the two share no instant
+    // and follow each other from their first frames.
+    const std::string b = record("b.dcrec", 30);
+    const auto stampsA = stampsOf(a);
+    const auto stampsB = stampsOf(b);
+    ASSERT_GE(stampsA.size(), 20u);
+    ASSERT_GE(stampsB.size(), 30u);
+    ASSERT_GT(stampsB.front(), stampsA.back());
+    ASSERT_TRUE(viewer_->openSource("replay:" + a + ":paused").ok());
+    ASSERT_TRUE(viewer_->addSource("replay:" + b + ":paused").ok());
+    for (const std::size_t target : {std::size_t{13}, std::size_t{2}, std::size_t{19}, std::size_t{7}}) {
+        instrument_->seekReplay(target);
+        const std::size_t want = nearest(stampsB, stampsB.front() + (stampsA[target] - stampsA.front()));
+        EXPECT_TRUE(frameUntil([&] { return mainIndex() == target && companionIndex() == want; }))
+            << "main at " << target << " shows " << mainIndex().value_or(999) << ", companion shows "
+            << companionIndex().value_or(999) << ", nearest " << want;
+    }
+    instrument_->stepReplay(1);
+    const std::size_t want = nearest(stampsB, stampsB.front() + (stampsA[8] - stampsA.front()));
+    EXPECT_TRUE(frameUntil([&] { return mainIndex() == 8u && companionIndex() == want; }));
+    EXPECT_FALSE(viewer_->companions()[0].instrument().replay()->status().playing);
+    instrument_->replay()->play();
+    EXPECT_TRUE(frameUntil([&] { return viewer_->companions()[0].instrument().replay()->status().playing; }))
+        << "the companion plays when the main replay does";
+}
+
+TEST_F(SourcesPanelTest, RefineMovesAMisplacedCompanionBackAndRemoveTakesItAway) {
+    // Companion B views the desk from 20 cm to the right; its pose= is 3 degrees and 3 cm wrong.
+    ASSERT_TRUE(viewer_->openSource("synthetic:320x240").ok());
+    ASSERT_TRUE(viewer_
+                    ->addSource("synthetic:320x240:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242:"
+                                "pose=" +
+                                kError)
+                    .ok());
+    viewer_->settings().panels.sources = true;
+    ASSERT_TRUE(frameUntil([&] { return viewer_->shown() && viewer_->companions()[0].presenter().shown(); }));
+    const auto before = viewer_->companions().overlap(0, viewer_->shown());
+    ASSERT_TRUE(before.has_value());
+    const auto refine = locate(kSourcesTitle, "Refine (ICP)##2", 1.0f, 8.0f);
+    ASSERT_TRUE(refine.has_value());
+    click(*refine, 0.0);
+    // The correction undoes the pose's error: B is back where its view put it, within 0.2 deg and 2 mm.
+    const auto error = devices::parsePoseValue(kError);
+    ASSERT_TRUE(error.ok());
+    const frame::RigidTransform left = frame::compose(viewer_->companions()[0].look.correction, *error);
+    EXPECT_LT(processing::rotationDegrees(left), 0.2);
+    const auto& t = left.translationMeters;
+    EXPECT_LT(1000.0 * std::hypot(t[0], t[1], t[2]), 2.0);
+    ASSERT_TRUE(frameUntil([&] {
+        const auto after = viewer_->companions().overlap(0, viewer_->shown());
+        return after && after->medianMm < 0.6 * before->medianMm;
+    }));
+    const auto remove = locate(kSourcesTitle, "Remove##2", 1.0f, 8.0f);
+    ASSERT_TRUE(remove.has_value());
+    click(*remove, 0.0);
+    EXPECT_TRUE(frameUntil([&] { return viewer_->companions().empty(); }));
+    EXPECT_FALSE(viewer_->presenter().fusing());
+}
+
+} // namespace
+} // namespace dc::ui::test

@@ -1,0 +1,195 @@
+#include "ui/companions.h"
+
+#include "devices/source_spec.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <system_error>
+
+namespace dc::ui {
+
+namespace {
+
+// The overlap figure is taken this often at most: it pairs every other sample of the main cloud.
+constexpr std::chrono::milliseconds kOverlapInterval{500};
+
+// What a companion takes from the main settings: everything that processes or colours its samples. It
+// draws no cloud of its own and measures no quality region (the Quality panel is the main source's).
+Settings companionSettings(const Settings& main) {
+    Settings s = main;
+    s.panels.quality = false;
+    s.accumulate.enabled = false;
+    return s;
+}
+
+processing::DepthCloud depthCloudOf(const processing::ShownFrame& shown) {
+    return {shown.depth.data.get(), shown.depth.intrinsics};
+}
+
+} // namespace
+
+Companion::Companion(std::unique_ptr<devices::Device> device, std::string spec)
+    : instrument_(std::move(device), std::move(spec)) {}
+
+Expected<std::unique_ptr<Companion>> Companion::create(std::unique_ptr<devices::Device> device,
+                                                       std::string spec, const Settings& settings) {
+    std::unique_ptr<Companion> c(new Companion(std::move(device), std::move(spec)));
+    if (Status s = c->renderer_.init(); !s)
+        return s.error();
+    c->presenter_ = std::make_unique<Presenter>(c->instrument_, c->renderer_, companionSettings(settings));
+    c->presenter_->setDrawsCloud(false);
+    c->instrument_.start();
+    return c;
+}
+
+Status Companions::add(const std::string& spec, const Settings& settings) {
+    auto device = devices::openSourceSpec(spec);
+    if (!device)
+        return Error{spec + ": " + device.error().message};
+    auto companion = Companion::create(std::move(*device), spec, settings);
+    if (!companion)
+        return companion.error();
+    companions_.push_back(std::move(*companion));
+    return {};
+}
+
+void Companions::remove(std::size_t index) {
+    if (index < companions_.size())
+        companions_.erase(companions_.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
+bool Companions::update(const Settings& main, double timeSeconds) {
+    bool fresh = false;
+    for (auto& c : companions_) {
+        c->presenter().settings() = companionSettings(main);
+        fresh |= c->presenter().update(timeSeconds);
+    }
+    return fresh;
+}
+
+void Companions::followReplay(const engine::Instrument& main) {
+    if (!main.replay())
+        return;
+    const devices::replay::ReplayStatus status = main.replay()->status();
+    for (auto& c : companions_)
+        c->follower.follow(status, c->instrument());
+}
+
+void Companions::presented() {
+    for (auto& c : companions_)
+        c->presenter().presented();
+}
+
+std::vector<FusedSource> Companions::fusedSources() const {
+    std::vector<FusedSource> out;
+    for (const auto& c : companions_) {
+        const processing::ShownFramePtr& shown = c->presenter().shown();
+        if (!c->look.visible || !shown)
+            continue;
+        FusedSource source{shown, placeInWorld(*shown->frame, c->look.correction), std::nullopt,
+                           c->instrument().spec()};
+        if (c->look.tinted) {
+            const auto byte = [](float v) {
+                return static_cast<std::uint8_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
+            };
+            source.tint = std::array<std::uint8_t, 3>{byte(c->look.tint[0]), byte(c->look.tint[1]),
+                                                      byte(c->look.tint[2])};
+        }
+        out.push_back(std::move(source));
+    }
+    return out;
+}
+
+frame::RigidTransform mainToCompanion(const processing::ShownFrame& main, const Companion& companion) {
+    const frame::RigidTransform mainToWorld = placeInWorld(*main.frame, {});
+    const frame::RigidTransform companionToWorld =
+        placeInWorld(*companion.presenter().shown()->frame, companion.look.correction);
+    return frame::compose(frame::inverse(companionToWorld), mainToWorld);
+}
+
+Expected<processing::IcpResult> Companions::refine(std::size_t index, const processing::ShownFramePtr& main) {
+    if (index >= companions_.size())
+        return Error{"no such source"};
+    Companion& c = *companions_[index];
+    const processing::ShownFramePtr& own = c.presenter().shown();
+    if (!main || !own || !main->depth.data || !own->depth.data)
+        return Error{"both sources need a frame first"};
+    const frame::RigidTransform seed = mainToCompanion(*main, c);
+    processing::IcpResult r = processing::refineAlignment(depthCloudOf(*main), depthCloudOf(*own), seed);
+    if (r.status == processing::IcpStatus::InvalidInput || r.status == processing::IcpStatus::TooFewPoints)
+        return Error{std::string("ICP: ") + processing::toString(r.status) + " (" +
+                     std::to_string(r.before.count) + " overlapping samples)"};
+    // The companion's camera-to-world that makes main -> companion the refined transform, with the main
+    // source where it is; its correction is what takes its own placement there.
+    const frame::RigidTransform refined =
+        frame::compose(placeInWorld(*main->frame, {}), frame::inverse(r.aToB));
+    const frame::RigidTransform placed = placeInWorld(*own->frame, {});
+    c.look.correction = frame::compose(refined, frame::inverse(placed));
+    c.overlap = r.after;
+    c.overlapAt = std::chrono::steady_clock::now();
+    return r;
+}
+
+const std::optional<processing::OverlapFigure>& Companions::overlap(std::size_t index,
+                                                                    const processing::ShownFramePtr& main) {
+    static const std::optional<processing::OverlapFigure> kNone;
+    if (index >= companions_.size())
+        return kNone;
+    Companion& c = *companions_[index];
+    const auto now = std::chrono::steady_clock::now();
+    const processing::ShownFramePtr& own = c.presenter().shown();
+    if (main && own && main->depth.data && own->depth.data && now - c.overlapAt >= kOverlapInterval) {
+        c.overlap = processing::overlapConsistency(depthCloudOf(*main), depthCloudOf(*own),
+                                                   mainToCompanion(*main, c));
+        c.overlapAt = now;
+    }
+    return c.overlap;
+}
+
+std::optional<double> Companions::skewMs(std::size_t index, const engine::Instrument& main,
+                                         const processing::ShownFramePtr& mainShown) const {
+    if (index >= companions_.size())
+        return std::nullopt;
+    const Companion& c = *companions_[index];
+    const processing::ShownFramePtr& own = c.presenter().shown();
+    const auto& mainReplay = main.replay();
+    const auto& ownReplay = c.instrument().replay();
+    if (!mainShown || !own || static_cast<bool>(mainReplay) != static_cast<bool>(ownReplay))
+        return std::nullopt;
+    std::int64_t mainStamp = mainShown->frame->timestampNs;
+    if (mainReplay)
+        mainStamp = engine::onCompanionClock(mainReplay->status(), mainStamp, ownReplay->status());
+    return static_cast<double>(own->frame->timestampNs - mainStamp) * 1e-6;
+}
+
+Expected<std::vector<std::string>> Companions::savePanels(const std::string& directory) {
+    std::vector<std::string> names;
+    for (std::size_t i = 0; i < companions_.size(); ++i) {
+        const std::string folder = "source-" + std::to_string(i + 2);
+        std::error_code ec;
+        std::filesystem::create_directories(directory + "/" + folder, ec);
+        if (ec)
+            return Error{directory + "/" + folder + ": " + ec.message()};
+        auto written = companions_[i]->presenter().savePanels(directory + "/" + folder);
+        if (!written)
+            return written.error();
+        for (const std::string& name : *written)
+            names.push_back(folder + "/" + name);
+    }
+    return names;
+}
+
+std::vector<ViewerSummary> Companions::summaries(const engine::Instrument& main,
+                                                 const processing::ShownFramePtr& mainShown) {
+    std::vector<ViewerSummary> out;
+    for (std::size_t i = 0; i < companions_.size(); ++i) {
+        companions_[i]->overlapAt = {}; // taken now, for the frames shown now
+        ViewerSummary s = companions_[i]->presenter().summary();
+        s.overlap = overlap(i, mainShown);
+        s.skewMs = skewMs(i, main, mainShown);
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+} // namespace dc::ui
