@@ -78,20 +78,6 @@ void AccumulatedPoints::sync(processing::PointAccumulator& accumulator) {
     count_ = accumulator.size();
 }
 
-void AccumulatedPoints::assign(const std::vector<processing::WorldPoint>& points) {
-    if (!buffer_)
-        return;
-    glBindBuffer(GL_ARRAY_BUFFER, buffer_.id());
-    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(points.size() * sizeof(processing::WorldPoint)),
-                 points.data(), GL_DYNAMIC_DRAW);
-    glBindBuffer(GL_ARRAY_BUFFER, 0);
-    capacity_ = points.size();
-    count_ = points.size();
-    generation_ = ~0ull; // a sync() after this starts over
-    cpu_ = keepCpu_ ? points : std::vector<processing::WorldPoint>{};
-    ++version_;
-}
-
 void AccumulatedPoints::setCpuCopy(bool keep) {
     if (keep == keepCpu_)
         return;

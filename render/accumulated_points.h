@@ -19,8 +19,6 @@ public:
     Status init();
     // Uploads what changed in `accumulator` (all of it after a clear or a new budget).
     void sync(processing::PointAccumulator& accumulator);
-    // Replaces every point with `points` (several sources' points fused in one world, made anew each frame).
-    void assign(const std::vector<processing::WorldPoint>& points);
     // Draws the points into the bound framebuffer; the caller has begun the pass.
     void draw(const glm::mat4& worldToClip, float pointSizePixels) const;
     std::size_t pointCount() const { return count_; }

@@ -26,6 +26,10 @@ std::uint32_t packRgb(float r, float g, float b) {
     return unorm(r) | unorm(g) << 8 | unorm(b) << 16;
 }
 
+std::uint32_t confidenceRgb(std::uint8_t level) {
+    return level == 0 ? 0x0000ffu : level == 1 ? 0x00ff00u : level == 2 ? 0xff0000u : 0u;
+}
+
 constexpr std::uint32_t kOpaque = 0xff000000u;
 
 } // namespace
@@ -231,10 +235,55 @@ std::size_t CloudSplatter::projectRow(const float* z, const std::uint8_t* levels
 void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Intrinsics& k,
                                  const processing::RgbImage* colours, const CloudParams& params, int width,
                                  int height) {
-    const int w = depth.depthMeters.width;
-    const int h = depth.depthMeters.height;
-    const bool hasColors = colours && colours->width == w && colours->height == h;
-    const bool hasConfidence = !depth.confidence.empty();
+    const SplatSource one{&depth, k, colours, params.viewProjection, std::nullopt};
+    splatSources({&one, 1}, params, width, height);
+}
+
+// A source's samples made ready to project: each column's ray through its view-projection, and where its
+// rows start among all the sources' rows.
+struct CloudSplatter::PreparedSource {
+    const SplatSource* source = nullptr;
+    int width = 0;
+    int height = 0;
+    int firstRow = 0;
+    bool hasColours = false;
+    bool hasConfidence = false;
+    float footprint = 0.0f;
+    std::array<std::vector<float>, 4> columns; // x, y, z, w of each column's ray through the matrix
+};
+
+std::vector<CloudSplatter::PreparedSource> CloudSplatter::prepare(std::span<const SplatSource> sources,
+                                                                  const CloudParams& params, int width,
+                                                                  int height) const {
+    std::vector<PreparedSource> prepared;
+    int rows = 0;
+    for (const SplatSource& s : sources) {
+        if (!s.depth || !s.intrinsics.valid())
+            continue;
+        PreparedSource p;
+        p.source = &s;
+        p.width = s.depth->depthMeters.width;
+        p.height = s.depth->depthMeters.height;
+        p.firstRow = rows;
+        rows += p.height;
+        p.hasColours = s.colours && s.colours->width == p.width && s.colours->height == p.height;
+        p.hasConfidence = !s.depth->confidence.empty();
+        p.footprint = footprintPixelsPerDepth(params, s.intrinsics, width, height);
+        for (auto& axis : p.columns)
+            axis.resize(static_cast<std::size_t>(p.width));
+        for (int u = 0; u < p.width; ++u) {
+            const glm::vec4 c =
+                static_cast<float>((u - s.intrinsics.cx) / s.intrinsics.fx) * s.viewProjection[0];
+            for (int a = 0; a < 4; ++a)
+                p.columns[static_cast<std::size_t>(a)][static_cast<std::size_t>(u)] = c[a];
+        }
+        prepared.push_back(std::move(p));
+    }
+    return prepared;
+}
+
+void CloudSplatter::splatSources(std::span<const SplatSource> sources, const CloudParams& params, int width,
+                                 int height) {
     if (params.coloring == PointColoring::Depth)
         for (std::size_t i = 0; i < colormapTable_.size(); ++i) {
             const auto c =
@@ -243,46 +292,52 @@ void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Int
         }
     const float rangeMin = params.rangeMinMeters;
     const float inverseRange = 1.0f / std::max(params.rangeMaxMeters - params.rangeMinMeters, 1e-6f);
-    const glm::mat4& m = params.viewProjection;
-    const float footprint = footprintPixelsPerDepth(params, k, width, height);
-    const auto colorOf = [&](std::size_t i, float z, std::uint8_t level) -> std::uint32_t {
+    const auto colorOf = [&](const PreparedSource& p, std::size_t i, float z,
+                             std::uint8_t level) -> std::uint32_t {
+        if (p.source->tint)
+            return *p.source->tint;
         switch (params.coloring) {
-        case PointColoring::Camera:
-            return hasColors ? colours->pixels[i * 3] | colours->pixels[i * 3 + 1] << 8 |
-                                   static_cast<std::uint32_t>(colours->pixels[i * 3 + 2]) << 16
-                             : kMidGray;
+        case PointColoring::Camera: {
+            const std::uint8_t* rgb = p.hasColours ? &p.source->colours->pixels[i * 3] : nullptr;
+            return rgb ? rgb[0] | rgb[1] << 8 | static_cast<std::uint32_t>(rgb[2]) << 16 : kMidGray;
+        }
         case PointColoring::Depth: {
             const float n = (z - rangeMin) * inverseRange;
             const float clamped = n > 0.0f ? std::min(n, 1.0f) : 0.0f;
             return colormapTable_[static_cast<std::size_t>(clamped * (colormapTable_.size() - 1) + 0.5f)];
         }
         case PointColoring::Confidence:
-            return confidencePackedRgb(level);
+            return confidenceRgb(level);
         }
         return kMidGray;
     };
-    std::array<std::vector<float>, 4> columns; // x, y, z, w of each column's ray through m
-    for (auto& axis : columns)
-        axis.resize(static_cast<std::size_t>(w));
-    for (int u = 0; u < w; ++u) {
-        const glm::vec4 c = static_cast<float>((u - k.cx) / k.fx) * m[0];
-        for (int a = 0; a < 4; ++a)
-            columns[static_cast<std::size_t>(a)][static_cast<std::size_t>(u)] = c[a];
-    }
-    run(h, params, width, height, [&](int firstRow, int lastRow, const auto& emit) {
+    const std::vector<PreparedSource> prepared = prepare(sources, params, width, height);
+    const int rows = prepared.empty() ? 0 : prepared.back().firstRow + prepared.back().height;
+    int widest = 0;
+    for (const PreparedSource& p : prepared)
+        widest = std::max(widest, p.width);
+    run(rows, params, width, height, [&](int firstRow, int lastRow, const auto& emit) {
         const SampleFilter keep{params.minConfidence, params.nearMeters};
         ClipBatch batch;
-        batch.resize(static_cast<std::size_t>(w));
         // Without a confidence map every sample counts as high.
-        const std::vector<std::uint8_t> allHigh(hasConfidence ? 0 : static_cast<std::size_t>(w), 2);
-        for (int v = firstRow; v < lastRow; ++v) {
+        const std::vector<std::uint8_t> allHigh(static_cast<std::size_t>(widest), 2);
+        std::size_t s = 0;
+        for (int r = firstRow; r < lastRow; ++r) {
+            while (r >= prepared[s].firstRow + prepared[s].height)
+                ++s;
+            const PreparedSource& p = prepared[s];
+            const frame::Intrinsics& k = p.source->intrinsics;
+            const glm::mat4& m = p.source->viewProjection;
+            const int v = r - p.firstRow;
+            batch.resize(static_cast<std::size_t>(p.width));
             const glm::vec4 row = static_cast<float>((v - k.cy) / k.fy) * m[1] + m[2];
-            const std::size_t first = static_cast<std::size_t>(v) * static_cast<std::size_t>(w);
-            const float* z = &depth.depthMeters.pixels[first];
-            const std::uint8_t* levels = hasConfidence ? &depth.confidence.pixels[first] : allHigh.data();
-            const std::size_t kept = projectRow(z, levels, columns, row, m[3], keep, footprint, batch);
-            emit(batch, static_cast<std::size_t>(w), kept,
-                 [&](std::size_t u) { return colorOf(first + u, z[u], levels[u]); });
+            const std::size_t first = static_cast<std::size_t>(v) * static_cast<std::size_t>(p.width);
+            const float* z = &p.source->depth->depthMeters.pixels[first];
+            const std::uint8_t* levels =
+                p.hasConfidence ? &p.source->depth->confidence.pixels[first] : allHigh.data();
+            const std::size_t kept = projectRow(z, levels, p.columns, row, m[3], keep, p.footprint, batch);
+            emit(batch, static_cast<std::size_t>(p.width), kept,
+                 [&](std::size_t u) { return colorOf(p, first + u, z[u], levels[u]); });
         }
     });
 }

@@ -10,6 +10,8 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <optional>
+#include <span>
 #include <vector>
 
 namespace dc::render {
@@ -38,6 +40,17 @@ public:
     // one RGB per sample, or null for mid-gray). Pixels of `width` x `height`.
     void splatSamples(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
                       const processing::RgbImage* colours, const CloudParams& params, int width, int height);
+    // One camera's samples for splatSources: placed through `intrinsics` and then `viewProjection` (which
+    // takes the place of params.viewProjection), coloured as params say or all in `tint` (packed RGB).
+    struct SplatSource {
+        const frame::DepthData* depth = nullptr;
+        frame::Intrinsics intrinsics;
+        const processing::RgbImage* colours = nullptr;
+        glm::mat4 viewProjection{1.0f};
+        std::optional<std::uint32_t> tint;
+    };
+    // Several cameras' samples in one picture, each through its own matrix (sources fused in one world).
+    void splatSources(std::span<const SplatSource> sources, const CloudParams& params, int width, int height);
     // Accumulated world points (the first `count` of `points`) through params.worldToClip.
     void splatWorld(const std::vector<processing::WorldPoint>& points, std::size_t count,
                     const CloudParams& params, int width, int height);
@@ -67,6 +80,9 @@ private:
     struct ClipBatch;
     struct Placed;
     struct SampleFilter;
+    struct PreparedSource;
+    std::vector<PreparedSource> prepare(std::span<const SplatSource> sources, const CloudParams& params,
+                                        int width, int height) const;
     static std::size_t projectRow(const float* z, const std::uint8_t* levels,
                                   const std::array<std::vector<float>, 4>& columns, glm::vec4 row,
                                   glm::vec4 translation, SampleFilter filter, float footprint,

@@ -1,7 +1,6 @@
 #pragma once
 
 #include <array>
-#include <cstdint>
 #include <string>
 
 namespace dc::render {
@@ -25,12 +24,6 @@ using ColormapStops = std::array<std::array<float, 3>, kColormapStopCount>;
 const ColormapStops& colormapStops(Colormap colormap);
 // `normalised` is clamped to [0, 1]; NaN maps like 0.
 std::array<float, 3> colormapColor(Colormap colormap, float normalised);
-
-// A confidence level's colour as the cloud draws it (low red, medium green, high blue), packed as
-// R | G << 8 | B << 16; black for a level outside them.
-inline std::uint32_t confidencePackedRgb(std::uint8_t level) {
-    return level == 0 ? 0x0000ffu : level == 1 ? 0x00ff00u : level == 2 ? 0xff0000u : 0u;
-}
 
 // GLSL for shaders: `colormapStops[17]`, the stops of `colormap` as constants, and
 // `vec3 colormapColor(float normalised)`, the same interpolation as the C++ function. A program per

@@ -26,6 +26,7 @@ uniform int coloring; // render::PointColoring
 uniform float minMeters;
 uniform float inverseRangeMeters;
 uniform bool shaderColours; // camera colours made here (CameraColours) rather than read from colorMap
+uniform vec4 tint;          // a > 0: every point this colour (render::CloudLayer::tint)
 
 out vec3 pointColor;
 
@@ -48,6 +49,8 @@ void main() {
                                                 : texelFetch(colorMap, pixel, 0).rgb)
                : coloring == 1 ? colormapColor((z - minMeters) * inverseRangeMeters)
                                : confidenceColor(confidence);
+    if (tint.a > 0.0)
+        pointColor = tint.rgb;
 }
 )glsl";
 
@@ -130,11 +133,17 @@ Status PointCloudRenderer::init() {
         const gl::Program& p = cloud.program;
         FrameTextures::connectSamplers(p);
         CameraColours::connectSamplers(p);
-        cloud.uniforms = {p.uniformLocation("viewProjection"),     p.uniformLocation("depthIntrinsics"),
-                          p.uniformLocation("minConfidence"),      p.uniformLocation("nearMeters"),
-                          p.uniformLocation("pointSizePixels"),    p.uniformLocation("footprintPixels"),
-                          p.uniformLocation("coloring"),           p.uniformLocation("minMeters"),
-                          p.uniformLocation("inverseRangeMeters"), p.uniformLocation("shaderColours")};
+        cloud.uniforms = {p.uniformLocation("viewProjection"),
+                          p.uniformLocation("depthIntrinsics"),
+                          p.uniformLocation("minConfidence"),
+                          p.uniformLocation("nearMeters"),
+                          p.uniformLocation("pointSizePixels"),
+                          p.uniformLocation("footprintPixels"),
+                          p.uniformLocation("coloring"),
+                          p.uniformLocation("minMeters"),
+                          p.uniformLocation("inverseRangeMeters"),
+                          p.uniformLocation("shaderColours"),
+                          p.uniformLocation("tint")};
     }
     Expected<gl::Program> splat = gl::Program::link(gl::kFullscreenVertexShader, kSplatFragmentShader);
     if (!splat)
@@ -170,6 +179,7 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
         setUniforms(cloud.uniforms, textures, params, target);
         const bool shaded = camera && params.coloring == PointColoring::Camera;
         glUniform1i(cloud.uniforms.shaderColours, shaded ? 1 : 0);
+        glUniform4f(cloud.uniforms.tint, 0.0f, 0.0f, 0.0f, 0.0f);
         if (shaded) {
             camera->setUniforms(cloud.program, textures);
             camera->bind();
@@ -179,8 +189,26 @@ void PointCloudRenderer::render(RenderTarget& target, const FrameTextures& textu
         const GLsizei count = textures.depthWidth() * textures.depthHeight();
         glDrawArrays(GL_POINTS, 0, count);
         lastPointCount_ = static_cast<std::size_t>(count);
+        drawLayers(cloud, params, target);
     }
     drawAnchors(params);
+}
+
+void PointCloudRenderer::drawLayers(const CloudProgram& cloud, const CloudParams& params,
+                                    const RenderTarget& target) {
+    for (const CloudLayer& layer : params.layers) {
+        if (!layer.textures || !layer.textures->hasDepth() || !layer.textures->depthIntrinsics().valid())
+            continue;
+        CloudParams own = params;
+        own.viewProjection = layer.viewProjection;
+        setUniforms(cloud.uniforms, *layer.textures, own, target);
+        glUniform1i(cloud.uniforms.shaderColours, 0);
+        glUniform4f(cloud.uniforms.tint, layer.tint.r, layer.tint.g, layer.tint.b, layer.tint.a);
+        layer.textures->bind();
+        const GLsizei count = layer.textures->depthWidth() * layer.textures->depthHeight();
+        glDrawArrays(GL_POINTS, 0, count);
+        lastPointCount_ += static_cast<std::size_t>(count);
+    }
 }
 
 void PointCloudRenderer::renderSplat(RenderTarget& target, const CloudSplatter& splat,

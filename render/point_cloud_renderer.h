@@ -2,6 +2,7 @@
 
 #include "base/expected.h"
 #include "frame/frame.h"
+#include "processing/shown_frame.h"
 #include "render/accumulated_points.h"
 #include "render/camera_colours.h"
 #include "render/cloud_splat.h"
@@ -14,6 +15,7 @@
 
 #include <array>
 #include <cstddef>
+#include <memory>
 #include <vector>
 
 namespace dc::render {
@@ -23,6 +25,23 @@ namespace dc::render {
 enum class PointColoring { Camera, Depth, Confidence };
 inline constexpr int kPointColoringCount = 3;
 const char* toString(PointColoring coloring);
+
+// Another camera's samples drawn into the same cloud (several sources fused in one world): its samples
+// (and their textures, for GL points), where its camera sits in the view, and a tint that colours every one
+// of its points.
+struct CloudLayer {
+    const FrameTextures* textures = nullptr;
+    // Maps a point of this layer's camera frame to clip space.
+    glm::mat4 viewProjection{1.0f};
+    glm::vec4 tint{0.0f}; // rgb, and a > 0 to use it instead of the point's own colour
+    // The samples: what the textures hold on the GPU path (so that a drawing of other samples is not taken
+    // for this one), what the CPU splat reads.
+    std::shared_ptr<const frame::DepthData> depth;
+    frame::Intrinsics intrinsics;
+    std::shared_ptr<const processing::RgbImage> colours;
+
+    bool operator==(const CloudLayer&) const = default;
+};
 
 struct CloudParams {
     // Maps a point of the depth camera's frame (OpenCV axes: x right, y down, z forward; meters) to clip
@@ -48,6 +67,8 @@ struct CloudParams {
     // (viewProjection composed with the current frame's world-to-camera transform).
     const AccumulatedPoints* accumulated = nullptr;
     glm::mat4 worldToClip{1.0f};
+    // Drawn with the frame's own samples, each through its own matrix.
+    std::vector<CloudLayer> layers;
 
     bool operator==(const CloudParams&) const = default;
 };
@@ -94,6 +115,7 @@ private:
         GLint minMeters = -1;
         GLint inverseRangeMeters = -1;
         GLint shaderColours = -1;
+        GLint tint = -1;
     };
     // A cloud program per colormap (colormapGlsl says why), with its uniforms.
     struct CloudProgram {
@@ -104,6 +126,7 @@ private:
     void setUniforms(const Uniforms& uniforms, const FrameTextures& textures, const CloudParams& params,
                      const RenderTarget& target) const;
     void drawAnchors(const CloudParams& params) const;
+    void drawLayers(const CloudProgram& cloud, const CloudParams& params, const RenderTarget& target);
 
     std::array<CloudProgram, kColormapCount> programs_;
     gl::Program splatProgram_;

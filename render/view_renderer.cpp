@@ -27,9 +27,6 @@ Status ViewRenderer::init() {
         return s;
     if (Status s = accumulated_.init(); !s)
         return s;
-    if (Status s = fused_.init(); !s)
-        return s;
-    fused_.setCpuCopy(true); // assigned whole each frame: either path may draw it
     if (Status s = cameraColours_.init(); !s)
         return s;
     const auto* name = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
@@ -114,6 +111,11 @@ const FrameTextures& ViewRenderer::texturesFor(UploadedDepth& uploaded, const pr
 
 const FrameTextures& ViewRenderer::textures() {
     return texturesFor(panelDepth_, depth_, pointColours_, true);
+}
+
+const FrameTextures& ViewRenderer::cloudTextures() {
+    UploadedDepth& uploaded = cloud_.factor > 1 ? cloudDepth_ : panelDepth_;
+    return texturesFor(uploaded, cloud_.depth, cloud_.colours, cloud_.colours != nullptr);
 }
 
 void ViewRenderer::syncAccumulated(processing::AccumulationWorker& worker) {
@@ -270,26 +272,14 @@ void ViewRenderer::setCloudPath(CloudPath path) {
     accumulated_.setCpuCopy(path == CloudPath::Splat);
 }
 
-void ViewRenderer::setFusedPoints(std::shared_ptr<const std::vector<processing::WorldPoint>> points) {
-    if (!points || points == fusedPoints_)
-        return;
-    fused_.assign(*points);
-    fusedPoints_ = std::move(points);
-}
-
-void ViewRenderer::renderCloud(CloudParams params, CloudSource source) {
-    const AccumulatedPoints* world = source == CloudSource::Accumulated ? &accumulated_
-                                     : source == CloudSource::Fused     ? &fused_
-                                                                        : nullptr;
-    const bool accumulated = world != nullptr;
-    params.accumulated = world;
+void ViewRenderer::renderCloud(CloudParams params, bool accumulated) {
+    params.accumulated = accumulated ? &accumulated_ : nullptr;
     const bool shaded = shaderColours(params, accumulated);
     CloudDrawing drawing{params,
                          accumulated ? nullptr : cloud_.depth.data,
                          accumulated ? nullptr : cloud_.colours,
                          shaded ? frame_->capturedImage.bytes : nullptr,
-                         accumulated ? world->version() : 0,
-                         source,
+                         accumulated ? accumulated_.version() : 0,
                          path_,
                          cloudTarget_.width(),
                          cloudTarget_.height()};
@@ -325,14 +315,29 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
     const int width = cloudTarget_.width();
     const int height = cloudTarget_.height();
     if (accumulated)
-        splatter_.splatWorld(params.accumulated->cpuCopy(), params.accumulated->pointCount(), params, width,
-                             height);
+        splatter_.splatWorld(accumulated_.cpuCopy(), accumulated_.pointCount(), params, width, height);
     else if (cloud_.depth.data && cloud_.depth.intrinsics.valid())
-        splatter_.splatSamples(*cloud_.depth.data, cloud_.depth.intrinsics, cloud_.colours.get(), params,
-                               width, height);
+        splatter_.splatSources(splatSources(params), params, width, height);
     else
         splatter_.splatWorld({}, 0, params, width, height);
     cloudRenderer_.renderSplat(cloudTarget_, splatter_, params);
+}
+
+std::vector<CloudSplatter::SplatSource> ViewRenderer::splatSources(const CloudParams& params) const {
+    std::vector<CloudSplatter::SplatSource> sources{{cloud_.depth.data.get(), cloud_.depth.intrinsics,
+                                                     cloud_.colours.get(), params.viewProjection,
+                                                     std::nullopt}};
+    const auto byte = [](float v) {
+        return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
+    };
+    for (const CloudLayer& layer : params.layers) {
+        std::optional<std::uint32_t> tint;
+        if (layer.tint.a > 0.0f)
+            tint = byte(layer.tint.r) | byte(layer.tint.g) << 8 | byte(layer.tint.b) << 16;
+        sources.push_back(
+            {layer.depth.get(), layer.intrinsics, layer.colours.get(), layer.viewProjection, tint});
+    }
+    return sources;
 }
 
 bool ViewRenderer::shaderColours(const CloudParams& params, bool accumulated) const {

@@ -48,9 +48,6 @@ struct PanelParams {
 // How the cloud reaches the screen: GL_POINTS on the GPU, or splatted on the CPU's cores (CloudSplatter)
 // and shown as one image. On software GL the splat is several times cheaper; on a GPU the points are.
 enum class CloudPath { Points, Splat };
-// What the cloud shows: the shown frame's samples, accumulate mode's world points, or several sources'
-// points fused in one world (ViewRenderer::setFusedPoints).
-enum class CloudSource { Frame, Accumulated, Fused };
 const char* toString(CloudPath path);
 // Whether GL_RENDERER names a software rasteriser (Mesa's llvmpipe, softpipe or swrast, Windows' basic
 // render driver through D3D12), where the splat path wins.
@@ -78,7 +75,7 @@ public:
     // The cloud, depth and confidence panels as cloud.png, depth.png and confidence.png: drawn whole first
     // (renderPanelsWhole), so the depth and confidence keep every sample however small they are shown.
     // An error names a panel not rendered yet.
-    // `withCloud` false: the depth and confidence only (a source whose points another's cloud draws).
+    // `withCloud` false: the depth and confidence only (a source whose points another source's cloud draws).
     Expected<std::vector<processing::PanelPicture>> panelPictures(bool withCloud = true);
     // The size of the depth map the depth and confidence panels show (their images' shape on screen; the
     // targets may hold every n-th sample of it).
@@ -91,11 +88,10 @@ public:
     // Whether the camera panel shows cameraTarget() (made here) rather than cameraTexture() (the engine's).
     bool cameraFromGpu() const { return !cameraFromEngine_ && cameraDrawn_.has_value(); }
     const RenderTarget& cameraTarget() const { return cameraTarget_; }
-    // Draws the cloud into cloudTarget() (params.accumulated is filled in for world points), unless
+    // Draws the cloud into cloudTarget() (params.accumulated is filled in by accumulate mode), unless
     // nothing it shows changed since the last time: the same samples, parameters, size and path.
-    void renderCloud(CloudParams params, CloudSource source);
-    // The points CloudSource::Fused draws, in the world frame; uploaded when they are new.
-    void setFusedPoints(std::shared_ptr<const std::vector<processing::WorldPoint>> points);
+    // params.layers are drawn with the frame's samples, on either path.
+    void renderCloud(CloudParams params, bool accumulated);
     void setCloudPath(CloudPath path);
     CloudPath cloudPath() const { return path_; }
     // GL_RENDERER of the context init() ran in, and whether it rasterises in software.
@@ -132,6 +128,10 @@ public:
     const RgbaTexture& qualityMapTexture() const { return qualityMap_; }
     // The shown depth as textures, uploaded if it was not yet (the depth panel and GL_POINTS read them).
     const FrameTextures& textures();
+    // The cloud's samples (decimated or not) with the engine's point colours, uploaded if they were not
+    // yet: what another renderer draws of this source as a CloudLayer.
+    const FrameTextures& cloudTextures();
+    const processing::ShownCloud& cloud() const { return cloud_; }
     // Work done, for tests that check that nothing is redone for nothing.
     std::uint64_t uploads() const { return uploads_; }
     std::uint64_t panelRenders() const { return panelRenders_; }
@@ -163,7 +163,6 @@ private:
         std::shared_ptr<const processing::RgbImage> colours;
         std::shared_ptr<const std::vector<std::uint8_t>> cameraBytes; // the image the shader colours from
         std::uint64_t accumulatedVersion = 0;
-        CloudSource source = CloudSource::Frame;
         CloudPath path = CloudPath::Points;
         int width = 0;
         int height = 0;
@@ -179,6 +178,8 @@ private:
                                      const std::shared_ptr<const processing::RgbImage>& colours,
                                      bool withColours);
     void drawCloud(const CloudParams& params, bool accumulated);
+    // The shown cloud's samples and params.layers', for the CPU splat.
+    std::vector<CloudSplatter::SplatSource> splatSources(const CloudParams& params) const;
     // Whether the points' camera colours are made by the shader: GL points coloured by the camera with no
     // colours from the engine (engine::Demand::gpuCameraColours).
     bool shaderColours(const CloudParams& params, bool accumulated) const;
@@ -218,8 +219,6 @@ private:
     std::optional<CloudDrawing> cloudDrawn_;
     PanelRenderer panels_;
     AccumulatedPoints accumulated_;
-    AccumulatedPoints fused_;
-    std::shared_ptr<const std::vector<processing::WorldPoint>> fusedPoints_; // what fused_ holds
     RenderTarget cloudTarget_;
     RenderTarget depthTarget_{Sampling::Nearest, DepthBuffer::Without};
     RenderTarget confidenceTarget_{Sampling::Nearest, DepthBuffer::Without};

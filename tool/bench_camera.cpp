@@ -90,7 +90,8 @@ struct CaseResult {
     std::size_t samples = 0;
     int cloudWidth = 0, cloudHeight = 0;
     double bareGlPointsMs = 0.0;
-    // The second camera of a pair: its own instrument's counts over the same window.
+    // The second camera of a pair over the same window: shown counted as the first camera's are (frames
+    // delivered in the window that reached the screen), delivered and dropped by its own instrument.
     std::optional<engine::FrameCounts> second;
 };
 
@@ -129,12 +130,27 @@ public:
             r.latencyMs.push_back(static_cast<double>(base::monotonicNowNs() - shown->frame->timestampNs) *
                                   1e-6);
         }
+        countSecond(r);
         if (const auto& clock = currentGpuClock())
             if (const auto mhz = clock->graphicsMhz())
                 r.gpuClockMhz.push_back(*mhz);
     }
 
+    // The pair's second camera numbers its frames from `firstSequence` in the window.
+    void measureSecond(std::uint64_t firstSequence) { secondFirst_ = firstSequence; }
+
 private:
+    void countSecond(CaseResult& r) {
+        if (viewer_.companions().empty() || !r.second)
+            return;
+        const auto& shown = viewer_.companions()[0].presenter().shown();
+        if (!shown || shown->frame->sequence == secondLast_)
+            return;
+        secondLast_ = shown->frame->sequence;
+        if (shown->frame->sequence >= secondFirst_)
+            ++r.second->shown;
+    }
+
     ui::Viewer& viewer_;
     ui::HeadlessUi& gui_;
     const render::ViewRenderer& renderer_;
@@ -143,6 +159,8 @@ private:
     const Clock::duration period_ =
         std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(1.0 / kDisplayHz));
     std::uint64_t lastSequence_ = ~0ull;
+    std::uint64_t secondFirst_ = 0;
+    std::uint64_t secondLast_ = ~0ull;
 };
 
 // Frames delivered while measuring: the source numbers its frames from 0 in delivery order, so the
@@ -210,6 +228,10 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
     const engine::FrameCounts f0 = instrument.status().frames;
     const engine::ProcessorCounts p0 = instrument.processor().counts();
     const engine::FrameCounts second0 = secondCounts(viewer);
+    if (c.pair) {
+        r.second = engine::FrameCounts{};
+        loop.measureSecond(second0.delivered);
+    }
     const double cpu0 = base::processCpuMs();
     const auto start = Clock::now();
     const auto end =
@@ -218,11 +240,10 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
         loop.frame(r, true, f0.delivered);
     r.seconds = std::chrono::duration<double>(Clock::now() - start).count();
     countFrames(r, f0, instrument.status().frames, p0, instrument.processor().counts());
-    if (c.pair) {
+    if (r.second) {
         const engine::FrameCounts second1 = secondCounts(viewer);
-        r.second = engine::FrameCounts{second1.delivered - second0.delivered, second1.shown - second0.shown,
-                                       second1.dropped - second0.dropped, second1.deliveredPerSecond,
-                                       second1.shownPerSecond};
+        r.second->delivered = second1.delivered - second0.delivered;
+        r.second->dropped = second1.dropped - second0.dropped;
     }
     r.processCpuMsPerFrame =
         (base::processCpuMs() - cpu0) / static_cast<double>(std::max<std::uint64_t>(r.delivered, 1));

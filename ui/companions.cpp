@@ -1,6 +1,9 @@
 #include "ui/companions.h"
 
+#include "base/files.h"
+#include "devices/source_pose.h"
 #include "devices/source_spec.h"
+#include "frame/multi_camera_extrinsics.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -84,18 +87,8 @@ std::vector<FusedSource> Companions::fusedSources() const {
     std::vector<FusedSource> out;
     for (const auto& c : companions_) {
         const processing::ShownFramePtr& shown = c->presenter().shown();
-        if (!c->look.visible || !shown)
-            continue;
-        FusedSource source{shown, placeInWorld(*shown->frame, c->look.correction), std::nullopt,
-                           c->instrument().spec()};
-        if (c->look.tinted) {
-            const auto byte = [](float v) {
-                return static_cast<std::uint8_t>(std::clamp(v, 0.0f, 1.0f) * 255.0f + 0.5f);
-            };
-            source.tint = std::array<std::uint8_t, 3>{byte(c->look.tint[0]), byte(c->look.tint[1]),
-                                                      byte(c->look.tint[2])};
-        }
-        out.push_back(std::move(source));
+        if (c->look.visible && shown)
+            out.push_back({shown, placeInWorld(*shown->frame, c->look.correction), c->instrument().spec()});
     }
     return out;
 }
@@ -160,6 +153,45 @@ std::optional<double> Companions::skewMs(std::size_t index, const engine::Instru
     if (mainReplay)
         mainStamp = engine::onCompanionClock(mainReplay->status(), mainStamp, ownReplay->status());
     return static_cast<double>(own->frame->timestampNs - mainStamp) * 1e-6;
+}
+
+Expected<std::vector<std::string>> Companions::savePlacements(const std::string& mainSpec,
+                                                              const std::string& parent) const {
+    frame::CameraExtrinsicsSet rig{{}, {}};
+    const auto placementOf = [](const std::string& spec) -> Expected<frame::RigidTransform> {
+        auto placement = devices::sourcePlacement(spec);
+        if (!placement)
+            return placement.error();
+        return placement->cameraToWorld.value_or(frame::RigidTransform{});
+    };
+    auto main = placementOf(mainSpec);
+    if (!main)
+        return main.error();
+    rig.cameras.push_back({"main", *main});
+    for (const auto& c : companions_) {
+        auto own = placementOf(c->instrument().spec());
+        if (!own)
+            return own.error();
+        rig.cameras.push_back({c->instrument().spec(), frame::compose(c->look.correction, *own)});
+    }
+    auto opencv = frame::writeCameraExtrinsics(rig, frame::ExtrinsicsFormat::OpenCvYaml);
+    if (!opencv)
+        return opencv.error();
+    // Kalibr's world is its first camera's frame: without the main source there, the chain would not say
+    // where the rig is.
+    auto kalibr = frame::writeCameraExtrinsics(rig, frame::ExtrinsicsFormat::KalibrCamchain);
+    auto dir = base::createFreshDirectory(parent, "placements");
+    if (!dir)
+        return dir.error();
+    std::vector<std::string> written{*dir + "/rig.yaml"};
+    if (Status s = base::writeTextFile(written[0], *opencv); !s)
+        return s.error();
+    if (kalibr) {
+        written.push_back(*dir + "/camchain.yaml");
+        if (Status s = base::writeTextFile(written[1], *kalibr); !s)
+            return s.error();
+    }
+    return written;
 }
 
 Expected<std::vector<std::string>> Companions::savePanels(const std::string& directory) {

@@ -34,6 +34,7 @@ public:
     Presenter& presenter() { return *presenter_; }
     const Presenter& presenter() const { return *presenter_; }
     const render::ViewRenderer& renderer() const { return renderer_; }
+    render::ViewRenderer& renderer() { return renderer_; }
     CompanionLook look;
     // The overlap consistency figure with the main source, as placed now (Companions::overlap).
     std::optional<processing::OverlapFigure> overlap;
@@ -67,7 +68,7 @@ public:
     void followReplay(const engine::Instrument& main);
     // What the companions' updates took is on screen now (each counts its own frame shown).
     void presented();
-    // The companions' shown results in the world, for the fused cloud (visible ones only).
+    // The visible companions' shown results, each placed in the world.
     std::vector<FusedSource> fusedSources() const;
     // Refines companion `index`'s placement against the main source's shown frame by point-to-plane ICP,
     // seeded by where both sit now; its correction takes the result. Says why when there is nothing to
@@ -83,6 +84,11 @@ public:
     // has no frame, or one is a replay and the other not.
     std::optional<double> skewMs(std::size_t index, const engine::Instrument& main,
                                  const processing::ShownFramePtr& mainShown) const;
+    // Every source's placement (its pose= value; for a companion, after its correction) written into a new
+    // folder under `parent`: rig.yaml (OpenCV extrinsics, camera_0 the main source, camera_N source N+1)
+    // and, when the main source sits at the world's origin, camchain.yaml (Kalibr). Returns the files.
+    Expected<std::vector<std::string>> savePlacements(const std::string& mainSpec,
+                                                      const std::string& parent) const;
     // Each companion's panels in a folder of its own under `directory` (source-2, source-3, ... as they
     // were added); returns the files written, each with its folder.
     Expected<std::vector<std::string>> savePanels(const std::string& directory);

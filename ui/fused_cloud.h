@@ -1,9 +1,8 @@
 #pragma once
 
 #include "frame/camera_model.h"
-#include "processing/point_accumulator.h"
+#include "processing/point_cloud.h"
 #include "processing/shown_frame.h"
-#include "render/point_cloud_renderer.h"
 
 #include <array>
 #include <optional>
@@ -16,21 +15,8 @@ namespace dc::ui {
 struct FusedSource {
     processing::ShownFramePtr shown;
     frame::RigidTransform cameraToWorld;
-    // Every point of the source in this colour (R, G, B), so that each source can be told apart.
-    std::optional<std::array<std::uint8_t, 3>> tint;
     std::string name; // its --source, for a file's comments
     bool operator==(const FusedSource&) const = default;
-};
-
-// How the fused points are kept and coloured: the cloud panel's own settings.
-struct FusedLook {
-    frame::Confidence minConfidence = frame::Confidence::Low;
-    float nearMeters = 0.1f;
-    render::PointColoring coloring = render::PointColoring::Camera;
-    render::Colormap colormap = render::Colormap::Jet;
-    float rangeMinMeters = 0.0f;
-    float rangeMaxMeters = 2.5f;
-    bool operator==(const FusedLook&) const = default;
 };
 
 // How a companion joins the fused cloud, as the Sources panel sets it.
@@ -50,11 +36,5 @@ frame::RigidTransform placeInWorld(const frame::Frame& frame, const frame::Rigid
 // moved into the world.
 std::vector<processing::CloudPoint> worldCloud(const FusedSource& source, frame::Confidence minConfidence,
                                                float nearMeters);
-
-// The kept samples of every source's shown cloud (the samples the cloud draws of each: confidence and
-// near limit as `look` says) moved into the world, each coloured as the cloud colours its own points or
-// by its tint. A source without a cloud adds nothing.
-std::vector<processing::WorldPoint> fusedPoints(const std::vector<FusedSource>& sources,
-                                                const FusedLook& look);
 
 } // namespace dc::ui

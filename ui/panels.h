@@ -364,11 +364,12 @@ struct SourcesActions {
     std::optional<std::size_t> remove;
     std::optional<std::size_t> refine;
     std::optional<std::size_t> resetPlacement;
+    bool savePlacements = false;
 };
 
 // Every source fused in the cloud: its state and frames (shown, dropped, delivered: its own), its depth
 // panel, and for each companion its visibility, tint, overlap figure with the main source, ICP refinement
-// and removal; "Add source" opens another.
+// and removal; "Add source" opens another; "Save placements" writes every source's placement.
 SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanelState& state, bool* open);
 
 // Per stream the frame intervals' histogram and the timestamps' source, the latency from arrival (and

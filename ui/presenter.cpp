@@ -74,7 +74,7 @@ engine::Demand Presenter::demandOf() const {
     engine::Demand d;
     d.cloud = show.cloud;
     d.pointColours = cloud.coloring == render::PointColoring::Camera;
-    d.gpuCameraColours = drawsCloud_ && !fusing() && cloudPath() == render::CloudPath::Points;
+    d.gpuCameraColours = drawsCloud_ && cloudPath() == render::CloudPath::Points;
     d.depthImage = show.depth || (show.camera && settings_.camera.depthOverlay);
     d.confidencePanel = show.confidence;
     d.cameraPanelWidth = show.camera ? cameraShownWidth_ : 0;
@@ -245,37 +245,52 @@ void Presenter::renderCloud(double timeSeconds) {
     if (fusing())
         renderFused(params);
     else
-        renderer_.renderCloud(params,
-                              accumulating() ? render::CloudSource::Accumulated : render::CloudSource::Frame);
+        renderer_.renderCloud(params, accumulating());
 }
 
 bool Presenter::fusing() const {
     return companions_ && !companions_->empty();
 }
 
-void Presenter::renderFused(render::CloudParams params) {
-    const CloudSettings& cloud = settings_.cloud;
-    const FusedLook look{cloud.minConfidence, cloud.nearMeters,  cloud.coloring,
-                         legend_.colormap,    legend_.minMeters, legend_.maxMeters};
-    std::vector<FusedSource> sources{
-        {shown_, placeInWorld(*shown_->frame, {}), std::nullopt, instrument_.spec()}};
+std::vector<FusedSource> Presenter::fusedSources() const {
+    std::vector<FusedSource> sources{{shown_, placeInWorld(*shown_->frame, {}), instrument_.spec()}};
     for (FusedSource& s : companions_->fusedSources())
         sources.push_back(std::move(s));
-    if (!fusedPoints_ || !(sources == fusedFrom_) || !(look == fusedLook_)) {
-        fusedPoints_ =
-            std::make_shared<const std::vector<processing::WorldPoint>>(fusedPoints(sources, look));
-        fusedFrom_ = std::move(sources);
-        fusedLook_ = look;
+    return sources;
+}
+
+// Each visible companion's samples become a layer of this cloud, placed through the world into this
+// source's camera frame: the GPU draws them from their own textures and the CPU splat projects them, with
+// no work per point to place them first.
+void Presenter::renderFused(render::CloudParams params) {
+    const glm::dmat4 worldToMain =
+        glm::inverse(toMatrix(frame::poseFromRigid(placeInWorld(*shown_->frame, {}))));
+    const bool gpu = renderer_.cloudPath() == render::CloudPath::Points;
+    for (std::size_t i = 0; i < companions_->size(); ++i) {
+        Companion& c = (*companions_)[i];
+        const processing::ShownFramePtr& shown = c.presenter().shown();
+        if (!c.look.visible || !shown)
+            continue;
+        const glm::dmat4 toWorld =
+            toMatrix(frame::poseFromRigid(placeInWorld(*shown->frame, c.look.correction)));
+        render::ViewRenderer& own = c.renderer();
+        const processing::ShownCloud& cloud = own.cloud();
+        params.layers.push_back(
+            {gpu ? &own.cloudTextures() : nullptr, params.viewProjection * glm::mat4(worldToMain * toWorld),
+             c.look.tinted ? glm::vec4(c.look.tint[0], c.look.tint[1], c.look.tint[2], 1.0f)
+                           : glm::vec4(0.0f),
+             cloud.depth.data, cloud.depth.intrinsics, cloud.colours});
     }
-    renderer_.setFusedPoints(fusedPoints_);
-    params.worldToClip = params.viewProjection *
-                         glm::mat4(glm::inverse(toMatrix(frame::poseFromRigid(fusedFrom_[0].cameraToWorld))));
-    renderer_.renderCloud(params, render::CloudSource::Fused);
+    renderer_.renderCloud(params, false);
 }
 
 std::uint64_t Presenter::pointsShown() {
-    if (fusing() && fusedPoints_)
-        return fusedPoints_->size();
+    if (fusing() && shown_) {
+        std::uint64_t points = 0;
+        for (const FusedSource& source : fusedSources())
+            points += source.shown->pointCount;
+        return points;
+    }
     if (accumulating())
         return instrument_.accumulation().size();
     return shown_ ? shown_->pointCount : 0;
@@ -333,13 +348,13 @@ Expected<std::string> Presenter::writeFusedSnapshot(const std::string& parent) {
 }
 
 Status Presenter::writeFusedPly(const std::string& path) const {
-    if (fusedFrom_.empty())
+    if (!shown_ || !fusing())
         return Error{"no fused cloud drawn yet"};
     const CloudSettings& cloud = settings_.cloud;
     std::vector<processing::CloudPoint> points;
     std::vector<std::string> comments{
         "depthcloud: several sources fused in the world frame, source after source"};
-    for (const FusedSource& source : fusedFrom_) {
+    for (const FusedSource& source : fusedSources()) {
         auto own = worldCloud(source, cloud.minConfidence, cloud.nearMeters);
         comments.push_back(std::to_string(own.size()) + " points of " + source.name);
         points.insert(points.end(), own.begin(), own.end());

@@ -135,6 +135,8 @@ private:
     // Fuses the companions' points with this source's and draws them, the world through this source's
     // camera.
     void renderFused(render::CloudParams params);
+    // This source and its visible companions, each placed in the world.
+    std::vector<FusedSource> fusedSources() const;
     void updateLegend();
     render::CloudParams cloudParams(double timeSeconds) const;
     // How the depth, confidence and overlay panels are drawn this frame.
@@ -162,11 +164,6 @@ private:
     std::uint64_t framesKept_ = 0;
     bool drawsCloud_ = true;
     Companions* companions_ = nullptr;
-    // The fused points and what they were made from: made again only when a source shows another frame,
-    // moves, or the look changes.
-    std::shared_ptr<const std::vector<processing::WorldPoint>> fusedPoints_;
-    std::vector<FusedSource> fusedFrom_;
-    FusedLook fusedLook_;
 };
 
 } // namespace dc::ui

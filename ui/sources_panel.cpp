@@ -126,6 +126,8 @@ SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanel
     ImGui::SameLine();
     if ((ImGui::Button("Add source") || entered) && state.spec[0] != '\0')
         actions.add = std::string(state.spec.data());
+    if (rows.size() > 1 && ImGui::Button("Save placements"))
+        actions.savePlacements = true;
     if (!state.message.empty())
         ImGui::TextWrapped("%s", state.message.c_str());
     ImGui::End();

@@ -580,6 +580,14 @@ void Viewer::applySourcesActions(const SourcesActions& actions) {
         pendingRemoval_ = actions.remove;
     if (actions.resetPlacement && *actions.resetPlacement < companions_.size())
         companions_[*actions.resetPlacement].look.correction = {};
+    if (actions.savePlacements) {
+        auto files = companions_.savePlacements(instrument_.spec(), kSnapshotDirectory);
+        sourcesPanel_.message = files ? "wrote " + files->front() +
+                                            (files->size() > 1 ? " and camchain.yaml" : "") +
+                                            ": pose=" + files->front() + "#camera_N places source N+1 there"
+                                      : "placements not saved: " + files.error().message;
+        (files ? logInfo : logError)(sourcesPanel_.message);
+    }
     if (!actions.refine)
         return;
     auto r = companions_.refine(*actions.refine, shown());

@@ -133,11 +133,61 @@ TEST_F(SourcesPanelTest, RefineMovesAMisplacedCompanionBackAndRemoveTakesItAway)
         const auto after = viewer_->companions().overlap(0, viewer_->shown());
         return after && after->medianMm < 0.6 * before->medianMm;
     }));
+    // Saved, B's placement reads back as where ICP put it: its pose= error undone.
+    const fs::path cwd = fs::current_path();
+    fs::current_path(dir_);
+    const auto save = locate(kSourcesTitle, "Save placements", 1.0f, 8.0f);
+    ASSERT_TRUE(save.has_value());
+    click(*save, 0.0);
+    fs::current_path(cwd);
+    const fs::path saved = dir_ / Viewer::kSnapshotDirectory / "placements";
+    ASSERT_TRUE(fs::exists(saved / "rig.yaml"));
+    const auto back = devices::parsePoseValue((saved / "rig.yaml").string() + "#camera_1");
+    ASSERT_TRUE(back.ok()) << back.error().message;
+    EXPECT_LT(processing::rotationDegrees(*back), 0.2);
+    EXPECT_LT(1000.0 * std::hypot(back->translationMeters[0], back->translationMeters[1],
+                                  back->translationMeters[2]),
+              2.0);
+    EXPECT_TRUE(fs::exists(saved / "camchain.yaml")) << "the main source sits at the origin: Kalibr's world";
     const auto remove = locate(kSourcesTitle, "Remove##2", 1.0f, 8.0f);
     ASSERT_TRUE(remove.has_value());
     click(*remove, 0.0);
     EXPECT_TRUE(frameUntil([&] { return viewer_->companions().empty(); }));
     EXPECT_FALSE(viewer_->presenter().fusing());
+}
+
+// Pixels of the cloud panel in exactly this colour.
+std::size_t pixelsOf(const render::RenderTarget& target, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
+    const std::vector<std::uint8_t> rgba = target.readRgba();
+    std::size_t n = 0;
+    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4)
+        n += rgba[i] == r && rgba[i + 1] == g && rgba[i + 2] == b;
+    return n;
+}
+
+// Both cloud paths draw a companion's points among the main source's, placed by its pose: tinted pure
+// green, they cover much of the panel; hidden, none of it is green; the main source alone has no such
+// colour.
+TEST_F(SourcesPanelTest, BothCloudPathsDrawACompanionsPointsInItsTint) {
+    ASSERT_TRUE(viewer_->openSource("synthetic:320x240").ok());
+    ASSERT_TRUE(
+        viewer_->addSource("synthetic:320x240:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
+    Companion& b = viewer_->companions()[0];
+    b.look.tinted = true;
+    b.look.tint = {0.0f, 1.0f, 0.0f};
+    viewer_->settings().cloud.motion.enabled = false;
+    for (const CloudPathChoice path : {CloudPathChoice::Points, CloudPathChoice::Splat}) {
+        SCOPED_TRACE(path == CloudPathChoice::Points ? "GL points" : "CPU splat");
+        viewer_->settings().cloud.path = path;
+        b.look.visible = true;
+        ASSERT_TRUE(frameUntil([&] {
+            return b.presenter().shown() && pixelsOf(renderer_.cloudTarget(), 0, 255, 0) > 20'000;
+        })) << pixelsOf(renderer_.cloudTarget(), 0, 255, 0)
+            << " green pixels";
+        b.look.visible = false;
+        EXPECT_TRUE(frameUntil([&] { return pixelsOf(renderer_.cloudTarget(), 0, 255, 0) == 0; }))
+            << pixelsOf(renderer_.cloudTarget(), 0, 255, 0) << " green pixels with the companion hidden";
+    }
 }
 
 } // namespace
