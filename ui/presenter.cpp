@@ -93,7 +93,7 @@ engine::Demand Presenter::demandOf() const {
     d.cloudPanelPixels = static_cast<std::size_t>(target.width()) * static_cast<std::size_t>(target.height());
     d.processing = settings_.processing;
     const AccumulateSettings& a = settings_.accumulate;
-    d.accumulate = a.enabled;
+    d.accumulate = a.enabled && !fusing(); // not drawn while several sources are fused
     d.accumulateBudget = static_cast<std::size_t>(a.budgetThousands) * 1000;
     d.accumulateVoxelMeters = a.voxelMillimeters * 1e-3f;
     if (show.quality)
@@ -297,7 +297,7 @@ std::uint64_t Presenter::pointsShown() {
 }
 
 bool Presenter::accumulating() const {
-    return settings_.accumulate.enabled && shown_ && shown_->frame->pose;
+    return settings_.accumulate.enabled && shown_ && shown_->frame->pose && !fusing();
 }
 
 void Presenter::updateLegend() {

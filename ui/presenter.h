@@ -118,7 +118,7 @@ public:
     std::string cloudPathText() const;
     // How long the last update() waited for the engine's result (benchmarks take it off the frame time).
     double lastWaitMs() const { return lastWaitMs_; }
-    // Whether accumulate mode is on and the frame shown carries a pose.
+    // Whether accumulate mode is on, the frame shown carries a pose, and the cloud is this source's alone.
     bool accumulating() const;
     std::uint64_t pointsShown();
     // Frames drawn per second (with or without a new device frame).

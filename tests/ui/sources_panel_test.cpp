@@ -190,5 +190,20 @@ TEST_F(SourcesPanelTest, BothCloudPathsDrawACompanionsPointsInItsTint) {
     }
 }
 
+// Accumulate mode gathers one source's frames: with a second source open it waits (the engine gathers
+// nothing), and it resumes when the second source is removed.
+TEST_F(SourcesPanelTest, AccumulateModeWaitsWhileSeveralSourcesAreFused) {
+    ASSERT_TRUE(viewer_->openSource("synthetic:160x120:motion").ok());
+    viewer_->settings().accumulate.enabled = true;
+    ASSERT_TRUE(
+        frameUntil([&] { return viewer_->accumulating() && instrument_->accumulation().size() > 0; }));
+    ASSERT_TRUE(viewer_->addSource("synthetic:160x120").ok());
+    ASSERT_TRUE(frameUntil([&] { return viewer_->companions()[0].presenter().shown() != nullptr; }));
+    EXPECT_FALSE(viewer_->accumulating());
+    EXPECT_FALSE(viewer_->demand().accumulate);
+    viewer_->companions().remove(0);
+    EXPECT_TRUE(frameUntil([&] { return viewer_->accumulating() && viewer_->demand().accumulate; }));
+}
+
 } // namespace
 } // namespace dc::ui::test
