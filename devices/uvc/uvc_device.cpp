@@ -13,6 +13,8 @@
 #include <cerrno>
 #include <cmath>
 #include <cstring>
+#include <fstream>
+#include <iterator>
 #include <linux/videodev2.h>
 
 namespace dc::devices {
@@ -89,6 +91,36 @@ Expected<v4l2::ChosenMode> firstOffered(const std::vector<v4l2::V4l2Mode>& modes
         if ((mode = v4l2::chooseMode(modes, request)))
             break;
     return mode;
+}
+
+// The node that streams depth (Z16 or Y16): a D4xx's depth extension unit belongs to the same interface.
+std::string depthNodeOf(v4l2::Syscalls& sys, const std::vector<std::string>& nodes) {
+    for (const std::string& path : nodes) {
+        v4l2::V4l2Node node(sys);
+        if (node.open(path) < 0)
+            continue;
+        const std::vector<std::uint32_t> formats = node.formats();
+        if (std::any_of(formats.begin(), formats.end(),
+                        [](std::uint32_t f) { return f == V4L2_PIX_FMT_Z16 || f == V4L2_PIX_FMT_Y16; }))
+            return path;
+    }
+    return {};
+}
+
+// The extension unit of the USB device behind `depthNode`: none for a camera not on USB, not in the
+// known-camera table, or whose descriptors do not declare the unit the table gives its VID:PID.
+v4l2::XuAccess xuAccessOf(const std::string& sysfsRoot, const std::optional<usb::UsbDeviceInfo>& device,
+                          const std::string& depthNode) {
+    if (!device)
+        return {};
+    v4l2::XuAccess access = v4l2::xuAccessFor(device->vendorId, device->productId, depthNode);
+    if (!access.unit)
+        return {};
+    // sysfs gives this file a size larger than what it holds: read to its end, not by its size.
+    std::ifstream in(sysfsRoot + "/bus/usb/devices/" + device->sysfsName() + "/descriptors",
+                     std::ios::binary);
+    const std::vector<std::uint8_t> descriptors{std::istreambuf_iterator<char>(in), {}};
+    return v4l2::declaresExtensionUnit(descriptors, *access.unit) ? access : v4l2::XuAccess{};
 }
 
 } // namespace
@@ -343,7 +375,22 @@ std::shared_ptr<SensorControls> UvcDevice::sensorControls() const {
     auto nodes = cameraNodePaths(config_);
     if (!nodes)
         return nullptr;
-    return std::make_shared<v4l2::V4l2SensorControls>(sys_, std::move(*nodes));
+    v4l2::XuAccess xu = xuAccess(*nodes);
+    return std::make_shared<v4l2::V4l2SensorControls>(sys_, std::move(*nodes), std::move(xu));
+}
+
+// From the configuration alone, as sensorControls() is. A usb: source's nodes are probed for its depth node
+// only when the table gives its VID:PID an extension unit.
+v4l2::XuAccess UvcDevice::xuAccess(const std::vector<std::string>& nodes) const {
+    std::string depth = config_.depthNode;
+    if (config_.usb) {
+        const bool known =
+            v4l2::xuAccessFor(config_.usb->vendorId, config_.usb->productId, {}).unit != nullptr;
+        depth = known ? depthNodeOf(sys_, nodes) : std::string();
+    }
+    if (depth.empty())
+        return {};
+    return xuAccessOf(config_.sysfsRoot, usb::Sysfs(config_.sysfsRoot).usbDeviceOf(depth), depth);
 }
 
 // A value the camera refuses is told and the rest are set: the camera streams either way.
@@ -358,7 +405,8 @@ void UvcDevice::applyPreset() {
     } else if (!colorPath_.empty()) {
         nodes.push_back(colorPath_);
     }
-    const std::vector<std::string> refused = v4l2::applyPreset(sys_, *config_.preset, nodes);
+    const std::vector<std::string> refused = v4l2::applyPreset(
+        sys_, *config_.preset, nodes, xuAccessOf(config_.sysfsRoot, usbIdentity_, depthPath_));
     for (const std::string& message : refused)
         logWarning(description() + ": preset " + config_.presetPath + ": " + message);
     logInfo(description() + ": preset " + config_.presetPath + " applied" +

@@ -93,6 +93,7 @@ private:
     void chooseIntrinsics();
     Status checkRigSizes() const;
     void applyPreset();
+    v4l2::XuAccess xuAccess(const std::vector<std::string>& nodes) const;
     Status configureBoth();
     Status startStreaming();
     void closeNodes();

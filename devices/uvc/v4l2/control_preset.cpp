@@ -4,6 +4,7 @@
 #include "devices/uvc/v4l2/node_probe.h"
 #include "devices/uvc/v4l2/pixel_formats.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
+#include "devices/uvc/v4l2/xu_controls.h"
 
 #include <linux/videodev2.h>
 #include <nlohmann/json.hpp>
@@ -48,8 +49,9 @@ Expected<PresetNode> parseNode(const nlohmann::json& node, const std::string& wh
 }
 
 // One value set on an open node, or why not (naming the node and the control).
-Status applyValue(Syscalls& sys, const V4l2Node& node, const std::string& key, const std::string& text) {
-    auto controls = queryControls(sys, node.fd(), node.path());
+Status applyValue(Syscalls& sys, const V4l2Node& node, const std::string& key, const std::string& text,
+                  const XuAccess& xu) {
+    auto controls = queryNodeControls(sys, node.fd(), node.path(), xu);
     if (!controls)
         return controls.error();
     const auto control = std::find_if(controls->begin(), controls->end(), [&key](const V4l2Control& c) {
@@ -62,7 +64,7 @@ Status applyValue(Syscalls& sys, const V4l2Node& node, const std::string& key, c
         return Error{node.path() + ": " + value.error().message};
     if (Status s = checkControlValue(*control, *value); !s)
         return Error{node.path() + ": " + s.error().message};
-    return setControl(sys, node.fd(), node.path(), *control, *value);
+    return setNodeControl(sys, node.fd(), node.path(), *control, *value);
 }
 
 SensorControl::Kind kindOf(const V4l2Control& c) {
@@ -95,11 +97,12 @@ SensorControl sensorControlOf(const V4l2Control& c) {
     return out;
 }
 
-// Opens the node at `path` into `node` and reads its controls.
-Expected<std::vector<V4l2Control>> openControls(V4l2Node& node, Syscalls& sys, const std::string& path) {
+// Opens the node at `path` into `node` and reads its controls, with the XU controls `xu` gives it.
+Expected<std::vector<V4l2Control>> openControls(V4l2Node& node, Syscalls& sys, const std::string& path,
+                                                const XuAccess& xu) {
     if (const int r = node.open(path); r < 0)
         return Error{path + ": cannot open: " + std::strerror(-r)};
-    return queryControls(sys, node.fd(), path);
+    return queryNodeControls(sys, node.fd(), path, xu);
 }
 
 } // namespace
@@ -108,7 +111,7 @@ Expected<std::vector<SensorControlNode>> V4l2SensorControls::read() {
     std::vector<SensorControlNode> nodes;
     for (const std::string& path : nodePaths_) {
         V4l2Node node(sys_);
-        auto controls = openControls(node, sys_, path);
+        auto controls = openControls(node, sys_, path, xu_);
         if (!controls)
             return controls.error();
         SensorControlNode out{path, node.capability().card, {}};
@@ -121,7 +124,7 @@ Expected<std::vector<SensorControlNode>> V4l2SensorControls::read() {
 
 Status V4l2SensorControls::set(const std::string& path, std::uint32_t id, std::int64_t value) {
     V4l2Node node(sys_);
-    auto controls = openControls(node, sys_, path);
+    auto controls = openControls(node, sys_, path, xu_);
     if (!controls)
         return controls.error();
     const auto control =
@@ -130,7 +133,7 @@ Status V4l2SensorControls::set(const std::string& path, std::uint32_t id, std::i
         return Error{path + ": has no control " + std::to_string(id)};
     if (Status s = checkControlValue(*control, value); !s)
         return Error{path + ": " + s.error().message};
-    return setControl(sys_, node.fd(), path, *control, value);
+    return setNodeControl(sys_, node.fd(), path, *control, value);
 }
 
 bool V4l2SensorControls::changed() {
@@ -138,8 +141,9 @@ bool V4l2SensorControls::changed() {
     if (!watched_) {
         watched_.emplace();
         for (const std::string& path : nodePaths_) {
+            // V4L2_EVENT_CTRL covers only the driver's controls: an XU control changes unseen.
             V4l2Node node(sys_);
-            auto controls = openControls(node, sys_, path);
+            auto controls = openControls(node, sys_, path, {});
             if (!controls)
                 continue;
             std::vector<std::uint32_t> ids;
@@ -260,7 +264,7 @@ Expected<ControlPreset> readPreset(const std::string& path) {
 }
 
 std::vector<std::string> applyPreset(Syscalls& sys, const ControlPreset& preset,
-                                     const std::vector<std::string>& nodePaths) {
+                                     const std::vector<std::string>& nodePaths, const XuAccess& xu) {
     std::vector<std::string> refused;
     for (std::size_t i = 0; i < preset.nodes.size(); ++i) {
         const PresetNode& saved = preset.nodes[i];
@@ -275,7 +279,7 @@ std::vector<std::string> applyPreset(Syscalls& sys, const ControlPreset& preset,
             continue;
         }
         for (const auto& [key, text] : saved.values)
-            if (Status s = applyValue(sys, node, key, text); !s)
+            if (Status s = applyValue(sys, node, key, text, xu); !s)
                 refused.push_back(s.error().message);
     }
     return refused;

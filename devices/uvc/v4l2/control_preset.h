@@ -5,6 +5,7 @@
 #include "devices/sensor_controls.h"
 #include "devices/uvc/v4l2/controls.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
+#include "devices/uvc/v4l2/xu_controls.h"
 
 #include <optional>
 #include <string>
@@ -42,15 +43,17 @@ Expected<ControlPreset> readPreset(const std::string& path);
 // Applies node i of the preset to nodePaths[i], value by value in the saved order. The node's controls are
 // read again before each value, so that an auto control set before has made its partner settable. A value
 // the camera refuses, or a control or node it lacks, is left out and told in the returned messages (one
-// each, naming the node, the control and the value); everything else is set.
+// each, naming the node, the control and the value); everything else is set. `xu`'s node also takes its
+// extension-unit controls by name.
 std::vector<std::string> applyPreset(Syscalls& sys, const ControlPreset& preset,
-                                     const std::vector<std::string>& nodePaths);
+                                     const std::vector<std::string>& nodePaths, const XuAccess& xu = {});
 
 // A camera's nodes' controls for the window (devices::SensorControls), by path: each call opens the node.
+// The node `xu` reaches lists its extension-unit controls after the driver's.
 class V4l2SensorControls final : public SensorControls {
 public:
-    V4l2SensorControls(Syscalls& sys, std::vector<std::string> nodePaths)
-        : sys_(sys), nodePaths_(std::move(nodePaths)) {}
+    V4l2SensorControls(Syscalls& sys, std::vector<std::string> nodePaths, XuAccess xu = {})
+        : sys_(sys), nodePaths_(std::move(nodePaths)), xu_(std::move(xu)) {}
     Expected<std::vector<SensorControlNode>> read() override;
     Status set(const std::string& path, std::uint32_t id, std::int64_t value) override;
     // The modes of the first node that offers Z16 or Y16 depth.
@@ -63,6 +66,7 @@ public:
 private:
     Syscalls& sys_;
     const std::vector<std::string> nodePaths_;
+    const XuAccess xu_;
     base::Mutex mutex_;
     std::optional<std::vector<V4l2Node>> watched_ DC_GUARDED_BY(mutex_);
 };
