@@ -351,6 +351,7 @@ struct SourceRow {
     std::optional<double> skewMs;                     // its frame's time less the main source's
     CompanionLook* look = nullptr;                    // the companion's; null for the main source
     PanelImage depth;                                 // its depth panel as last drawn
+    PanelImage camera;                                // its camera panel (empty: no camera image)
 };
 
 struct SourcesPanelState {
@@ -368,8 +369,8 @@ struct SourcesActions {
 };
 
 // Every source fused in the cloud: its state and frames (shown, dropped, delivered: its own), its depth
-// panel, and for each companion its visibility, tint, overlap figure with the main source, ICP refinement
-// and removal; "Add source" opens another; "Save placements" writes every source's placement.
+// and camera panels, and for each companion its visibility, tint, overlap figure with the main source, ICP
+// refinement and removal; "Add source" opens another; "Save placements" writes every source's placement.
 SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanelState& state, bool* open);
 
 // Per stream the frame intervals' histogram and the timestamps' source, the latency from arrival (and

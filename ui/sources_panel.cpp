@@ -10,7 +10,7 @@ namespace dc::ui {
 
 namespace {
 
-constexpr float kThumbnailWidth = 160.0f;
+constexpr float kThumbnailWidth = 128.0f;
 
 // A rotation of `degrees` about the world's x, y and z axes in turn (small nudges: the order hardly
 // matters at the size of one frame's drag).
@@ -34,13 +34,15 @@ frame::RigidTransform nudge(const std::array<float, 3>& moveMm, const std::array
     return t;
 }
 
-void drawThumbnail(const PanelImage& image) {
+// Draws it (when it has a picture) and returns whether it did.
+bool drawThumbnail(const PanelImage& image) {
     if (image.empty())
-        return;
+        return false;
     const float height = kThumbnailWidth * static_cast<float>(image.height) / static_cast<float>(image.width);
     ImGui::Image(reinterpret_cast<ImTextureID>(static_cast<std::intptr_t>(image.textureId)),
                  {kThumbnailWidth, height}, image.bottomUp ? ImVec2{0, 1} : ImVec2{0, 0},
                  image.bottomUp ? ImVec2{1, 0} : ImVec2{1, 1});
+    return true;
 }
 
 // Each row's widgets carry its number after "##", so that a test can find them by label.
@@ -107,8 +109,10 @@ SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanel
         const std::string header = (i == 0 ? "Main: " : "Source " + std::to_string(i + 1) + ": ") + row.name +
                                    "##" + std::to_string(i + 1);
         if (ImGui::CollapsingHeader(header.c_str(), ImGuiTreeNodeFlags_DefaultOpen)) {
-            drawThumbnail(row.depth);
-            if (!row.depth.empty())
+            ImGui::BeginGroup();
+            const bool thumbnails = drawThumbnail(row.depth) | drawThumbnail(row.camera);
+            ImGui::EndGroup();
+            if (thumbnails)
                 ImGui::SameLine();
             ImGui::BeginGroup();
             drawFrames(row);

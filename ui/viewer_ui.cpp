@@ -96,6 +96,11 @@ PanelImage imageOf(const render::RgbaTexture& texture) {
     return {texture.id(), texture.width(), texture.height(), false};
 }
 
+// The camera panel's picture: made on the GPU from the image's planes, or the engine's.
+PanelImage cameraImageOf(const render::ViewRenderer& renderer) {
+    return renderer.cameraFromGpu() ? imageOf(renderer.cameraTarget()) : imageOf(renderer.cameraTexture());
+}
+
 // A clip-space point of the cloud's view in the cloud image, as fractions of its size (NDC y points up,
 // image rows go down).
 ImVec2 cloudFraction(const glm::vec4& clip) {
@@ -514,9 +519,7 @@ void Viewer::drawSidePanels(float x, float w, float height) {
         const PanelImage depth = aligned ? imageOf(renderer_.depthOverCameraTarget())
                                          : dataPanelImage(renderer_.depthTarget(), renderer_);
         const PanelResult r = drawCameraPanel(
-            renderer_.cameraFromGpu() ? imageOf(renderer_.cameraTarget())
-                                      : imageOf(renderer_.cameraTexture()),
-            depth, settings_.camera, probe,
+            cameraImageOf(renderer_), depth, settings_.camera, probe,
             shown() && shown()->frame && !shown()->frame->rig ? roiOverlay() : RoiOverlay{}, &show.camera);
         afterPanel(kCameraTitle, r);
         if (r.shownWidth > 0)
@@ -559,16 +562,18 @@ void Viewer::drawBottomStrip(float x, float y, float w, float h) {
 }
 
 void Viewer::drawSources(float x, float y) {
-    placePanel(kSourcesTitle, x, y, 460.0f, 420.0f);
+    placePanel(kSourcesTitle, x, y, 480.0f, 560.0f);
     const engine::InstrumentStatus main = instrument_.status();
     std::vector<SourceRow> rows{{main.source, main.state.text(), main.frames, std::nullopt, std::nullopt,
-                                 nullptr, dataPanelImage(renderer_.depthTarget(), renderer_)}};
+                                 nullptr, dataPanelImage(renderer_.depthTarget(), renderer_),
+                                 cameraImageOf(renderer_)}};
     for (std::size_t i = 0; i < companions_.size(); ++i) {
         Companion& c = companions_[i];
         const engine::InstrumentStatus s = c.instrument().status();
         rows.push_back({s.source, s.state.text(), s.frames, companions_.overlap(i, shown()),
                         companions_.skewMs(i, instrument_, shown()), &c.look,
-                        dataPanelImage(c.renderer().depthTarget(), c.renderer())});
+                        dataPanelImage(c.renderer().depthTarget(), c.renderer()),
+                        cameraImageOf(c.renderer())});
     }
     applySourcesActions(drawSourcesPanel(rows, sourcesPanel_, &settings_.panels.sources));
 }

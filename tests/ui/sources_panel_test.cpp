@@ -149,6 +149,16 @@ TEST_F(SourcesPanelTest, RefineMovesAMisplacedCompanionBackAndRemoveTakesItAway)
                                   back->translationMeters[2]),
               2.0);
     EXPECT_TRUE(fs::exists(saved / "camchain.yaml")) << "the main source sits at the origin: Kalibr's world";
+    // Both files say exactly what the panel placed.
+    const frame::RigidTransform placed = frame::compose(viewer_->companions()[0].look.correction, *error);
+    const auto kalibr = devices::parsePoseValue((saved / "camchain.yaml").string() + "#cam1");
+    ASSERT_TRUE(kalibr.ok()) << kalibr.error().message;
+    for (const frame::RigidTransform& read : {*back, *kalibr}) {
+        for (int i = 0; i < 9; ++i)
+            EXPECT_NEAR(read.rotation[i], placed.rotation[i], 1e-9);
+        for (int i = 0; i < 3; ++i)
+            EXPECT_NEAR(read.translationMeters[i], placed.translationMeters[i], 1e-9);
+    }
     const auto remove = locate(kSourcesTitle, "Remove##2", 1.0f, 8.0f);
     ASSERT_TRUE(remove.has_value());
     click(*remove, 0.0);
