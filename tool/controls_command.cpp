@@ -2,9 +2,11 @@
 
 #include "base/files.h"
 #include "devices/uvc/live_source_spec.h"
+#include "devices/uvc/uvc_device.h"
 #include "devices/uvc/v4l2/control_preset.h"
 #include "devices/uvc/v4l2/controls.h"
 #include "devices/uvc/v4l2/v4l2_node.h"
+#include "devices/uvc/v4l2/xu_controls.h"
 #include "tool/options.h"
 
 #include <nlohmann/json.hpp>
@@ -31,13 +33,14 @@ struct Failure {
     std::string message;
 };
 
-std::optional<Failure> readControls(const std::vector<std::string>& paths, std::vector<NodeControls>& out) {
+std::optional<Failure> readControls(const std::vector<std::string>& paths, const v4l2::XuAccess& xu,
+                                    std::vector<NodeControls>& out) {
     out.clear();
     for (const std::string& path : paths) {
         v4l2::V4l2Node node;
         if (const int r = node.open(path); r < 0)
             return Failure{kExitFailure, path + ": cannot open: " + std::strerror(-r)};
-        auto controls = v4l2::queryControls(v4l2::systemSyscalls(), node.fd(), path);
+        auto controls = v4l2::queryNodeControls(v4l2::systemSyscalls(), node.fd(), path, xu);
         if (!controls)
             return Failure{kExitFailure, controls.error().message};
         out.push_back({path, node.capability().card, std::move(*controls)});
@@ -79,7 +82,8 @@ std::optional<Failure> applySets(const std::vector<std::string>& sets,
         v4l2::V4l2Node node;
         if (const int r = node.open(c.node->path); r < 0)
             return Failure{kExitFailure, c.node->path + ": cannot open: " + std::strerror(-r)};
-        if (Status s = v4l2::setControl(v4l2::systemSyscalls(), node.fd(), c.node->path, *c.control, c.value);
+        if (Status s =
+                v4l2::setNodeControl(v4l2::systemSyscalls(), node.fd(), c.node->path, *c.control, c.value);
             !s)
             return Failure{kExitFailure, s.error().message};
     }
@@ -189,16 +193,19 @@ int runControls(const ControlsOptions& o) {
     if (!paths)
         return fail({kExitFailure, paths.error().message});
     std::vector<NodeControls> nodes;
-    if (auto f = readControls(*paths, nodes))
+    // A known camera's extension-unit controls (a RealSense's emitter, laser power) are listed, set and
+    // saved with the driver's.
+    const v4l2::XuAccess xu = devices::extensionUnitAccess(v4l2::systemSyscalls(), *config, *paths);
+    if (auto f = readControls(*paths, xu, nodes))
         return fail(*f);
     std::vector<std::string> refused;
     if (preset)
-        refused = v4l2::applyPreset(v4l2::systemSyscalls(), *preset, *paths);
+        refused = v4l2::applyPreset(v4l2::systemSyscalls(), *preset, *paths, xu);
     if (!o.sets.empty())
         if (auto f = applySets(o.sets, nodes))
             return fail(*f);
     if (preset || !o.sets.empty())
-        if (auto f = readControls(*paths, nodes))
+        if (auto f = readControls(*paths, xu, nodes))
             return fail(*f);
     if (!o.save.empty())
         if (Status s = base::writeTextFile(o.save, presetJson(o.source, nodes)); !s)

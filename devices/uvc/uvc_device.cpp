@@ -379,18 +379,20 @@ std::shared_ptr<SensorControls> UvcDevice::sensorControls() const {
     return std::make_shared<v4l2::V4l2SensorControls>(sys_, std::move(*nodes), std::move(xu));
 }
 
-// From the configuration alone, as sensorControls() is. A usb: source's nodes are probed for its depth node
-// only when the table gives its VID:PID an extension unit.
 v4l2::XuAccess UvcDevice::xuAccess(const std::vector<std::string>& nodes) const {
-    std::string depth = config_.depthNode;
-    if (config_.usb) {
-        const bool known =
-            v4l2::xuAccessFor(config_.usb->vendorId, config_.usb->productId, {}).unit != nullptr;
-        depth = known ? depthNodeOf(sys_, nodes) : std::string();
+    return extensionUnitAccess(sys_, config_, nodes);
+}
+
+v4l2::XuAccess extensionUnitAccess(v4l2::Syscalls& sys, const UvcConfig& config,
+                                   const std::vector<std::string>& nodes) {
+    std::string depth = config.depthNode;
+    if (config.usb) {
+        const bool known = v4l2::xuAccessFor(config.usb->vendorId, config.usb->productId, {}).unit != nullptr;
+        depth = known ? depthNodeOf(sys, nodes) : std::string();
     }
     if (depth.empty())
         return {};
-    return xuAccessOf(config_.sysfsRoot, usb::Sysfs(config_.sysfsRoot).usbDeviceOf(depth), depth);
+    return xuAccessOf(config.sysfsRoot, usb::Sysfs(config.sysfsRoot).usbDeviceOf(depth), depth);
 }
 
 // A value the camera refuses is told and the rest are set: the camera streams either way.

@@ -121,6 +121,7 @@ private:
     frame::Intrinsics depthIntrinsics_;
     std::shared_ptr<const frame::RigCalibration> rig_;
     FramePairer pairer_{0};
+
     std::optional<StampedDepth> depthOnly_; // the newest depth frame when there is no color to pair with
     std::vector<v4l2::NodeReadiness> ready_;
     std::uint64_t sequence_ = 0;
@@ -130,5 +131,11 @@ private:
     std::chrono::steady_clock::time_point lastFrame_{};
     bool stalled_ = false;
 };
+
+// The camera's extension unit, from the configuration alone (UvcDevice::sensorControls, `depthcloud
+// controls`): a usb: source's nodes are probed for its depth node only when the known-camera table gives its
+// VID:PID an extension unit, and the unit is reached only where the device's descriptors declare it.
+v4l2::XuAccess extensionUnitAccess(v4l2::Syscalls& sys, const UvcConfig& config,
+                                   const std::vector<std::string>& nodes);
 
 } // namespace dc::devices
