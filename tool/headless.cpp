@@ -65,7 +65,9 @@ bool waitForFrame(ui::Presenter& presenter, ui::Companions& companions, double t
         // The companions first, so that the fused cloud has their newest frames.
         companions.followReplay(presenter.instrument());
         companions.update(presenter.settings(), timeSeconds);
-        if (presenter.update(timeSeconds, kSlice))
+        const bool fresh = presenter.update(timeSeconds, kSlice);
+        companions.noteSkew(presenter.instrument(), presenter.shown());
+        if (fresh)
             return true;
         // The last frame may have arrived just before the end was flagged.
         if (replayEnded(presenter.instrument()))

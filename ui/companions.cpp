@@ -6,6 +6,7 @@
 #include "frame/multi_camera_extrinsics.h"
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <system_error>
 
@@ -155,6 +156,28 @@ std::optional<double> Companions::skewMs(std::size_t index, const engine::Instru
     return static_cast<double>(own->frame->timestampNs - mainStamp) * 1e-6;
 }
 
+void Companions::noteSkew(const engine::Instrument& main, const processing::ShownFramePtr& mainShown) {
+    for (std::size_t i = 0; i < companions_.size(); ++i) {
+        Companion& c = *companions_[i];
+        const auto skew = skewMs(i, main, mainShown);
+        if (!skew)
+            continue;
+        const std::pair pair{mainShown->frame->sequence, c.presenter().shown()->frame->sequence};
+        if (pair != c.skewPair) {
+            c.skewPair = pair;
+            c.skew.add(*skew);
+        }
+    }
+}
+
+bool Companions::paired(std::size_t index, const engine::Instrument& main,
+                        const processing::ShownFramePtr& mainShown, float toleranceMs) const {
+    if (toleranceMs <= 0.0f)
+        return true;
+    const auto skew = skewMs(index, main, mainShown);
+    return !skew || std::abs(*skew) <= toleranceMs;
+}
+
 Expected<std::vector<std::string>> Companions::savePlacements(const std::string& mainSpec,
                                                               const std::string& parent) const {
     frame::CameraExtrinsicsSet rig{{}, {}};
@@ -218,7 +241,8 @@ std::vector<ViewerSummary> Companions::summaries(const engine::Instrument& main,
         companions_[i]->overlapAt = {}; // taken now, for the frames shown now
         ViewerSummary s = companions_[i]->presenter().summary();
         s.overlap = overlap(i, mainShown);
-        s.skewMs = skewMs(i, main, mainShown);
+        const base::RollingStats& skew = companions_[i]->skew;
+        s.skewMs = skew.count() > 0 ? std::optional(skew.median()) : skewMs(i, main, mainShown);
         out.push_back(std::move(s));
     }
     return out;

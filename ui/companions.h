@@ -1,6 +1,7 @@
 #pragma once
 
 #include "base/expected.h"
+#include "base/rolling_stats.h"
 #include "devices/device.h"
 #include "engine/instrument.h"
 #include "engine/replay_follow.h"
@@ -15,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace dc::ui {
@@ -40,6 +42,9 @@ public:
     std::optional<processing::OverlapFigure> overlap;
     std::chrono::steady_clock::time_point overlapAt;
     engine::ReplayFollower follower; // its replay on the main replay's timeline
+    // Its frames' skew from the main source's (ms), one sample per pair of frames shown together.
+    base::RollingStats skew{240};
+    std::pair<std::uint64_t, std::uint64_t> skewPair{~0ull, ~0ull}; // the (main, own) frames sampled last
 
 private:
     Companion(std::unique_ptr<devices::Device> device, std::string spec);
@@ -89,6 +94,12 @@ public:
     // and, when the main source sits at the world's origin, camchain.yaml (Kalibr). Returns the files.
     Expected<std::vector<std::string>> savePlacements(const std::string& mainSpec,
                                                       const std::string& parent) const;
+    // Samples each companion's skew once per pair of frames shown together (after the main update).
+    void noteSkew(const engine::Instrument& main, const processing::ShownFramePtr& mainShown);
+    // Whether companion `index`'s frame is close enough in time to the main source's to be fused with it:
+    // always with no tolerance (0) or no common clock.
+    bool paired(std::size_t index, const engine::Instrument& main, const processing::ShownFramePtr& mainShown,
+                float toleranceMs) const;
     // Each companion's panels in a folder of its own under `directory` (source-2, source-3, ... as they
     // were added); returns the files written, each with its folder.
     Expected<std::vector<std::string>> savePanels(const std::string& directory);

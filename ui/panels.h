@@ -349,9 +349,11 @@ struct SourceRow {
     engine::FrameCounts frames;
     std::optional<processing::OverlapFigure> overlap; // with the main source, companions only
     std::optional<double> skewMs;                     // its frame's time less the main source's
-    CompanionLook* look = nullptr;                    // the companion's; null for the main source
-    PanelImage depth;                                 // its depth panel as last drawn
-    PanelImage camera;                                // its camera panel (empty: no camera image)
+    std::optional<double> skewMedianMs;               // the same over the last frames
+    bool paired = true;            // within the pairing tolerance of the main source's frame, so drawn
+    CompanionLook* look = nullptr; // the companion's; null for the main source
+    PanelImage depth;              // its depth panel as last drawn
+    PanelImage camera;             // its camera panel (empty: no camera image)
 };
 
 struct SourcesPanelState {
@@ -371,7 +373,9 @@ struct SourcesActions {
 // Every source fused in the cloud: its state and frames (shown, dropped, delivered: its own), its depth
 // and camera panels, and for each companion its visibility, tint, overlap figure with the main source, ICP
 // refinement and removal; "Add source" opens another; "Save placements" writes every source's placement.
-SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanelState& state, bool* open);
+// `pairingToleranceMs` is SourcesSettings'.
+SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanelState& state,
+                                float& pairingToleranceMs, bool* open);
 
 // Per stream the frame intervals' histogram and the timestamps' source, the latency from arrival (and
 // from the sensor, where its clock is this machine's) to the screen, and every lost frame counted where it

@@ -269,7 +269,8 @@ void Presenter::renderFused(render::CloudParams params) {
     for (std::size_t i = 0; i < companions_->size(); ++i) {
         Companion& c = (*companions_)[i];
         const processing::ShownFramePtr& shown = c.presenter().shown();
-        if (!c.look.visible || !shown)
+        if (!c.look.visible || !shown ||
+            !companions_->paired(i, instrument_, shown_, settings_.sources.pairingToleranceMs))
             continue;
         const glm::dmat4 toWorld =
             toMatrix(frame::poseFromRigid(placeInWorld(*shown->frame, c.look.correction)));

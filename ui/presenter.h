@@ -36,7 +36,7 @@ struct ViewerSummary {
     std::optional<double> latencyMs; // device timestamp to screen, median; none for recordings
     // A companion's overlap consistency figure with the main source (none for the main source).
     std::optional<processing::OverlapFigure> overlap;
-    std::optional<double> skewMs; // a companion's frame's time less the main source's
+    std::optional<double> skewMs; // a companion's frame's time less the main source's, median over the run
 };
 
 // The instrument presented without ImGui: the settings stated as the engine's demand each frame, the

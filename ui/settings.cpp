@@ -130,6 +130,8 @@ void sanitize(Settings& s) {
     s.accumulate.budgetThousands = std::clamp(s.accumulate.budgetThousands, 10, 4000);
     s.accumulate.voxelMillimeters =
         std::clamp(finiteOr(s.accumulate.voxelMillimeters, d.accumulate.voxelMillimeters), 0.5f, 100.0f);
+    s.sources.pairingToleranceMs =
+        std::clamp(finiteOr(s.sources.pairingToleranceMs, d.sources.pairingToleranceMs), 0.0f, 1000.0f);
     s.record.jpegQuality = std::clamp(s.record.jpegQuality, 1, 100);
     if (s.record.directory.empty())
         s.record.directory = d.record.directory;

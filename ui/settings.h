@@ -59,6 +59,12 @@ struct DepthRange {
     render::Colormap colormap = render::Colormap::Jet;
 };
 
+// Several sources fused in one cloud: a further source's frame is drawn only while its time is within this
+// of the first source's frame (0: each source's newest frame, however far apart).
+struct SourcesSettings {
+    float pairingToleranceMs = 0.0f;
+};
+
 // Accumulate mode (posed sources only): world points of every frame within a budget.
 struct AccumulateSettings {
     bool enabled = false;
@@ -131,6 +137,7 @@ struct Settings {
     CameraView camera;
     DepthView depthView;
     AccumulateSettings accumulate;
+    SourcesSettings sources;
     RecordSettings record;
     QualitySettings quality;
     processing::ProcessingSettings processing;

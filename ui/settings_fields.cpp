@@ -104,6 +104,7 @@ std::vector<SettingField> cloudFields() {
         field("accumulate", "enabled", DC_FIELD(accumulate.enabled), true),
         field("accumulate", "budgetThousands", DC_FIELD(accumulate.budgetThousands), 2000),
         field("accumulate", "voxelMillimeters", DC_FIELD(accumulate.voxelMillimeters), 2.5),
+        field("sources", "pairingToleranceMs", DC_FIELD(sources.pairingToleranceMs), 20.0),
         field("record", "directory", DC_FIELD(record.directory), "/tmp/takes"),
         field("record", "jpegColor", DC_FIELD(record.jpegColor), false),
         field("record", "jpegQuality", DC_FIELD(record.jpegQuality), 75),

@@ -74,7 +74,10 @@ void drawCompanion(const SourceRow& row, std::size_t index, SourcesActions& acti
     else
         ImGui::TextDisabled("overlap: no shared surface yet");
     if (row.skewMs)
-        ImGui::Text("skew: %+.1f ms from the main source's frame", *row.skewMs);
+        ImGui::TextWrapped("skew: %+.1f ms from the main source's frame (median %+.1f ms)", *row.skewMs,
+                           row.skewMedianMs.value_or(*row.skewMs));
+    if (!row.paired)
+        ImGui::TextColored({1.0f, 0.6f, 0.2f, 1.0f}, "not drawn: beyond the pairing tolerance");
     // Dragged, each field moves the source by what it was dragged this frame (in the world frame).
     std::array<float, 3> moveMm{};
     std::array<float, 3> turnDegrees{};
@@ -98,7 +101,8 @@ void drawCompanion(const SourceRow& row, std::size_t index, SourcesActions& acti
 
 } // namespace
 
-SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanelState& state, bool* open) {
+SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanelState& state,
+                                float& pairingToleranceMs, bool* open) {
     SourcesActions actions;
     if (!ImGui::Begin(kSourcesTitle, open)) {
         ImGui::End();
@@ -130,6 +134,13 @@ SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanel
     ImGui::SameLine();
     if ((ImGui::Button("Add source") || entered) && state.spec[0] != '\0')
         actions.add = std::string(state.spec.data());
+    ImGui::PushItemWidth(ImGui::GetFontSize() * 10.0f);
+    ImGui::SliderFloat("Pairing tolerance", &pairingToleranceMs, 0.0f, 100.0f,
+                       pairingToleranceMs > 0.0f ? "%.0f ms" : "off");
+    ImGui::PopItemWidth();
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("A further source is drawn only while its frame is this close in time to the main "
+                          "source's; off: each source's newest frame");
     if (rows.size() > 1 && ImGui::Button("Save placements"))
         actions.savePlacements = true;
     if (!state.message.empty())

@@ -41,7 +41,9 @@ bool Viewer::update(double timeSeconds, std::chrono::milliseconds wait) {
         (void)addSource(*spec);
     companions_.followReplay(instrument_);
     companions_.update(settings_, timeSeconds);
-    return presenter_.update(timeSeconds, wait);
+    const bool fresh = presenter_.update(timeSeconds, wait);
+    companions_.noteSkew(instrument_, shown());
+    return fresh;
 }
 
 Status Viewer::addSource(const std::string& spec) {

@@ -564,18 +564,21 @@ void Viewer::drawBottomStrip(float x, float y, float w, float h) {
 void Viewer::drawSources(float x, float y) {
     placePanel(kSourcesTitle, x, y, 480.0f, 560.0f);
     const engine::InstrumentStatus main = instrument_.status();
-    std::vector<SourceRow> rows{{main.source, main.state.text(), main.frames, std::nullopt, std::nullopt,
-                                 nullptr, dataPanelImage(renderer_.depthTarget(), renderer_),
-                                 cameraImageOf(renderer_)}};
+    std::vector<SourceRow> rows{
+        {main.source, main.state.text(), main.frames, std::nullopt, std::nullopt, std::nullopt, true, nullptr,
+         dataPanelImage(renderer_.depthTarget(), renderer_), cameraImageOf(renderer_)}};
     for (std::size_t i = 0; i < companions_.size(); ++i) {
         Companion& c = companions_[i];
         const engine::InstrumentStatus s = c.instrument().status();
         rows.push_back({s.source, s.state.text(), s.frames, companions_.overlap(i, shown()),
-                        companions_.skewMs(i, instrument_, shown()), &c.look,
-                        dataPanelImage(c.renderer().depthTarget(), c.renderer()),
+                        companions_.skewMs(i, instrument_, shown()),
+                        c.skew.count() > 0 ? std::optional(c.skew.median()) : std::nullopt,
+                        companions_.paired(i, instrument_, shown(), settings_.sources.pairingToleranceMs),
+                        &c.look, dataPanelImage(c.renderer().depthTarget(), c.renderer()),
                         cameraImageOf(c.renderer())});
     }
-    applySourcesActions(drawSourcesPanel(rows, sourcesPanel_, &settings_.panels.sources));
+    applySourcesActions(drawSourcesPanel(rows, sourcesPanel_, settings_.sources.pairingToleranceMs,
+                                         &settings_.panels.sources));
 }
 
 void Viewer::applySourcesActions(const SourcesActions& actions) {

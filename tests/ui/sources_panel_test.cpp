@@ -200,6 +200,29 @@ TEST_F(SourcesPanelTest, BothCloudPathsDrawACompanionsPointsInItsTint) {
     }
 }
 
+// Two live cameras' frames are never taken at the same instant: their skew is measured frame by frame, and
+// a pairing tolerance tighter than it keeps the second camera out of the cloud until it is loosened.
+TEST_F(SourcesPanelTest, APairingToleranceDrawsOnlyFramesCloseInTime) {
+    ASSERT_TRUE(viewer_->openSource("synthetic:160x120").ok());
+    ASSERT_TRUE(
+        viewer_->addSource("synthetic:160x120:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
+    Companion& b = viewer_->companions()[0];
+    b.look.tinted = true;
+    b.look.tint = {0.0f, 1.0f, 0.0f};
+    viewer_->settings().cloud.motion.enabled = false;
+    const auto green = [&] { return pixelsOf(renderer_.cloudTarget(), 0, 255, 0); };
+    ASSERT_TRUE(frameUntil([&] { return green() > 2'000 && b.skew.count() >= 5; })) << green();
+    const auto skew = viewer_->companions().skewMs(0, *instrument_, viewer_->shown());
+    ASSERT_TRUE(skew.has_value());
+    EXPECT_NE(*skew, 0.0);
+    EXPECT_LT(std::abs(b.skew.median()), 1000.0) << "live stamps on one clock";
+    viewer_->settings().sources.pairingToleranceMs = 0.001f; // a microsecond: no two frames are that close
+    EXPECT_TRUE(frameUntil([&] { return green() == 0; })) << green() << " green pixels";
+    EXPECT_FALSE(viewer_->companions().paired(0, *instrument_, viewer_->shown(), 0.001f));
+    viewer_->settings().sources.pairingToleranceMs = 0.0f; // off
+    EXPECT_TRUE(frameUntil([&] { return green() > 2'000; })) << green();
+}
+
 // Accumulate mode gathers one source's frames: with a second source open it waits (the engine gathers
 // nothing), and it resumes when the second source is removed.
 TEST_F(SourcesPanelTest, AccumulateModeWaitsWhileSeveralSourcesAreFused) {
