@@ -181,7 +181,8 @@ TEST_F(XuControls, AD4xxListsItsEmitterAndLaserPowerWithTheirRanges) {
 
 TEST_F(XuControls, ASetSendsSetCurLittleEndianAndReadsItBack) {
     V4l2SensorControls controls(xu_, {kDepth}, d435());
-    const SensorControl* power = named(read(controls), "laser_power");
+    const std::vector<SensorControl> listed = read(controls); // named() points into it
+    const SensorControl* power = named(listed, "laser_power");
     ASSERT_NE(power, nullptr);
     xu_.sent.clear();
     const Status s = controls.set(kDepth, power->id, 270);
@@ -241,7 +242,8 @@ TEST_F(XuControls, AControlThatFailsItsQueriesIsLeftOut) {
 TEST_F(XuControls, AControlWithoutSetCurIsReadOnly) {
     xu_.controls[{kUnit, kLaserPower}].info = UVC_CONTROL_CAP_GET;
     V4l2SensorControls controls(xu_, {kDepth}, d435());
-    const SensorControl* power = named(read(controls), "laser_power");
+    const std::vector<SensorControl> listed = read(controls); // named() points into it
+    const SensorControl* power = named(listed, "laser_power");
     ASSERT_NE(power, nullptr);
     EXPECT_TRUE(power->readOnly);
     const Status s = controls.set(kDepth, power->id, 60);
