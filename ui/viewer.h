@@ -53,6 +53,8 @@ public:
     // source"); a bad spec says why, as openSource() does.
     Status addSource(const std::string& spec);
     Companions& companions() { return companions_; }
+    // Does what the Sources panel was asked (its buttons); a removal or addition at the next update().
+    void applySourcesActions(const SourcesActions& actions);
 
     Presenter& presenter() { return presenter_; }
     Settings& settings() { return settings_; }
@@ -139,7 +141,6 @@ private:
     void drawQuality(float x, float y);
     void drawCameraControls(float x, float y);
     void drawSources(float x, float y);
-    void applySourcesActions(const SourcesActions& actions);
     void reopenInMode(const Expected<std::string>& spec);
     RoiOverlay roiOverlay() const;
     void drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, ImVec2 size);
