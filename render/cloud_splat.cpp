@@ -235,7 +235,7 @@ std::size_t CloudSplatter::projectRow(const float* z, const std::uint8_t* levels
 void CloudSplatter::splatSamples(const frame::DepthData& depth, const frame::Intrinsics& k,
                                  const processing::RgbImage* colours, const CloudParams& params, int width,
                                  int height) {
-    const SplatSource one{&depth, k, colours, params.viewProjection, std::nullopt};
+    const SplatSource one{&depth, k, colours, params.viewProjection, std::nullopt, std::nullopt};
     splatSources({&one, 1}, params, width, height);
 }
 
@@ -317,7 +317,6 @@ void CloudSplatter::splatSources(std::span<const SplatSource> sources, const Clo
     for (const PreparedSource& p : prepared)
         widest = std::max(widest, p.width);
     run(rows, params, width, height, [&](int firstRow, int lastRow, const auto& emit) {
-        const SampleFilter keep{params.minConfidence, params.nearMeters};
         ClipBatch batch;
         // Without a confidence map every sample counts as high.
         const std::vector<std::uint8_t> allHigh(static_cast<std::size_t>(widest), 2);
@@ -335,6 +334,8 @@ void CloudSplatter::splatSources(std::span<const SplatSource> sources, const Clo
             const float* z = &p.source->depth->depthMeters.pixels[first];
             const std::uint8_t* levels =
                 p.hasConfidence ? &p.source->depth->confidence.pixels[first] : allHigh.data();
+            const SampleFilter keep{p.source->minConfidence.value_or(params.minConfidence),
+                                    params.nearMeters};
             const std::size_t kept = projectRow(z, levels, p.columns, row, m[3], keep, p.footprint, batch);
             emit(batch, static_cast<std::size_t>(p.width), kept,
                  [&](std::size_t u) { return colorOf(p, first + u, z[u], levels[u]); });

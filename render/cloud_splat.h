@@ -41,13 +41,15 @@ public:
     void splatSamples(const frame::DepthData& depth, const frame::Intrinsics& intrinsics,
                       const processing::RgbImage* colours, const CloudParams& params, int width, int height);
     // One camera's samples for splatSources: placed through `intrinsics` and then `viewProjection` (which
-    // takes the place of params.viewProjection), coloured as params say or all in `tint` (packed RGB).
+    // takes the place of params.viewProjection), coloured as params say or all in `tint` (packed RGB),
+    // kept from its own confidence level when it has one.
     struct SplatSource {
         const frame::DepthData* depth = nullptr;
         frame::Intrinsics intrinsics;
         const processing::RgbImage* colours = nullptr;
         glm::mat4 viewProjection{1.0f};
         std::optional<std::uint32_t> tint;
+        std::optional<frame::Confidence> minConfidence; // none: params.minConfidence
     };
     // Several cameras' samples in one picture, each through its own matrix (sources fused in one world).
     void splatSources(std::span<const SplatSource> sources, const CloudParams& params, int width, int height);

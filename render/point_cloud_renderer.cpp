@@ -201,6 +201,7 @@ void PointCloudRenderer::drawLayers(const CloudProgram& cloud, const CloudParams
             continue;
         CloudParams own = params;
         own.viewProjection = layer.viewProjection;
+        own.minConfidence = layer.minConfidence.value_or(params.minConfidence);
         setUniforms(cloud.uniforms, *layer.textures, own, target);
         glUniform1i(cloud.uniforms.shaderColours, 0);
         glUniform4f(cloud.uniforms.tint, layer.tint.r, layer.tint.g, layer.tint.b, layer.tint.a);

@@ -16,6 +16,7 @@
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <optional>
 #include <vector>
 
 namespace dc::render {
@@ -39,6 +40,7 @@ struct CloudLayer {
     std::shared_ptr<const frame::DepthData> depth;
     frame::Intrinsics intrinsics;
     std::shared_ptr<const processing::RgbImage> colours;
+    std::optional<frame::Confidence> minConfidence; // its own level; none: the cloud's
 
     bool operator==(const CloudLayer&) const = default;
 };

@@ -326,7 +326,7 @@ void ViewRenderer::drawCloud(const CloudParams& params, bool accumulated) {
 std::vector<CloudSplatter::SplatSource> ViewRenderer::splatSources(const CloudParams& params) const {
     std::vector<CloudSplatter::SplatSource> sources{{cloud_.depth.data.get(), cloud_.depth.intrinsics,
                                                      cloud_.colours.get(), params.viewProjection,
-                                                     std::nullopt}};
+                                                     std::nullopt, std::nullopt}};
     const auto byte = [](float v) {
         return static_cast<std::uint32_t>(std::lround(std::clamp(v, 0.0f, 1.0f) * 255.0f));
     };
@@ -334,8 +334,8 @@ std::vector<CloudSplatter::SplatSource> ViewRenderer::splatSources(const CloudPa
         std::optional<std::uint32_t> tint;
         if (layer.tint.a > 0.0f)
             tint = byte(layer.tint.r) | byte(layer.tint.g) << 8 | byte(layer.tint.b) << 16;
-        sources.push_back(
-            {layer.depth.get(), layer.intrinsics, layer.colours.get(), layer.viewProjection, tint});
+        sources.push_back({layer.depth.get(), layer.intrinsics, layer.colours.get(), layer.viewProjection,
+                           tint, layer.minConfidence});
     }
     return sources;
 }

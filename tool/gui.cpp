@@ -410,9 +410,10 @@ int runGui(const ViewerOptions& options, std::unique_ptr<devices::Device> device
         engine::Instrument instrument(std::move(device), options.source);
         ui::Viewer viewer(instrument, renderer, settings);
         viewer.setAbout(versionLine());
-        for (std::size_t i = 0; i < companions.size(); ++i) {
-            auto c =
-                ui::Companion::create(std::move(companions[i]), options.companions[i], viewer.settings());
+        const auto own = furtherSourcesSettings(viewer.settings(), options);
+        for (std::size_t i = 0; i < companions.size() && own; ++i) {
+            auto c = ui::Companion::create(std::move(companions[i]), options.companions[i], viewer.settings(),
+                                           (*own)[i]);
             if (!c) {
                 std::fprintf(stderr, "depthcloud: error: %s\n", c.error().message.c_str());
                 return kExitFailure;

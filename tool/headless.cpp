@@ -102,9 +102,12 @@ Status waitForCompanions(ui::Presenter& presenter, ui::Companions& companions, d
 
 Expected<ui::Companions> startCompanions(const ViewerOptions& options, Devices devices,
                                          const ui::Settings& settings) {
+    auto own = furtherSourcesSettings(settings, options);
+    if (!own)
+        return own.error();
     ui::Companions companions;
     for (std::size_t i = 0; i < devices.size(); ++i) {
-        auto c = ui::Companion::create(std::move(devices[i]), options.companions[i], settings);
+        auto c = ui::Companion::create(std::move(devices[i]), options.companions[i], settings, (*own)[i]);
         if (!c)
             return c.error();
         companions.add(std::move(*c));

@@ -95,7 +95,9 @@ void addViewerOptions(CLI::App& app, ViewerOptions& o, std::vector<std::string>&
     app.add_option(
         "--set", o.sets,
         "set one setting, SECTION.KEY=VALUE as named in the settings file (e.g. cloud.fillGaps=false); "
-        "repeatable, applied after --settings");
+        "repeatable, applied after --settings; sourceN.processing.KEY=VALUE or "
+        "sourceN.cloud.minConfidence=VALUE "
+        "gives the Nth --source (from 2) its own");
 }
 
 int runViewer(ViewerOptions o, const std::vector<std::string>& sources) {
@@ -113,8 +115,11 @@ int runViewer(ViewerOptions o, const std::vector<std::string>& sources) {
             return sourceCannotOpen(dc::Error{spec + ": " + companion.error().message});
         companions.push_back(std::move(*companion));
     }
-    if (auto settings = chosenSettings({}, o); !settings)
+    auto settings = chosenSettings({}, o);
+    if (!settings)
         return badArgument(settings.error().message);
+    if (auto own = furtherSourcesSettings(*settings, o); !own)
+        return badArgument(own.error().message);
     if (!o.headless && !hasDisplay()) {
         dc::logInfo("no display found (DISPLAY and WAYLAND_DISPLAY are unset): running headless");
         o.headless = true;

@@ -4,6 +4,7 @@
 #include "devices/device.h"
 #include "frame/frame.h"
 #include "ui/settings.h"
+#include "ui/source_settings.h"
 
 #include <cstdio>
 #include <memory>
@@ -49,6 +50,11 @@ struct BenchOptions {
 // The settings a run starts from: `saved` (the user's, or the defaults for a headless run), or the
 // --settings file instead, then each --set in order and --confidence. An Error names the argument.
 Expected<ui::Settings> chosenSettings(ui::Settings saved, const ViewerOptions& options);
+// Each further source's settings (one per options.companions): the main source's, or its own where a
+// --set sourceN.NAME=VALUE names it (N from 2: the first --source is source 1). An Error names the
+// argument.
+Expected<std::vector<ui::SourceSettings>> furtherSourcesSettings(const ui::Settings& main,
+                                                                 const ViewerOptions& options);
 
 // Both run `device`, which runViewer opened from options.source once: a second open would repeat its
 // warnings and open a live camera twice.

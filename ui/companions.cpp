@@ -17,15 +17,6 @@ namespace {
 // The overlap figure is taken this often at most: it pairs every other sample of the main cloud.
 constexpr std::chrono::milliseconds kOverlapInterval{500};
 
-// What a companion takes from the main settings: everything that processes or colours its samples. It
-// draws no cloud of its own and measures no quality region (the Quality panel is the main source's).
-Settings companionSettings(const Settings& main) {
-    Settings s = main;
-    s.panels.quality = false;
-    s.accumulate.enabled = false;
-    return s;
-}
-
 processing::DepthCloud depthCloudOf(const processing::ShownFrame& shown) {
     return {shown.depth.data.get(), shown.depth.intrinsics};
 }
@@ -36,11 +27,14 @@ Companion::Companion(std::unique_ptr<devices::Device> device, std::string spec)
     : instrument_(std::move(device), std::move(spec)) {}
 
 Expected<std::unique_ptr<Companion>> Companion::create(std::unique_ptr<devices::Device> device,
-                                                       std::string spec, const Settings& settings) {
+                                                       std::string spec, const Settings& settings,
+                                                       const SourceSettings& own) {
     std::unique_ptr<Companion> c(new Companion(std::move(device), std::move(spec)));
     if (Status s = c->renderer_.init(); !s)
         return s.error();
-    c->presenter_ = std::make_unique<Presenter>(c->instrument_, c->renderer_, companionSettings(settings));
+    c->own = own;
+    c->presenter_ =
+        std::make_unique<Presenter>(c->instrument_, c->renderer_, furtherSourceSettings(settings, own));
     c->presenter_->setDrawsCloud(false);
     c->instrument_.start();
     return c;
@@ -65,7 +59,8 @@ void Companions::remove(std::size_t index) {
 bool Companions::update(const Settings& main, double timeSeconds) {
     bool fresh = false;
     for (auto& c : companions_) {
-        c->presenter().settings() = companionSettings(main);
+        followMain(c->own, main);
+        c->presenter().settings() = furtherSourceSettings(main, c->own);
         fresh |= c->presenter().update(timeSeconds);
     }
     return fresh;
@@ -89,7 +84,8 @@ std::vector<FusedSource> Companions::fusedSources() const {
     for (const auto& c : companions_) {
         const processing::ShownFramePtr& shown = c->presenter().shown();
         if (c->look.visible && shown)
-            out.push_back({shown, placeInWorld(*shown->frame, c->look.correction), c->instrument().spec()});
+            out.push_back({shown, placeInWorld(*shown->frame, c->look.correction), c->instrument().spec(),
+                           c->own.followsMain ? std::nullopt : std::optional(c->own.minConfidence)});
     }
     return out;
 }

@@ -10,6 +10,7 @@
 #include "ui/fused_cloud.h"
 #include "ui/presenter.h"
 #include "ui/settings.h"
+#include "ui/source_settings.h"
 
 #include <array>
 #include <chrono>
@@ -26,8 +27,10 @@ namespace dc::ui {
 // its own: the main presenter draws its points in the fused cloud. Made and used on the GL thread.
 class Companion {
 public:
+    // Processed with `settings` (the main source's) and `own`.
     static Expected<std::unique_ptr<Companion>> create(std::unique_ptr<devices::Device> device,
-                                                       std::string spec, const Settings& settings);
+                                                       std::string spec, const Settings& settings,
+                                                       const SourceSettings& own = {});
     Companion(const Companion&) = delete;
     Companion& operator=(const Companion&) = delete;
 
@@ -38,6 +41,7 @@ public:
     const render::ViewRenderer& renderer() const { return renderer_; }
     render::ViewRenderer& renderer() { return renderer_; }
     CompanionLook look;
+    SourceSettings own; // its processing: the main source's, or its own
     // The overlap consistency figure with the main source, as placed now (Companions::overlap).
     std::optional<processing::OverlapFigure> overlap;
     std::chrono::steady_clock::time_point overlapAt;
@@ -67,7 +71,8 @@ public:
     const Companion& operator[](std::size_t i) const { return *companions_[i]; }
 
     // Once per UI frame, before the main presenter's update: each companion follows the main settings
-    // (processing, confidence, colouring) and takes its newest result. Returns whether any had a new frame.
+    // (its processing and confidence only while it has none of its own) and takes its newest result.
+    // Returns whether any had a new frame.
     bool update(const Settings& main, double timeSeconds);
     // Companion replays follow the main source's replay (its seeks, steps, play state, speed, loop).
     void followReplay(const engine::Instrument& main);

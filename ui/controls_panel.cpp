@@ -225,23 +225,6 @@ bool upsamplingControls(processing::UpsamplingParams& p) {
     return changed;
 }
 
-bool processingSection(processing::ProcessingSettings& p, const ControlsContext& context) {
-    int source = static_cast<int>(p.depthSource);
-    ImGui::TextUnformatted("Depth shown");
-    ImGui::SameLine();
-    bool changed = ImGui::RadioButton("raw", &source, 0);
-    ImGui::SameLine();
-    changed |= ImGui::RadioButton("smoothed", &source, 1);
-    p.depthSource = static_cast<processing::DepthSource>(source);
-    changed |= stageToggle("Temporal smoothing", "smoothing", &p.smoothing, context.smoothingAvailable);
-    if (p.smoothing && context.smoothingAvailable)
-        changed |= smoothingControls(p.smoothingParams);
-    changed |= stageToggle("Guided upsampling", "upsampling", &p.upsampling, context.upsamplingAvailable);
-    if (p.upsampling && context.upsamplingAvailable)
-        changed |= upsamplingControls(p.upsamplingParams);
-    return changed;
-}
-
 bool panelsSection(PanelVisibility& panels, bool infraredAvailable, ControlsResult& result) {
     // Two columns: the list stays short enough to fit under the View group at 1280x720.
     const float column = ImGui::GetWindowContentRegionMin().x +
@@ -279,6 +262,23 @@ bool panelsSection(PanelVisibility& panels, bool infraredAvailable, ControlsResu
 
 } // namespace
 
+bool processingControls(processing::ProcessingSettings& p, const ControlsContext& context) {
+    int source = static_cast<int>(p.depthSource);
+    ImGui::TextUnformatted("Depth shown");
+    ImGui::SameLine();
+    bool changed = ImGui::RadioButton("raw", &source, 0);
+    ImGui::SameLine();
+    changed |= ImGui::RadioButton("smoothed", &source, 1);
+    p.depthSource = static_cast<processing::DepthSource>(source);
+    changed |= stageToggle("Temporal smoothing", "smoothing", &p.smoothing, context.smoothingAvailable);
+    if (p.smoothing && context.smoothingAvailable)
+        changed |= smoothingControls(p.smoothingParams);
+    changed |= stageToggle("Guided upsampling", "upsampling", &p.upsampling, context.upsamplingAvailable);
+    if (p.upsampling && context.upsamplingAvailable)
+        changed |= upsamplingControls(p.upsamplingParams);
+    return changed;
+}
+
 ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& context, bool* open) {
     ControlsResult result;
     if (!ImGui::Begin(kControlsTitle, open)) {
@@ -303,7 +303,7 @@ ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& cont
     if (ImGui::CollapsingHeader("Camera panel"))
         changed |= cameraSection(settings.camera);
     if (ImGui::CollapsingHeader("Processing")) {
-        changed |= processingSection(settings.processing, context);
+        changed |= processingControls(settings.processing, context);
         changed |= drawingSection(settings.cloud, context);
     }
     if (context.recordState && ImGui::CollapsingHeader("Record")) {

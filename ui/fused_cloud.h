@@ -15,7 +15,8 @@ namespace dc::ui {
 struct FusedSource {
     processing::ShownFramePtr shown;
     frame::RigidTransform cameraToWorld;
-    std::string name; // its --source, for a file's comments
+    std::string name;                               // its --source, for a file's comments
+    std::optional<frame::Confidence> minConfidence; // its own; none: the main source's
     bool operator==(const FusedSource&) const = default;
 };
 

@@ -16,6 +16,7 @@
 #include "ui/panel_image.h"
 #include "ui/probe.h"
 #include "ui/settings.h"
+#include "ui/source_settings.h"
 
 #include <optional>
 
@@ -189,6 +190,9 @@ struct ControlsResult {
 
 // Every setting.
 ControlsResult drawControlsPanel(Settings& settings, const ControlsContext& context, bool* open);
+// The Controls panel's processing group (depth shown, smoothing, upsampling) for `p`, wherever it is
+// drawn (a further source's own processing in the Sources panel); returns whether anything changed.
+bool processingControls(processing::ProcessingSettings& p, const ControlsContext& context);
 
 struct StatusLine {
     std::string source;
@@ -354,6 +358,7 @@ struct SourceRow {
     CompanionLook* look = nullptr; // the companion's; null for the main source
     PanelImage depth;              // its depth panel as last drawn
     PanelImage camera;             // its camera panel (empty: no camera image)
+    SourceSettings* own = nullptr; // the companion's processing; null for the main source
 };
 
 struct SourcesPanelState {

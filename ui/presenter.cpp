@@ -253,7 +253,8 @@ bool Presenter::fusing() const {
 }
 
 std::vector<FusedSource> Presenter::fusedSources() const {
-    std::vector<FusedSource> sources{{shown_, placeInWorld(*shown_->frame, {}), instrument_.spec()}};
+    std::vector<FusedSource> sources{
+        {shown_, placeInWorld(*shown_->frame, {}), instrument_.spec(), std::nullopt}};
     for (FusedSource& s : companions_->fusedSources())
         sources.push_back(std::move(s));
     return sources;
@@ -280,7 +281,8 @@ void Presenter::renderFused(render::CloudParams params) {
             {gpu ? &own.cloudTextures() : nullptr, params.viewProjection * glm::mat4(worldToMain * toWorld),
              c.look.tinted ? glm::vec4(c.look.tint[0], c.look.tint[1], c.look.tint[2], 1.0f)
                            : glm::vec4(0.0f),
-             cloud.depth.data, cloud.depth.intrinsics, cloud.colours});
+             cloud.depth.data, cloud.depth.intrinsics, cloud.colours,
+             c.own.followsMain ? std::nullopt : std::optional(c.own.minConfidence)});
     }
     renderer_.renderCloud(params, false);
 }
@@ -356,7 +358,7 @@ Status Presenter::writeFusedPly(const std::string& path) const {
     std::vector<std::string> comments{
         "depthcloud: several sources fused in the world frame, source after source"};
     for (const FusedSource& source : fusedSources()) {
-        auto own = worldCloud(source, cloud.minConfidence, cloud.nearMeters);
+        auto own = worldCloud(source, source.minConfidence.value_or(cloud.minConfidence), cloud.nearMeters);
         comments.push_back(std::to_string(own.size()) + " points of " + source.name);
         points.insert(points.end(), own.begin(), own.end());
     }

@@ -59,6 +59,32 @@ void drawFrames(const SourceRow& row) {
                        static_cast<unsigned long long>(f.delivered));
 }
 
+// "Own processing": off, the source is processed and filtered as the main source is; on, with its own
+// depth shown, smoothing, upsampling and cloud confidence, starting from the main source's.
+void drawOwnProcessing(SourceSettings& own, std::size_t number) {
+    bool separate = !own.followsMain;
+    if (ImGui::Checkbox(labelOf("Own processing", number).c_str(), &separate))
+        own.followsMain = !separate;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Off: this source is processed as the main source is (the Controls panel).\n"
+                          "On: its own processing and cloud confidence, set here.");
+    if (!separate)
+        return;
+    ImGui::PushID(static_cast<int>(number));
+    ImGui::Indent();
+    int level = static_cast<int>(own.minConfidence);
+    ImGui::PushItemWidth(ImGui::GetFontSize() * 10.0f);
+    ImGui::Combo("Cloud confidence", &level, "all\0medium and high\0high only\0");
+    ImGui::PopItemWidth();
+    own.minConfidence = static_cast<frame::Confidence>(level);
+    ControlsContext context;
+    context.smoothingAvailable = true;
+    context.upsamplingAvailable = true;
+    processingControls(own.processing, context);
+    ImGui::Unindent();
+    ImGui::PopID();
+}
+
 // The companion's look, placement and figures; sets `actions` for its buttons.
 void drawCompanion(const SourceRow& row, std::size_t index, SourcesActions& actions) {
     CompanionLook& look = *row.look;
@@ -97,6 +123,8 @@ void drawCompanion(const SourceRow& row, std::size_t index, SourcesActions& acti
     ImGui::SameLine();
     if (ImGui::Button(labelOf("Remove", number).c_str()))
         actions.remove = index;
+    if (row.own)
+        drawOwnProcessing(*row.own, number);
 }
 
 } // namespace

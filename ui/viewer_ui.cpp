@@ -576,6 +576,7 @@ void Viewer::drawSources(float x, float y) {
                         companions_.paired(i, instrument_, shown(), settings_.sources.pairingToleranceMs),
                         &c.look, dataPanelImage(c.renderer().depthTarget(), c.renderer()),
                         cameraImageOf(c.renderer())});
+        rows.back().own = &c.own;
     }
     applySourcesActions(drawSourcesPanel(rows, sourcesPanel_, settings_.sources.pairingToleranceMs,
                                          &settings_.panels.sources));

@@ -240,5 +240,51 @@ TEST_F(SourcesPanelTest, AccumulateModeWaitsWhileSeveralSourcesAreFused) {
     EXPECT_TRUE(frameUntil([&] { return viewer_->accumulating() && viewer_->demand().accumulate; }));
 }
 
+// "Own processing" on: a companion keeps its own processing and cloud confidence whatever the main source's
+// become; its depth is what its own processing made, and both cloud paths draw it from its own level.
+TEST_F(SourcesPanelTest, OwnProcessingKeepsACompanionsSettingsWhateverTheMainSourcesBecome) {
+    ASSERT_TRUE(viewer_->openSource("synthetic:320x240").ok());
+    ASSERT_TRUE(
+        viewer_->addSource("synthetic:320x240:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
+    Companion& b = viewer_->companions()[0];
+    b.look.tinted = true;
+    b.look.tint = {0.0f, 1.0f, 0.0f};
+    viewer_->settings().cloud.motion.enabled = false;
+    const auto green = [&] { return pixelsOf(renderer_.cloudTarget(), 0, 255, 0); };
+    const auto depthWidth = [](const processing::ShownFramePtr& s) {
+        return s && s->depth.data ? s->depth.data->depthMeters.width : 0;
+    };
+    // Following: the main source's processing reaches it.
+    viewer_->settings().processing.upsampling = true;
+    ASSERT_TRUE(frameUntil([&] { return depthWidth(b.presenter().shown()) > 320; }));
+    viewer_->settings().processing.upsampling = false;
+    ASSERT_TRUE(frameUntil([&] { return depthWidth(b.presenter().shown()) == 320; }));
+    // Its own (what the checkbox does), upsampled: the main source's stays the sensor's.
+    b.own.followsMain = false;
+    b.own.processing.upsampling = true;
+    ASSERT_TRUE(frameUntil([&] { return depthWidth(b.presenter().shown()) > 320; }));
+    EXPECT_EQ(depthWidth(viewer_->shown()), 320);
+    viewer_->settings().processing.smoothing = !b.own.processing.smoothing;
+    frame(0.0);
+    EXPECT_EQ(b.presenter().settings().processing, b.own.processing)
+        << "the main source's change stays its own";
+    b.own.processing.upsampling = false;
+    for (const CloudPathChoice path : {CloudPathChoice::Points, CloudPathChoice::Splat}) {
+        SCOPED_TRACE(path == CloudPathChoice::Points ? "GL points" : "CPU splat");
+        viewer_->settings().cloud.path = path;
+        b.own.minConfidence = frame::Confidence::Low;
+        ASSERT_TRUE(frameUntil([&] { return depthWidth(b.presenter().shown()) == 320 && green() > 20'000; }))
+            << green();
+        const std::size_t all = green();
+        b.own.minConfidence = frame::Confidence::High;
+        EXPECT_TRUE(frameUntil([&] { return green() < all / 2; })) << green() << " of " << all;
+        // The main source's level is not the companion's.
+        viewer_->settings().cloud.minConfidence = frame::Confidence::High;
+        b.own.minConfidence = frame::Confidence::Low;
+        EXPECT_TRUE(frameUntil([&] { return green() > all * 9 / 10; })) << green() << " of " << all;
+        viewer_->settings().cloud.minConfidence = frame::Confidence::Low;
+    }
+}
+
 } // namespace
 } // namespace dc::ui::test
