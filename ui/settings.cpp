@@ -194,6 +194,16 @@ bool sameValue(const json& given, const json& kept) {
     return given == kept;
 }
 
+// What a refused value's message offers instead: a choice's names, or an example of the field's type.
+std::string acceptedValues(const SettingField& field) {
+    if (field.names.empty())
+        return "a value like " + field.example.dump();
+    std::string list = "one of: ";
+    for (std::size_t i = 0; i < field.names.size(); ++i)
+        list += (i ? ", " : "") + field.names[i];
+    return list;
+}
+
 } // namespace
 
 Status applySetting(Settings& settings, const std::string& assignment) {
@@ -209,13 +219,15 @@ Status applySetting(Settings& settings, const std::string& assignment) {
         return Error{"'" + name +
                      "' is not a setting (the names are those of the settings file, SECTION.KEY)"};
     json value = json::parse(text, nullptr, false);
-    if (value.is_discarded())
+    if (const auto index = choiceIndex(*field, text))
+        value = *index; // compared with the index the field stores
+    else if (value.is_discarded())
         value = text;
     Settings changed = settings;
     field->read(value, changed);
     sanitize(changed); // a value outside the field's range comes back changed
     if (!sameValue(value, field->write(changed)))
-        return Error{"'" + name + "' cannot be " + text + " (a value like " + field->example.dump() + ")"};
+        return Error{"'" + name + "' cannot be " + text + " (" + acceptedValues(*field) + ")"};
     settings = std::move(changed);
     return {};
 }

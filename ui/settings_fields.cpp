@@ -1,6 +1,7 @@
 #include "ui/settings_fields.h"
 
 #include <algorithm>
+#include <cctype>
 #include <type_traits>
 
 namespace dc::ui {
@@ -13,30 +14,55 @@ using nlohmann::json;
 // a category keeps the field's value.
 enum class OutOfRange { Keep, Clamp };
 
+std::optional<int> indexOfName(const std::vector<std::string>& names, std::string_view text) {
+    const auto sameIgnoringCase = [](char a, char b) {
+        return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+    };
+    for (std::size_t i = 0; i < names.size(); ++i)
+        if (std::ranges::equal(names[i], text, sameIgnoringCase))
+            return static_cast<int>(i);
+    return std::nullopt;
+}
+
+// The index a choice's JSON value stores, given by name or by index; none keeps the field's value. A value
+// of the wrong type throws as json's get does.
+std::optional<int> choiceValue(const json& j, const std::vector<std::string>& names, OutOfRange outOfRange) {
+    if (j.is_string())
+        return indexOfName(names, j.get_ref<const std::string&>());
+    const int count = static_cast<int>(names.size());
+    int v = j.get<int>();
+    if (outOfRange == OutOfRange::Clamp)
+        v = std::clamp(v, 0, count - 1);
+    if (v < 0 || v >= count)
+        return std::nullopt;
+    return v;
+}
+
 // The entry of the member `access` reaches (a lambda taking a Settings, const or not, and returning a
-// reference to the member). Enumerations are stored as their integer, checked against `enumerators`.
+// reference to the member). A choice (an enumeration, or an index into a list) has `names` and is stored
+// as its integer; it reads a name as well. An enumeration without names reads nothing.
 template <class Access>
-SettingField field(const char* section, const char* key, Access access, json example, int enumerators = 0,
-                   OutOfRange outOfRange = OutOfRange::Keep) {
+SettingField field(const char* section, const char* key, Access access, json example,
+                   std::vector<std::string> names = {}, OutOfRange outOfRange = OutOfRange::Keep) {
     using T = std::remove_cvref_t<decltype(access(std::declval<Settings&>()))>;
-    SettingField f{section, key, nullptr, nullptr, std::move(example)};
+    SettingField f{section, key, nullptr, nullptr, std::move(example), std::move(names)};
     f.write = [access](const Settings& s) -> json {
         if constexpr (std::is_enum_v<T>)
             return static_cast<int>(access(s));
         else
             return access(s);
     };
-    f.read = [access, enumerators, outOfRange](const json& j, Settings& s) {
+    f.read = [access, names = f.names, outOfRange](const json& j, Settings& s) {
         try {
-            if constexpr (std::is_enum_v<T>) {
-                int v = j.get<int>();
-                if (outOfRange == OutOfRange::Clamp)
-                    v = std::clamp(v, 0, enumerators - 1);
-                if (v >= 0 && v < enumerators)
-                    access(s) = static_cast<T>(v);
-            } else {
-                access(s) = j.get<T>();
+            if constexpr (std::is_enum_v<T> || std::is_same_v<T, int>) {
+                if (!names.empty()) {
+                    if (const auto v = choiceValue(j, names, outOfRange))
+                        access(s) = static_cast<T>(*v);
+                    return;
+                }
             }
+            if constexpr (!std::is_enum_v<T>)
+                access(s) = j.get<T>();
         } catch (const json::exception&) {
             // A mistyped value keeps its default: the rest of the file is still worth restoring.
         }
@@ -48,6 +74,14 @@ SettingField field(const char* section, const char* key, Access access, json exa
     [](auto& s) -> auto& {                                                                                   \
         return s.member;                                                                                     \
     }
+
+// The depth panel's colormaps by the names render gives them, in the enumeration's order.
+std::vector<std::string> colormapNames() {
+    std::vector<std::string> names;
+    for (int c = 0; c < render::kColormapCount; ++c)
+        names.emplace_back(render::toString(static_cast<render::Colormap>(c)));
+    return names;
+}
 
 std::vector<SettingField> panelFields() {
     return {
@@ -77,12 +111,13 @@ std::vector<SettingField> panelFields() {
 
 std::vector<SettingField> cloudFields() {
     return {
-        field("cloud", "minConfidence", DC_FIELD(cloud.minConfidence), 2, 3, OutOfRange::Clamp),
+        field("cloud", "minConfidence", DC_FIELD(cloud.minConfidence), 2, {"low", "medium", "high"},
+              OutOfRange::Clamp),
         field("cloud", "pointSizePixels", DC_FIELD(cloud.pointSizePixels), 4.5),
         field("cloud", "fillGaps", DC_FIELD(cloud.fillGaps), false),
         field("cloud", "nearMeters", DC_FIELD(cloud.nearMeters), 0.25),
-        field("cloud", "coloring", DC_FIELD(cloud.coloring), 2, render::kPointColoringCount),
-        field("cloud", "path", DC_FIELD(cloud.path), 2, static_cast<int>(CloudPathChoice::Splat) + 1),
+        field("cloud", "coloring", DC_FIELD(cloud.coloring), 2, {"camera", "depth", "confidence"}),
+        field("cloud", "path", DC_FIELD(cloud.path), 2, {"automatic", "points", "splat"}),
         field("cloud", "decimation", DC_FIELD(cloud.decimation), 3),
         field("cloud", "autoRotate", DC_FIELD(cloud.motion.enabled), false),
         field("cloud", "rotationSpeed", DC_FIELD(cloud.motion.speed), 2.0),
@@ -95,7 +130,7 @@ std::vector<SettingField> cloudFields() {
         field("depthRange", "minMeters", DC_FIELD(depthRange.minMeters), 0.5),
         field("depthRange", "maxMeters", DC_FIELD(depthRange.maxMeters), 4.0),
         field("depthRange", "automatic", DC_FIELD(depthRange.automatic), false),
-        field("depthRange", "colormap", DC_FIELD(depthRange.colormap), 1, render::kColormapCount),
+        field("depthRange", "colormap", DC_FIELD(depthRange.colormap), 1, colormapNames()),
         field("camera", "fill", DC_FIELD(camera.fill), true),
         field("camera", "depthOverlay", DC_FIELD(camera.depthOverlay), true),
         field("camera", "overlayOpacity", DC_FIELD(camera.overlayOpacity), 0.25),
@@ -123,7 +158,8 @@ std::vector<SettingField> cloudFields() {
         field("quality", "farMeters", DC_FIELD(quality.farMeters), 4.5),
         field("quality", "flyingThresholdMm", DC_FIELD(quality.flyingThresholdMm), 25.0),
         field("quality", "causeOverlay", DC_FIELD(quality.causeOverlay), false),
-        field("quality", "map", DC_FIELD(quality.map), 2),
+        field("quality", "map", DC_FIELD(quality.map), 2,
+              {"none", "planeResidual", "temporalStd", "fillOverWindow"}),
         field("quality", "alignment", DC_FIELD(quality.alignment), true),
         field("", "recentSources", DC_FIELD(recentSources),
               json::array({"replay:/data/a.dcrec", "synthetic"})),
@@ -134,13 +170,15 @@ std::vector<SettingField> processingFields() {
     return {
         field("processing", "smoothing", DC_FIELD(processing.smoothing), true),
         field("processing", "upsampling", DC_FIELD(processing.upsampling), true),
-        field("processing", "depthSource", DC_FIELD(processing.depthSource), 0, 2),
+        field("processing", "depthSource", DC_FIELD(processing.depthSource), 0, {"raw", "smoothed"}),
         field("processing", "alpha", DC_FIELD(processing.smoothingParams.alpha), 0.75),
         field("processing", "jumpMeters", DC_FIELD(processing.smoothingParams.jumpMeters), 0.25),
         field("processing", "holeFrames", DC_FIELD(processing.smoothingParams.holeFrames), 7),
-        field("processing", "method", DC_FIELD(processing.upsamplingParams.method), 3, 4),
+        field("processing", "method", DC_FIELD(processing.upsamplingParams.method), 3,
+              {"full", "fast", "global", "quality"}),
         field("processing", "subsample", DC_FIELD(processing.upsamplingParams.subsample), 8),
-        field("processing", "outputSize", DC_FIELD(processing.upsamplingParams.size), 1, 2),
+        field("processing", "outputSize", DC_FIELD(processing.upsamplingParams.size), 1,
+              {"halfCamera", "fullCamera"}),
         field("processing", "radiusPixels", DC_FIELD(processing.upsamplingParams.radiusPixels), 12),
         field("processing", "epsilon", DC_FIELD(processing.upsamplingParams.epsilon), 0.0625),
         field("processing", "fitWeighted", DC_FIELD(processing.upsamplingParams.fitWeighted), false),
@@ -151,7 +189,7 @@ std::vector<SettingField> processingFields() {
         field("processing", "fogBlurSigmaPixels", DC_FIELD(processing.fog.blurSigmaPixels), 9.5),
         field("processing", "fogColor", DC_FIELD(processing.fog.color), json::array({0.25, 0.5, 0.75})),
         field("processing", "fogConfidenceOverlay", DC_FIELD(processing.fog.confidenceOverlay), true),
-        field("processing", "auraMatte", DC_FIELD(processing.aura.matte), 1, 2),
+        field("processing", "auraMatte", DC_FIELD(processing.aura.matte), 1, {"nearestRegion", "nearRange"}),
         field("processing", "auraNearMeters", DC_FIELD(processing.aura.nearMeters), 0.5),
         field("processing", "auraFarMeters", DC_FIELD(processing.aura.farMeters), 5.5),
         field("processing", "auraRegionDepthMeters", DC_FIELD(processing.aura.regionDepthMeters), 0.375),
@@ -163,6 +201,10 @@ std::vector<SettingField> processingFields() {
 #undef DC_FIELD
 
 } // namespace
+
+std::optional<int> choiceIndex(const SettingField& field, std::string_view text) {
+    return indexOfName(field.names, text);
+}
 
 const std::vector<SettingField>& settingFields() {
     static const std::vector<SettingField> fields = [] {

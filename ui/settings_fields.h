@@ -5,7 +5,9 @@
 #include <nlohmann/json.hpp>
 
 #include <functional>
+#include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace dc::ui {
@@ -20,7 +22,13 @@ struct SettingField {
     // the field keeps its value then, leaves the field as it was.
     std::function<void(const nlohmann::json&, Settings&)> read;
     nlohmann::json example; // a valid value other than the default
+    // A choice's names, the i-th naming the value stored as i (the file keeps the index, so files written
+    // before the names existed still read); empty for a field that is not a choice.
+    std::vector<std::string> names;
 };
+
+// The index `text` names among `field`'s names, compared without regard to case; none when it names none.
+std::optional<int> choiceIndex(const SettingField& field, std::string_view text);
 
 // Every field of Settings that is saved, in the file's order.
 const std::vector<SettingField>& settingFields();

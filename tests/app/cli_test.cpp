@@ -52,6 +52,8 @@ TEST_F(Cli, BadArgumentsExitWithTwoAndOneLineNamingTheArgument) {
         {"bench replay --data nowhere", "--data"},
         {"--headless --set cloud.nosuch=1", "--set 'cloud.nosuch' is not a setting"},
         {"--headless --set cloud.path=9", "--set 'cloud.path' cannot be 9"},
+        {"--headless --set cloud.path=pointz",
+         "--set 'cloud.path' cannot be pointz (one of: automatic, points, splat)"},
         {"--headless --set cloud.fillGaps", "--set 'cloud.fillGaps': expected SECTION.KEY=VALUE"},
         {"--headless --settings nowhere.json", "--settings nowhere.json: cannot be read"},
         {"controls --source synthetic", "--source synthetic: controls need a live camera"},
@@ -78,9 +80,11 @@ TEST_F(Cli, SettingsAndSetChooseWhatAHeadlessRunDraws) {
     EXPECT_NE(cloudPathOf("").find("software GL"), std::string::npos)
         << "llvmpipe chooses the splat by itself";
     EXPECT_NE(cloudPathOf("--set cloud.path=1").find("GL points (chosen)"), std::string::npos);
+    EXPECT_NE(cloudPathOf("--set cloud.path=points").find("GL points (chosen)"), std::string::npos)
+        << "a choice by its name";
     { std::ofstream(dir_ / "points.json") << R"({"cloud": {"path": 1}})"; }
     EXPECT_NE(cloudPathOf("--settings points.json").find("GL points (chosen)"), std::string::npos);
-    EXPECT_NE(cloudPathOf("--settings points.json --set cloud.path=2").find("CPU splat (chosen)"),
+    EXPECT_NE(cloudPathOf("--settings points.json --set cloud.path=Splat").find("CPU splat (chosen)"),
               std::string::npos)
         << "--set applies after --settings";
 }

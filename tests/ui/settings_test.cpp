@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -165,6 +168,154 @@ TEST(Settings, ABadSetNamesItsProblemAndChangesNothing) {
               std::string::npos);
     EXPECT_NE(applySetting(s, "cloud.nosuch=1").error().message.find("'cloud.nosuch' is not a setting"),
               std::string::npos);
+}
+
+// Every choice by each of its names: `--set cloud.path=points` sets exactly the enumerator the name says.
+struct NamedChoice {
+    const char* assignment;
+    std::function<bool(const Settings&)> holds;
+};
+
+std::vector<NamedChoice> namedChoices() {
+    using frame::Confidence;
+    using processing::AuraMatte;
+    using processing::DepthSource;
+    using processing::QualityMap;
+    using processing::UpsamplingMethod;
+    using processing::UpsamplingSize;
+    using render::Colormap;
+    using render::PointColoring;
+    const auto path = [](CloudPathChoice c) { return [c](const Settings& s) { return s.cloud.path == c; }; };
+    const auto coloring = [](PointColoring c) {
+        return [c](const Settings& s) { return s.cloud.coloring == c; };
+    };
+    const auto level = [](Confidence c) {
+        return [c](const Settings& s) { return s.cloud.minConfidence == c; };
+    };
+    const auto colormap = [](Colormap c) {
+        return [c](const Settings& s) { return s.depthRange.colormap == c; };
+    };
+    const auto source = [](DepthSource d) {
+        return [d](const Settings& s) { return s.processing.depthSource == d; };
+    };
+    const auto method = [](UpsamplingMethod m) {
+        return [m](const Settings& s) { return s.processing.upsamplingParams.method == m; };
+    };
+    const auto size = [](UpsamplingSize z) {
+        return [z](const Settings& s) { return s.processing.upsamplingParams.size == z; };
+    };
+    const auto matte = [](AuraMatte m) {
+        return [m](const Settings& s) { return s.processing.aura.matte == m; };
+    };
+    const auto map = [](QualityMap m) {
+        return [m](const Settings& s) { return processing::kQualityMaps[s.quality.map] == m; };
+    };
+    return {
+        {"cloud.path=automatic", path(CloudPathChoice::Automatic)},
+        {"cloud.path=points", path(CloudPathChoice::Points)},
+        {"cloud.path=splat", path(CloudPathChoice::Splat)},
+        {"cloud.coloring=camera", coloring(PointColoring::Camera)},
+        {"cloud.coloring=depth", coloring(PointColoring::Depth)},
+        {"cloud.coloring=confidence", coloring(PointColoring::Confidence)},
+        {"cloud.minConfidence=low", level(Confidence::Low)},
+        {"cloud.minConfidence=medium", level(Confidence::Medium)},
+        {"cloud.minConfidence=high", level(Confidence::High)},
+        {"depthRange.colormap=jet", colormap(Colormap::Jet)},
+        {"depthRange.colormap=turbo", colormap(Colormap::Turbo)},
+        {"depthRange.colormap=viridis", colormap(Colormap::Viridis)},
+        {"depthRange.colormap=grayscale", colormap(Colormap::Grayscale)},
+        {"processing.depthSource=raw", source(DepthSource::Raw)},
+        {"processing.depthSource=smoothed", source(DepthSource::Smoothed)},
+        {"processing.method=full", method(UpsamplingMethod::Full)},
+        {"processing.method=fast", method(UpsamplingMethod::Fast)},
+        {"processing.method=global", method(UpsamplingMethod::Global)},
+        {"processing.method=quality", method(UpsamplingMethod::Quality)},
+        {"processing.outputSize=halfCamera", size(UpsamplingSize::HalfCamera)},
+        {"processing.outputSize=fullCamera", size(UpsamplingSize::FullCamera)},
+        {"processing.auraMatte=nearestRegion", matte(AuraMatte::NearestRegion)},
+        {"processing.auraMatte=nearRange", matte(AuraMatte::NearRange)},
+        {"quality.map=none", map(QualityMap::None)},
+        {"quality.map=planeResidual", map(QualityMap::PlaneResidual)},
+        {"quality.map=temporalStd", map(QualityMap::TemporalStd)},
+        {"quality.map=fillOverWindow", map(QualityMap::FillOverWindow)},
+    };
+}
+
+std::string nameOf(const SettingField& f) {
+    return f.section.empty() ? f.key : f.section + "." + f.key;
+}
+
+std::string upper(std::string text) {
+    std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return std::toupper(c); });
+    return text;
+}
+
+// The table above names every choice of the file, and each choice's names are exactly the ones it lists, in
+// the enumeration's order. (An enumeration given no names reads nothing: EveryFieldOfTheTableRoundTripsAlone
+// fails then.)
+TEST(Settings, EveryChoiceHasANameForEachOfItsValues) {
+    std::map<std::string, std::vector<std::string>> listed;
+    for (const NamedChoice& c : namedChoices()) {
+        const std::string a = c.assignment;
+        listed[a.substr(0, a.find('='))].push_back(a.substr(a.find('=') + 1));
+    }
+    std::map<std::string, std::vector<std::string>> named;
+    for (const SettingField& f : settingFields())
+        if (!f.names.empty())
+            named[nameOf(f)] = f.names;
+    EXPECT_EQ(named, listed);
+    EXPECT_EQ(named["cloud.coloring"].size(), static_cast<std::size_t>(render::kPointColoringCount));
+    EXPECT_EQ(named["depthRange.colormap"].size(), static_cast<std::size_t>(render::kColormapCount));
+    EXPECT_EQ(named["quality.map"].size(), std::size(processing::kQualityMaps));
+}
+
+TEST(Settings, AChoiceTakesEachOfItsNamesInAnyCaseAndItsIndexAndSavesTheIndex) {
+    for (const NamedChoice& c : namedChoices()) {
+        SCOPED_TRACE(c.assignment);
+        const std::string a = c.assignment, name = a.substr(0, a.find('=')), word = a.substr(a.find('=') + 1);
+        const auto f = std::find_if(settingFields().begin(), settingFields().end(),
+                                    [&](const SettingField& g) { return nameOf(g) == name; });
+        ASSERT_NE(f, settingFields().end());
+        const int index =
+            static_cast<int>(std::find(f->names.begin(), f->names.end(), word) - f->names.begin());
+        for (const std::string& given : {word, upper(word), std::to_string(index)}) {
+            // From a value other than the named one, so that a set that changes nothing cannot pass.
+            Settings s;
+            ASSERT_TRUE(applySetting(s, name + "=" + f->names[(index + 1) % f->names.size()]));
+            ASSERT_FALSE(c.holds(s));
+            const Status set = applySetting(s, name + "=" + given);
+            ASSERT_TRUE(set) << given << ": " << set.error().message;
+            EXPECT_TRUE(c.holds(s)) << given;
+            const std::string file = settingsToJson(s);
+            EXPECT_EQ(nlohmann::json::parse(file)[f->section][f->key], index) << "the file keeps the index";
+            const auto back = settingsFromJson(file);
+            ASSERT_TRUE(back.ok());
+            EXPECT_TRUE(c.holds(*back)) << given;
+        }
+        const auto byName = settingsFromJson(nlohmann::json{{f->section, {{f->key, upper(word)}}}}.dump());
+        ASSERT_TRUE(byName.ok());
+        EXPECT_TRUE(c.holds(*byName)) << "a file may name the value too";
+    }
+}
+
+TEST(Settings, AWrongNameIsRefusedWithTheNamesItCouldBe) {
+    Settings s;
+    const std::string before = settingsToJson(s);
+    const Status pointz = applySetting(s, "cloud.path=pointz");
+    ASSERT_FALSE(pointz);
+    EXPECT_EQ(pointz.error().message, "'cloud.path' cannot be pointz (one of: automatic, points, splat)");
+    for (const SettingField& f : settingFields()) {
+        if (f.names.empty())
+            continue;
+        SCOPED_TRACE(nameOf(f));
+        for (const std::string wrong : {"nosuch", "9", "-1"}) {
+            const Status status = applySetting(s, nameOf(f) + "=" + wrong);
+            ASSERT_FALSE(status) << wrong;
+            for (const std::string& name : f.names)
+                EXPECT_NE(status.error().message.find(name), std::string::npos) << wrong;
+        }
+    }
+    EXPECT_EQ(settingsToJson(s), before);
 }
 
 TEST(Settings, SanitizeRemovesNonFiniteValues) {
