@@ -24,10 +24,17 @@ constexpr const char* kEmitterLabels[] = {"Off", "Laser", "Laser Auto", "LED"};
 
 // RealSense D4xx's depth XU: unit 3, GUID C9606CCB-594C-4D25-AF47-CCC496435995, selectors as librealsense's
 // ds-private.h numbers them. The emitter is one byte (0 off, 1 laser, 2 laser switched by the camera's auto
-// exposure, 3 LED on models that have one); laser power 16 bits in milliwatts.
+// exposure, 3 LED on models that have one); laser power 16 bits in milliwatts. The depth sensor's auto
+// exposure is one byte (0 off, 1 on) at selector 0x0B, its manual exposure 32 bits in microseconds at
+// selector 3, which auto exposure overrides while on (librealsense switches auto exposure off before it sets
+// one). Ranges and defaults are the camera's answers, as librealsense takes them from GET_MIN/MAX/RES/DEF.
+// Auto exposure is listed first, so that a preset turns it off before it sets the exposure.
+constexpr std::uint8_t kAutoExposureSelector = 0x0b;
 constexpr XuControlSpec kRealsenseDepthControls[] = {
     {"Emitter Enabled", 2, 1, V4L2_CTRL_TYPE_MENU, kEmitterLabels},
     {"Laser Power", 4, 2, V4L2_CTRL_TYPE_INTEGER, {}},
+    {"Enable Auto Exposure", kAutoExposureSelector, 1, V4L2_CTRL_TYPE_BOOLEAN, {}},
+    {"Depth Exposure (us)", 3, 4, V4L2_CTRL_TYPE_INTEGER, {}, kAutoExposureSelector},
 };
 constexpr ExtensionUnit kRealsenseDepthXu{
     3,
@@ -44,8 +51,12 @@ constexpr std::uint8_t kVcExtensionUnit = 0x06;
 constexpr std::size_t kXuGuidOffset = 4;
 
 // The unit and selector are in the id, so that a listed control is all setXuControl() needs.
+std::uint32_t idOf(const ExtensionUnit& unit, std::uint8_t selector) {
+    return kXuIdBase | static_cast<std::uint32_t>(unit.id) << 8 | selector;
+}
+
 std::uint32_t idOf(const ExtensionUnit& unit, const XuControlSpec& spec) {
-    return kXuIdBase | static_cast<std::uint32_t>(unit.id) << 8 | spec.selector;
+    return idOf(unit, spec.selector);
 }
 
 const XuControlSpec* specOf(std::uint32_t id) {
@@ -123,6 +134,21 @@ std::optional<V4l2Control> describe(const XuTarget& t, std::uint32_t id) {
     return c;
 }
 
+// Flags each listed control whose auto control is listed and on. An auto control that could not be read
+// leaves its partner active: nothing says the camera ignores it.
+void markDecidedByAuto(const ExtensionUnit& unit, std::vector<V4l2Control>& controls) {
+    for (const XuControlSpec& spec : unit.controls) {
+        const auto find = [&](std::uint8_t selector) {
+            return std::find_if(controls.begin(), controls.end(),
+                                [&](const V4l2Control& c) { return c.id == idOf(unit, selector); });
+        };
+        const auto manual = find(spec.selector);
+        const auto automatic = spec.autoSelector ? find(spec.autoSelector) : controls.end();
+        if (manual != controls.end() && automatic != controls.end() && automatic->value.value_or(0) != 0)
+            manual->flags |= V4L2_CTRL_FLAG_INACTIVE;
+    }
+}
+
 } // namespace
 
 XuAccess xuAccessFor(std::uint16_t vendorId, std::uint16_t productId, const std::string& depthNodePath) {
@@ -162,6 +188,7 @@ std::vector<V4l2Control> queryXuControls(Syscalls& sys, int fd, const XuAccess& 
     for (const XuControlSpec& spec : access.unit->controls)
         if (auto c = describe({sys, fd, access.unit->id, spec}, idOf(*access.unit, spec)))
             controls.push_back(std::move(*c));
+    markDecidedByAuto(*access.unit, controls);
     return controls;
 }
 

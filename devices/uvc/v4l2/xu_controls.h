@@ -18,8 +18,11 @@ struct XuControlSpec {
     const char* name = ""; // shown as the driver's names are; presets keep it by its controlKey()
     std::uint8_t selector = 0;
     std::uint16_t sizeBytes = 0; // what GET_LEN must answer; a camera answering otherwise is not trusted
-    std::uint32_t type = 0;      // V4L2_CTRL_TYPE_INTEGER or V4L2_CTRL_TYPE_MENU
+    std::uint32_t type = 0;      // V4L2_CTRL_TYPE_INTEGER, _BOOLEAN or _MENU
     std::span<const char* const> menuLabels = {}; // a menu's labels by value
+    // The selector of the unit's auto control that decides this one while it is on (0: none): listed
+    // inactive then, as V4L2 lists exposure_time_absolute while auto_exposure is not manual.
+    std::uint8_t autoSelector = 0;
 };
 
 // One vendor's extension unit: its id among the camera's units, its GUID as the USB descriptors carry it
@@ -53,7 +56,8 @@ bool isXuControl(std::uint32_t id);
 
 // Each control of `access`'s unit that answers GET_INFO, GET_LEN, GET_MIN, GET_MAX, GET_RES, GET_DEF and
 // GET_CUR on `fd`, as a control of the node; one that fails a query, or answers a size other than its own,
-// is left out. Read-only when GET_INFO does not offer SET_CUR.
+// is left out. Read-only when GET_INFO does not offer SET_CUR; inactive while its auto control is listed
+// and on.
 std::vector<V4l2Control> queryXuControls(Syscalls& sys, int fd, const XuAccess& access);
 
 // Sets an XU control (after checkControlValue) with SET_CUR and reads it back with GET_CUR: the error

@@ -1,4 +1,5 @@
-// A RealSense D4xx's emitter and laser power, reached through its depth extension unit (UVCIOC_CTRL_QUERY)
+// A RealSense D4xx's emitter, laser power and depth exposure (manual and auto), reached through its depth
+// extension unit (UVCIOC_CTRL_QUERY)
 // and shown among the node's V4L2 controls; and no XU request at all to a camera the known-camera table
 // does not mark as a D4xx. The fake XU answers as uvcvideo passes a D435's answers on.
 
@@ -31,6 +32,8 @@ constexpr const char* kDepth = "/dev/video0";
 constexpr std::uint8_t kUnit = 3;
 constexpr std::uint8_t kEmitter = 2;
 constexpr std::uint8_t kLaserPower = 4;
+constexpr std::uint8_t kExposure = 3;
+constexpr std::uint8_t kAutoExposure = 0x0b;
 
 // One query as the camera received it.
 struct SentQuery {
@@ -58,6 +61,15 @@ public:
             .size = 1, .maximum = 2, .resolution = 1, .defaultValue = 1, .current = 1};
         controls[{kUnit, kLaserPower}] = {
             .size = 2, .maximum = 360, .resolution = 30, .defaultValue = 150, .current = 150};
+        // Auto exposure on; the manual exposure 1..165000 us (past 16 bits), 8.5 ms by default.
+        controls[{kUnit, kAutoExposure}] = {
+            .size = 1, .maximum = 1, .resolution = 1, .defaultValue = 1, .current = 1};
+        controls[{kUnit, kExposure}] = {.size = 4,
+                                        .minimum = 1,
+                                        .maximum = 165000,
+                                        .resolution = 1,
+                                        .defaultValue = 8500,
+                                        .current = 8500};
     }
 
     std::map<std::pair<std::uint8_t, std::uint8_t>, Control> controls;
@@ -158,7 +170,7 @@ protected:
 TEST_F(XuControls, AD4xxListsItsEmitterAndLaserPowerWithTheirRanges) {
     V4l2SensorControls controls(xu_, {kDepth}, d435());
     const std::vector<SensorControl> listed = read(controls);
-    ASSERT_EQ(listed.size(), 2u);
+    ASSERT_EQ(listed.size(), 4u);
     const SensorControl* emitter = named(listed, "emitter_enabled");
     ASSERT_NE(emitter, nullptr);
     EXPECT_EQ(emitter->kind, SensorControl::Kind::Menu);
@@ -201,7 +213,7 @@ TEST_F(XuControls, ASetSendsSetCurLittleEndianAndReadsItBack) {
 
 TEST_F(XuControls, AValueTheCameraDoesNotKeepIsAnError) {
     const std::vector<V4l2Control> listed = queryXuControls(xu_, 0, d435());
-    ASSERT_EQ(listed.size(), 2u);
+    ASSERT_EQ(listed.size(), 4u);
     xu_.controls[{kUnit, kLaserPower}].keeps = 180;
     const Status s = setXuControl(xu_, 0, kDepth, listed[1], 330);
     ASSERT_FALSE(s.ok());
@@ -232,11 +244,15 @@ TEST_F(XuControls, AControlThatFailsItsQueriesIsLeftOut) {
     xu_.controls[{kUnit, kEmitter}].infoFails = true;
     V4l2SensorControls controls(xu_, {kDepth}, d435());
     std::vector<SensorControl> listed = read(controls);
-    ASSERT_EQ(listed.size(), 1u);
-    EXPECT_EQ(controlKey(listed[0].name), "laser_power");
-    // A size other than the one we know: another firmware's meaning, not trusted.
+    ASSERT_EQ(listed.size(), 3u);
+    EXPECT_EQ(named(listed, "emitter_enabled"), nullptr);
+    EXPECT_NE(named(listed, "laser_power"), nullptr);
+    // A size other than the one we know: another firmware's meaning, not trusted (an exposure of 16 bits).
     xu_.controls[{kUnit, kLaserPower}].size = 4;
-    EXPECT_TRUE(read(controls).empty());
+    xu_.controls[{kUnit, kExposure}].size = 2;
+    listed = read(controls);
+    ASSERT_EQ(listed.size(), 1u);
+    EXPECT_EQ(controlKey(listed[0].name), "enable_auto_exposure");
 }
 
 TEST_F(XuControls, AControlWithoutSetCurIsReadOnly) {
@@ -260,9 +276,14 @@ TEST_F(XuControls, ACameraNotInTheTableAsAD4xxGetsNoXuRequest) {
         V4l2SensorControls controls(xu_, {kDepth}, none);
         EXPECT_TRUE(read(controls).empty());
         EXPECT_FALSE(controls.set(kDepth, 0x0dc00304, 150).ok());
+        EXPECT_FALSE(controls.set(kDepth, 0x0dc00303, 20000).ok()) << "the exposure's id";
+        EXPECT_FALSE(controls.set(kDepth, 0x0dc0030b, 0).ok()) << "auto exposure's id";
+        EXPECT_TRUE(queryXuControls(xu_, 0, none).empty());
         controls.changed();
-        const ControlPreset preset{"", {{"", {{"laser_power", "150"}}}}};
-        EXPECT_EQ(applyPreset(xu_, preset, {kDepth}, none).size(), 1u) << "no such control";
+        const ControlPreset preset{
+            "",
+            {{"", {{"laser_power", "150"}, {"enable_auto_exposure", "0"}, {"depth_exposure_us", "20000"}}}}};
+        EXPECT_EQ(applyPreset(xu_, preset, {kDepth}, none).size(), 3u) << "no such control";
     }
     EXPECT_TRUE(xu_.sent.empty());
 }
@@ -271,8 +292,9 @@ TEST_F(XuControls, PresetsSaveAndApplyThemByName) {
     auto listed = queryNodeControls(xu_, 0, kDepth, d435());
     ASSERT_TRUE(listed.ok());
     const PresetNode saved = presetNodeOf("Intel RealSense D435", *listed);
-    const std::vector<std::pair<std::string, std::string>> values{{"emitter_enabled", "Laser"},
-                                                                  {"laser_power", "150"}};
+    // The exposure is left out while auto exposure decides it.
+    const std::vector<std::pair<std::string, std::string>> values{
+        {"emitter_enabled", "Laser"}, {"laser_power", "150"}, {"enable_auto_exposure", "1"}};
     EXPECT_EQ(saved.values, values);
     auto preset = parsePreset(presetJson({"usb:8086:0b07", {saved}}), "preset.json");
     ASSERT_TRUE(preset.ok()) << preset.error().message;
@@ -285,6 +307,139 @@ TEST_F(XuControls, PresetsSaveAndApplyThemByName) {
     const std::vector<std::string> high = applyPreset(xu_, *preset, {kDepth}, d435());
     ASSERT_EQ(high.size(), 1u);
     EXPECT_NE(high[0].find("'laser_power'"), std::string::npos) << high[0];
+}
+
+// The depth sensor's exposure: auto exposure (selector 0x0B, one byte) as a boolean, the manual exposure
+// (selector 3, four bytes, microseconds) with the unit's range, inactive while auto exposure is on, after
+// auto exposure so that a preset turns that off first.
+TEST_F(XuControls, AD4xxListsItsExposureAndAutoExposureWithTheUnitsRanges) {
+    V4l2SensorControls controls(xu_, {kDepth}, d435());
+    std::vector<SensorControl> listed = read(controls);
+    const SensorControl* automatic = named(listed, "enable_auto_exposure");
+    ASSERT_NE(automatic, nullptr);
+    EXPECT_EQ(automatic->kind, SensorControl::Kind::Boolean);
+    EXPECT_EQ(automatic->minimum, 0);
+    EXPECT_EQ(automatic->maximum, 1);
+    EXPECT_EQ(automatic->defaultValue, 1);
+    EXPECT_EQ(automatic->value, 1);
+    EXPECT_FALSE(automatic->inactive);
+    const SensorControl* exposure = named(listed, "depth_exposure_us");
+    ASSERT_NE(exposure, nullptr);
+    EXPECT_EQ(exposure->kind, SensorControl::Kind::Integer);
+    EXPECT_EQ(exposure->minimum, 1);
+    EXPECT_EQ(exposure->maximum, 165000) << "all four bytes of GET_MAX";
+    EXPECT_EQ(exposure->step, 1);
+    EXPECT_EQ(exposure->defaultValue, 8500);
+    EXPECT_EQ(exposure->value, 8500);
+    EXPECT_FALSE(exposure->readOnly);
+    EXPECT_TRUE(exposure->inactive) << "auto exposure decides it";
+    EXPECT_LT(automatic, exposure) << "auto exposure is listed first";
+
+    const Status off = controls.set(kDepth, automatic->id, 0);
+    ASSERT_TRUE(off.ok()) << off.error().message;
+    EXPECT_EQ((xu_.controls[{kUnit, kAutoExposure}].current), 0u);
+    listed = read(controls);
+    ASSERT_NE(named(listed, "depth_exposure_us"), nullptr);
+    EXPECT_FALSE(named(listed, "depth_exposure_us")->inactive) << "settable once auto exposure is off";
+    EXPECT_EQ(named(listed, "enable_auto_exposure")->value, 0);
+}
+
+TEST_F(XuControls, TheExposureIsInactiveOnlyWhileAutoExposureIsReadAndOn) {
+    const auto exposureFlags = [&] {
+        const std::vector<V4l2Control> listed = queryXuControls(xu_, 0, d435());
+        const auto c = std::find_if(listed.begin(), listed.end(), [](const V4l2Control& v) {
+            return controlKey(v.name) == "depth_exposure_us";
+        });
+        return c == listed.end() ? std::vector<std::string>{"missing"} : controlFlagNames(*c);
+    };
+    EXPECT_EQ(exposureFlags(), std::vector<std::string>{"inactive"}) << "as `controls` lists it";
+    xu_.controls[{kUnit, kAutoExposure}].current = 0;
+    EXPECT_TRUE(exposureFlags().empty());
+    xu_.controls[{kUnit, kAutoExposure}].current = 1;
+    xu_.controls[{kUnit, kAutoExposure}].infoFails = true;
+    EXPECT_TRUE(exposureFlags().empty()) << "an auto control that cannot be read decides nothing";
+}
+
+TEST_F(XuControls, AnExposureSetSendsFourBytesLittleEndianAndReadsItBack) {
+    xu_.controls[{kUnit, kAutoExposure}].current = 0;
+    V4l2SensorControls controls(xu_, {kDepth}, d435());
+    const std::vector<SensorControl> listed = read(controls); // named() points into it
+    const SensorControl* exposure = named(listed, "depth_exposure_us");
+    ASSERT_NE(exposure, nullptr);
+    xu_.sent.clear();
+    const Status s = controls.set(kDepth, exposure->id, 100000);
+    ASSERT_TRUE(s.ok()) << s.error().message;
+    const auto set = std::find_if(xu_.sent.begin(), xu_.sent.end(),
+                                  [](const SentQuery& q) { return q.query == UVC_SET_CUR; });
+    ASSERT_NE(set, xu_.sent.end());
+    EXPECT_EQ(set->unit, kUnit);
+    EXPECT_EQ(set->selector, kExposure);
+    EXPECT_EQ(set->bytes, (std::vector<std::uint8_t>{0xa0, 0x86, 0x01, 0x00})) << "100000 = 0x000186a0";
+    ASSERT_EQ(set + 2, xu_.sent.end()) << "one query after SET_CUR: the read back";
+    EXPECT_EQ((set + 1)->query, UVC_GET_CUR);
+    EXPECT_EQ((set + 1)->selector, kExposure);
+    EXPECT_EQ(named(read(controls), "depth_exposure_us")->value, 100000);
+
+    xu_.controls[{kUnit, kExposure}].keeps = 33000;
+    const Status kept = controls.set(kDepth, exposure->id, 20000);
+    ASSERT_FALSE(kept.ok());
+    EXPECT_NE(kept.error().message.find("'depth_exposure_us' to 20000"), std::string::npos)
+        << kept.error().message;
+    EXPECT_NE(kept.error().message.find("keeps 33000"), std::string::npos) << kept.error().message;
+}
+
+TEST_F(XuControls, AnExposureOutOfRangeIsRefusedNamingTheControlAndNotSent) {
+    V4l2SensorControls controls(xu_, {kDepth}, d435());
+    const std::vector<SensorControl> listed = read(controls);
+    const SensorControl* exposure = named(listed, "depth_exposure_us");
+    const SensorControl* automatic = named(listed, "enable_auto_exposure");
+    ASSERT_NE(exposure, nullptr);
+    ASSERT_NE(automatic, nullptr);
+    xu_.sent.clear();
+    for (const std::int64_t value : {0, 165001}) {
+        const Status s = controls.set(kDepth, exposure->id, value);
+        ASSERT_FALSE(s.ok()) << value;
+        EXPECT_NE(s.error().message.find("'depth_exposure_us' takes 1..165000, not " + std::to_string(value)),
+                  std::string::npos)
+            << s.error().message;
+    }
+    const Status two = controls.set(kDepth, automatic->id, 2);
+    ASSERT_FALSE(two.ok());
+    EXPECT_NE(two.error().message.find("'enable_auto_exposure' takes 0..1"), std::string::npos)
+        << two.error().message;
+    EXPECT_TRUE(std::none_of(xu_.sent.begin(), xu_.sent.end(),
+                             [](const SentQuery& q) { return q.query == UVC_SET_CUR; }));
+}
+
+TEST_F(XuControls, PresetsSaveTheExposureWhileManualAndApplyAutoExposureFirst) {
+    xu_.controls[{kUnit, kAutoExposure}].current = 0;
+    xu_.controls[{kUnit, kExposure}].current = 12000;
+    auto listed = queryNodeControls(xu_, 0, kDepth, d435());
+    ASSERT_TRUE(listed.ok());
+    const PresetNode saved = presetNodeOf("Intel RealSense D435", *listed);
+    const std::vector<std::pair<std::string, std::string>> values{{"emitter_enabled", "Laser"},
+                                                                  {"laser_power", "150"},
+                                                                  {"enable_auto_exposure", "0"},
+                                                                  {"depth_exposure_us", "12000"}};
+    EXPECT_EQ(saved.values, values);
+    auto preset = parsePreset(presetJson({"usb:8086:0b07", {saved}}), "preset.json");
+    ASSERT_TRUE(preset.ok()) << preset.error().message;
+    xu_.controls[{kUnit, kAutoExposure}].current = 1;
+    xu_.controls[{kUnit, kExposure}].current = 8500;
+    xu_.sent.clear();
+    const std::vector<std::string> refused = applyPreset(xu_, *preset, {kDepth}, d435());
+    EXPECT_TRUE(refused.empty()) << refused.front();
+    EXPECT_EQ((xu_.controls[{kUnit, kAutoExposure}].current), 0u);
+    EXPECT_EQ((xu_.controls[{kUnit, kExposure}].current), 12000u);
+    std::vector<std::uint8_t> setOrder;
+    for (const SentQuery& q : xu_.sent)
+        if (q.query == UVC_SET_CUR && (q.selector == kAutoExposure || q.selector == kExposure))
+            setOrder.push_back(q.selector);
+    EXPECT_EQ(setOrder, (std::vector<std::uint8_t>{kAutoExposure, kExposure}));
+    preset->nodes[0].values = {{"depth_exposure_us", "200000"}};
+    const std::vector<std::string> high = applyPreset(xu_, *preset, {kDepth}, d435());
+    ASSERT_EQ(high.size(), 1u);
+    EXPECT_NE(high[0].find("'depth_exposure_us'"), std::string::npos) << high[0];
 }
 
 // The USB descriptors of a camera with one VideoControl interface whose extension unit `unitId` has `guid`,
@@ -371,6 +526,8 @@ TEST_F(XuUvcDevice, AD435BehindItsNodeShowsTheXuControls) {
     const std::vector<SensorControl> listed = read(*controls);
     EXPECT_NE(named(listed, "laser_power"), nullptr);
     EXPECT_NE(named(listed, "emitter_enabled"), nullptr);
+    EXPECT_NE(named(listed, "enable_auto_exposure"), nullptr);
+    EXPECT_NE(named(listed, "depth_exposure_us"), nullptr);
 }
 
 TEST_F(XuUvcDevice, AnotherCameraAGadgetWithAD435sIdsOrNoUsbGetsNoXuRequest) {
