@@ -2,13 +2,19 @@
 
 namespace dc::engine {
 
-std::int64_t onCompanionClock(const devices::replay::ReplayStatus& main, std::int64_t mainTimestampNs,
-                              const devices::replay::ReplayStatus& companion) {
+std::int64_t onCompanionClock(const RecordingSpan& main, std::int64_t mainTimestampNs,
+                              const RecordingSpan& companion) {
     const bool sharedClock = main.firstTimestampNs <= companion.lastTimestampNs &&
                              companion.firstTimestampNs <= main.lastTimestampNs;
     if (sharedClock)
         return mainTimestampNs;
     return companion.firstTimestampNs + (mainTimestampNs - main.firstTimestampNs);
+}
+
+std::int64_t onCompanionClock(const devices::replay::ReplayStatus& main, std::int64_t mainTimestampNs,
+                              const devices::replay::ReplayStatus& companion) {
+    return onCompanionClock(RecordingSpan{main.firstTimestampNs, main.lastTimestampNs}, mainTimestampNs,
+                            RecordingSpan{companion.firstTimestampNs, companion.lastTimestampNs});
 }
 
 void ReplayFollower::follow(const devices::replay::ReplayStatus& main, Instrument& companion) {

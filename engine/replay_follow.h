@@ -8,9 +8,18 @@
 
 namespace dc::engine {
 
+// A recording's span of time: its first and last frames' timestamps.
+struct RecordingSpan {
+    std::int64_t firstTimestampNs = 0;
+    std::int64_t lastTimestampNs = 0;
+};
+
 // Where `mainTimestampNs` of the main replay falls on a companion replay's clock: the same instant when the
 // two recordings' spans overlap (they were recorded together, on one clock), else the same time since each
 // one's first frame.
+std::int64_t onCompanionClock(const RecordingSpan& main, std::int64_t mainTimestampNs,
+                              const RecordingSpan& companion);
+// The same for two replays as they play.
 std::int64_t onCompanionClock(const devices::replay::ReplayStatus& main, std::int64_t mainTimestampNs,
                               const devices::replay::ReplayStatus& companion);
 

@@ -56,6 +56,18 @@ Status writePlyFrame(const frame::Frame& frame, std::size_t index, const ExportO
     return base::writeFileAtomically(options.outDirectory + "/" + numberedName(index, "ply"), bytes);
 }
 
+std::vector<processing::CloudPoint> worldPoints(const frame::Frame& frame,
+                                                const frame::RigidTransform& cameraToWorld) {
+    auto points = processing::buildPointCloud(frame, frame::Confidence::Low, 0.0f);
+    for (processing::CloudPoint& p : points) {
+        const auto w = cameraToWorld.apply({p.x, p.y, p.z});
+        p.x = static_cast<float>(w[0]);
+        p.y = static_cast<float>(w[1]);
+        p.z = static_cast<float>(w[2]);
+    }
+    return points;
+}
+
 // The mean frame rate over the range, for the Stray video (30 when it cannot be told).
 double meanFps(const devices::replay::ReplaySource& source, const FrameRange& range) {
     if (range.end - range.first < 2)
@@ -135,14 +147,44 @@ Expected<FrameRange> parseFrameRange(const std::string& text, std::size_t count)
     return range;
 }
 
+Expected<FrameRange> framesWithin(const FrameRange& requested, std::size_t count) {
+    FrameRange range = requested;
+    if (range.end == 0)
+        range.end = count;
+    if (range.first >= range.end || range.end > count)
+        return Error{"frames " + std::to_string(range.first) + ":" + std::to_string(range.end) +
+                     " are not within the source's " + std::to_string(count) + " frames"};
+    return range;
+}
+
+Status writeFusedPly(const std::vector<PlacedFrame>& parts, const std::string& directory) {
+    if (parts.empty())
+        return Error{"a fused PLY needs at least one source"};
+    const PlacedFrame& first = parts.front();
+    std::vector<std::string> comments{
+        "depthcloud export: frame " + std::to_string(first.index) + ", timestamp " +
+            std::to_string(first.frame->timestampNs) + " ns",
+        "depthcloud: several sources fused in the world frame, source after source",
+        "world coordinates (each source's camera-to-world placement applied), meters",
+        "confidence: 0 low, 1 medium, 2 high"};
+    std::vector<processing::CloudPoint> points;
+    for (const PlacedFrame& part : parts) {
+        auto own = worldPoints(*part.frame, part.cameraToWorld);
+        comments.push_back(std::to_string(own.size()) + " points of " + part.name);
+        comments.push_back("frame " + std::to_string(part.index) + " of " + part.name + ", timestamp " +
+                           std::to_string(part.frame->timestampNs) + " ns");
+        points.insert(points.end(), own.begin(), own.end());
+    }
+    return base::writeFileAtomically(directory + "/" + numberedName(first.index, "ply"),
+                                     encodePly(points, comments));
+}
+
 Expected<ExportResult> exportFrames(devices::replay::ReplaySource& source, const ExportOptions& options,
                                     const ExportProgress& progress) {
-    FrameRange range = options.frames;
-    if (range.end == 0)
-        range.end = source.frameCount();
-    if (range.first >= range.end || range.end > source.frameCount())
-        return Error{"frames " + std::to_string(range.first) + ":" + std::to_string(range.end) +
-                     " are not within the source's " + std::to_string(source.frameCount()) + " frames"};
+    const auto within = framesWithin(options.frames, source.frameCount());
+    if (!within)
+        return within.error();
+    const FrameRange range = *within;
     if (Status s = createDestination(options); !s)
         return s.error();
     // Processing may need the colour even for depth-only output (upsampling is guided by it).

@@ -2,10 +2,12 @@
 
 #include "base/expected.h"
 #include "devices/replay/replay_source.h"
+#include "frame/camera_model.h"
 
 #include <cstddef>
 #include <functional>
 #include <string>
+#include <vector>
 
 namespace dc::exporting {
 
@@ -42,6 +44,24 @@ struct ExportResult {
     std::size_t framesWritten = 0;
     std::size_t framesSkipped = 0; // unreadable frames, each logged with its error
 };
+
+// The frames [first, end) that `requested` (end == 0: to the last frame) covers of a source of `count`
+// frames; an error when they are not within it.
+Expected<FrameRange> framesWithin(const FrameRange& requested, std::size_t count);
+
+// One source's part of a fused PLY: its frame, where that frame's camera sits in the world and the
+// source's name (its --source).
+struct PlacedFrame {
+    const frame::Frame* frame = nullptr;
+    std::size_t index = 0; // the frame's index in its source
+    frame::RigidTransform cameraToWorld;
+    std::string name;
+};
+
+// Every part's points (as the PLY export builds them) in the world frame, part after part, as one PLY at
+// DIRECTORY/NNNNNN.ply, NNNNNN the first part's frame index, written atomically. Its comments count each
+// part's points as the window's fused cloud.ply does ("N points of NAME") and say which frame each came from.
+Status writeFusedPly(const std::vector<PlacedFrame>& parts, const std::string& directory);
 
 // Called after each frame with (frames done, frames in the range); returning false cancels the export.
 using ExportProgress = std::function<bool(std::size_t done, std::size_t total)>;

@@ -1,4 +1,5 @@
-// depthcloud export: a recording or capture to PLY clouds, the Stray layout, 16-bit depth PNGs or MCAP.
+// depthcloud export: a recording or capture to PLY clouds, the Stray layout, 16-bit depth PNGs or MCAP;
+// several recordings to PLY clouds fused in the world frame.
 
 #include "base/log.h"
 #include "devices/replay/replay_spec.h"
@@ -11,6 +12,9 @@
 #include <cstdio>
 #include <filesystem>
 #include <functional>
+#include <optional>
+#include <string>
+#include <vector>
 
 namespace dc::tool {
 
@@ -72,41 +76,93 @@ std::string mcapDestinationProblem(const ExportOptionsCli& o) {
     return {};
 }
 
+// The export's --source that cannot be opened, as the viewer reports one: a bad argument, unless this
+// build lacks the video support it needs.
+int sourceCannotOpen(const Error& error) {
+    return commandFailed("export", "--source: " + error.message,
+                         devices::video::isVideoSupportMissing(error) ? kExitFailure : kExitBadArguments);
+}
+
+// --frames against a first source of `count` frames, into `options`; an exit code when it is wrong.
+std::optional<int> applyFrames(const ExportOptionsCli& o, std::size_t count,
+                               exporting::ExportOptions& options) {
+    if (o.frames.empty())
+        return std::nullopt;
+    auto range = exporting::parseFrameRange(o.frames, count);
+    if (!range)
+        return commandFailed("export", "--frames: " + range.error().message, kExitBadArguments);
+    options.frames = *range;
+    return std::nullopt;
+}
+
+void printSummary(const ExportOptionsCli& o, const exporting::ExportOptions& options,
+                  const exporting::ExportResult& result) {
+    const std::string upsampled = o.upsample == "none" ? "" : ", depth upsampled (" + o.upsample + ")";
+    const std::string fused =
+        o.sources.size() > 1 ? ", " + std::to_string(o.sources.size()) + " sources fused in the world frame"
+                             : "";
+    const std::string skipped =
+        result.framesSkipped ? " (" + std::to_string(result.framesSkipped) + " unreadable frames skipped)"
+                             : "";
+    std::printf("depthcloud export: wrote %zu frames as %s%s%s to %s%s\n", result.framesWritten,
+                exporting::toString(options.format), upsampled.c_str(), fused.c_str(), o.out.c_str(),
+                skipped.c_str());
+}
+
+// Several --source: one PLY per frame of the first with every source's points in the world frame.
+int runFusedExport(const ExportOptionsCli& o) {
+    if (o.format != "ply")
+        return commandFailed("export",
+                             "--format " + o.format + ": several --source are fused into PLY clouds only",
+                             kExitBadArguments);
+    std::vector<engine::FusedExportSource> sources;
+    for (const std::string& spec : o.sources) {
+        auto source = engine::openFusedExportSource(spec);
+        if (!source)
+            return sourceCannotOpen(sources.empty() ? source.error()
+                                                    : Error{spec + ": " + source.error().message});
+        source->transform = upsamplingOf(o.upsample);
+        sources.push_back(std::move(*source));
+    }
+    exporting::ExportOptions options;
+    options.outDirectory = o.out;
+    if (auto failed = applyFrames(o, sources.front().source->frameCount(), options))
+        return *failed;
+    ProgressBar bar;
+    auto result = engine::exportFused(
+        sources, options, [&bar](std::size_t done, std::size_t total) { return bar.update(done, total); });
+    if (!result)
+        return commandFailed("export", result.error().message, kExitFailure);
+    printSummary(o, options, *result);
+    return kExitOk;
+}
+
 } // namespace
 
 int runExport(const ExportOptionsCli& o) {
     setLogQuiet(true);
+    if (o.sources.size() > 1)
+        return runFusedExport(o);
     if (o.format == "mcap")
         if (const std::string problem = mcapDestinationProblem(o); !problem.empty())
             return commandFailed("export", "--out: " + problem, kExitBadArguments);
-    auto source = devices::replay::openReplaySpecSource(o.source);
+    auto source = devices::replay::openReplaySpecSource(o.sources.front());
     if (!source)
-        return commandFailed("export", "--source: " + source.error().message,
-                             devices::video::isVideoSupportMissing(source.error()) ? kExitFailure
-                                                                                   : kExitBadArguments);
+        return sourceCannotOpen(source.error());
     exporting::ExportOptions options;
     options.format = formatOf(o.format);
     options.outDirectory = o.out;
     options.worldCoordinates = o.world;
     options.overwrite = o.overwrite;
     options.transform = upsamplingOf(o.upsample);
-    if (!o.frames.empty()) {
-        auto range = exporting::parseFrameRange(o.frames, (*source)->frameCount());
-        if (!range)
-            return commandFailed("export", "--frames: " + range.error().message, kExitBadArguments);
-        options.frames = *range;
-    }
+    if (auto failed = applyFrames(o, (*source)->frameCount(), options))
+        return *failed;
     ProgressBar bar;
     auto result = exporting::exportFrames(
         **source, options, [&bar](std::size_t done, std::size_t total) { return bar.update(done, total); });
     if (!result)
         return commandFailed("export", result.error().message, kExitFailure);
-    std::printf("depthcloud export: wrote %zu frames as %s%s to %s%s\n", result->framesWritten,
-                exporting::toString(options.format),
-                options.transform ? (", depth upsampled (" + o.upsample + ")").c_str() : "", o.out.c_str(),
-                result->framesSkipped
-                    ? (" (" + std::to_string(result->framesSkipped) + " unreadable frames skipped)").c_str()
-                    : "");
+    printSummary(o, options, *result);
     return kExitOk;
 }
 

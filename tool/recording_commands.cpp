@@ -40,7 +40,11 @@ void addExport(CLI::App& app, ExportOptionsCli& o, RecordingCommands& c) {
     c.exportCmd = app.add_subcommand(
         "export",
         "export a recording or capture as PLY clouds, Stray layout, depth PNGs or a ROS 2 MCAP file");
-    c.exportCmd->add_option("--source", o.source, "replay:PATH (a recording, Stray or TUM directory, a bag)")
+    c.exportCmd
+        ->add_option("--source", o.sources,
+                     "replay:PATH (a recording, Stray or TUM directory, a bag); given again (--format ply), "
+                     "one PLY per frame of the first holds every source's points in the world frame: each "
+                     "further source's frame nearest in time, placed by its pose= after its recorded pose")
         ->required();
     c.exportCmd->add_option("--out", o.out, "output directory (mcap: the .mcap file)")->required();
     c.exportCmd->add_option("--frames", o.frames, "frames A:B (B excluded; A: and :B too)");
@@ -53,7 +57,9 @@ void addExport(CLI::App& app, ExportOptionsCli& o, RecordingCommands& c) {
         ->check(CLI::IsMember({"ply", "stray", "png16", "mcap"}))
         ->capture_default_str();
     c.exportCmd->add_flag("--overwrite", o.overwrite, "mcap: replace OUT if it exists");
-    c.exportCmd->add_flag("--world", o.world, "PLY points in world coordinates (through each frame's pose)");
+    c.exportCmd->add_flag(
+        "--world", o.world,
+        "PLY points in world coordinates (through each frame's pose; always with several --source)");
     c.exportCmd
         ->add_option(
             "--upsample", o.upsample,

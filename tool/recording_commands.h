@@ -4,6 +4,7 @@
 
 #include <optional>
 #include <string>
+#include <vector>
 
 // depthcloud record / export / bench replay / bench record: headless commands on the recording format
 // and the replay sources (no GL).
@@ -23,7 +24,8 @@ struct RecordOptions {
 };
 
 struct ExportOptionsCli {
-    std::string source;
+    // --source given again: each further source's points join the first's in one PLY per frame of the first
+    std::vector<std::string> sources;
     std::string out;
     std::string frames; // "A:B"
     std::string format = "ply";

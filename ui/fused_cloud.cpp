@@ -1,11 +1,12 @@
 #include "ui/fused_cloud.h"
 
+#include "frame/world_placement.h"
+
 namespace dc::ui {
 
+// One definition below ui, which `depthcloud export` places its sources with too.
 frame::RigidTransform placeInWorld(const frame::Frame& frame, const frame::RigidTransform& correction) {
-    const frame::RigidTransform own =
-        frame.pose ? frame::rigidFromPose(*frame.pose) : frame::RigidTransform{};
-    return frame::compose(correction, own);
+    return frame::worldPlacement(frame, correction);
 }
 
 std::vector<processing::CloudPoint> worldCloud(const FusedSource& source, frame::Confidence minConfidence,

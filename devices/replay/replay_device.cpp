@@ -81,14 +81,18 @@ std::uint64_t ReplayControl::seekToTime(std::int64_t timestampNs) {
     return requestSeek(index);
 }
 
+std::size_t nearestTimeIndex(const std::vector<std::int64_t>& timestampsNs, std::int64_t timestampNs) {
+    const auto after = std::lower_bound(timestampsNs.begin(), timestampsNs.end(), timestampNs);
+    auto index = static_cast<std::size_t>(after - timestampsNs.begin());
+    if (after == timestampsNs.end() ||
+        (after != timestampsNs.begin() && timestampNs - *(after - 1) <= *after - timestampNs))
+        index = index == 0 ? 0 : index - 1;
+    return index;
+}
+
 std::uint64_t ReplayControl::seekToNearestTime(std::int64_t timestampNs) {
     std::lock_guard lock(mutex_);
-    const auto after = std::lower_bound(timestampsNs_.begin(), timestampsNs_.end(), timestampNs);
-    auto index = static_cast<std::size_t>(after - timestampsNs_.begin());
-    if (after == timestampsNs_.end() ||
-        (after != timestampsNs_.begin() && timestampNs - *(after - 1) <= *after - timestampNs))
-        index = index == 0 ? 0 : index - 1;
-    return requestSeek(index);
+    return requestSeek(nearestTimeIndex(timestampsNs_, timestampNs));
 }
 
 std::uint64_t ReplayControl::step(int frames) {

@@ -34,6 +34,11 @@ struct ReplayStatus {
     std::string lastProblem;          // why the last skipped frame failed
 };
 
+// The index of the timestamp nearest `timestampNs` (the earlier one of two as near) in ascending
+// `timestampsNs` (0 when empty): the frame a replay that follows another's clock shows
+// (ReplayControl::seekToNearestTime), and the one a fused export pairs.
+std::size_t nearestTimeIndex(const std::vector<std::int64_t>& timestampsNs, std::int64_t timestampNs);
+
 // The timeline of a replay, held by the UI. Every method is thread-safe and returns at once; the replay
 // device applies the request on its capture thread. Seeks are exact: seekToIndex(), seekToTime() and
 // step() return a generation number, and the first frame whose Frame::replay->seekGeneration is at least
@@ -54,6 +59,9 @@ public:
     std::uint64_t seekToNearestTime(std::int64_t timestampNs);
     std::uint64_t step(int frames); // pauses, then moves by `frames` (negative: backwards)
     ReplayStatus status() const;
+    // Every frame's timestamp, in order: fixed for the replay's life, so read without the lock (another
+    // replay's frames are placed on this one's timeline by them).
+    const std::vector<std::int64_t>& timestampsNs() const { return timestampsNs_; }
 
 private:
     friend class ReplayDevice;

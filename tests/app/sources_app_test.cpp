@@ -1,7 +1,9 @@
 // Several sources at once, headless: each source's points placed in one world by its pose (pose=, a Kalibr
 // camchain's cameras, a synthetic camera's place in its scene) and written as one cloud.ply, source after
 // source; each source's panels in a folder of its own; each source's frames counted on their own in
-// summary.json, with its overlap figure against the first source.
+// summary.json, with its overlap figure against the first source. `depthcloud export` given several
+// recordings: one PLY per frame of the first, each further recording's frame nearest in time placed beside
+// it.
 
 #include "tool_in_temp_dir.h"
 
@@ -11,10 +13,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <map>
 #include <regex>
+#include <string>
 #include <tuple>
 #include <vector>
 
@@ -247,6 +252,141 @@ TEST_F(Sources, ASecondSourceThatCannotOpenIsABadArgumentNamingIt) {
     EXPECT_EQ(r.exitCode, 2);
     EXPECT_NE(r.err.find("--source: synthetic:320x240:view=1,2"), std::string::npos) << r.err;
     EXPECT_FALSE(std::filesystem::exists(dir_ / "out/summary.json"));
+}
+
+// The number that `pattern`'s one group matches in a PLY's header; -1 when it matches nothing.
+long long headerNumber(const std::string& bytes, const std::string& pattern) {
+    const std::string header = bytes.substr(0, bytes.find("end_header\n"));
+    std::smatch match;
+    if (!std::regex_search(header, match, std::regex(pattern)))
+        return -1;
+    return std::stoll(match[1]);
+}
+
+std::vector<std::filesystem::path> filesIn(const std::filesystem::path& directory) {
+    std::vector<std::filesystem::path> files;
+    for (const auto& entry : std::filesystem::directory_iterator(directory))
+        files.push_back(entry.path());
+    std::sort(files.begin(), files.end());
+    return files;
+}
+
+std::string plyName(long long index) {
+    char name[32];
+    std::snprintf(name, sizeof name, "%06lld.ply", index);
+    return name;
+}
+
+TEST_F(Sources, ExportFusesTwoRecordingsInTheWorldFrame) {
+    for (const auto& [spec, file] : {std::pair{kA, "a.dcrec"}, std::pair{kB, "b.dcrec"}}) {
+        const RunResult r = runTool("record --source \"" + spec + "\" --frames 4 " + file);
+        ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    }
+    // Each alone first: its valid points in each frame.
+    for (const std::string name : {"a", "b"}) {
+        const RunResult r = runTool("export --source replay:" + name + ".dcrec --out alone-" + name);
+        ASSERT_EQ(r.exitCode, 0) << r.out << r.err;
+    }
+    const RunResult fused = runTool("export --source replay:a.dcrec --source replay:b.dcrec --out fused");
+    ASSERT_EQ(fused.exitCode, 0) << fused.out << fused.err;
+    EXPECT_NE(fused.out.find("wrote 4 frames as ply, 2 sources fused"), std::string::npos) << fused.out;
+    const auto files = filesIn(dir_ / "fused");
+    ASSERT_EQ(files.size(), 4u);
+    double truthMm = 0.0;
+    for (std::size_t i = 0; i < files.size(); ++i) {
+        const std::string bytes = readFile(files[i]);
+        EXPECT_EQ(files[i].filename(), plyName(static_cast<long long>(i)));
+        const long long b = headerNumber(bytes, "comment frame (\\d+) of replay:b\\.dcrec,");
+        ASSERT_GE(b, 0) << files[i];
+        const long long pointsA = headerNumber(
+            readFile(dir_ / "alone-a" / plyName(static_cast<long long>(i))), "element vertex (\\d+)");
+        const long long pointsB =
+            headerNumber(readFile(dir_ / "alone-b" / plyName(b)), "element vertex (\\d+)");
+        ASSERT_GT(pointsA, 10'000);
+        ASSERT_GT(pointsB, 10'000);
+        EXPECT_EQ(headerNumber(bytes, "comment (\\d+) points of replay:a\\.dcrec\n"), pointsA);
+        EXPECT_EQ(headerNumber(bytes, "comment (\\d+) points of replay:b\\.dcrec\n"), pointsB);
+        EXPECT_EQ(headerNumber(bytes, "element vertex (\\d+)"), pointsA + pointsB);
+        const auto placed = plySources(bytes);
+        ASSERT_EQ(placed.size(), 2u);
+        // Nearest neighbours of two noisy samplings of one surface: about the noise, ~4.4 mm at 1.5 m.
+        truthMm = std::max(truthMm, medianNearestMm(placed[1], placed[0]));
+    }
+    EXPECT_LT(truthMm, 1.5 * 4.4);
+
+    // B's pose= 3 degrees and 3 cm off, after its recorded pose as the window applies it: its points leave
+    // A's.
+    const RunResult wrong =
+        runTool("export --source replay:a.dcrec --source \"replay:b.dcrec:" + kError + "\" --out wrong");
+    ASSERT_EQ(wrong.exitCode, 0) << wrong.out << wrong.err;
+    const auto misplaced = plySources(readFile(dir_ / "wrong/000000.ply"));
+    ASSERT_EQ(misplaced.size(), 2u);
+    EXPECT_GT(medianNearestMm(misplaced[1], misplaced[0]), 2.0 * truthMm);
+}
+
+TEST_F(Sources, ExportPairsEachFrameWithTheFurtherSourcesFrameNearestInTime) {
+    // A at 30 fps, then B at 10 fps: one after the other, so their spans do not overlap and they pair by
+    // time since each one's first frame, as the window pairs them. Moving cameras: every frame differs.
+    ASSERT_EQ(runTool("record --source synthetic:160x120@30:motion --frames 9 a.dcrec").exitCode, 0);
+    ASSERT_EQ(runTool("record --source synthetic:160x120@10:motion --frames 4 b.dcrec").exitCode, 0);
+    ASSERT_EQ(runTool("export --source replay:a.dcrec --out alone-a").exitCode, 0);
+    ASSERT_EQ(runTool("export --source replay:b.dcrec --world --out alone-b").exitCode, 0);
+    const RunResult fused = runTool("export --source replay:a.dcrec --source replay:b.dcrec --out fused");
+    ASSERT_EQ(fused.exitCode, 0) << fused.out << fused.err;
+    const auto timestamps = [this](const std::string& directory) {
+        std::vector<long long> t;
+        for (const auto& file : filesIn(dir_ / directory))
+            t.push_back(headerNumber(readFile(file), "timestamp (\\d+) ns"));
+        return t;
+    };
+    const std::vector<long long> a = timestamps("alone-a"), b = timestamps("alone-b");
+    ASSERT_EQ(a.size(), 9u);
+    ASSERT_EQ(b.size(), 4u);
+    ASSERT_LT(a.back(), b.front()) << "the recordings overlap";
+    bool differsFromIndex = false;
+    for (std::size_t i = 0; i < a.size(); ++i) {
+        std::size_t nearest = 0;
+        for (std::size_t k = 1; k < b.size(); ++k)
+            if (std::llabs((b[k] - b[0]) - (a[i] - a[0])) < std::llabs((b[nearest] - b[0]) - (a[i] - a[0])))
+                nearest = k;
+        differsFromIndex |= nearest != std::min<std::size_t>(i, b.size() - 1);
+        const std::string bytes = readFile(dir_ / "fused" / plyName(static_cast<long long>(i)));
+        EXPECT_EQ(headerNumber(bytes, "comment frame (\\d+) of replay:b\\.dcrec,"),
+                  static_cast<long long>(nearest))
+            << "frame " << i;
+        // The points written are that frame's: B's export alone, in the world through its recorded pose.
+        const auto written = plySources(bytes);
+        ASSERT_EQ(written.size(), 2u);
+        const std::string aloneBytes = readFile(dir_ / "alone-b" / plyName(static_cast<long long>(nearest)));
+        ASSERT_EQ(static_cast<long long>(written[1].size()),
+                  headerNumber(aloneBytes, "element vertex (\\d+)"));
+        const std::size_t body = aloneBytes.find("end_header\n") + 11;
+        double worst = 0.0;
+        for (std::size_t p = 0; p < written[1].size(); ++p) {
+            Point q;
+            std::memcpy(q.data(), aloneBytes.data() + body + 16 * p, 12);
+            for (int c = 0; c < 3; ++c)
+                worst = std::max(worst, std::abs(static_cast<double>(q[c] - written[1][p][c])));
+        }
+        EXPECT_LT(worst, 1e-5) << "frame " << i;
+    }
+    EXPECT_TRUE(differsFromIndex) << "the test's rates pair no frame differently from its index";
+}
+
+TEST_F(Sources, ExportOfSeveralSourcesWritesPlyOnlyAndNamesASourceThatCannotOpen) {
+    ASSERT_EQ(runTool("record --source synthetic:64x48 --frames 2 a.dcrec").exitCode, 0);
+    const RunResult png =
+        runTool("export --source replay:a.dcrec --source replay:a.dcrec --format png16 --out x");
+    EXPECT_EQ(png.exitCode, 2);
+    EXPECT_EQ(dc::test::lines(png.err), 1u) << png.err;
+    EXPECT_NE(png.err.find("--format png16"), std::string::npos) << png.err;
+    EXPECT_NE(png.err.find("--source"), std::string::npos) << png.err;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "x"));
+    const RunResult missing = runTool("export --source replay:a.dcrec --source replay:missing.dcrec --out x");
+    EXPECT_EQ(missing.exitCode, 2);
+    EXPECT_EQ(dc::test::lines(missing.err), 1u) << missing.err;
+    EXPECT_NE(missing.err.find("--source: replay:missing.dcrec"), std::string::npos) << missing.err;
+    EXPECT_FALSE(std::filesystem::exists(dir_ / "x"));
 }
 
 } // namespace

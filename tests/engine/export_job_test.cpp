@@ -1,8 +1,10 @@
 // An export runs on a thread of its own: an exception thrown inside it is the job's result, the files
-// written before it stay, and the process goes on.
+// written before it stay, and the process goes on. A fused export pairs frames as the window does.
 
 #include "devices/recording/recording_writer.h"
+#include "devices/replay/replay_device.h"
 #include "engine/export_job.h"
+#include "engine/replay_follow.h"
 #include "engine_test_support.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +12,7 @@
 #include <filesystem>
 #include <stdexcept>
 #include <unistd.h>
+#include <vector>
 
 namespace dc::engine::test {
 namespace {
@@ -50,6 +53,26 @@ TEST(ExportJob, AnExceptionInsideTheExportIsTheJobsResultAndTheFramesBeforeItSta
     EXPECT_TRUE(fs::exists(dir / "out" / "depth" / "000000.png")) << "the frame before the fault";
     EXPECT_FALSE(fs::exists(dir / "out" / "depth" / "000001.png"));
     fs::remove_all(dir);
+}
+
+// The pairing a fused export shares with the window: a frame of the first recording is the same instant on
+// a recording that overlaps it in time, else the same time since each one's first frame; the frame paired
+// is the nearest, the earlier of two as near.
+TEST(FusedExport, PairsOnTheCommonClockWithTheNearestFrame) {
+    const RecordingSpan first{1'000, 2'000};
+    EXPECT_EQ(onCompanionClock(first, 1'500, RecordingSpan{1'900, 5'000}), 1'500);
+    EXPECT_EQ(onCompanionClock(first, 1'500, RecordingSpan{500, 1'000}), 1'500);
+    EXPECT_EQ(onCompanionClock(first, 1'500, RecordingSpan{9'000, 9'900}), 9'500);
+    EXPECT_EQ(onCompanionClock(first, 1'500, RecordingSpan{0, 999}), 500);
+
+    const std::vector<std::int64_t> timestamps{100, 200, 300};
+    EXPECT_EQ(devices::replay::nearestTimeIndex(timestamps, 0), 0u);
+    EXPECT_EQ(devices::replay::nearestTimeIndex(timestamps, 149), 0u);
+    EXPECT_EQ(devices::replay::nearestTimeIndex(timestamps, 150), 0u);
+    EXPECT_EQ(devices::replay::nearestTimeIndex(timestamps, 151), 1u);
+    EXPECT_EQ(devices::replay::nearestTimeIndex(timestamps, 200), 1u);
+    EXPECT_EQ(devices::replay::nearestTimeIndex(timestamps, 10'000), 2u);
+    EXPECT_EQ(devices::replay::nearestTimeIndex({}, 10), 0u);
 }
 
 } // namespace
