@@ -64,6 +64,9 @@ struct Demand {
     std::size_t cloudPanelPixels = 0;
     processing::ProcessingSettings processing;
     bool accumulate = false; // posed frames add their points to the world cloud
+    // Another source's accumulation gathers this source's frames (a further source, fused): its samples
+    // need their colours as accumulate's do, though nothing here accumulates.
+    bool gathered = false;
     std::size_t accumulateBudget = 1'000'000;
     float accumulateVoxelMeters = 0.005f;
     std::optional<QualityDemand> quality; // the Quality panel is shown: its figures for every frame
@@ -72,8 +75,8 @@ struct Demand {
 
     // Anything that shows depth or is derived from it.
     bool needsDepth() const {
-        return cloud || depthImage || confidencePanel || fog || aura || accumulate || automaticRange ||
-               quality.has_value();
+        return cloud || depthImage || confidencePanel || fog || aura || accumulate || gathered ||
+               automaticRange || quality.has_value();
     }
     // The confidence panel, a level above "all", or the fog's confidence overlay.
     bool readsConfidence() const {
@@ -81,10 +84,10 @@ struct Demand {
                (fog && processing.fog.confidenceOverlay);
     }
     // Camera colours on points: the cloud's or accumulation's.
-    bool needsPointColours() const { return (cloud && pointColours) || accumulate; }
+    bool needsPointColours() const { return (cloud && pointColours) || accumulate || gathered; }
     // One colour for every shown depth sample, not only the drawn ones: accumulation and the depth panel's
     // colour overlay read them.
-    bool needsSampleColors() const { return accumulate || colourOverDepth; }
+    bool needsSampleColors() const { return accumulate || gathered || colourOverDepth; }
     // The camera image, for any product above or as the guide of upsampling.
     bool needsCameraImage() const {
         return needsPointColours() || cameraPanelWidth > 0 || colourOverDepth || fog || aura ||

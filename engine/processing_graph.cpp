@@ -228,7 +228,8 @@ void ProcessingGraph::addCameraImage(processing::ShownFrame& shown, const frame:
     }
 }
 
-// Accumulation and the depth panel's colour overlay read a colour for every shown sample; the cloud reads
+// Accumulation (this source's, or another's that gathers its frames) and the depth panel's colour overlay
+// read a colour for every shown sample; the cloud reads
 // colours only for the samples it draws (after decimation), and none when its shader colours them (nor the
 // overlay then: the GL path makes it from the camera's planes).
 void ProcessingGraph::addPointColours(processing::ShownFrame& shown, const frame::Frame& frame,
@@ -241,7 +242,7 @@ void ProcessingGraph::addPointColours(processing::ShownFrame& shown, const frame
     const bool overlay = demand.colourOverDepth && !image.empty() && !shaded;
     const bool cloudColours = demand.cloud && demand.pointColours && !shaded && shown.cloud.depth.data;
     const bool whole = shown.cloud.factor <= 1;
-    if (demand.accumulate || overlay || (cloudColours && whole)) {
+    if (demand.accumulate || demand.gathered || overlay || (cloudColours && whole)) {
         const int w = shown.depth.width(), h = shown.depth.height();
         const ColoursKey key{ImageKey{image.bytes, w, h}, frame.rig ? shown.depth.data : nullptr};
         const processing::PointColours& colours = cached(pointColours_, key, kPointColoursStage, [&] {

@@ -18,12 +18,11 @@ AccumulationWorker::~AccumulationWorker() {
     thread_.join();
 }
 
-void AccumulationWorker::submit(Request request) {
+void AccumulationWorker::submit(Request request, std::size_t source) {
     {
         base::MutexLock lock(mutex_);
-        if (pending_)
+        if (!pending_.insert_or_assign(source, std::move(request)).second)
             ++skipped_;
-        pending_ = std::move(request);
     }
     wake_.notify_one();
 }
@@ -31,7 +30,7 @@ void AccumulationWorker::submit(Request request) {
 void AccumulationWorker::clear() {
     {
         base::MutexLock lock(mutex_);
-        pending_.reset();
+        pending_.clear();
         ++generation_;
     }
     base::MutexLock points(pointsMutex_);
@@ -53,7 +52,7 @@ bool AccumulationWorker::tryRead(const std::function<void(PointAccumulator&)>& r
 
 void AccumulationWorker::waitIdle() const {
     base::MutexLock lock(mutex_);
-    lock.wait(idle_, [this]() DC_REQUIRES(mutex_) { return !pending_ && !busy_; });
+    lock.wait(idle_, [this]() DC_REQUIRES(mutex_) { return pending_.empty() && !busy_; });
 }
 
 void AccumulationWorker::run() {
@@ -62,11 +61,16 @@ void AccumulationWorker::run() {
         std::uint64_t generation = 0;
         {
             base::MutexLock lock(mutex_);
-            lock.wait(wake_, [this]() DC_REQUIRES(mutex_) { return stopping_ || pending_; });
+            lock.wait(wake_, [this]() DC_REQUIRES(mutex_) { return stopping_ || !pending_.empty(); });
             if (stopping_)
                 return;
-            request = std::move(*pending_);
-            pending_.reset();
+            // The next source after the one served last, round the sources waiting.
+            auto next = pending_.upper_bound(lastServed_);
+            if (next == pending_.end())
+                next = pending_.begin();
+            lastServed_ = next->first;
+            request = std::move(next->second);
+            pending_.erase(next);
             generation = generation_;
             busy_ = true;
         }

@@ -9,14 +9,16 @@
 #include <condition_variable>
 #include <cstdint>
 #include <functional>
+#include <map>
 #include <optional>
 
 namespace dc::processing {
 
 // Accumulate mode's work, off the render thread: adding a frame at a large budget costs milliseconds of
 // scattered memory access, which would otherwise come out of every viewer frame. Frames are handed over
-// latest-wins (one still waiting when the next comes is skipped, and counted); the render thread reads the
-// points between two adds and never waits for one.
+// latest-wins per source (one still waiting when the same source's next comes is skipped, and counted), and
+// the sources waiting are served in turn, so that no source's frames crowd out another's; the render
+// thread reads the points between two adds and never waits for one.
 class AccumulationWorker {
 public:
     // The shown cloud's samples (held, so the producer may move on) and the pose that places them.
@@ -36,7 +38,8 @@ public:
     AccumulationWorker(const AccumulationWorker&) = delete;
     AccumulationWorker& operator=(const AccumulationWorker&) = delete;
 
-    void submit(Request request);
+    // `source` numbers the sources fused in one world cloud (0: the main source).
+    void submit(Request request, std::size_t source = 0);
     // Drops the waiting frame and every point; a frame being added right now is discarded too.
     void clear();
     // Calls `read` with the points unless the worker is adding to them right now; returns whether it did.
@@ -55,7 +58,8 @@ private:
 
     mutable base::Mutex mutex_;
     mutable std::condition_variable wake_, idle_;
-    std::optional<Request> pending_ DC_GUARDED_BY(mutex_);
+    std::map<std::size_t, Request> pending_ DC_GUARDED_BY(mutex_); // by source
+    std::size_t lastServed_ DC_GUARDED_BY(mutex_) = 0;
     bool busy_ DC_GUARDED_BY(mutex_) = false;
     bool stopping_ DC_GUARDED_BY(mutex_) = false;
     // Counts clears, so a frame taken before one is not added after it.

@@ -60,10 +60,28 @@ bool Companions::update(const Settings& main, double timeSeconds) {
     bool fresh = false;
     for (auto& c : companions_) {
         followMain(c->own, main);
+        c->presenter().setGathered(main.accumulate.enabled);
         c->presenter().settings() = furtherSourceSettings(main, c->own);
         fresh |= c->presenter().update(timeSeconds);
     }
     return fresh;
+}
+
+void Companions::gather(processing::AccumulationWorker& world, const Settings& main) {
+    const AccumulateSettings& a = main.accumulate;
+    for (std::size_t i = 0; i < companions_.size(); ++i) {
+        Companion& c = *companions_[i];
+        const processing::ShownFramePtr& shown = c.presenter().shown();
+        if (!c.look.visible || !shown || !shown->depth.data || shown->frame->sequence == c.gatheredSequence)
+            continue;
+        c.gatheredSequence = shown->frame->sequence;
+        const frame::Pose pose = frame::poseFromRigid(placeInWorld(*shown->frame, c.look.correction));
+        const frame::Confidence level = c.own.followsMain ? main.cloud.minConfidence : c.own.minConfidence;
+        world.submit({shown->depth.data, shown->depth.intrinsics, shown->pointColours, pose, level,
+                      main.cloud.nearMeters, static_cast<std::size_t>(a.budgetThousands) * 1000,
+                      a.voxelMillimeters * 1e-3f},
+                     i + 1);
+    }
 }
 
 void Companions::followReplay(const engine::Instrument& main) {

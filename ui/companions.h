@@ -41,7 +41,8 @@ public:
     const render::ViewRenderer& renderer() const { return renderer_; }
     render::ViewRenderer& renderer() { return renderer_; }
     CompanionLook look;
-    SourceSettings own; // its processing: the main source's, or its own
+    SourceSettings own;                     // its processing: the main source's, or its own
+    std::uint64_t gatheredSequence = ~0ull; // the last of its frames handed to the main accumulation
     // The overlap consistency figure with the main source, as placed now (Companions::overlap).
     std::optional<processing::OverlapFigure> overlap;
     std::chrono::steady_clock::time_point overlapAt;
@@ -74,6 +75,10 @@ public:
     // (its processing and confidence only while it has none of its own) and takes its newest result.
     // Returns whether any had a new frame.
     bool update(const Settings& main, double timeSeconds);
+    // In accumulate mode, after the main presenter's update: each visible companion's frames not handed over
+    // yet join the main source's world cloud, placed in the world as the fused cloud places them and kept
+    // from the companion's own confidence level; each companion has its own latest-wins slot there.
+    void gather(processing::AccumulationWorker& world, const Settings& main);
     // Companion replays follow the main source's replay (its seeks, steps, play state, speed, loop).
     void followReplay(const engine::Instrument& main);
     // What the companions' updates took is on screen now (each counts its own frame shown).

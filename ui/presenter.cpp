@@ -93,7 +93,8 @@ engine::Demand Presenter::demandOf() const {
     d.cloudPanelPixels = static_cast<std::size_t>(target.width()) * static_cast<std::size_t>(target.height());
     d.processing = settings_.processing;
     const AccumulateSettings& a = settings_.accumulate;
-    d.accumulate = a.enabled && !fusing(); // not drawn while several sources are fused
+    d.accumulate = a.enabled;
+    d.gathered = gathered_;
     d.accumulateBudget = static_cast<std::size_t>(a.budgetThousands) * 1000;
     d.accumulateVoxelMeters = a.voxelMillimeters * 1e-3f;
     if (show.quality)
@@ -121,6 +122,8 @@ bool Presenter::update(double timeSeconds, std::chrono::milliseconds wait) {
     const bool fresh = next && (*next)->newFrame;
     if (next)
         adopt(std::move(*next));
+    if (accumulating() && companions_)
+        companions_->gather(instrument_.accumulation(), settings_);
     updateLegend();
     auto start = Clock::now();
     std::uint64_t version = renderer_.contentVersion();
@@ -242,7 +245,8 @@ void Presenter::renderCloud(double timeSeconds) {
     if (accumulating())
         renderer_.syncAccumulated(instrument_.accumulation());
     cloudViewProjection_ = params.viewProjection;
-    if (fusing())
+    // Accumulated, every source's points are in the world cloud already (Companions::gather).
+    if (fusing() && !accumulating())
         renderFused(params);
     else
         renderer_.renderCloud(params, accumulating());
@@ -288,19 +292,19 @@ void Presenter::renderFused(render::CloudParams params) {
 }
 
 std::uint64_t Presenter::pointsShown() {
+    if (accumulating())
+        return instrument_.accumulation().size();
     if (fusing() && shown_) {
         std::uint64_t points = 0;
         for (const FusedSource& source : fusedSources())
             points += source.shown->pointCount;
         return points;
     }
-    if (accumulating())
-        return instrument_.accumulation().size();
     return shown_ ? shown_->pointCount : 0;
 }
 
 bool Presenter::accumulating() const {
-    return settings_.accumulate.enabled && shown_ && shown_->frame->pose && !fusing();
+    return settings_.accumulate.enabled && shown_ && shown_->frame->pose;
 }
 
 void Presenter::updateLegend() {

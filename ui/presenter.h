@@ -72,6 +72,8 @@ public:
     // A companion's presenter draws no cloud of its own (the main one fuses its points), and the engine
     // colours its points on the CPU for that.
     void setDrawsCloud(bool draws) { drawsCloud_ = draws; }
+    // Another source's accumulation gathers this one's frames: the engine colours every sample for it.
+    void setGathered(bool gathered) { gathered_ = gathered; }
     // The sources whose points the cloud fuses with this one's (none: the cloud is this source's alone).
     void setCompanions(Companions* companions) { companions_ = companions; }
     // Whether the cloud shows several sources fused in one world.
@@ -163,6 +165,7 @@ private:
     base::RateMeter frames_;
     std::uint64_t framesKept_ = 0;
     bool drawsCloud_ = true;
+    bool gathered_ = false;
     Companions* companions_ = nullptr;
 };
 

@@ -225,19 +225,30 @@ TEST_F(SourcesPanelTest, APairingToleranceDrawsOnlyFramesCloseInTime) {
     EXPECT_TRUE(frameUntil([&] { return green() > 2'000; })) << green();
 }
 
-// Accumulate mode gathers one source's frames: with a second source open it waits (the engine gathers
-// nothing), and it resumes when the second source is removed.
-TEST_F(SourcesPanelTest, AccumulateModeWaitsWhileSeveralSourcesAreFused) {
+// Accumulate mode gathers every source into one world cloud: each further source's frames join the main
+// source's, placed where the fused cloud places it. A companion 10 m along the world's x axis, far from
+// anything the main camera sees, puts points there.
+TEST_F(SourcesPanelTest, AccumulateModeGathersEverySourceIntoOneWorld) {
     ASSERT_TRUE(viewer_->openSource("synthetic:160x120:motion").ok());
     viewer_->settings().accumulate.enabled = true;
+    const auto pointsBeyond = [&](float x) {
+        std::size_t n = 0;
+        const bool read = instrument_->accumulation().tryRead([&](processing::PointAccumulator& points) {
+            for (std::size_t i = 0; i < points.size(); ++i)
+                n += points.slots()[i].x > x ? 1 : 0;
+        });
+        return read ? std::optional(n) : std::nullopt;
+    };
     ASSERT_TRUE(
-        frameUntil([&] { return viewer_->accumulating() && instrument_->accumulation().size() > 0; }));
-    ASSERT_TRUE(viewer_->addSource("synthetic:160x120").ok());
-    ASSERT_TRUE(frameUntil([&] { return viewer_->companions()[0].presenter().shown() != nullptr; }));
-    EXPECT_FALSE(viewer_->accumulating());
-    EXPECT_FALSE(viewer_->demand().accumulate);
-    viewer_->companions().remove(0);
-    EXPECT_TRUE(frameUntil([&] { return viewer_->accumulating() && viewer_->demand().accumulate; }));
+        frameUntil([&] { return viewer_->accumulating() && instrument_->accumulation().size() > 1000; }));
+    instrument_->accumulation().waitIdle();
+    EXPECT_EQ(pointsBeyond(5.0f), std::optional<std::size_t>(0)) << "the main source's points are near it";
+    ASSERT_TRUE(viewer_->addSource("synthetic:160x120:pose=10,0,0,0,0,0,1").ok());
+    EXPECT_TRUE(frameUntil([&] { return pointsBeyond(5.0f).value_or(0) > 5'000; }))
+        << pointsBeyond(5.0f).value_or(0) << " points 5 m or more along x";
+    EXPECT_TRUE(viewer_->accumulating());
+    EXPECT_TRUE(viewer_->demand().accumulate);
+    EXPECT_EQ(viewer_->presenter().pointsShown(), instrument_->accumulation().size());
 }
 
 // "Own processing" on: a companion keeps its own processing and cloud confidence whatever the main source's

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <vector>
@@ -27,9 +28,14 @@ frame::FramePtr wallAt(double x, float depth, int w = 16, int h = 12) {
 // The request the frame processor makes of a frame shown raw: its depth and the colours of its points.
 AccumulationWorker::Request requestFor(const frame::FramePtr& frame, std::size_t budget = 1000) {
     const auto& d = frame->sceneDepth->depthMeters;
-    return {std::shared_ptr<const frame::DepthData>(frame, &*frame->sceneDepth), frame->depthIntrinsics(),
+    return {std::shared_ptr<const frame::DepthData>(frame, &*frame->sceneDepth),
+            frame->depthIntrinsics(),
             std::make_shared<const RgbImage>(pointColours(frame->capturedImage, d.width, d.height)),
-            *frame->pose, frame::Confidence::Low, 0.0f, budget, 0.001f};
+            *frame->pose,
+            frame::Confidence::Low,
+            0.0f,
+            budget,
+            0.001f};
 }
 
 TEST(AccumulationWorker, AddsExactlyWhatTheAccumulatorItselfWouldAdd) {
@@ -83,6 +89,31 @@ TEST(AccumulationWorker, FramesHandedOverFasterThanAddedAreSkippedNotQueued) {
     EXPECT_EQ(added + worker.skipped(), static_cast<std::uint64_t>(kFrames))
         << "every frame was either added or counted as skipped";
     EXPECT_GE(added, 1u) << "the newest frame is always added";
+}
+
+// Two sources handing frames over faster than they are added: each has its own latest-wins slot, served in
+// turn, so that the second source's frames are added however many the first hands over, and every frame
+// is still added or counted as skipped.
+TEST(AccumulationWorker, EachSourceHasItsOwnSlotAndTheyAreServedInTurn) {
+    AccumulationWorker worker;
+    constexpr int kFrames = 150;
+    for (int i = 0; i < kFrames; ++i) {
+        const float depth = 2.0f + 0.002f * static_cast<float>(i);
+        worker.submit(requestFor(wallAt(0.0, depth, 64, 48), 2'000'000), 0);
+        worker.submit(requestFor(wallAt(10.0, depth, 64, 48), 2'000'000), 1); // 10 m away: its own points
+    }
+    worker.waitIdle();
+    std::size_t first = 0, second = 0;
+    ASSERT_TRUE(worker.tryRead([&](PointAccumulator& points) {
+        for (std::size_t i = 0; i < points.size(); ++i)
+            ++(points.slots()[i].x > 5.0f ? second : first);
+    }));
+    const std::uint64_t added = worker.size() / (64 * 48);
+    EXPECT_EQ(added + worker.skipped(), 2u * kFrames) << "every frame was either added or counted as skipped";
+    EXPECT_GE(second, 64u * 48) << "the second source's newest frame is always added";
+    EXPECT_GE(first, 64u * 48);
+    // In turn: neither source has more than one frame more added than the other.
+    EXPECT_LE(std::max(first, second) - std::min(first, second), 64u * 48) << first << " and " << second;
 }
 
 } // namespace
