@@ -262,4 +262,124 @@ std::vector<ViewerSummary> Companions::summaries(const engine::Instrument& main,
     return out;
 }
 
+std::vector<TimelineSourceRow> Companions::timelineRows(const engine::Instrument& main) const {
+    std::vector<TimelineSourceRow> rows;
+    const auto& mainReplay = main.replay();
+    if (!mainReplay)
+        return rows;
+    const devices::replay::ReplayStatus mainStatus = mainReplay->status();
+    for (std::size_t i = 0; i < companions_.size(); ++i) {
+        const Companion& c = *companions_[i];
+        TimelineSourceRow& row = rows.emplace_back();
+        row.name = sourceName(i);
+        const auto& own = c.instrument().replay();
+        if (!own) {
+            row.note = "live: no common clock with the replay";
+            continue;
+        }
+        row.places =
+            timelinePlaces(mainStatus, mainReplay->timestampsNs(), own->status(), own->timestampsNs());
+        const processing::ShownFramePtr& shown = c.presenter().shown();
+        if (shown && shown->frame->replay)
+            row.shown = shown->frame->replay->index;
+    }
+    return rows;
+}
+
+std::vector<SourceSkew> Companions::skewRows(const engine::Instrument& main,
+                                             const processing::ShownFramePtr& mainShown,
+                                             float pairingToleranceMs) const {
+    std::vector<SourceSkew> rows;
+    for (std::size_t i = 0; i < companions_.size(); ++i) {
+        const Companion& c = *companions_[i];
+        SourceSkew& row = rows.emplace_back();
+        row.name = sourceName(i);
+        if (static_cast<bool>(main.replay()) != static_cast<bool>(c.instrument().replay()))
+            row.note = "no common clock: one is a replay, the other live";
+        row.nowMs = skewMs(i, main, mainShown);
+        row.recent = skewFigures(c.skew.inOrder(), pairingToleranceMs);
+    }
+    return rows;
+}
+
+TimelinePlaces timelinePlaces(const devices::replay::ReplayStatus& main,
+                              const std::vector<std::int64_t>& mainStampsNs,
+                              const devices::replay::ReplayStatus& further,
+                              const std::vector<std::int64_t>& stampsNs) {
+    TimelinePlaces places;
+    if (mainStampsNs.empty())
+        return places;
+    // The common clock moves every stamp by as much: where the main replay's first frame falls on the
+    // further one's clock, less that frame's own stamp.
+    const std::int64_t offsetNs =
+        engine::onCompanionClock(main, main.firstTimestampNs, further) - main.firstTimestampNs;
+    const double lastIndex = static_cast<double>(mainStampsNs.size() - 1);
+    std::size_t before = 0; // the last main frame not after the stamp
+    for (std::size_t i = 0; i < stampsNs.size(); ++i) {
+        const std::int64_t t = stampsNs[i] - offsetNs;
+        if (t < mainStampsNs.front()) {
+            places.first = i + 1;
+            continue;
+        }
+        if (t > mainStampsNs.back())
+            break;
+        while (before + 1 < mainStampsNs.size() && mainStampsNs[before + 1] <= t)
+            ++before;
+        double index = static_cast<double>(before);
+        if (before + 1 < mainStampsNs.size())
+            index += static_cast<double>(t - mainStampsNs[before]) /
+                     static_cast<double>(mainStampsNs[before + 1] - mainStampsNs[before]);
+        places.positions.push_back(lastIndex > 0.0 ? index / lastIndex : 0.0);
+    }
+    return places;
+}
+
+namespace {
+
+// As many bins as the Timing panel's interval histograms (engine::TimingModel's).
+constexpr int kSkewBins = 24;
+
+// `samples` in `bins` equal bins from `lowMs` to `highMs` (one bin 1 ms wide when they are equal).
+engine::IntervalHistogram histogramOver(const std::vector<double>& samples, double lowMs, double highMs,
+                                        int bins) {
+    engine::IntervalHistogram h{lowMs, highMs > lowMs ? (highMs - lowMs) / bins : 1.0,
+                                std::vector<float>(static_cast<std::size_t>(bins), 0.0f)};
+    for (const double v : samples) {
+        const auto bin = static_cast<int>((v - h.lowMs) / h.binMs);
+        h.counts[static_cast<std::size_t>(std::clamp(bin, 0, bins - 1))] += 1.0f;
+    }
+    return h;
+}
+
+} // namespace
+
+SkewFigures skewFigures(const std::vector<double>& samplesMs, float pairingToleranceMs) {
+    SkewFigures f;
+    f.count = samplesMs.size();
+    f.toleranceMs = std::max(pairingToleranceMs, 0.0f);
+    if (samplesMs.empty())
+        return f;
+    std::vector<double> sorted = samplesMs;
+    std::sort(sorted.begin(), sorted.end());
+    f.minMs = sorted.front();
+    f.maxMs = sorted.back();
+    const std::size_t mid = sorted.size() / 2;
+    f.medianMs = sorted.size() % 2 == 1 ? sorted[mid] : 0.5 * (sorted[mid - 1] + sorted[mid]);
+    const double tolerance = f.toleranceMs;
+    double low = f.minMs;
+    double high = f.maxMs;
+    if (tolerance > 0.0) {
+        f.beyondTolerance = static_cast<std::size_t>(
+            std::count_if(sorted.begin(), sorted.end(), [&](double v) { return std::abs(v) > tolerance; }));
+        low = std::min(low, -tolerance);
+        high = std::max(high, tolerance);
+    }
+    f.histogram = histogramOver(samplesMs, low, high, kSkewBins);
+    return f;
+}
+
+std::string sourceName(std::size_t index) {
+    return "Source " + std::to_string(index + 2);
+}
+
 } // namespace dc::ui

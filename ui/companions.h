@@ -59,6 +59,56 @@ private:
     std::unique_ptr<Presenter> presenter_; // after renderer_ is initialised
 };
 
+// Where a further replay's frames fall on the main replay's scrubber: frame `first` and those after it, as
+// many as `positions` holds (the frames between the main replay's first and last), each at its place
+// between the scrubber's ends (0 the main replay's first frame, 1 its last).
+struct TimelinePlaces {
+    std::size_t first = 0;
+    std::vector<double> positions;
+};
+
+// Places the frames stamped `stampsNs` (a further replay's, on its own clock) on the main replay's
+// scrubber, stamped `mainStampsNs`: each moves to the main clock as the replays follow each other
+// (engine::onCompanionClock) and lands between the main frames around it, at the fraction of their
+// interval it is past the earlier one. The scrubber steps by frame, so a place is a fractional frame index
+// over the last index.
+TimelinePlaces timelinePlaces(const devices::replay::ReplayStatus& main,
+                              const std::vector<std::int64_t>& mainStampsNs,
+                              const devices::replay::ReplayStatus& further,
+                              const std::vector<std::int64_t>& stampsNs);
+
+// A further source's row under the main replay's scrubber: its frames as ticks, the one it shows marked.
+struct TimelineSourceRow {
+    std::string name; // "Source N", as the Sources panel counts them
+    TimelinePlaces places;
+    std::optional<std::size_t> shown; // the frame it shows now
+    std::string note;                 // said instead of ticks: why it has none (a live source)
+};
+
+// What the Timing panel reads out of a further source's skew samples (ms).
+struct SkewFigures {
+    std::size_t count = 0;
+    double medianMs = 0.0; // of two middle samples, their mean
+    double minMs = 0.0;
+    double maxMs = 0.0;
+    float toleranceMs = 0.0f;        // the pairing tolerance; 0: off
+    std::size_t beyondTolerance = 0; // samples whose size is above it, as paired() judges; 0 while off
+    // From the smallest sample to the largest, widened to the tolerance's -/+ lines while it is on.
+    engine::IntervalHistogram histogram;
+};
+SkewFigures skewFigures(const std::vector<double>& samplesMs, float pairingToleranceMs);
+
+// A further source's skew from the main source, as the Timing panel shows it.
+struct SourceSkew {
+    std::string name;            // "Source N"
+    std::optional<double> nowMs; // its shown frame's time less the main source's (Companions::skewMs)
+    SkewFigures recent;          // over its recent samples (Companion::skew)
+    std::string note;            // why it has none (no common clock); empty when it can have some
+};
+
+// Companion `index` as the panels name it: the main source is source 1.
+std::string sourceName(std::size_t index);
+
 // The companions of the main source, in the order they were added.
 class Companions {
 public:
@@ -117,6 +167,14 @@ public:
     // and its skew.
     std::vector<ViewerSummary> summaries(const engine::Instrument& main,
                                          const processing::ShownFramePtr& mainShown);
+    // Each companion's row under the main replay's scrubber (none while the main source is no replay): a
+    // replay's frames placed on the common clock and the frame it shows; a live source, that it has none.
+    std::vector<TimelineSourceRow> timelineRows(const engine::Instrument& main) const;
+    // Each companion's skew from the main source for the Timing panel: now, and its recent samples'
+    // figures against the pairing tolerance (0: off).
+    std::vector<SourceSkew> skewRows(const engine::Instrument& main,
+                                     const processing::ShownFramePtr& mainShown,
+                                     float pairingToleranceMs) const;
 
 private:
     std::vector<std::unique_ptr<Companion>> companions_;

@@ -9,6 +9,7 @@
 #include "processing/rigid_alignment.h"
 #include "processing/shown_frame.h"
 #include "render/render_target.h"
+#include "ui/companions.h"
 #include "ui/depth_legend.h"
 #include "ui/file_picker.h"
 #include "ui/fused_cloud.h"
@@ -268,6 +269,7 @@ struct TimelineView {
     bool exporting = false;
     std::size_t exportDone = 0;
     std::size_t exportTotal = 0;
+    std::vector<TimelineSourceRow> sources; // the further sources', while there are any
 };
 
 // The timeline's own edits: the range to export, its format and where it goes.
@@ -289,8 +291,9 @@ struct TimelineActions {
     bool cancelExport = false;
 };
 
-// Play/pause, step, first/last, loop, speed, a frame scrubber with the time, and the range export; `flags`
-// dock it (the viewer places it as a strip).
+// Play/pause, step, first/last, loop, speed, a frame scrubber with the time, under it a thin row per further
+// source with its frames and the one it shows, and the range export; `flags` dock it (the viewer places it
+// as a strip).
 TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& state, bool* open,
                                   ImGuiWindowFlags flags = 0);
 
@@ -384,8 +387,10 @@ SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanel
 
 // Per stream the frame intervals' histogram and the timestamps' source, the latency from arrival (and
 // from the sensor, where its clock is this machine's) to the screen, and every lost frame counted where it
-// was lost.
-void drawTimingPanel(const engine::TimingSummary& timing, bool* open);
+// was lost. With further sources, each one's skew from the main source: now, its median and range, a
+// histogram with the pairing tolerance drawn on it, and how many were beyond it.
+void drawTimingPanel(const engine::TimingSummary& timing, bool* open,
+                     const std::vector<SourceSkew>& sources = {});
 
 // A bar along the bottom of the main viewport; returns its height so panels can be laid out above it.
 float drawStatusBar(const StatusLine& status);

@@ -1,6 +1,7 @@
 #include "ui/panels.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -39,7 +40,8 @@ void transport(const devices::replay::ReplayStatus& s, TimelineActions& a) {
         a.speed = speed;
 }
 
-void scrubber(const devices::replay::ReplayStatus& s, TimelineActions& a) {
+// Returns the scrubber's left and right edges on screen, for the rows under it.
+std::pair<float, float> scrubber(const devices::replay::ReplayStatus& s, TimelineActions& a) {
     int index = static_cast<int>(s.index);
     const int last = std::max(0, static_cast<int>(s.count) - 1);
     ImGui::SetNextItemWidth(-1.0f);
@@ -48,6 +50,60 @@ void scrubber(const devices::replay::ReplayStatus& s, TimelineActions& a) {
                   secondsOf(s.timestampNs, s.firstTimestampNs));
     if (ImGui::SliderInt("##frame", &index, 0, last, label, ImGuiSliderFlags_AlwaysClamp))
         a.seekIndex = static_cast<std::size_t>(index);
+    return {ImGui::GetItemRectMin().x, ImGui::GetItemRectMax().x};
+}
+
+// Where the scrubber's grab is centred at `place` (0 its first frame, 1 its last): ImGui's integer slider
+// keeps its grab 2 px inside the frame and one step wide, GrabMinSize at least.
+float scrubberX(double place, std::pair<float, float> edges, std::size_t frames) {
+    constexpr float kGrabPadding = 2.0f;
+    const float slider = edges.second - edges.first - 2.0f * kGrabPadding;
+    const float step = slider / static_cast<float>(std::max<std::size_t>(frames, 1));
+    const float grab = std::min(std::max(step, ImGui::GetStyle().GrabMinSize), slider);
+    return edges.first + kGrabPadding + 0.5f * grab + static_cast<float>(place) * (slider - grab);
+}
+
+// The row's label: which source, and the frame it shows or why it has no ticks.
+std::string rowLabel(const TimelineSourceRow& row) {
+    if (!row.note.empty())
+        return row.name + ": " + row.note;
+    if (!row.shown)
+        return row.name + ": no frame yet";
+    const std::size_t shown = *row.shown;
+    const bool placed = shown >= row.places.first && shown - row.places.first < row.places.positions.size();
+    return row.name + ": frame " + std::to_string(shown) + (placed ? "" : " (outside this replay)");
+}
+
+// One thin row under the scrubber: a tick at each of the source's frames, one per pixel at most, the frame
+// it shows taller and bright, its name and frame over the left end.
+void sourceRow(const TimelineSourceRow& row, std::pair<float, float> edges, std::size_t mainFrames) {
+    const float height = ImGui::GetTextLineHeight();
+    const ImVec2 top = ImGui::GetCursorScreenPos();
+    ImGui::Dummy(ImVec2(edges.second - top.x, height));
+    const ImVec2 below = ImGui::GetCursorScreenPos();
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->AddRectFilled({edges.first, top.y}, {edges.second, top.y + height},
+                        ImGui::GetColorU32(ImGuiCol_FrameBg));
+    const ImU32 tick = ImGui::GetColorU32(ImGuiCol_PlotLines);
+    float lastX = -1.0f;
+    for (const double place : row.places.positions) {
+        const float x = std::round(scrubberX(place, edges, mainFrames));
+        if (x != lastX)
+            draw->AddLine({x, top.y + 0.4f * height}, {x, top.y + height}, tick);
+        lastX = x;
+    }
+    if (row.shown && *row.shown >= row.places.first &&
+        *row.shown - row.places.first < row.places.positions.size()) {
+        const float x = scrubberX(row.places.positions[*row.shown - row.places.first], edges, mainFrames);
+        draw->AddLine({x, top.y}, {x, top.y + height}, IM_COL32(255, 200, 60, 255), 3.0f);
+    }
+    const std::string label = rowLabel(row);
+    const ImVec2 text = ImGui::CalcTextSize(label.c_str());
+    const ImVec2 at{edges.first + ImGui::GetStyle().FramePadding.x, top.y};
+    draw->AddRectFilled(at, {at.x + text.x, at.y + height}, ImGui::GetColorU32(ImGuiCol_WindowBg, 0.8f));
+    ImGui::SetCursorScreenPos(at);
+    ImGui::TextUnformatted(label.c_str());
+    ImGui::SetCursorScreenPos(below);
 }
 
 void rangeAndExport(const TimelineView& v, TimelinePanelState& state, TimelineActions& a) {
@@ -91,7 +147,9 @@ TimelineActions drawTimelinePanel(const TimelineView& view, TimelinePanelState& 
         return actions;
     }
     transport(view.status, actions);
-    scrubber(view.status, actions);
+    const std::pair<float, float> edges = scrubber(view.status, actions);
+    for (const TimelineSourceRow& row : view.sources)
+        sourceRow(row, edges, view.status.count);
     if (view.status.framesSkipped > 0)
         ImGui::TextColored(ImVec4(1.0f, 0.8f, 0.3f, 1.0f), "%llu damaged frames skipped: %s",
                            static_cast<unsigned long long>(view.status.framesSkipped),

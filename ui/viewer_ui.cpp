@@ -40,9 +40,11 @@ Layout defaultLayout(float menuHeight, float statusHeight) {
             size.x * 0.27f};
 }
 
-// The docked timeline: a title bar and four rows (transport, scrubber, range, export).
-float timelineStripHeight() {
+// The docked timeline: a title bar and four rows (transport, scrubber, range, export), and a thin row per
+// further source under the scrubber.
+float timelineStripHeight(std::size_t sourceRows) {
     return ImGui::GetFrameHeight() + 4.0f * ImGui::GetFrameHeightWithSpacing() +
+           static_cast<float>(sourceRows) * ImGui::GetTextLineHeightWithSpacing() +
            2.0f * ImGui::GetStyle().WindowPadding.y;
 }
 
@@ -383,7 +385,8 @@ void Viewer::drawUi() {
     // end it; a source chosen in the frame is opened after it (pendingSource_).
     const std::shared_ptr<devices::replay::ReplayControl> replay = instrument_.replay();
     const bool timeline = replay && show.timeline;
-    const float stripHeight = timeline ? std::min(timelineStripHeight(), l.size.y * 0.5f) : 0.0f;
+    const float stripHeight =
+        timeline ? std::min(timelineStripHeight(companions_.size()), l.size.y * 0.5f) : 0.0f;
     l.size.y -= stripHeight;
     workOrigin_ = l.origin;
     workSize_ = l.size;
@@ -406,7 +409,8 @@ void Viewer::drawUi() {
         drawCameraControls(l.leftWidth + 60.0f, 60.0f);
     if (show.timing) {
         placePanel(kTimingTitle, l.leftWidth + 80.0f, 80.0f, 440.0f, 560.0f);
-        drawTimingPanel(instrument_.timing(), &show.timing);
+        drawTimingPanel(instrument_.timing(), &show.timing,
+                        companions_.skewRows(instrument_, shown(), settings_.sources.pairingToleranceMs));
     }
     if (timeline)
         drawTimeline(*replay, {l.origin.x, l.origin.y + l.size.y}, {l.size.x, stripHeight});
@@ -745,7 +749,7 @@ void Viewer::drawTimeline(devices::replay::ReplayControl& replay, ImVec2 pos, Im
     ImGui::SetNextWindowPos(pos, ImGuiCond_Always);
     ImGui::SetNextWindowSize(size, ImGuiCond_Always);
     const engine::ExportJob* job = instrument_.exportJob();
-    TimelineView view{replay.status(), job && !job->finished(), 0, 0};
+    TimelineView view{replay.status(), job && !job->finished(), 0, 0, companions_.timelineRows(instrument_)};
     if (job)
         std::tie(view.exportDone, view.exportTotal) = job->progress();
     applyTimeline(replay,
