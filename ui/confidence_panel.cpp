@@ -14,12 +14,14 @@ void legendEntry(const char* label, ImVec4 color) {
 } // namespace
 
 PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool estimated,
-                                const ProbeSource& probe, const RoiOverlay& roi, bool* open) {
+                                const ProbeSource& probe, const RoiOverlay& roi, bool* open,
+                                const SourceTabs& tabs) {
     PanelResult result;
     if (!beginImagePanel(kConfidenceTitle, open, result)) {
         endImagePanel({});
         return result;
     }
+    drawSourceTabs(tabs);
     if (!available) {
         ImGui::TextWrapped("This source provides no confidence: every depth sample is treated as high.");
         endImagePanel({});

@@ -38,12 +38,14 @@ void drawLegend(const DepthLegend& legend) {
 } // namespace
 
 PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, const DepthLegend& legend,
-                           const ProbeSource& probe, const RoiOverlay& roi, bool* open) {
+                           const ProbeSource& probe, const RoiOverlay& roi, bool* open,
+                           const SourceTabs& tabs) {
     PanelResult result;
     if (!beginImagePanel(kDepthTitle, open, result)) {
         endImagePanel({});
         return result;
     }
+    drawSourceTabs(tabs);
     const float legendHeight = ImGui::GetTextLineHeight() * 0.6f + ImGui::GetTextLineHeightWithSpacing() +
                                ImGui::GetStyle().ItemSpacing.y * 2.0f;
     ImageRect shown;

@@ -40,6 +40,20 @@ bool beginImagePanel(const char* title, bool* open, PanelResult& result) {
     return result.visible;
 }
 
+void drawSourceTabs(const SourceTabs& tabs) {
+    if (tabs.names.size() < 2 || !tabs.selected)
+        return;
+    // Radio buttons, not an ImGui tab bar: a tab bar keeps its own choice per window, and every image
+    // panel must show the one choice.
+    int selected = static_cast<int>(*tabs.selected);
+    for (std::size_t i = 0; i < tabs.names.size(); ++i) {
+        if (i > 0)
+            ImGui::SameLine();
+        ImGui::RadioButton(tabs.names[i].c_str(), &selected, static_cast<int>(i));
+    }
+    *tabs.selected = static_cast<std::size_t>(selected);
+}
+
 void endImagePanel(const ImageRect& opaque) {
     ImDrawList* list = ImGui::GetWindowDrawList();
     list->ChannelsSetCurrent(kBackgroundChannel);

@@ -11,6 +11,8 @@ namespace dc::ui {
 // it: on a software rasteriser a fill under each image is a panel-sized pass of every frame for pixels
 // the image then replaces.
 bool beginImagePanel(const char* title, bool* open, PanelResult& result);
+// The row that picks the source the image panels show (nothing with one source).
+void drawSourceTabs(const SourceTabs& tabs);
 // Draws the window's background everywhere but `opaque` (the image drawImage() placed, or an empty rect
 // where none was) and ends the window.
 void endImagePanel(const ImageRect& opaque);

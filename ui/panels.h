@@ -129,15 +129,24 @@ struct PanelOverlay {
     float opacity = 0.5f;
 };
 
+// With several sources open, the image panels show one source's pictures at a time: a row of its names
+// over the image picks which (the same choice for every image panel). Empty: one source, no row.
+struct SourceTabs {
+    std::vector<std::string> names; // "Source 1" (the main source), "Source 2", ...
+    std::size_t* selected = nullptr;
+};
+
 // Depth in the chosen colormap, with the colormap and its range as a legend, and the camera's colour
 // aligned to it laid over it when `colour` has an image.
 PanelResult drawDepthPanel(const PanelImage& image, const PanelOverlay& colour, const DepthLegend& legend,
-                           const ProbeSource& probe, const RoiOverlay& roi, bool* open);
+                           const ProbeSource& probe, const RoiOverlay& roi, bool* open,
+                           const SourceTabs& tabs = {});
 
 // Confidence as red (low), green (medium), blue (high); `available` false says the source has none,
 // `estimated` that it was estimated from the depth because the camera reports none.
 PanelResult drawConfidencePanel(const PanelImage& image, bool available, bool estimated,
-                                const ProbeSource& probe, const RoiOverlay& roi, bool* open);
+                                const ProbeSource& probe, const RoiOverlay& roi, bool* open,
+                                const SourceTabs& tabs = {});
 
 // The depth sensor's infrared image in gray, contrast-stretched (the engine's 1st-99th percentile).
 // The infrared image with the stretch it was drawn with (raw intensities to black..white) as a legend.
@@ -148,7 +157,8 @@ PanelResult drawInfraredPanel(const PanelImage& image, const processing::Intensi
 // image for a single camera, the depth aligned to the colour image for two sensors.
 // A two-sensor camera's image does not share the depth map's field of view: it gets no region (`roi` empty).
 PanelResult drawCameraPanel(const PanelImage& image, const PanelImage& depthOverlay, const CameraView& view,
-                            const ProbeSource& probe, const RoiOverlay& roi, bool* open);
+                            const ProbeSource& probe, const RoiOverlay& roi, bool* open,
+                            const SourceTabs& tabs = {});
 
 // The folder field's text while it is edited (RecordSettings::directory follows it).
 struct RecordPanelState {

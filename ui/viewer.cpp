@@ -57,12 +57,16 @@ Status Viewer::addSource(const std::string& spec) {
     return {};
 }
 
-ProbeSource Viewer::probeSource() const {
-    if (!shown() || !shown()->depth.data)
+ProbeSource probeSourceOf(const processing::ShownFramePtr& shown) {
+    if (!shown || !shown->depth.data)
         return {};
-    const auto& infrared = shown()->frame->infrared;
-    return {shown()->depth.data.get(), shown()->depth.intrinsics, shown()->pointSeen.get(),
-            shown()->frame.get(), infrared ? &*infrared : nullptr};
+    const auto& infrared = shown->frame->infrared;
+    return {shown->depth.data.get(), shown->depth.intrinsics, shown->pointSeen.get(), shown->frame.get(),
+            infrared ? &*infrared : nullptr};
+}
+
+ProbeSource Viewer::probeSource() const {
+    return probeSourceOf(shown());
 }
 
 Status Viewer::openSource(const std::string& spec) {

@@ -18,6 +18,9 @@ struct ImGuiWindow;
 
 namespace dc::ui {
 
+// What the hover readout reads of a shown result: its depth, its seen mask or the frame's rig, the infrared.
+ProbeSource probeSourceOf(const processing::ShownFramePtr& shown);
+
 // The instrument's panels and layout around a Presenter (which states the demand, takes the engine's newest
 // result and draws it through the view renderer): it turns input into settings and commands. It owns
 // neither the source nor the GL objects (engine::Instrument and render::ViewRenderer do), only what the UI
@@ -75,6 +78,8 @@ public:
     ViewerSummary summary() { return presenter_.summary(); }
     // What the hover readout reads: the shown depth, its seen mask or the frame's rig, the infrared.
     ProbeSource probeSource() const;
+    // The image panels' source (SourceTabs): 0 the main source, N the Nth further source.
+    std::size_t& panelSource() { return panelSource_; }
     StatsView statsView();
     // The figures the status line and the stats panel show now (taken by drawUi at most twice a second).
     const std::optional<StatsView>& shownFigures() const { return measured_; }
@@ -187,6 +192,7 @@ private:
     QualityPanelState quality_;
     Companions companions_; // after presenter_: its presenters draw with their own renderers
     SourcesPanelState sourcesPanel_;
+    std::size_t panelSource_ = 0; // whose pictures the image panels show: 0 the main source, N companion N-1
     // Chosen in the Sources panel during a frame, done at the next update(): the frame's draw lists may
     // still show a companion's panel.
     std::optional<std::string> pendingAddition_;

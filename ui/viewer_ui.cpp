@@ -491,7 +491,19 @@ void Viewer::drawSidePanels(float x, float w, float height) {
         placePanel(title, x, static_cast<float>(slot) * h, w, h);
     };
     PanelVisibility& show = settings_.panels;
-    const ProbeSource probe = probeSource();
+    // The pictures of the source picked over the images: its renderer's, its frame under the hover
+    // readout. The Quality panel's region is the main source's alone.
+    if (panelSource_ > companions_.size())
+        panelSource_ = 0;
+    const bool main = panelSource_ == 0;
+    const render::ViewRenderer& renderer = main ? renderer_ : companions_[panelSource_ - 1].renderer();
+    Presenter& presenter = main ? presenter_ : companions_[panelSource_ - 1].presenter();
+    const processing::ShownFramePtr& frame = presenter.shown();
+    const ProbeSource probe = probeSourceOf(frame);
+    const RoiOverlay roi = main ? roiOverlay() : RoiOverlay{};
+    SourceTabs tabs{{}, &panelSource_};
+    for (std::size_t i = 0; !companions_.empty() && i <= companions_.size(); ++i)
+        tabs.names.push_back(i == 0 ? "Source 1" : sourceName(i - 1));
     int dataPanelsWidth = 0;
     const auto afterDataPanel = [&](const char* title, const PanelResult& result) {
         afterPanel(title, result);
@@ -500,40 +512,41 @@ void Viewer::drawSidePanels(float x, float w, float height) {
     if (show.depth) {
         place(kDepthTitle);
         const DepthView& view = settings_.depthView;
-        const bool gpu = renderer_.colourOverDepthFromGpu();
-        const bool overlay = view.colourOverlay && shown() && (shown()->colourOverDepth || gpu);
+        const bool gpu = renderer.colourOverDepthFromGpu();
+        const bool overlay = view.colourOverlay && frame && (frame->colourOverDepth || gpu);
         const PanelImage colour = !overlay ? PanelImage{}
-                                  : gpu    ? imageOf(renderer_.colourOverDepthTarget())
-                                           : imageOf(renderer_.colourOverDepthTexture());
-        afterDataPanel(kDepthTitle, drawDepthPanel(dataPanelImage(renderer_.depthTarget(), renderer_),
-                                                   {colour, view.overlayOpacity}, presenter_.depthLegend(),
-                                                   probe, roiOverlay(), &show.depth));
+                                  : gpu    ? imageOf(renderer.colourOverDepthTarget())
+                                           : imageOf(renderer.colourOverDepthTexture());
+        afterDataPanel(kDepthTitle, drawDepthPanel(dataPanelImage(renderer.depthTarget(), renderer),
+                                                   {colour, view.overlayOpacity}, presenter.depthLegend(),
+                                                   probe, roi, &show.depth, tabs));
     }
     if (show.confidence) {
         place(kConfidenceTitle);
         const bool estimated = !probe.empty() && probe.depth->confidenceEstimated;
-        const bool available = instrument_.capabilities().confidence || estimated;
+        const engine::Instrument& source = main ? instrument_ : companions_[panelSource_ - 1].instrument();
+        const bool available = source.capabilities().confidence || estimated;
         afterDataPanel(kConfidenceTitle,
-                       drawConfidencePanel(dataPanelImage(renderer_.confidenceTarget(), renderer_), available,
-                                           estimated, probe, roiOverlay(), &show.confidence));
+                       drawConfidencePanel(dataPanelImage(renderer.confidenceTarget(), renderer), available,
+                                           estimated, probe, roi, &show.confidence, tabs));
     }
     if (show.camera) {
         place(kCameraTitle);
-        const bool aligned = shown() && renderer_.alignsDepthOverCamera(presenter_.demand().gpuCameraColours);
-        const PanelImage depth = aligned ? imageOf(renderer_.depthOverCameraTarget())
-                                         : dataPanelImage(renderer_.depthTarget(), renderer_);
+        const bool aligned = frame && renderer.alignsDepthOverCamera(presenter.demand().gpuCameraColours);
+        const PanelImage depth = aligned ? imageOf(renderer.depthOverCameraTarget())
+                                         : dataPanelImage(renderer.depthTarget(), renderer);
         const PanelResult r = drawCameraPanel(
-            cameraImageOf(renderer_), depth, settings_.camera, probe,
-            shown() && shown()->frame && !shown()->frame->rig ? roiOverlay() : RoiOverlay{}, &show.camera);
+            cameraImageOf(renderer), depth, settings_.camera, probe,
+            frame && frame->frame && !frame->frame->rig ? roi : RoiOverlay{}, &show.camera, tabs);
         afterPanel(kCameraTitle, r);
         if (r.shownWidth > 0)
-            presenter_.setCameraShownWidth(r.shownWidth);
+            presenter.setCameraShownWidth(r.shownWidth);
         // A single camera's depth overlay is the depth panel's image, shown at the camera panel's size.
         if (!aligned && settings_.camera.depthOverlay)
             dataPanelsWidth = std::max(dataPanelsWidth, r.shownWidth);
     }
     if (dataPanelsWidth > 0)
-        presenter_.setDataPanelsShownWidth(dataPanelsWidth);
+        presenter.setDataPanelsShownWidth(dataPanelsWidth);
     if (show.infrared && infraredAvailable()) {
         place(kInfraredTitle);
         const processing::IntensityRange range =

@@ -297,5 +297,45 @@ TEST_F(SourcesPanelTest, OwnProcessingKeepsACompanionsSettingsWhateverTheMainSou
     }
 }
 
+// With several sources the image panels show the source picked over them: the hover readout over the depth
+// panel's middle reads the picked source's depth map (a 160x120 companion beside a 320x240 main source),
+// and it goes back to the main source's when the companion is removed.
+TEST_F(SourcesPanelTest, TheImagePanelsShowTheSourcePickedOverThem) {
+    ASSERT_TRUE(viewer_->openSource("synthetic:320x240").ok());
+    const auto probeAtPanelMiddle = [&]() -> std::optional<Probe> {
+        ImGuiWindow* w = ImGui::FindWindowByName(kDepthTitle);
+        if (!w)
+            return std::nullopt;
+        // Below the middle: clear of the row of names at the top.
+        gui_.io().MousePos = ImVec2(w->Pos.x + w->Size.x * 0.5f, w->Pos.y + w->Size.y * 0.55f);
+        frame(0.0);
+        frame(0.0);
+        return viewer_->hoverProbe();
+    };
+    ASSERT_TRUE(frameUntil([&] { return viewer_->shown() != nullptr; }));
+    const auto alone = probeAtPanelMiddle();
+    ASSERT_TRUE(alone.has_value());
+    EXPECT_NEAR(alone->u, 160, 40);
+    ASSERT_TRUE(
+        viewer_->addSource("synthetic:160x120:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
+    ASSERT_TRUE(frameUntil([&] { return viewer_->companions()[0].presenter().shown() != nullptr; }));
+    const auto main = probeAtPanelMiddle();
+    ASSERT_TRUE(main.has_value());
+    EXPECT_NEAR(main->u, 160, 40) << "the main source's, until another is picked";
+    viewer_->panelSource() = 1; // what clicking "Source 2" over the images does
+    ASSERT_TRUE(frameUntil([&] {
+        const auto p = probeAtPanelMiddle();
+        return p && std::abs(p->u - 80) < 20;
+    })) << "the companion's 160x120 depth under the readout";
+    EXPECT_EQ(viewer_->hoverProbe()->frameSequence,
+              std::optional(viewer_->companions()[0].presenter().shown()->frame->sequence));
+    // The companion removed, the panels go back to the main source.
+    viewer_->companions().remove(0);
+    const auto back = probeAtPanelMiddle();
+    ASSERT_TRUE(back.has_value());
+    EXPECT_NEAR(back->u, 160, 40);
+    EXPECT_EQ(viewer_->panelSource(), 0u);
+}
+
 } // namespace
 } // namespace dc::ui::test
