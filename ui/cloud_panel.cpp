@@ -1,6 +1,7 @@
 #include "ui/panels.h"
 
 #include <algorithm>
+#include <array>
 #include <cfloat>
 #include <cmath>
 #include <cstdint>
@@ -22,10 +23,11 @@ bool dragging(ImGuiMouseButton button) {
            !ImGui::IsMouseClicked(button);
 }
 
-bool applyMouse(CloudSettings& cloud) {
+// `gizmoOwns`: the left button is the gizmo's (pressed on a handle), so it neither orbits nor resets.
+bool applyMouse(CloudSettings& cloud, bool gizmoOwns) {
     const ImGuiIO& io = ImGui::GetIO();
     bool changed = false;
-    if (dragging(ImGuiMouseButton_Left)) {
+    if (!gizmoOwns && dragging(ImGuiMouseButton_Left)) {
         cloud.orbit.yawRadians += io.MouseDelta.x * kOrbitRadiansPerPixel;
         cloud.orbit.pitchRadians += io.MouseDelta.y * kOrbitRadiansPerPixel;
         changed = true;
@@ -39,13 +41,83 @@ bool applyMouse(CloudSettings& cloud) {
         cloud.orbit.zoom *= std::pow(kZoomPerWheelStep, io.MouseWheel);
         changed = true;
     }
-    if (ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
+    if (!gizmoOwns && ImGui::IsItemHovered() && ImGui::IsMouseDoubleClicked(ImGuiMouseButton_Left)) {
         cloud.orbit = {};
         changed = true;
     }
     if (changed)
         sanitize(cloud);
     return changed;
+}
+
+// The gizmo's handle under the mouse; a left press on one takes the button until it is released, and each
+// frame it is dragged (past the click slop) steps the source from where the last step left the mouse, so
+// the handle keeps up with it. Returns whether the gizmo owns the left button this frame (the release's
+// included: that is no click either). Called right after the view's button, whose item state it reads.
+bool driveGizmo(CloudGizmo& gizmo, ImVec2 origin, ImVec2 size, CloudPanelResult& result) {
+    const ImGuiIO& io = ImGui::GetIO();
+    const GizmoView view{gizmo.worldToClip, {size.x, size.y}};
+    const glm::dvec2 mouse{io.MousePos.x - origin.x, io.MousePos.y - origin.y};
+    gizmo.hovered.reset();
+    if (!gizmo.held && ImGui::IsItemHovered())
+        gizmo.hovered = pickGizmo(projectGizmo(view, gizmo.originWorld), mouse);
+    if (!gizmo.held && gizmo.hovered && ImGui::IsItemHovered() &&
+        ImGui::IsMouseClicked(ImGuiMouseButton_Left)) {
+        gizmo.held = gizmo.hovered;
+        gizmo.heldAt = mouse;
+    }
+    if (!gizmo.held)
+        return false;
+    if (!io.MouseDown[ImGuiMouseButton_Left]) {
+        gizmo.held.reset();
+        return true;
+    }
+    if (ImGui::IsMouseDragging(ImGuiMouseButton_Left, kClickSlopPixels) && mouse != gizmo.heldAt) {
+        result.gizmoStep = gizmoStep(*gizmo.held, view, gizmo.originWorld, gizmo.heldAt, mouse);
+        gizmo.heldAt = mouse;
+    }
+    return true;
+}
+
+// World x red, y green, z blue; the handle held, or else the one under the mouse, yellow and thicker.
+void drawGizmo(const CloudGizmo& gizmo, ImVec2 origin, ImVec2 size) {
+    constexpr std::array<ImU32, 3> kAxisColours{IM_COL32(235, 64, 64, 255), IM_COL32(64, 210, 64, 255),
+                                                IM_COL32(80, 130, 255, 255)};
+    constexpr ImU32 kLit = IM_COL32(255, 220, 64, 255);
+    constexpr float kArrowHeadPixels = 10.0f;
+    const GizmoShape shape = projectGizmo({gizmo.worldToClip, {size.x, size.y}}, gizmo.originWorld);
+    if (!shape.origin)
+        return;
+    const auto screen = [&](const glm::dvec2& p) {
+        return ImVec2(origin.x + static_cast<float>(p.x), origin.y + static_cast<float>(p.y));
+    };
+    const std::optional<GizmoHandle> lit = gizmo.held ? gizmo.held : gizmo.hovered;
+    ImDrawList* draw = ImGui::GetWindowDrawList();
+    draw->PushClipRect(origin, {origin.x + size.x, origin.y + size.y}, true);
+    std::vector<ImVec2> points;
+    for (std::size_t h = 0; h < kGizmoHandles; ++h) {
+        const auto handle = static_cast<GizmoHandle>(h);
+        const ImU32 colour = lit == handle ? kLit : kAxisColours[static_cast<std::size_t>(axisOf(handle))];
+        const float thickness = lit == handle ? 4.0f : 2.0f;
+        for (const std::vector<glm::dvec2>& line : shape.lines[h]) {
+            points.clear();
+            for (const glm::dvec2& p : line)
+                points.push_back(screen(p));
+            draw->AddPolyline(points.data(), static_cast<int>(points.size()), colour, 0, thickness);
+        }
+        if (turns(handle) || shape.lines[h].empty())
+            continue;
+        const std::vector<glm::dvec2>& shaft = shape.lines[h].back();
+        const glm::dvec2 along = shaft.back() - shaft.front();
+        if (glm::length(along) < 1.0)
+            continue;
+        const glm::dvec2 d = glm::normalize(along) * static_cast<double>(kArrowHeadPixels);
+        const glm::dvec2 side{-d.y * 0.5, d.x * 0.5};
+        draw->AddTriangleFilled(screen(shaft.back() + d), screen(shaft.back() + side),
+                                screen(shaft.back() - side), colour);
+    }
+    draw->AddCircleFilled(screen(*shape.origin), 4.0f, IM_COL32(255, 255, 255, 255));
+    draw->PopClipRect();
 }
 
 // The centroid of a simple polygon (the mean of its corners when it has no area, e.g. collinear anchors).
@@ -215,7 +287,7 @@ std::vector<LabelBox> placeLabels(const std::vector<ImVec2>& anchors, const std:
 
 CloudPanelResult drawCloudPanel(const render::RenderTarget& picture, CloudSettings& cloud,
                                 const CloudOverlay& overlay, const std::string& message, bool zoomed,
-                                bool* open) {
+                                bool* open, CloudGizmo* gizmo) {
     CloudPanelResult result;
     ImGui::PushStyleVar(ImGuiStyleVar_WindowPadding, ImVec2(0.0f, 0.0f));
     // The picture is copied over the whole content region, replacing what is there: a background under it
@@ -240,11 +312,18 @@ CloudPanelResult drawCloudPanel(const render::RenderTarget& picture, CloudSettin
                                ImGuiButtonFlags_MouseButtonLeft | ImGuiButtonFlags_MouseButtonRight |
                                    ImGuiButtonFlags_MouseButtonMiddle);
         ImGui::SetItemAllowOverlap(); // the zoom button drawn over the view must still take clicks
-        result.viewChanged = applyMouse(cloud);
+        const bool gizmoOwns = gizmo && driveGizmo(*gizmo, origin, avail, result);
+        result.viewChanged = applyMouse(cloud, gizmoOwns);
         readPointer(result, origin, avail);
+        if (gizmoOwns) {
+            result.clickPixels.reset();
+            result.doubleClicked = false;
+        }
         drawPicture(picture, origin, {origin.x + avail.x, origin.y + avail.y});
         drawRoiOutline(overlay, origin, avail);
         result.labels = drawOverlay(overlay, origin, avail);
+        if (gizmo)
+            drawGizmo(*gizmo, origin, avail);
         ImGui::SetCursorScreenPos(
             {origin.x + avail.x - ImGui::CalcTextSize("Restore").x - 24.0f, origin.y + 8.0f});
         result.panel.toggleZoom = ImGui::SmallButton(zoomed ? "Restore" : "Zoom");

@@ -13,6 +13,7 @@
 #include "ui/depth_legend.h"
 #include "ui/file_picker.h"
 #include "ui/fused_cloud.h"
+#include "ui/gizmo.h"
 #include "ui/log_store.h"
 #include "ui/panel_image.h"
 #include "ui/probe.h"
@@ -113,15 +114,31 @@ struct CloudPanelResult {
     std::optional<ImVec2> clickPixels; // a left click (not a drag) on the cloud, in cloud-image pixels
     bool doubleClicked = false;        // the view was reset by a double-click
     std::vector<LabelBox> labels;      // the measurement labels drawn, on screen
+    // What dragging the gizmo's handle did this frame: a world-frame transform to compose onto the
+    // source's correction.
+    std::optional<frame::RigidTransform> gizmoStep;
+};
+
+// The gizmo of the source the Sources panel chose, over the cloud: where its camera sits in the world and
+// how the world reaches the panel (the viewer sets these each frame), and what the mouse does with it (the
+// panel keeps these between frames).
+struct CloudGizmo {
+    glm::dvec3 originWorld{0.0};
+    glm::dmat4 worldToClip{1.0}; // the cloud's view-projection after the world to the main camera
+    std::optional<GizmoHandle> hovered;
+    std::optional<GizmoHandle> held; // pressed on and not yet released: the gizmo owns the left button
+    glm::dvec2 heldAt{0.0};          // where the last drag step left the mouse, in panel pixels
 };
 
 // The rotating cloud. Left-drag orbits, right- or middle-drag pans, the wheel zooms, a double-click resets
 // the manual view, a click is reported (anchors). `message` (e.g. an unsupported source) is drawn over the
 // panel when not empty. The cloud reaches the window as a copy of `picture`'s pixels, not a textured quad:
-// on a software GL that is the cheaper of the two by far, and it is the same picture.
+// on a software GL that is the cheaper of the two by far, and it is the same picture. With a `gizmo`, its
+// arrows and rings are drawn over the cloud; a left drag that starts on one moves or turns the source
+// (CloudPanelResult::gizmoStep) instead of orbiting.
 CloudPanelResult drawCloudPanel(const render::RenderTarget& picture, CloudSettings& cloud,
                                 const CloudOverlay& overlay, const std::string& message, bool zoomed,
-                                bool* open);
+                                bool* open, CloudGizmo* gizmo = nullptr);
 
 // An image laid over a panel's own at an opacity (none: an empty image).
 struct PanelOverlay {
@@ -376,7 +393,8 @@ struct SourceRow {
 
 struct SourcesPanelState {
     std::array<char, 512> spec{};
-    std::string message; // the last addition's or refinement's outcome
+    std::string message;              // the last addition's or refinement's outcome
+    std::optional<std::size_t> gizmo; // the companion whose gizmo the Cloud panel draws
 };
 
 // What the user asked of the Sources panel this frame (companions by their index among the companions).

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string>
 
 namespace dc::ui {
@@ -85,8 +86,10 @@ void drawOwnProcessing(SourceSettings& own, std::size_t number) {
     ImGui::PopID();
 }
 
-// The companion's look, placement and figures; sets `actions` for its buttons.
-void drawCompanion(const SourceRow& row, std::size_t index, SourcesActions& actions) {
+// The companion's look, placement and figures; sets `actions` for its buttons. `gizmo` is the companion
+// whose gizmo the Cloud panel draws: its toggle moves it here, or hides it.
+void drawCompanion(const SourceRow& row, std::size_t index, SourcesActions& actions,
+                   std::optional<std::size_t>& gizmo) {
     CompanionLook& look = *row.look;
     const std::size_t number = index + 1; // the row's: the main source is row 0
     ImGui::Checkbox(labelOf("Visible", number).c_str(), &look.visible);
@@ -94,6 +97,13 @@ void drawCompanion(const SourceRow& row, std::size_t index, SourcesActions& acti
     ImGui::Checkbox(labelOf("Tint", number).c_str(), &look.tinted);
     ImGui::SameLine();
     ImGui::ColorEdit3(labelOf("", number).c_str(), look.tint.data(), ImGuiColorEditFlags_NoInputs);
+    ImGui::SameLine();
+    bool gizmoShown = gizmo == index;
+    if (ImGui::Checkbox(labelOf("Gizmo", number).c_str(), &gizmoShown))
+        gizmo = gizmoShown ? std::optional(index) : std::nullopt;
+    if (ImGui::IsItemHovered())
+        ImGui::SetTooltip("Arrows and rings at this source's camera in the Point cloud panel: drag an arrow\n"
+                          "to move it along that world axis, a ring to turn it about that axis.");
     if (row.overlap)
         ImGui::TextWrapped("overlap: %.1f mm median over %.0f %% of the main source", row.overlap->medianMm,
                            100.0 * row.overlap->overlapFraction);
@@ -149,7 +159,7 @@ SourcesActions drawSourcesPanel(const std::vector<SourceRow>& rows, SourcesPanel
             ImGui::BeginGroup();
             drawFrames(row);
             if (row.look)
-                drawCompanion(row, i - 1, actions);
+                drawCompanion(row, i - 1, actions, state.gizmo);
             ImGui::EndGroup();
         }
     }

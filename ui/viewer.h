@@ -114,6 +114,10 @@ public:
     // The measurement labels the cloud panel drew last (edge lengths, then the area), on screen.
     const std::vector<LabelBox>& measurementLabels() const { return measurementLabels_; }
     const glm::mat4& cloudViewProjection() const { return presenter_.cloudViewProjection(); }
+    // The companion whose gizmo the Cloud panel draws (the Sources panel's Gizmo toggle), and the gizmo as
+    // it was last drawn: where that source sat and the matrix from the world to the cloud's clip space.
+    const std::optional<std::size_t>& gizmoSource() const { return sourcesPanel_.gizmo; }
+    const CloudGizmo& cloudGizmo() const { return cloudGizmo_; }
     // Help > About names this (the tool's version line).
     void setAbout(std::string text) { about_ = std::move(text); }
     // File > Quit was chosen: the window closes as with Ctrl+Q.
@@ -141,6 +145,7 @@ private:
     void drawControls(float width, float height);
     void toggleRecording();
     void drawCloud(float x, float y, float w, float h);
+    bool placeGizmo();
     void drawSidePanels(float x, float w, float h);
     void drawSourcePicker(float x, float y);
     void drawQuality(float x, float y);
@@ -193,6 +198,7 @@ private:
     Companions companions_; // after presenter_: its presenters draw with their own renderers
     SourcesPanelState sourcesPanel_;
     std::size_t panelSource_ = 0; // whose pictures the image panels show: 0 the main source, N companion N-1
+    CloudGizmo cloudGizmo_;
     // Chosen in the Sources panel during a frame, done at the next update(): the frame's draw lists may
     // still show a companion's panel.
     std::optional<std::string> pendingAddition_;

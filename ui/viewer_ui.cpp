@@ -470,16 +470,40 @@ void Viewer::drawControls(float width, float height) {
 
 void Viewer::drawCloud(float x, float y, float w, float h) {
     placePanel(kCloudTitle, x, y, w, h);
+    const bool gizmo = placeGizmo();
     const CloudPanelResult r =
         drawCloudPanel(renderer_.cloudTarget(), settings_.cloud, cloudOverlay(), cloudMessage(),
-                       zoomed_ == kCloudTitle, &settings_.panels.cloud);
+                       zoomed_ == kCloudTitle, &settings_.panels.cloud, gizmo ? &cloudGizmo_ : nullptr);
     afterPanel(kCloudTitle, r.panel);
+    if (gizmo && r.gizmoStep) {
+        frame::RigidTransform& correction = companions_[*sourcesPanel_.gizmo].look.correction;
+        correction = frame::compose(*r.gizmoStep, correction);
+    }
     measurementLabels_ = r.labels;
     const render::RenderTarget& target = renderer_.cloudTarget();
     if (r.wantedWidth > 0 && r.wantedHeight > 0 &&
         (r.wantedWidth != target.width() || r.wantedHeight != target.height()))
         resizeCloud(r.wantedWidth, r.wantedHeight);
     onCloudPointer(r);
+}
+
+// Places the gizmo at the chosen companion's camera as the fused cloud places it, seen as the cloud is
+// drawn: through the world into the main source's camera frame. False (and nothing held) while there is
+// none to draw: no companion chosen, or it or the main source has no frame yet.
+bool Viewer::placeGizmo() {
+    const std::optional<std::size_t> chosen = sourcesPanel_.gizmo;
+    const processing::ShownFramePtr* own =
+        chosen && *chosen < companions_.size() ? &companions_[*chosen].presenter().shown() : nullptr;
+    if (!own || !*own || !shown()) {
+        cloudGizmo_.held.reset();
+        return false;
+    }
+    const auto& t = placeInWorld(*(*own)->frame, companions_[*chosen].look.correction).translationMeters;
+    cloudGizmo_.originWorld = {t[0], t[1], t[2]};
+    const glm::dmat4 worldToMain =
+        glm::inverse(toMatrix(frame::poseFromRigid(placeInWorld(*shown()->frame, {}))));
+    cloudGizmo_.worldToClip = glm::dmat4(presenter_.cloudViewProjection()) * worldToMain;
+    return true;
 }
 
 // The right column, `height` tall, shared by the image panels shown.
@@ -602,8 +626,10 @@ void Viewer::drawSources(float x, float y) {
 void Viewer::applySourcesActions(const SourcesActions& actions) {
     if (actions.add)
         pendingAddition_ = actions.add;
-    if (actions.remove)
+    if (actions.remove) {
         pendingRemoval_ = actions.remove;
+        sourcesPanel_.gizmo.reset(); // the rows after the one removed move up
+    }
     if (actions.resetPlacement && *actions.resetPlacement < companions_.size())
         companions_[*actions.resetPlacement].look.correction = {};
     if (actions.savePlacements) {
