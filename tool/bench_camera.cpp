@@ -37,7 +37,8 @@ struct CameraCase {
     std::string name;
     devices::SyntheticConfig config;
     bool upsampling = false;
-    bool pair = false; // a second camera of the same kind beside it, fused in one cloud
+    bool pair = false;       // a second camera of the same kind beside it, fused in one cloud
+    bool accumulate = false; // accumulate mode: every source's frames gathered into one world cloud
 };
 
 devices::SyntheticConfig cameraOf(int depthWidth, int depthHeight, int colourWidth, int colourHeight) {
@@ -58,7 +59,9 @@ std::vector<CameraCase> cameraCases() {
             {"rig 848x480 + colour 1280x720", devices::syntheticRigConfig(), false},
             {"ARKit 256x192 + camera 1920x1440", cameraOf(256, 192, 1920, 1440), false},
             {"ARKit 256x192 + camera 1920x1440, upsampled", cameraOf(256, 192, 1920, 1440), true},
-            {"two 848x480 + colour 1280x720, fused", cameraOf(848, 480, 1280, 720), false, true}};
+            {"two 848x480 + colour 1280x720, fused", cameraOf(848, 480, 1280, 720), false, true},
+            {"two 848x480 + colour 1280x720, fused, accumulating", cameraOf(848, 480, 1280, 720), false, true,
+             true}};
 }
 
 // Eight distinct frames, made before anything is timed: the source then costs nothing. The camera sways,
@@ -93,6 +96,8 @@ struct CaseResult {
     // The second camera of a pair over the same window: shown counted as the first camera's are (frames
     // delivered in the window that reached the screen), delivered and dropped by its own instrument.
     std::optional<engine::FrameCounts> second;
+    // Accumulate mode: frames handed to the world cloud and replaced before it took them, over the window.
+    std::optional<std::uint64_t> accumulationSkipped;
 };
 
 // The window's loop (tool/gui.cpp): wait for a new result until a display refresh after the last frame
@@ -213,6 +218,7 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
         std::make_unique<devices::FrameListDevice>(std::move(frames), o.fps, c.name), c.name);
     ui::Settings settings; // the default view and panels, as a new user meets them
     settings.processing.upsampling = c.upsampling;
+    settings.accumulate.enabled = c.accumulate;
     ui::Viewer viewer(instrument, renderer, settings);
     if (c.pair)
         if (Status s = addSecondCamera(c, o, viewer); !s)
@@ -228,6 +234,7 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
     const engine::FrameCounts f0 = instrument.status().frames;
     const engine::ProcessorCounts p0 = instrument.processor().counts();
     const engine::FrameCounts second0 = secondCounts(viewer);
+    const std::uint64_t skipped0 = instrument.accumulation().skipped();
     if (c.pair) {
         r.second = engine::FrameCounts{};
         loop.measureSecond(second0.delivered);
@@ -245,6 +252,8 @@ Expected<CaseResult> runCase(const CameraCase& c, const BenchCameraOptions& o) {
         r.second->delivered = second1.delivered - second0.delivered;
         r.second->dropped = second1.dropped - second0.dropped;
     }
+    if (c.accumulate)
+        r.accumulationSkipped = instrument.accumulation().skipped() - skipped0;
     r.processCpuMsPerFrame =
         (base::processCpuMs() - cpu0) / static_cast<double>(std::max<std::uint64_t>(r.delivered, 1));
     r.processingCpuMs = instrument.processor().cpuMs().median();
@@ -287,6 +296,11 @@ void printResult(const CaseResult& r) {
                     static_cast<unsigned long long>(r.second->delivered),
                     ratio(r.second->shown, r.second->delivered),
                     static_cast<unsigned long long>(r.second->dropped));
+    if (r.accumulationSkipped)
+        std::printf(
+            "  accumulated: %llu points in the world cloud; %llu frames replaced before it took them\n",
+            static_cast<unsigned long long>(r.points),
+            static_cast<unsigned long long>(*r.accumulationSkipped));
     std::printf(
         "  bare GL_POINTS of every sample into the %dx%d cloud panel %.2f ms%s; stage medians:", r.cloudWidth,
         r.cloudHeight, r.bareGlPointsMs, gpuClockText(spreadOf(r.gpuClockMhz).median).c_str());
@@ -328,6 +342,8 @@ nlohmann::json toJson(const CaseResult& r) {
                              {"shown", r.second->shown},
                              {"dropped", r.second->dropped},
                              {"shownOverDelivered", ratio(r.second->shown, r.second->delivered)}};
+    if (r.accumulationSkipped)
+        j["accumulationSkipped"] = *r.accumulationSkipped;
     return j;
 }
 

@@ -75,6 +75,28 @@ TEST(BenchCamera, ThePairsSecondCameraCountsItsOwnFrames) {
     EXPECT_LE(j["cases"][0]["delivered"].get<long long>(), 25);
 }
 
+// Two cameras accumulating into one world cloud: the cloud holds more points than one camera's frame has
+// samples (both cameras' frames, over time), and the frames replaced before the worker took them are a
+// part of those the two cameras delivered.
+TEST(BenchCamera, ThePairAccumulatingGathersBothCamerasFrames) {
+    const fs::path json =
+        fs::temp_directory_path() / ("dc-bench-camera-acc-" + std::to_string(::getpid()) + ".json");
+    const std::string command = std::string(DEPTHCLOUD_BINARY) +
+                                " bench camera --seconds 2 --fps 10 --case 'two 848x480 + colour 1280x720, "
+                                "fused, accumulating' --json " +
+                                json.string() + " > /dev/null 2>&1";
+    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    std::ifstream in(json);
+    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    fs::remove(json);
+    ASSERT_FALSE(j.is_discarded());
+    const nlohmann::json& c = j["cases"][0];
+    ASSERT_TRUE(c.contains("accumulationSkipped")) << c;
+    EXPECT_GT(c["points"].get<long long>(), c["samples"].get<long long>()) << c;
+    EXPECT_LE(c["accumulationSkipped"].get<long long>(),
+              c["delivered"].get<long long>() + c["secondCamera"]["delivered"].get<long long>());
+}
+
 TEST(BenchCamera, AnUnknownCaseIsRefusedWithExitCode2) {
     const std::string command =
         std::string(DEPTHCLOUD_BINARY) + " bench camera --case nonsense > /dev/null 2>&1";
