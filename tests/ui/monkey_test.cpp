@@ -151,7 +151,7 @@ protected:
             return ImVec2(static_cast<float>(pick(static_cast<std::size_t>(size.x))),
                           static_cast<float>(pick(static_cast<std::size_t>(size.y))));
         };
-        switch (pick(24)) {
+        switch (pick(26)) {
         case 0: {
             const std::string& spec = sources_[pick(sources_.size())];
             if (spec.find("vanishing") != std::string::npos && pick(2) == 0)
@@ -227,6 +227,25 @@ protected:
                 return "remove a source (none)";
             viewer_->companions().remove(pick(viewer_->companions().size()));
             return "remove a source";
+        case 24: {
+            // A further source's own processing, or the image panels showing another source.
+            const std::size_t n = viewer_->companions().size();
+            if (n == 0)
+                return "a further source's settings (none)";
+            if (pick(2) == 0) {
+                viewer_->panelSource() = pick(n + 1);
+                return "image panels show source " + std::to_string(viewer_->panelSource() + 1);
+            }
+            SourceSettings& own = viewer_->companions()[pick(n)].own;
+            own.followsMain = pick(2) == 0;
+            own.processing.upsampling = pick(2) == 0;
+            own.processing.smoothing = pick(2) == 0;
+            own.minConfidence = static_cast<frame::Confidence>(pick(3));
+            return std::string("a further source's own processing ") + (own.followsMain ? "off" : "on");
+        }
+        case 25:
+            viewer_->settings().accumulate.enabled = !viewer_->settings().accumulate.enabled;
+            return std::string("accumulate ") + (viewer_->settings().accumulate.enabled ? "on" : "off");
         default:
             clickInsideAWindow(random);
             return "click";
