@@ -15,17 +15,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-TEST(BenchCamera, EveryDeliveredFrameIsShownDroppedOrInFlightAndBothCountsAgree) {
+// `depthcloud bench camera ARGUMENTS --json FILE`'s JSON (discarded when the run fails or writes none).
+nlohmann::json benchJson(const std::string& arguments) {
     const fs::path json =
         fs::temp_directory_path() / ("dc-bench-camera-" + std::to_string(::getpid()) + ".json");
-    const std::string command =
-        std::string(DEPTHCLOUD_BINARY) +
-        " bench camera --seconds 2 --case 'ARKit 256x192 + camera 1920x1440' --json " + json.string() +
-        " > /dev/null 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
+    const std::string command = std::string(DEPTHCLOUD_BINARY) + " bench camera " + arguments + " --json " +
+                                json.string() + " > /dev/null 2>&1";
+    EXPECT_EQ(std::system(command.c_str()), 0) << command;
     std::ifstream in(json);
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
+    nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
     fs::remove(json);
+    return j;
+}
+
+TEST(BenchCamera, EveryDeliveredFrameIsShownDroppedOrInFlightAndBothCountsAgree) {
+    const nlohmann::json j = benchJson("--seconds 2 --case 'ARKit 256x192 + camera 1920x1440'");
     ASSERT_FALSE(j.is_discarded());
     ASSERT_EQ(j["cases"].size(), 1u);
     const nlohmann::json& c = j["cases"][0];
@@ -52,16 +56,7 @@ TEST(BenchCamera, EveryDeliveredFrameIsShownDroppedOrInFlightAndBothCountsAgree)
 
 // Two cameras fused in one cloud: the second camera's frames are counted on their own, and add up.
 TEST(BenchCamera, ThePairsSecondCameraCountsItsOwnFrames) {
-    const fs::path json =
-        fs::temp_directory_path() / ("dc-bench-camera-pair-" + std::to_string(::getpid()) + ".json");
-    const std::string command = std::string(DEPTHCLOUD_BINARY) +
-                                " bench camera --seconds 2 --fps 10 --case 'two 848x480 + colour 1280x720, "
-                                "fused' --json " +
-                                json.string() + " > /dev/null 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    std::ifstream in(json);
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    fs::remove(json);
+    const nlohmann::json j = benchJson("--seconds 2 --fps 10 --case 'two 848x480 + colour 1280x720, fused'");
     ASSERT_FALSE(j.is_discarded());
     const nlohmann::json& second = j["cases"][0]["secondCamera"];
     const auto n = [&](const char* key) { return second[key].get<long long>(); };
@@ -79,16 +74,8 @@ TEST(BenchCamera, ThePairsSecondCameraCountsItsOwnFrames) {
 // samples (both cameras' frames, over time), and the frames replaced before the worker took them are a
 // part of those the two cameras delivered.
 TEST(BenchCamera, ThePairAccumulatingGathersBothCamerasFrames) {
-    const fs::path json =
-        fs::temp_directory_path() / ("dc-bench-camera-acc-" + std::to_string(::getpid()) + ".json");
-    const std::string command = std::string(DEPTHCLOUD_BINARY) +
-                                " bench camera --seconds 2 --fps 10 --case 'two 848x480 + colour 1280x720, "
-                                "fused, accumulating' --json " +
-                                json.string() + " > /dev/null 2>&1";
-    ASSERT_EQ(std::system(command.c_str()), 0) << command;
-    std::ifstream in(json);
-    const nlohmann::json j = nlohmann::json::parse(in, nullptr, false);
-    fs::remove(json);
+    const nlohmann::json j =
+        benchJson("--seconds 2 --fps 10 --case 'two 848x480 + colour 1280x720, fused, accumulating'");
     ASSERT_FALSE(j.is_discarded());
     const nlohmann::json& c = j["cases"][0];
     ASSERT_TRUE(c.contains("accumulationSkipped")) << c;

@@ -4,8 +4,7 @@
 // pairing tolerance). Every figure is checked against one worked out here from the recordings' own stamps
 // or the companion's own samples; with one source neither panel shows any of it.
 
-#include "devices/recording/recording_reader.h"
-#include "ui_fixture.h"
+#include "sources_fixture.h"
 
 #include <algorithm>
 #include <cmath>
@@ -21,39 +20,8 @@ namespace {
 
 namespace fs = std::filesystem;
 
-class SourceSyncTest : public UiTest {
+class SourceSyncTest : public SourcesTest {
 protected:
-    void SetUp() override {
-        UiTest::SetUp();
-        ASSERT_FALSE(HasFatalFailure());
-        dir_ = fs::temp_directory_path() / ("dc-source-sync-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        UiTest::TearDown();
-        fs::remove_all(dir_);
-    }
-
-    // Records `frames` frames of the running synthetic source with the real recorder.
-    std::string record(const std::string& name, std::uint64_t frames) {
-        const std::string path = (dir_ / name).string();
-        EXPECT_TRUE(instrument_->startRecording(path).ok());
-        for (int i = 0; i < 400 && instrument_->recording().frames < frames; ++i)
-            viewer_->update(0.0, std::chrono::milliseconds(20));
-        EXPECT_TRUE(instrument_->stopRecording().ok());
-        return path;
-    }
-
-    static std::vector<std::int64_t> stampsOf(const std::string& path) {
-        auto reader = devices::recording::RecordingReader::open(path);
-        EXPECT_TRUE(reader.ok());
-        std::vector<std::int64_t> stamps;
-        for (std::size_t i = 0; reader && i < reader->frameCount(); ++i)
-            stamps.push_back(reader->timestampNs(i));
-        return stamps;
-    }
-
     std::optional<std::size_t> shownIndex(const processing::ShownFramePtr& shown) const {
         if (!shown || !shown->frame->replay)
             return std::nullopt;
@@ -94,8 +62,6 @@ protected:
         ImGuiWindow* strip = ImGui::FindWindowByName(kTimelineTitle);
         return strip && strip->Active ? strip->Size.y : 0.0f;
     }
-
-    fs::path dir_;
 };
 
 // Where main-clock time `t` falls on a scrubber over `stamps`: the fractional index between the frames
@@ -193,8 +159,7 @@ std::string line(const char* format, auto... values) {
 
 TEST_F(SourceSyncTest, TheTimingPanelReadsOutEachFurtherSourcesSkewAsItsSamplesSay) {
     ASSERT_TRUE(viewer_->openSource("synthetic:160x120").ok());
-    ASSERT_TRUE(
-        viewer_->addSource("synthetic:160x120:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
+    ASSERT_TRUE(viewer_->addSource("synthetic:160x120:" + kBesideView).ok());
     const Companion& b = viewer_->companions()[0];
     ASSERT_TRUE(frameUntil([&] { return b.skew.count() >= 30; })) << b.skew.count() << " skew samples";
     const std::vector<double> samples = b.skew.inOrder();

@@ -1,10 +1,9 @@
 // Several sources in the window: companion replays follow the main replay's timeline by their stamps, and
 // the Sources panel's buttons refine a companion's placement by ICP and remove it.
 
-#include "devices/recording/recording_reader.h"
 #include "devices/source_pose.h"
 #include "processing/rigid_alignment.h"
-#include "ui_fixture.h"
+#include "sources_fixture.h"
 
 #include <cmath>
 #include <cstdlib>
@@ -21,39 +20,8 @@ namespace fs = std::filesystem;
 const std::string kError =
     "0.02,-0.02,0.01,0.010686694396250128,0.021373388792500257,-0.010686694396250128,0.9996573249755573";
 
-class SourcesPanelTest : public UiTest {
+class SourcesPanelTest : public SourcesTest {
 protected:
-    void SetUp() override {
-        UiTest::SetUp();
-        ASSERT_FALSE(HasFatalFailure());
-        dir_ = fs::temp_directory_path() / ("dc-sources-" + std::to_string(::getpid()));
-        fs::remove_all(dir_);
-        fs::create_directories(dir_);
-    }
-    void TearDown() override {
-        UiTest::TearDown();
-        fs::remove_all(dir_);
-    }
-
-    // Records `frames` frames of the running synthetic source with the real recorder.
-    std::string record(const std::string& name, std::uint64_t frames) {
-        const std::string path = (dir_ / name).string();
-        EXPECT_TRUE(instrument_->startRecording(path).ok());
-        for (int i = 0; i < 400 && instrument_->recording().frames < frames; ++i)
-            viewer_->update(0.0, std::chrono::milliseconds(20));
-        EXPECT_TRUE(instrument_->stopRecording().ok());
-        return path;
-    }
-
-    static std::vector<std::int64_t> stampsOf(const std::string& path) {
-        auto reader = devices::recording::RecordingReader::open(path);
-        EXPECT_TRUE(reader.ok());
-        std::vector<std::int64_t> stamps;
-        for (std::size_t i = 0; reader && i < reader->frameCount(); ++i)
-            stamps.push_back(reader->timestampNs(i));
-        return stamps;
-    }
-
     std::optional<std::size_t> companionIndex() {
         const auto& shown = viewer_->companions()[0].presenter().shown();
         if (!shown || !shown->frame->replay)
@@ -66,8 +34,6 @@ protected:
             return std::nullopt;
         return shown->frame->replay->index;
     }
-
-    fs::path dir_;
 };
 
 // The index in `stamps` nearest `t`, worked out here from the recordings' own stamps.
@@ -168,61 +134,41 @@ TEST_F(SourcesPanelTest, RefineMovesAMisplacedCompanionBackAndRemoveTakesItAway)
     EXPECT_FALSE(viewer_->presenter().fusing());
 }
 
-// Pixels of the cloud panel in exactly this colour.
-std::size_t pixelsOf(const render::RenderTarget& target, std::uint8_t r, std::uint8_t g, std::uint8_t b) {
-    const std::vector<std::uint8_t> rgba = target.readRgba();
-    std::size_t n = 0;
-    for (std::size_t i = 0; i + 3 < rgba.size(); i += 4)
-        n += rgba[i] == r && rgba[i + 1] == g && rgba[i + 2] == b;
-    return n;
-}
-
 // Both cloud paths draw a companion's points among the main source's, placed by its pose: tinted pure
 // green, they cover much of the panel; hidden, none of it is green; the main source alone has no such
 // colour.
 TEST_F(SourcesPanelTest, BothCloudPathsDrawACompanionsPointsInItsTint) {
-    ASSERT_TRUE(viewer_->openSource("synthetic:320x240").ok());
-    ASSERT_TRUE(
-        viewer_->addSource("synthetic:320x240:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
-    Companion& b = viewer_->companions()[0];
-    b.look.tinted = true;
-    b.look.tint = {0.0f, 1.0f, 0.0f};
-    viewer_->settings().cloud.motion.enabled = false;
+    Companion* pair = openGreenPair("synthetic:320x240");
+    ASSERT_NE(pair, nullptr);
+    Companion& b = *pair;
     for (const CloudPathChoice path : {CloudPathChoice::Points, CloudPathChoice::Splat}) {
         SCOPED_TRACE(path == CloudPathChoice::Points ? "GL points" : "CPU splat");
         viewer_->settings().cloud.path = path;
         b.look.visible = true;
-        ASSERT_TRUE(frameUntil([&] {
-            return b.presenter().shown() && pixelsOf(renderer_.cloudTarget(), 0, 255, 0) > 20'000;
-        })) << pixelsOf(renderer_.cloudTarget(), 0, 255, 0)
-            << " green pixels";
+        ASSERT_TRUE(frameUntil([&] { return b.presenter().shown() && greenPixels() > 20'000; }))
+            << greenPixels() << " green pixels";
         b.look.visible = false;
-        EXPECT_TRUE(frameUntil([&] { return pixelsOf(renderer_.cloudTarget(), 0, 255, 0) == 0; }))
-            << pixelsOf(renderer_.cloudTarget(), 0, 255, 0) << " green pixels with the companion hidden";
+        EXPECT_TRUE(frameUntil([&] { return greenPixels() == 0; }))
+            << greenPixels() << " green pixels with the companion hidden";
     }
 }
 
 // Two live cameras' frames are never taken at the same instant: their skew is measured frame by frame, and
 // a pairing tolerance tighter than it keeps the second camera out of the cloud until it is loosened.
 TEST_F(SourcesPanelTest, APairingToleranceDrawsOnlyFramesCloseInTime) {
-    ASSERT_TRUE(viewer_->openSource("synthetic:160x120").ok());
-    ASSERT_TRUE(
-        viewer_->addSource("synthetic:160x120:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
-    Companion& b = viewer_->companions()[0];
-    b.look.tinted = true;
-    b.look.tint = {0.0f, 1.0f, 0.0f};
-    viewer_->settings().cloud.motion.enabled = false;
-    const auto green = [&] { return pixelsOf(renderer_.cloudTarget(), 0, 255, 0); };
-    ASSERT_TRUE(frameUntil([&] { return green() > 2'000 && b.skew.count() >= 5; })) << green();
+    Companion* pair = openGreenPair("synthetic:160x120");
+    ASSERT_NE(pair, nullptr);
+    Companion& b = *pair;
+    ASSERT_TRUE(frameUntil([&] { return greenPixels() > 2'000 && b.skew.count() >= 5; })) << greenPixels();
     const auto skew = viewer_->companions().skewMs(0, *instrument_, viewer_->shown());
     ASSERT_TRUE(skew.has_value());
     EXPECT_NE(*skew, 0.0);
     EXPECT_LT(std::abs(b.skew.median()), 1000.0) << "live stamps on one clock";
     viewer_->settings().sources.pairingToleranceMs = 0.001f; // a microsecond: no two frames are that close
-    EXPECT_TRUE(frameUntil([&] { return green() == 0; })) << green() << " green pixels";
+    EXPECT_TRUE(frameUntil([&] { return greenPixels() == 0; })) << greenPixels() << " green pixels";
     EXPECT_FALSE(viewer_->companions().paired(0, *instrument_, viewer_->shown(), 0.001f));
     viewer_->settings().sources.pairingToleranceMs = 0.0f; // off
-    EXPECT_TRUE(frameUntil([&] { return green() > 2'000; })) << green();
+    EXPECT_TRUE(frameUntil([&] { return greenPixels() > 2'000; })) << greenPixels();
 }
 
 // Accumulate mode gathers every source into one world cloud: each further source's frames join the main
@@ -254,14 +200,9 @@ TEST_F(SourcesPanelTest, AccumulateModeGathersEverySourceIntoOneWorld) {
 // "Own processing" on: a companion keeps its own processing and cloud confidence whatever the main source's
 // become; its depth is what its own processing made, and both cloud paths draw it from its own level.
 TEST_F(SourcesPanelTest, OwnProcessingKeepsACompanionsSettingsWhateverTheMainSourcesBecome) {
-    ASSERT_TRUE(viewer_->openSource("synthetic:320x240").ok());
-    ASSERT_TRUE(
-        viewer_->addSource("synthetic:320x240:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
-    Companion& b = viewer_->companions()[0];
-    b.look.tinted = true;
-    b.look.tint = {0.0f, 1.0f, 0.0f};
-    viewer_->settings().cloud.motion.enabled = false;
-    const auto green = [&] { return pixelsOf(renderer_.cloudTarget(), 0, 255, 0); };
+    Companion* pair = openGreenPair("synthetic:320x240");
+    ASSERT_NE(pair, nullptr);
+    Companion& b = *pair;
     const auto depthWidth = [](const processing::ShownFramePtr& s) {
         return s && s->depth.data ? s->depth.data->depthMeters.width : 0;
     };
@@ -284,15 +225,17 @@ TEST_F(SourcesPanelTest, OwnProcessingKeepsACompanionsSettingsWhateverTheMainSou
         SCOPED_TRACE(path == CloudPathChoice::Points ? "GL points" : "CPU splat");
         viewer_->settings().cloud.path = path;
         b.own.minConfidence = frame::Confidence::Low;
-        ASSERT_TRUE(frameUntil([&] { return depthWidth(b.presenter().shown()) == 320 && green() > 20'000; }))
-            << green();
-        const std::size_t all = green();
+        ASSERT_TRUE(frameUntil([&] {
+            return depthWidth(b.presenter().shown()) == 320 && greenPixels() > 20'000;
+        })) << greenPixels();
+        const std::size_t all = greenPixels();
         b.own.minConfidence = frame::Confidence::High;
-        EXPECT_TRUE(frameUntil([&] { return green() < all / 2; })) << green() << " of " << all;
+        EXPECT_TRUE(frameUntil([&] { return greenPixels() < all / 2; })) << greenPixels() << " of " << all;
         // The main source's level is not the companion's.
         viewer_->settings().cloud.minConfidence = frame::Confidence::High;
         b.own.minConfidence = frame::Confidence::Low;
-        EXPECT_TRUE(frameUntil([&] { return green() > all * 9 / 10; })) << green() << " of " << all;
+        EXPECT_TRUE(frameUntil([&] { return greenPixels() > all * 9 / 10; }))
+            << greenPixels() << " of " << all;
         viewer_->settings().cloud.minConfidence = frame::Confidence::Low;
     }
 }
@@ -316,8 +259,7 @@ TEST_F(SourcesPanelTest, TheImagePanelsShowTheSourcePickedOverThem) {
     const auto alone = probeAtPanelMiddle();
     ASSERT_TRUE(alone.has_value());
     EXPECT_NEAR(alone->u, 160, 40);
-    ASSERT_TRUE(
-        viewer_->addSource("synthetic:160x120:view=0.2,0,0,0,-0.0697564737441253,0,0.9975640502598242").ok());
+    ASSERT_TRUE(viewer_->addSource("synthetic:160x120:" + kBesideView).ok());
     ASSERT_TRUE(frameUntil([&] { return viewer_->companions()[0].presenter().shown() != nullptr; }));
     const auto main = probeAtPanelMiddle();
     ASSERT_TRUE(main.has_value());
