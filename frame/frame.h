@@ -124,12 +124,26 @@ struct StreamTiming {
     std::optional<std::uint32_t> exposureUs;
 };
 
+// What a UVC camera's metadata node says about a depth frame besides its exposure (StreamTiming::exposureUs),
+// each value only where the camera's metadata gives it.
+struct CameraMetadata {
+    std::optional<std::uint32_t> frameCounter; // the camera's own frame count (D4xx capture timing)
+    std::optional<std::uint32_t> gain;         // the depth sensor's gain, in V4L2_CID_GAIN's units (D4xx)
+    std::optional<std::uint32_t> laserPowerMw; // the projector's power, 0-360 mW (D4xx)
+    // The UVC payload header's clocks, in ticks of the camera's clock (its dwClockFrequency): PTS at the
+    // start of exposure, SCR sampled at the USB frame scrUsbFrame (11 bits).
+    std::optional<std::uint32_t> ptsTicks;
+    std::optional<std::uint32_t> scrTicks;
+    std::optional<std::uint16_t> scrUsbFrame;
+};
+
 // Per-frame metadata for the timing view: what the drivers said about the depth capture and, from a
 // separate colour node, the image paired with it. Times the application adds later (arrival, processing,
 // display) are recorded beside the frame, by the session and the engine.
 struct FrameTiming {
     StreamTiming depth;
     std::optional<StreamTiming> colour;
+    CameraMetadata depthMetadata; // from the depth node's metadata node
 };
 
 struct RigCalibration; // frame/camera_model.h

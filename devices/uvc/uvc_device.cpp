@@ -37,7 +37,7 @@ frame::TimestampSource stampSource(const v4l2::V4l2Buffer& b, bool driverStamp) 
 }
 
 // What the driver said about a stamped buffer. Its v4l2_buffer.sequence is 32 bits wide; the exposure is
-// the metadata node's, which is not read here.
+// the metadata node's (MetadataStream::fill).
 frame::StreamTiming driverTiming(std::uint64_t sequence, std::int64_t stampNs,
                                  frame::TimestampSource source) {
     frame::StreamTiming t;
@@ -126,7 +126,7 @@ v4l2::XuAccess xuAccessOf(const std::string& sysfsRoot, const std::optional<usb:
 } // namespace
 
 UvcDevice::UvcDevice(UvcConfig config, v4l2::Syscalls& sys)
-    : config_(std::move(config)), sys_(sys), depth_(sys), color_(sys) {
+    : config_(std::move(config)), sys_(sys), depth_(sys), color_(sys), metadata_(sys) {
     if (config_.calibration && config_.calibration->rig)
         rig_ = std::make_shared<const frame::RigCalibration>(*config_.calibration->rig);
 }
@@ -347,9 +347,27 @@ Status UvcDevice::configureBoth() {
         s = configureDepth();
     if (s)
         s = configureColor();
-    if (!s)
-        return s;
-    return checkRigSizes();
+    if (s)
+        s = checkRigSizes();
+    if (s)
+        openMetadata();
+    return s;
+}
+
+// A RealSense D4xx (the known-camera table's depth extension unit) sends Intel's metadata blocks.
+bool UvcDevice::isD4xx() const {
+    const std::optional<usb::UsbDeviceInfo> device =
+        usbIdentity_ ? usbIdentity_ : usb::Sysfs(config_.sysfsRoot).usbDeviceOf(depthPath_);
+    const usb::KnownCamera* known =
+        device ? usb::findKnownCamera(device->vendorId, device->productId) : nullptr;
+    return known && known->realsenseDepthXu;
+}
+
+void UvcDevice::openMetadata() {
+    metadata_.open(depth_, isD4xx(), description(), config_.sysfsRoot);
+    if (!metadata_.path().empty())
+        logInfo(description() + ": metadata " + metadata_.path() + " '" +
+                v4l2::fourccToString(metadata_.dataFormat()) + "'");
 }
 
 Status UvcDevice::doOpen() {
@@ -416,6 +434,7 @@ void UvcDevice::applyPreset() {
 }
 
 Status UvcDevice::startStreaming() {
+    metadata_.start(); // first, so that the first frames have theirs
     for (v4l2::V4l2Node* node : {&depth_, &color_}) {
         if (!node->isOpen())
             continue;
@@ -426,6 +445,7 @@ Status UvcDevice::startStreaming() {
             const std::string message = node->describe("starting the stream", r);
             depth_.streamOff();
             color_.streamOff();
+            metadata_.stop();
             return Error{message};
         }
     }
@@ -444,6 +464,7 @@ Status UvcDevice::doStart() {
 void UvcDevice::doStop() {
     depth_.streamOff();
     color_.streamOff();
+    metadata_.stop();
 }
 
 void UvcDevice::doClose() {
@@ -453,6 +474,7 @@ void UvcDevice::doClose() {
 void UvcDevice::closeNodes() {
     depth_.close();
     color_.close();
+    metadata_.close();
     pairer_.reset();
     depthOnly_.reset();
 }
@@ -502,8 +524,10 @@ std::optional<CaptureResult> UvcDevice::restartAfterFormatChange(v4l2::V4l2Node&
         return disconnect(node.path() + ": the format changed under us (" + formatText(now) +
                           ") and the stream cannot continue: " + std::strerror(-r));
     (isDepth ? depthFormat_ : colorFormat_) = now;
-    if (isDepth)
+    if (isDepth) {
         depthIntrinsics_ = depthIntrinsics_.scaledTo(now.width, now.height);
+        metadata_.restart();
+    }
     if (Status s = checkRigSizes(); !s) // reconnecting asks for the calibrated sizes again
         return disconnect(s.error().message);
     pairer_.reset();
@@ -571,6 +595,7 @@ frame::FramePtr UvcDevice::makeFrame(PairedCapture capture) {
     frame->timestampNs = capture.depth.timestampNs;
     frame->cameraIntrinsics = depthIntrinsics_;
     frame->timing.depth = driverTiming(capture.depth.sequence, capture.depth.timestampNs, depthStampSource_);
+    metadata_.fill(static_cast<std::uint32_t>(capture.depth.sequence), frame->timing);
     if (capture.color) {
         frame->timing.colour =
             driverTiming(capture.color->sequence, capture.color->timestampNs, colorStampSource_);
@@ -596,15 +621,22 @@ CaptureResult UvcDevice::doCapture(std::chrono::milliseconds timeout) {
         return disconnect(description() + ": the depth node is not streaming");
     if (auto stalled = checkWatchdog())
         return *stalled;
-    std::vector<v4l2::V4l2Node*> nodes{&depth_};
+    // The metadata node first: uvcvideo completes a frame's metadata buffer before its video buffer.
+    std::vector<v4l2::V4l2Node*> nodes;
+    if (metadata_.streaming())
+        nodes.push_back(&metadata_.node());
+    nodes.push_back(&depth_);
     if (color_.streaming())
         nodes.push_back(&color_);
     const int r = v4l2::waitForNodes(sys_, nodes, &wake_, static_cast<int>(timeout.count()), ready_);
     if (r < 0 && r != -ECANCELED)
         return {CaptureResult::Kind::Error, nullptr, description() + ": poll failed: " + std::strerror(-r)};
-    for (std::size_t i = 0; r > 0 && i < nodes.size(); ++i)
-        if (auto result = service(*nodes[i], ready_[i], nodes[i] == &depth_))
+    for (std::size_t i = 0; r > 0 && i < nodes.size(); ++i) {
+        if (nodes[i] == &metadata_.node())
+            metadata_.service(ready_[i]);
+        else if (auto result = service(*nodes[i], ready_[i], nodes[i] == &depth_))
             return *result;
+    }
     std::optional<PairedCapture> paired;
     if (color_.streaming())
         paired = pairer_.pop();

@@ -2,6 +2,7 @@
 
 #include "devices/device.h"
 #include "devices/frame_pairer.h"
+#include "devices/uvc/metadata_stream.h"
 #include "devices/uvc/usb/usb_device_info.h"
 #include "devices/uvc/v4l2/control_preset.h"
 #include "devices/uvc/v4l2/handles.h"
@@ -69,6 +70,9 @@ public:
     const frame::Intrinsics& depthIntrinsics() const { return depthIntrinsics_; }
     const std::string& depthNodePath() const { return depthPath_; }
     const std::string& colorNodePath() const { return colorPath_; }
+    // The depth node's metadata node and its V4L2_META_FMT_* (empty and 0 without one).
+    std::string metadataNodePath() const { return metadata_.path(); }
+    std::uint32_t metadataFormat() const { return metadata_.dataFormat(); }
     const FramePairer& pairer() const { return pairer_; }
     // The two-sensor calibration the frames carry (null without one).
     const std::shared_ptr<const frame::RigCalibration>& rig() const { return rig_; }
@@ -89,6 +93,8 @@ private:
     Status configureColor();
     Status openColor();
     std::vector<v4l2::ChosenMode> colorRequests(std::uint32_t fourcc) const;
+    void openMetadata();
+    bool isD4xx() const;
     void chooseDepthScale();
     void chooseIntrinsics();
     Status checkRigSizes() const;
@@ -110,6 +116,7 @@ private:
     v4l2::Syscalls& sys_;
     v4l2::V4l2Node depth_;
     v4l2::V4l2Node color_;
+    MetadataStream metadata_;
     v4l2::EventFd wake_;
     std::string depthPath_;
     std::string colorPath_;

@@ -26,14 +26,6 @@ double fps(const v4l2_fract& interval) {
     return interval.numerator ? static_cast<double>(interval.denominator) / interval.numerator : 0.0;
 }
 
-v4l2_buffer captureBuffer(unsigned index = 0) {
-    v4l2_buffer b{};
-    b.type = kCaptureType;
-    b.memory = V4L2_MEMORY_MMAP;
-    b.index = index;
-    return b;
-}
-
 std::int64_t timestampNs(const timeval& t) {
     return static_cast<std::int64_t>(t.tv_sec) * 1'000'000'000 + static_cast<std::int64_t>(t.tv_usec) * 1000;
 }
@@ -44,8 +36,24 @@ bool V4l2Capability::canCapture() const {
     return (deviceCaps & V4L2_CAP_VIDEO_CAPTURE) != 0;
 }
 
+bool V4l2Capability::canCaptureMetadata() const {
+    return (deviceCaps & V4L2_CAP_META_CAPTURE) != 0;
+}
+
 bool V4l2Capability::canStream() const {
     return (deviceCaps & V4L2_CAP_STREAMING) != 0;
+}
+
+std::uint32_t V4l2Node::bufferType() const {
+    return kind_ == BufferKind::Video ? kCaptureType : static_cast<std::uint32_t>(V4L2_BUF_TYPE_META_CAPTURE);
+}
+
+v4l2_buffer V4l2Node::mmapBuffer(unsigned index) const {
+    v4l2_buffer b{};
+    b.type = bufferType();
+    b.memory = V4L2_MEMORY_MMAP;
+    b.index = index;
+    return b;
 }
 
 int V4l2Node::open(const std::string& path) {
@@ -78,7 +86,7 @@ std::vector<std::uint32_t> V4l2Node::formats() {
     for (std::uint32_t i = 0; i < kMaxEnumerated; ++i) {
         v4l2_fmtdesc desc{};
         desc.index = i;
-        desc.type = kCaptureType;
+        desc.type = bufferType();
         if (ioctl(VIDIOC_ENUM_FMT, &desc) < 0)
             break;
         result.push_back(desc.pixelformat);
@@ -173,6 +181,16 @@ int V4l2Node::setFormat(V4l2Format& format) {
     return 0;
 }
 
+int V4l2Node::setMetadataFormat(std::uint32_t dataFormat) {
+    v4l2_format f{};
+    f.type = V4L2_BUF_TYPE_META_CAPTURE;
+    f.fmt.meta.dataformat = dataFormat;
+    if (const int r = ioctl(VIDIOC_S_FMT, &f); r < 0)
+        return r;
+    format_ = {f.fmt.meta.dataformat, 0, 0, 0, f.fmt.meta.buffersize};
+    return 0;
+}
+
 int V4l2Node::setFrameRate(double framesPerSecond) {
     if (!(framesPerSecond > 0.0))
         return -EINVAL;
@@ -229,7 +247,7 @@ int V4l2Node::allocateBuffers(unsigned count) {
         return -EBUSY;
     v4l2_requestbuffers req{};
     req.count = count;
-    req.type = kCaptureType;
+    req.type = bufferType();
     req.memory = V4L2_MEMORY_MMAP;
     if (const int r = ioctl(VIDIOC_REQBUFS, &req); r < 0)
         return r;
@@ -238,7 +256,7 @@ int V4l2Node::allocateBuffers(unsigned count) {
     buffers_.resize(req.count);
     queued_.assign(req.count, false);
     for (unsigned i = 0; i < req.count; ++i) {
-        v4l2_buffer b = captureBuffer(i);
+        v4l2_buffer b = mmapBuffer(i);
         int r = ioctl(VIDIOC_QUERYBUF, &b);
         if (r == 0)
             r = mapBuffer(*sys_, fd_.get(), b.length, static_cast<off_t>(b.m.offset), buffers_[i]);
@@ -254,12 +272,12 @@ int V4l2Node::streamOn() {
     for (unsigned i = 0; i < buffers_.size(); ++i) {
         if (queued_[i])
             continue;
-        v4l2_buffer b = captureBuffer(i);
+        v4l2_buffer b = mmapBuffer(i);
         if (const int r = ioctl(VIDIOC_QBUF, &b); r < 0)
             return r;
         queued_[i] = true;
     }
-    int type = kCaptureType;
+    int type = static_cast<int>(bufferType());
     if (const int r = ioctl(VIDIOC_STREAMON, &type); r < 0)
         return r;
     streaming_ = true;
@@ -268,7 +286,7 @@ int V4l2Node::streamOn() {
 
 void V4l2Node::streamOff() {
     if (fd_.valid()) {
-        int type = kCaptureType;
+        int type = static_cast<int>(bufferType());
         (void)ioctl(VIDIOC_STREAMOFF, &type);
     }
     streaming_ = false;
@@ -278,7 +296,7 @@ void V4l2Node::streamOff() {
     queued_.clear();
     if (hadBuffers && fd_.valid()) {
         v4l2_requestbuffers req{};
-        req.type = kCaptureType;
+        req.type = bufferType();
         req.memory = V4L2_MEMORY_MMAP;
         (void)ioctl(VIDIOC_REQBUFS, &req);
     }
@@ -295,7 +313,7 @@ DequeueResult V4l2Node::dropped(unsigned index, std::string message) {
 
 DequeueResult V4l2Node::dequeue() {
     DequeueResult result;
-    v4l2_buffer b = captureBuffer();
+    v4l2_buffer b = mmapBuffer();
     if (const int r = ioctl(VIDIOC_DQBUF, &b); r < 0) {
         result.kind = r == -EAGAIN ? DequeueResult::Kind::NotReady : DequeueResult::Kind::Failed;
         result.error = r;
@@ -317,11 +335,15 @@ DequeueResult V4l2Node::dequeue() {
     if (b.bytesused > mapping.length())
         return dropped(b.index, "bytesused " + std::to_string(b.bytesused) + " exceeds the buffer's " +
                                     std::to_string(mapping.length()) + " bytes");
-    const std::size_t needed =
-        minimumFrameBytes(format_.fourcc, format_.width, format_.height, format_.bytesPerLine);
-    if (b.bytesused == 0 || b.bytesused < needed)
-        return dropped(b.index, "short frame " + std::to_string(b.sequence) + ": " +
-                                    std::to_string(b.bytesused) + " of " + std::to_string(needed) + " bytes");
+    // A metadata buffer has no least size: an empty one says the camera's headers added nothing.
+    if (kind_ == BufferKind::Video) {
+        const std::size_t needed =
+            minimumFrameBytes(format_.fourcc, format_.width, format_.height, format_.bytesPerLine);
+        if (b.bytesused == 0 || b.bytesused < needed)
+            return dropped(b.index, "short frame " + std::to_string(b.sequence) + ": " +
+                                        std::to_string(b.bytesused) + " of " + std::to_string(needed) +
+                                        " bytes");
+    }
     result.kind = DequeueResult::Kind::Buffer;
     result.buffer.index = b.index;
     result.buffer.bytes = mapping.bytes().first(b.bytesused);
@@ -337,7 +359,7 @@ DequeueResult V4l2Node::dequeue() {
 int V4l2Node::requeue(unsigned index) {
     if (index >= buffers_.size() || queued_[index])
         return -EINVAL;
-    v4l2_buffer b = captureBuffer(index);
+    v4l2_buffer b = mmapBuffer(index);
     if (const int r = ioctl(VIDIOC_QBUF, &b); r < 0)
         return r;
     queued_[index] = true;

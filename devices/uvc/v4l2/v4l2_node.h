@@ -8,6 +8,8 @@
 #include <string>
 #include <vector>
 
+struct v4l2_buffer; // <linux/videodev2.h>
+
 namespace dc::devices::v4l2 {
 
 struct V4l2Capability {
@@ -16,8 +18,9 @@ struct V4l2Capability {
     std::string busInfo;
     std::uint32_t deviceCaps = 0; // V4L2_CAP_* of this node (not of the whole device)
 
-    bool canCapture() const; // single-planar video capture
-    bool canStream() const;  // mmap streaming I/O
+    bool canCapture() const;         // single-planar video capture
+    bool canCaptureMetadata() const; // a metadata node (uvcvideo's second node per streaming interface)
+    bool canStream() const;          // mmap streaming I/O
 };
 
 struct V4l2Format {
@@ -61,15 +64,20 @@ struct DequeueResult {
     std::string message;
 };
 
-// One V4L2 video capture node (libcamera's V4L2VideoDevice, cut down to single-planar mmap capture). Every
-// call goes through the syscall funnel and returns 0 or -errno; describe() turns an error into a message
-// that names the node and the ioctl. The node never logs: the device that owns it decides what to say.
-// Not thread-safe; one thread drives a node.
+// What a node's buffers hold: video frames (V4L2_BUF_TYPE_VIDEO_CAPTURE) or a metadata node's blocks
+// (V4L2_BUF_TYPE_META_CAPTURE), which have no size of their own and may be empty.
+enum class BufferKind { Video, Metadata };
+
+// One V4L2 video capture node (libcamera's V4L2VideoDevice, cut down to single-planar mmap capture), or a
+// metadata capture node streamed the same way. Every call goes through the syscall funnel and returns 0
+// or -errno; describe() turns an error into a message that names the node and the ioctl. The node never
+// logs: the device that owns it decides what to say. Not thread-safe; one thread drives a node.
 class V4l2Node {
 public:
     static constexpr unsigned kBufferCount = 4;
 
-    explicit V4l2Node(Syscalls& sys = systemSyscalls()) : sys_(&sys) {}
+    explicit V4l2Node(Syscalls& sys = systemSyscalls(), BufferKind kind = BufferKind::Video)
+        : sys_(&sys), kind_(kind) {}
     ~V4l2Node() { close(); }
     V4l2Node(V4l2Node&&) noexcept = default;
     V4l2Node& operator=(V4l2Node&&) noexcept = default;
@@ -92,6 +100,9 @@ public:
     int getFormat(V4l2Format& format);
     // S_FMT: the driver may adjust the request; `format` returns what it chose.
     int setFormat(V4l2Format& format);
+    // S_FMT of a metadata node: its data format (V4L2_META_FMT_*); the driver's buffer size becomes
+    // format().sizeImage.
+    int setMetadataFormat(std::uint32_t dataFormat);
     int setFrameRate(double framesPerSecond);
     const V4l2Format& format() const { return format_; }
     // Subscribes to V4L2_EVENT_SOURCE_CHANGE (optional: many drivers have no events).
@@ -118,10 +129,13 @@ public:
 
 private:
     int ioctl(unsigned long request, void* arg) { return xioctl(*sys_, fd_.get(), request, arg); }
+    std::uint32_t bufferType() const;
+    v4l2_buffer mmapBuffer(unsigned index = 0) const;
     std::vector<double> frameRates(std::uint32_t fourcc, int width, int height);
     DequeueResult dropped(unsigned index, std::string message);
 
     Syscalls* sys_;
+    BufferKind kind_ = BufferKind::Video;
     base::UniqueFd fd_;
     std::string path_;
     V4l2Capability capability_;

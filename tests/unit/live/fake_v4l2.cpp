@@ -50,11 +50,20 @@ struct FakeV4l2::Node {
     bool eventPending = false;
     std::uint32_t sequence = 0;
 
+    bool metadata() const { return (spec.deviceCaps & V4L2_CAP_META_CAPTURE) != 0; }
+    std::uint32_t bufferType() const {
+        return metadata() ? V4L2_BUF_TYPE_META_CAPTURE : V4L2_BUF_TYPE_VIDEO_CAPTURE;
+    }
     std::uint32_t bytesPerLine() const { return static_cast<std::uint32_t>(width) * bytesPerPixel(fourcc); }
     std::uint32_t sizeImage() const {
+        if (metadata())
+            return spec.metaBufferSize;
         const std::uint32_t rows = fourcc == V4L2_PIX_FMT_NV12 ? static_cast<std::uint32_t>(height * 3 / 2)
                                                                : static_cast<std::uint32_t>(height);
         return bytesPerLine() * rows;
+    }
+    bool offersMetaFormat(std::uint32_t f) const {
+        return std::find(spec.metaFormats.begin(), spec.metaFormats.end(), f) != spec.metaFormats.end();
     }
     const FakeMode* mode(std::uint32_t f, int w, int h) const {
         for (const FakeMode& m : spec.modes)
@@ -63,6 +72,8 @@ struct FakeV4l2::Node {
         return nullptr;
     }
     std::vector<std::uint32_t> fourccs() const {
+        if (metadata())
+            return spec.metaFormats;
         std::vector<std::uint32_t> out;
         for (const FakeMode& m : spec.modes)
             if (std::find(out.begin(), out.end(), m.fourcc) == out.end())
@@ -77,6 +88,8 @@ void FakeV4l2::addNode(const std::string& path, FakeNodeSpec spec) {
     if (spec.deviceCaps == 0)
         spec.deviceCaps = V4L2_CAP_VIDEO_CAPTURE | V4L2_CAP_STREAMING;
     node->spec = std::move(spec);
+    if (node->metadata() && !node->spec.metaFormats.empty())
+        node->fourcc = node->spec.metaFormats[0];
     if (!node->spec.modes.empty()) {
         node->fourcc = node->spec.modes[0].fourcc;
         node->width = node->spec.modes[0].width;
@@ -150,6 +163,11 @@ bool FakeV4l2::streaming(const std::string& path) const {
     return nodes_.at(path)->streaming;
 }
 
+std::uint32_t FakeV4l2::currentFormat(const std::string& path) const {
+    std::lock_guard lock(mutex_);
+    return nodes_.at(path)->fourcc;
+}
+
 int FakeV4l2::ioctlCalls(unsigned long request) const {
     std::lock_guard lock(mutex_);
     const auto it = calls_.find(request);
@@ -192,7 +210,45 @@ int FakeV4l2::ioctl(int fd, unsigned long request, void* arg) {
     return nodeIoctl(*it->second, request, arg);
 }
 
+// What a driver checks first: the buffer type of a format, buffer or stream request is the node's.
+bool FakeV4l2::typeMatches(const Node& node, unsigned long request, void* arg) {
+    switch (request) {
+    case VIDIOC_ENUM_FMT:
+        return static_cast<v4l2_fmtdesc*>(arg)->type == node.bufferType();
+    case VIDIOC_G_FMT:
+    case VIDIOC_S_FMT:
+        return static_cast<v4l2_format*>(arg)->type == node.bufferType();
+    case VIDIOC_REQBUFS:
+        return static_cast<v4l2_requestbuffers*>(arg)->type == node.bufferType();
+    case VIDIOC_QUERYBUF:
+    case VIDIOC_QBUF:
+    case VIDIOC_DQBUF:
+        return static_cast<v4l2_buffer*>(arg)->type == node.bufferType();
+    case VIDIOC_STREAMON:
+    case VIDIOC_STREAMOFF:
+        return static_cast<std::uint32_t>(*static_cast<int*>(arg)) == node.bufferType();
+    default:
+        return true;
+    }
+}
+
+int FakeV4l2::metaFormatIoctl(Node& node, unsigned long request, v4l2_format& f) {
+    if (request == VIDIOC_S_FMT) {
+        if (node.streaming || !node.buffers.empty())
+            return -EBUSY;
+        if (node.offersMetaFormat(f.fmt.meta.dataformat)) // like uvcvideo: anything else keeps the current
+            node.fourcc = f.fmt.meta.dataformat;
+    }
+    f.fmt.meta.dataformat = node.fourcc;
+    f.fmt.meta.buffersize = node.sizeImage();
+    return 0;
+}
+
 int FakeV4l2::nodeIoctl(Node& node, unsigned long request, void* arg) {
+    if (!typeMatches(node, request, arg))
+        return -EINVAL;
+    if ((request == VIDIOC_G_FMT || request == VIDIOC_S_FMT) && node.metadata())
+        return metaFormatIoctl(node, request, *static_cast<v4l2_format*>(arg));
     switch (request) {
     case VIDIOC_QUERYCAP: {
         auto* cap = static_cast<v4l2_capability*>(arg);
@@ -312,7 +368,8 @@ int FakeV4l2::nodeIoctl(Node& node, unsigned long request, void* arg) {
         b->index = frame.index.value_or(index);
         b->bytesused = frame.bytesused.value_or(static_cast<std::uint32_t>(frame.bytes.size()));
         b->flags = frame.flags | V4L2_BUF_FLAG_TIMESTAMP_MONOTONIC;
-        b->sequence = node.sequence++;
+        b->sequence = frame.sequence.value_or(node.sequence);
+        node.sequence = b->sequence + 1;
         const std::int64_t ns = frame.timestampNs ? frame.timestampNs : base::monotonicNowNs();
         b->timestamp = {static_cast<time_t>(ns / 1'000'000'000),
                         static_cast<suseconds_t>(ns % 1'000'000'000 / 1000)};
@@ -416,6 +473,13 @@ int FakeV4l2::eventfd(unsigned initialValue, int) {
     const int fd = nextFd_++;
     eventFds_[fd] = initialValue;
     return fd;
+}
+
+FakeNodeSpec metadataNodeSpec(std::vector<std::uint32_t> formats) {
+    FakeNodeSpec spec;
+    spec.deviceCaps = V4L2_CAP_META_CAPTURE | V4L2_CAP_STREAMING;
+    spec.metaFormats = std::move(formats);
+    return spec;
 }
 
 std::vector<std::uint8_t> z16Bytes(const std::vector<std::uint16_t>& pixels) {

@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+struct v4l2_format; // <linux/videodev2.h>
+
 namespace dc::devices::v4l2::testing {
 
 struct FakeMode {
@@ -29,6 +31,7 @@ struct FakeFrame {
     std::uint32_t flags = 0;                  // e.g. V4L2_BUF_FLAG_ERROR
     std::optional<std::uint32_t> index{};     // a garbage index instead of the buffer actually used
     std::int64_t timestampNs = 0;             // 0: CLOCK_MONOTONIC now
+    std::optional<std::uint32_t> sequence{};  // default: the node's count of buffers so far
 };
 
 struct FakeNodeSpec {
@@ -38,7 +41,14 @@ struct FakeNodeSpec {
     std::uint32_t deviceCaps = 0; // 0: video capture + streaming
     std::vector<FakeMode> modes;
     bool events = true; // supports V4L2_EVENT_SOURCE_CHANGE
+    // A metadata node (deviceCaps with V4L2_CAP_META_CAPTURE): its V4L2_META_FMT_* data formats, the first
+    // the current one, and its buffers' size. Its buffer ioctls take V4L2_BUF_TYPE_META_CAPTURE only.
+    std::vector<std::uint32_t> metaFormats{};
+    std::uint32_t metaBufferSize = 4096;
 };
+
+// A uvcvideo metadata node offering `formats`, on the same bus as the fake's video nodes.
+FakeNodeSpec metadataNodeSpec(std::vector<std::uint32_t> formats);
 
 // A V4L2 driver in memory behind the syscall seam: enough of vb2's mmap streaming to run V4l2Node and
 // UvcDevice, plus what a kernel cannot be made to do on demand (EINTR storms, corrupt buffers, unplugs,
@@ -62,6 +72,7 @@ public:
     int mappings() const; // buffers mapped and not unmapped
     unsigned queued(const std::string& path) const;
     bool streaming(const std::string& path) const;
+    std::uint32_t currentFormat(const std::string& path) const; // the fourcc or metadata format set
     int ioctlCalls(unsigned long request) const;
 
     int open(const char* path, int flags) override;
@@ -78,6 +89,8 @@ public:
 
 private:
     int nodeIoctl(Node& node, unsigned long request, void* arg);
+    static bool typeMatches(const Node& node, unsigned long request, void* arg);
+    static int metaFormatIoctl(Node& node, unsigned long request, v4l2_format& f);
     short readiness(int fd) const;
 
     mutable std::mutex mutex_;
