@@ -36,6 +36,10 @@ std::optional<Probe> probeAt(const ProbeSource& source, int u, int v) {
         probe.frameSequence = source.frame->sequence;
         probe.driverSequence = source.frame->timing.depth.driverSequence;
         probe.exposureUs = source.frame->timing.depth.exposureUs;
+        const frame::CameraMetadata& camera = source.frame->timing.depthMetadata;
+        probe.cameraFrameCounter = camera.frameCounter;
+        probe.gain = camera.gain;
+        probe.laserPowerMw = camera.laserPowerMw;
     }
     if (probe.depthMeters > 0.0f && source.intrinsics.valid())
         probe.point = processing::unproject(u, v, probe.depthMeters, source.intrinsics);
@@ -85,11 +89,25 @@ std::string frameReadout(const Probe& p) {
     return text;
 }
 
+std::string cameraReadout(const Probe& p) {
+    std::string text;
+    const auto part = [&text](const char* name, const std::optional<std::uint32_t>& value, const char* unit) {
+        if (value)
+            text += (text.empty() ? "" : ", ") + std::string(name) + std::to_string(*value) + unit;
+    };
+    part("camera frame ", p.cameraFrameCounter, "");
+    part("gain ", p.gain, "");
+    part("laser ", p.laserPowerMw, " mW");
+    return text;
+}
+
 void showProbeTooltip(const Probe& p) {
     ImGui::BeginTooltip();
     ImGui::Text("pixel %d, %d", p.u, p.v);
     if (const std::string frame = frameReadout(p); !frame.empty())
         ImGui::TextUnformatted(frame.c_str());
+    if (const std::string camera = cameraReadout(p); !camera.empty())
+        ImGui::TextUnformatted(camera.c_str());
     ImGui::Text("depth %s", formatDepth(p.depthMeters).c_str());
     ImGui::Text("confidence %s", p.confidence ? confidenceName(*p.confidence) : "none (source has none)");
     if (p.depthMeters > 0.0f)

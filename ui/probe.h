@@ -27,6 +27,10 @@ struct Probe {
     std::optional<std::uint64_t> frameSequence;
     std::optional<std::uint32_t> driverSequence;
     std::optional<std::uint32_t> exposureUs; // the depth frame's, where its metadata says it
+    // What the depth camera's metadata node said about the frame (frame::CameraMetadata), where it did.
+    std::optional<std::uint32_t> cameraFrameCounter;
+    std::optional<std::uint32_t> gain;
+    std::optional<std::uint32_t> laserPowerMw;
 };
 
 // The depth the panels show, with the intrinsics that place it.
@@ -58,6 +62,9 @@ inline constexpr const char* kNotSeenByColour = "not seen by the colour camera";
 // The readout's line naming the frame sampled: "frame 42, seq 1234, exposure 8500 µs", each part only where
 // known; empty without a frame.
 std::string frameReadout(const Probe& probe);
+// The readout's line with the camera's own account of the frame: "camera frame 4242, gain 16, laser 150 mW",
+// each part only where known; empty when the camera said none of them.
+std::string cameraReadout(const Probe& probe);
 
 // The readout as a tooltip next to the mouse.
 void showProbeTooltip(const Probe& probe);

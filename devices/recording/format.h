@@ -17,7 +17,7 @@ namespace dc::devices::recording {
 // by the magic check instead of surfacing as a checksum error somewhere in the middle.
 inline constexpr std::array<std::uint8_t, 8> kFileMagic{'D', 'C', 'R', 'E', 'C', 0x0D, 0x0A, 0x1A};
 inline constexpr std::uint16_t kVersionMajor = 1; // a reader refuses files with a larger major
-inline constexpr std::uint16_t kVersionMinor = 4; // additions a version-1 reader may skip
+inline constexpr std::uint16_t kVersionMinor = 5; // additions a version-1 reader may skip
 inline constexpr std::size_t kFileHeaderSize = 32;
 inline constexpr std::size_t kChunkHeaderSize = 40;
 inline constexpr std::size_t kTrailerSize = 24;

@@ -24,7 +24,8 @@ enum class Section : std::uint8_t {
     Color = 6,
     Rig = 7,      // format 1.1: a two-sensor camera's calibration
     Infrared = 8, // format 1.2: the depth sensor's infrared image
-    Timing = 9,   // format 1.3: what the drivers said about the capture (frame::FrameTiming); 1.4: exposure
+    Timing = 9,   // format 1.3: what the drivers said about the capture (frame::FrameTiming); 1.4: exposure;
+                  // 1.5: the depth stream's camera metadata
 };
 enum class Codec : std::uint8_t { Raw = 0, Zstd = 1 };
 // Layouts of a section's raw bytes.
@@ -42,6 +43,14 @@ constexpr std::uint8_t kTimingMonotonic = 2;
 // Format 1.4: which streams' exposures follow the colour stream.
 constexpr std::uint8_t kTimingDepthExposure = 1;
 constexpr std::uint8_t kTimingColourExposure = 2;
+// Format 1.5: which of the depth stream's frame::CameraMetadata fields follow the exposures, each in this
+// order: u32 frame counter, u32 gain, u32 laser power, u32 PTS, u32 SCR, u16 SCR USB frame.
+constexpr std::uint8_t kMetadataFrameCounter = 1;
+constexpr std::uint8_t kMetadataGain = 2;
+constexpr std::uint8_t kMetadataLaserPower = 4;
+constexpr std::uint8_t kMetadataPts = 8;
+constexpr std::uint8_t kMetadataScr = 16;
+constexpr std::uint8_t kMetadataScrUsbFrame = 32;
 
 // Metres per unit that importers use: millimetres (Stray, PNG16) and TUM's 1/5000 m.
 constexpr double kKnownScales[] = {0.001, 0.0002};
@@ -295,11 +304,19 @@ std::vector<std::uint8_t> rigBytes(const frame::RigCalibration& rig) {
     return bytes;
 }
 
+std::uint8_t metadataBits(const frame::CameraMetadata& m) {
+    return static_cast<std::uint8_t>(
+        (m.frameCounter ? kMetadataFrameCounter : 0) | (m.gain ? kMetadataGain : 0) |
+        (m.laserPowerMw ? kMetadataLaserPower : 0) | (m.ptsTicks ? kMetadataPts : 0) |
+        (m.scrTicks ? kMetadataScr : 0) | (m.scrUsbFrame ? kMetadataScrUsbFrame : 0));
+}
+
 // Sources that say nothing about timing (synthetic scenes, importers) get no section: their recordings
 // stay as small as before and read back with the defaults.
 bool hasTiming(const frame::FrameTiming& t) {
     return t.colour || t.depth.driverSequence || t.depth.sensorNs != 0 ||
-           t.depth.source != frame::TimestampSource::Unknown || t.depth.monotonic || t.depth.exposureUs;
+           t.depth.source != frame::TimestampSource::Unknown || t.depth.monotonic || t.depth.exposureUs ||
+           metadataBits(t.depthMetadata) != 0;
 }
 
 void putStreamTiming(ByteWriter& w, const frame::StreamTiming& t) {
@@ -317,15 +334,28 @@ std::vector<std::uint8_t> timingBytes(const frame::FrameTiming& timing) {
     w.put(static_cast<std::uint8_t>(timing.colour.has_value()));
     if (timing.colour)
         putStreamTiming(w, *timing.colour);
-    // Format 1.4's exposures, only where a stream has one: a 1.3 reader skips them, and a frame without
-    // any is stored as 1.3 stored it.
+    // Format 1.4's exposures, only where a stream has one (or camera metadata follows): a 1.3 reader skips
+    // them, and a frame without any is stored as 1.3 stored it.
     const std::optional<std::uint32_t> colour = timing.colour ? timing.colour->exposureUs : std::nullopt;
-    if (timing.depth.exposureUs || colour) {
+    const std::uint8_t metadata = metadataBits(timing.depthMetadata);
+    if (timing.depth.exposureUs || colour || metadata != 0) {
         w.put(static_cast<std::uint8_t>((timing.depth.exposureUs ? kTimingDepthExposure : 0) |
                                         (colour ? kTimingColourExposure : 0)));
         for (const std::optional<std::uint32_t>& exposure : {timing.depth.exposureUs, colour})
             if (exposure)
                 w.put(*exposure);
+    }
+    // Format 1.5's camera metadata, only where the depth stream has some: the exposures' flags byte (0 when
+    // there are none) comes first, so a 1.4 reader reads what it knows and skips these.
+    if (metadata != 0) {
+        const frame::CameraMetadata& m = timing.depthMetadata;
+        w.put(metadata);
+        for (const std::optional<std::uint32_t>& field :
+             {m.frameCounter, m.gain, m.laserPowerMw, m.ptsTicks, m.scrTicks})
+            if (field)
+                w.put(*field);
+        if (m.scrUsbFrame)
+            w.put(*m.scrUsbFrame);
     }
     return bytes;
 }
@@ -495,9 +525,30 @@ frame::StreamTiming getStreamTiming(ByteReader& r) {
     return t;
 }
 
+std::optional<std::uint32_t> getIf(ByteReader& r, std::uint8_t flags, std::uint8_t flag) {
+    if (!(flags & flag))
+        return std::nullopt;
+    return r.get<std::uint32_t>();
+}
+
+// Bits a newer minor version defines name fields written after these: skipped with the rest.
+frame::CameraMetadata getCameraMetadata(ByteReader& r) {
+    frame::CameraMetadata m;
+    const auto fields = r.get<std::uint8_t>();
+    m.frameCounter = getIf(r, fields, kMetadataFrameCounter);
+    m.gain = getIf(r, fields, kMetadataGain);
+    m.laserPowerMw = getIf(r, fields, kMetadataLaserPower);
+    m.ptsTicks = getIf(r, fields, kMetadataPts);
+    m.scrTicks = getIf(r, fields, kMetadataScr);
+    if (fields & kMetadataScrUsbFrame)
+        m.scrUsbFrame = r.get<std::uint16_t>();
+    return m;
+}
+
 } // namespace
 
-// Bytes after the 1.4 exposures are fields a newer minor version added: skipped, as in the meta section.
+// Bytes after the 1.5 camera metadata are fields a newer minor version added: skipped, as in the meta
+// section.
 Status FrameDecoder::Impl::decodeTiming(ByteReader r, frame::Frame& frame) {
     frame::FrameTiming timing;
     timing.depth = getStreamTiming(r);
@@ -505,11 +556,14 @@ Status FrameDecoder::Impl::decodeTiming(ByteReader r, frame::Frame& frame) {
         timing.colour = getStreamTiming(r);
     if (r.ok() && r.remaining() > 0) {
         const auto exposures = r.get<std::uint8_t>();
-        if (exposures & kTimingDepthExposure)
-            timing.depth.exposureUs = r.get<std::uint32_t>();
-        if ((exposures & kTimingColourExposure) && timing.colour)
-            timing.colour->exposureUs = r.get<std::uint32_t>();
+        timing.depth.exposureUs = getIf(r, exposures, kTimingDepthExposure);
+        // Read even without a colour stream, as the layout says, so the fields after it stay in place.
+        const std::optional<std::uint32_t> colour = getIf(r, exposures, kTimingColourExposure);
+        if (timing.colour)
+            timing.colour->exposureUs = colour;
     }
+    if (r.ok() && r.remaining() > 0)
+        timing.depthMetadata = getCameraMetadata(r);
     if (!r.ok())
         return error("frame timing ends early", r.offset());
     frame.timing = timing;

@@ -627,6 +627,154 @@ TEST(RecordingFormat, ExposuresRoundTripAndAFrameWithoutOneIsStoredAs13StoredIt)
     EXPECT_FALSE(decoded->timing.depth.exposureUs);
 }
 
+// The timing section's bytes in a payload of meta and timing only (synthetic frames carry no rig).
+std::vector<std::uint8_t> timingSection(const std::vector<std::uint8_t>& payload) {
+    std::uint64_t metaSize = 0;
+    std::memcpy(&metaSize, payload.data() + 28, 8);
+    const std::size_t at = 36 + metaSize;
+    EXPECT_EQ(payload[at], 9) << "the timing section follows the meta section";
+    std::uint64_t size = 0;
+    std::memcpy(&size, payload.data() + at + 28, 8);
+    return {payload.begin() + static_cast<std::ptrdiff_t>(at + 36),
+            payload.begin() + static_cast<std::ptrdiff_t>(at + 36 + size)};
+}
+
+// What a 1.4 reader takes from a timing section, in 1.4's layout (docs/recording-format.md): both streams
+// and the exposures; the bytes it leaves are counted in `unread`.
+struct Timing14 {
+    std::uint32_t depthSequence = 0;
+    std::int64_t depthSensorNs = 0;
+    std::optional<std::uint32_t> depthExposureUs;
+    std::size_t unread = 0;
+};
+
+Timing14 readAs14(const std::vector<std::uint8_t>& t) {
+    Timing14 out;
+    std::size_t at = 0;
+    const auto take = [&](auto& value) {
+        if (at + sizeof value > t.size())
+            throw std::out_of_range("the 1.4 fields run past the section");
+        std::memcpy(&value, t.data() + at, sizeof value);
+        at += sizeof value;
+    };
+    const auto stream = [&](std::uint32_t& sequence, std::int64_t& sensorNs) {
+        std::uint8_t flags = 0, source = 0;
+        take(flags);
+        take(sequence);
+        take(sensorNs);
+        take(source);
+    };
+    std::uint32_t sequence = 0;
+    std::int64_t sensorNs = 0;
+    stream(out.depthSequence, out.depthSensorNs);
+    std::uint8_t hasColour = 0;
+    take(hasColour);
+    if (hasColour)
+        stream(sequence, sensorNs);
+    if (at < t.size()) {
+        std::uint8_t exposures = 0;
+        take(exposures);
+        std::uint32_t exposure = 0;
+        if (exposures & 1) {
+            take(exposure);
+            out.depthExposureUs = exposure;
+        }
+        if (exposures & 2)
+            take(exposure);
+    }
+    out.unread = t.size() - at;
+    return out;
+}
+
+// Format 1.5: the depth stream's camera metadata (frame counter, gain, laser power, PTS, SCR and its USB
+// frame) comes back exactly, each field only where the camera gave it; a frame without any is stored as 1.4
+// stored it, and one with some but no exposure writes the exposures' flags byte (0) first.
+TEST(RecordingFormat, CameraMetadataRoundTripsAndAFrameWithoutItIsStoredAs14StoredIt) {
+    frame::Frame f = *test::withTiming(test::syntheticFrames(1)).front();
+    ASSERT_FALSE(f.timing.depthMetadata.frameCounter || f.timing.depthMetadata.scrUsbFrame);
+    f.timing.depth.exposureUs = 8500;
+    const auto without = FrameEncoder().encode(f);
+    ASSERT_TRUE(without);
+    EXPECT_EQ(timingSection(*without).size(), 14u + 1u + 14u + 5u) << "1.4's section: streams, exposure";
+
+    f.timing.depthMetadata = test::fullCameraMetadata(0);
+    const auto with = FrameEncoder().encode(f);
+    ASSERT_TRUE(with);
+    const auto withTiming = timingSection(*with);
+    const auto withoutTiming = timingSection(*without);
+    ASSERT_EQ(withTiming.size(), withoutTiming.size() + 1 + 5 * 4 + 2) << "field bits, five u32, one u16";
+    EXPECT_TRUE(std::equal(withoutTiming.begin(), withoutTiming.end(), withTiming.begin()))
+        << "1.4's bytes come first, unchanged";
+    EXPECT_EQ(withTiming[withoutTiming.size()], 0x3f) << "every field present";
+    auto decoded = FrameDecoder().decode(*with, 0, "mem", 0);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    test::expectSameTiming(decoded->timing, f.timing);
+
+    // Some fields only, and no exposure for either stream.
+    f.timing.depth.exposureUs.reset();
+    f.timing.depthMetadata = {};
+    f.timing.depthMetadata.gain = 0; // known to be zero is not unknown
+    f.timing.depthMetadata.scrUsbFrame = 0x7ff;
+    const auto some = FrameEncoder().encode(f);
+    ASSERT_TRUE(some);
+    const auto someTiming = timingSection(*some);
+    ASSERT_EQ(someTiming.size(), withoutTiming.size() - 4 + 1 + 4 + 2);
+    EXPECT_EQ(someTiming[withoutTiming.size() - 4 - 1], 0) << "no exposures, their flags byte still there";
+    decoded = FrameDecoder().decode(*some, 0, "mem", 0);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    test::expectSameTiming(decoded->timing, f.timing);
+    EXPECT_EQ(decoded->timing.depthMetadata.gain, 0u);
+    EXPECT_FALSE(decoded->timing.depthMetadata.frameCounter);
+}
+
+// A 1.4 reader reads a 1.5 timing section's streams and exposures where they always were and leaves the
+// metadata as trailing bytes, which it skips; this reader likewise skips fields a later version appends.
+// A section cut inside the metadata is an error naming it; cut before it, a frame without metadata.
+TEST(RecordingFormat, OlderReadersSkipTheCameraMetadataAndACutOneIsAnError) {
+    frame::Frame f = *test::withTiming(test::syntheticFrames(1)).front();
+    f.timing.depth.exposureUs = 8500;
+    f.timing.depthMetadata = test::fullCameraMetadata(3);
+    frame::Frame bare;
+    bare.timing = f.timing;
+    const auto payload = FrameEncoder().encode(bare);
+    ASSERT_TRUE(payload);
+    const auto timing = timingSection(*payload);
+    const Timing14 as14 = readAs14(timing);
+    EXPECT_EQ(as14.depthSequence, *f.timing.depth.driverSequence);
+    EXPECT_EQ(as14.depthSensorNs, f.timing.depth.sensorNs);
+    EXPECT_EQ(as14.depthExposureUs, 8500u);
+    EXPECT_EQ(as14.unread, 1u + 5 * 4 + 2) << "what a 1.4 reader skips is the metadata, all of it";
+
+    // A later version's field after the metadata, flagged with a bit this build does not know.
+    const std::size_t sizeAt = payload->size() - timing.size() - 8;
+    const auto withSize = [&](std::vector<std::uint8_t> p, std::uint64_t size) {
+        std::memcpy(p.data() + sizeAt, &size, 8);
+        return p;
+    };
+    auto newer = *payload;
+    newer[payload->size() - as14.unread] |= 0x40;
+    newer.insert(newer.end(), {1, 2, 3, 4, 5, 6, 7});
+    auto decoded = FrameDecoder().decode(withSize(newer, timing.size() + 7), 0, "mem", 0);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    test::expectSameTiming(decoded->timing, f.timing);
+
+    for (std::size_t cut = 1; cut < as14.unread; ++cut) {
+        auto shorter = *payload;
+        shorter.resize(payload->size() - cut);
+        auto cutShort = FrameDecoder().decode(withSize(shorter, timing.size() - cut), 0, "mem", 0);
+        ASSERT_FALSE(cutShort) << cut;
+        EXPECT_NE(cutShort.error().message.find("frame timing ends early"), std::string::npos)
+            << cutShort.error().message;
+    }
+    auto shorter = *payload;
+    shorter.resize(payload->size() - as14.unread);
+    decoded = FrameDecoder().decode(withSize(shorter, timing.size() - as14.unread), 0, "mem", 0);
+    ASSERT_TRUE(decoded) << decoded.error().message;
+    frame::FrameTiming expected = f.timing;
+    expected.depthMetadata = {};
+    test::expectSameTiming(decoded->timing, expected);
+}
+
 // Format 1.2 had no timing section; such a file (what the 1.2 writer made of these frames, byte for byte)
 // still opens, and its frames carry the defaults: nothing known.
 TEST(RecordingFormat, AFormat12FileWithoutTimingStillReads) {

@@ -47,6 +47,15 @@ std::vector<frame::FramePtr> syntheticFrames(int count, int width, int height,
     return frames;
 }
 
+frame::CameraMetadata fullCameraMetadata(std::uint32_t n) {
+    return {.frameCounter = 4242 + n,
+            .gain = 16 + n,
+            .laserPowerMw = 150,
+            .ptsTicks = 0x89ab'cdefu + n,
+            .scrTicks = 0xfedc'ba98u,
+            .scrUsbFrame = static_cast<std::uint16_t>(0x7ff - n)};
+}
+
 std::vector<frame::FramePtr> withTiming(const std::vector<frame::FramePtr>& frames) {
     std::vector<frame::FramePtr> timed;
     for (std::size_t i = 0; i < frames.size(); ++i) {
@@ -63,6 +72,12 @@ std::vector<frame::FramePtr> withTiming(const std::vector<frame::FramePtr>& fram
                                                    .source = frame::TimestampSource::EndOfFrame,
                                                    .monotonic = false,
                                                    .exposureUs = std::nullopt};
+        if (i % 2 == 1)
+            f->timing.depthMetadata = fullCameraMetadata(n);
+        else if (i == 2) {
+            f->timing.depthMetadata.frameCounter = 4242 + n;
+            f->timing.depthMetadata.scrUsbFrame = 0x7ff;
+        }
         timed.push_back(std::move(f));
     }
     return timed;
@@ -77,6 +92,12 @@ void expectSameTiming(const frame::FrameTiming& a, const frame::FrameTiming& b) 
         EXPECT_EQ(x.exposureUs, y.exposureUs);
     };
     same(a.depth, b.depth);
+    EXPECT_EQ(a.depthMetadata.frameCounter, b.depthMetadata.frameCounter);
+    EXPECT_EQ(a.depthMetadata.gain, b.depthMetadata.gain);
+    EXPECT_EQ(a.depthMetadata.laserPowerMw, b.depthMetadata.laserPowerMw);
+    EXPECT_EQ(a.depthMetadata.ptsTicks, b.depthMetadata.ptsTicks);
+    EXPECT_EQ(a.depthMetadata.scrTicks, b.depthMetadata.scrTicks);
+    EXPECT_EQ(a.depthMetadata.scrUsbFrame, b.depthMetadata.scrUsbFrame);
     ASSERT_EQ(a.colour.has_value(), b.colour.has_value());
     if (a.colour)
         same(*a.colour, *b.colour);

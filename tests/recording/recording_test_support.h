@@ -29,8 +29,11 @@ private:
 std::vector<frame::FramePtr> syntheticFrames(int count, int width = 32, int height = 24,
                                              std::int64_t firstTimestampNs = 1'000'000'000);
 
+// Every camera metadata field, distinct per `n`, the SCR's USB frame at its 11-bit limit for n = 0.
+frame::CameraMetadata fullCameraMetadata(std::uint32_t n);
 // The frames again, each with driver timing as a UVC camera reports it: depth sequence numbers that wrap
-// past 2^32 and skip one, sensor stamps, and on even frames a colour stream with a source of its own.
+// past 2^32 and skip one, sensor stamps, on even frames a colour stream with a source of its own, and
+// camera metadata on odd frames (every field) and on frame 2 (the frame counter and SCR USB frame only).
 std::vector<frame::FramePtr> withTiming(const std::vector<frame::FramePtr>& frames);
 // Every field of the two timings is equal (a default FrameTiming when nothing was recorded).
 void expectSameTiming(const frame::FrameTiming& a, const frame::FrameTiming& b);

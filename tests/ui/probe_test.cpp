@@ -64,6 +64,39 @@ TEST(Probe, TheReadoutShowsTheSequenceAndExposureOnlyWhereTheFrameCarriesThem) {
     EXPECT_EQ(frameReadout(*probeAt(noFrame, 1, 1)), "") << "nothing names a frame it was not given";
 }
 
+// The camera's own account of the frame from its metadata node (its frame counter, gain and laser power),
+// each only where it gave it: none of them, no line.
+TEST(Probe, TheReadoutShowsTheCamerasFrameCounterGainAndLaserPowerOnlyWhereKnown) {
+    auto f = std::make_shared<frame::Frame>();
+    f->sequence = 42;
+    f->sceneDepth = frame::DepthData{frame::Plane<float>(4, 2, 1.5f), {}};
+    const ProbeSource source{&*f->sceneDepth, {100.0, 100.0, 2.0, 1.0, 4, 2}, nullptr, f.get()};
+    f->timing.depthMetadata.ptsTicks = 123456u; // clocks are not part of the readout
+    EXPECT_EQ(cameraReadout(*probeAt(source, 1, 1)), "") << "a camera that said none of them";
+
+    f->timing.depthMetadata.frameCounter = 4242u;
+    f->timing.depthMetadata.gain = 16u;
+    f->timing.depthMetadata.laserPowerMw = 150u;
+    const Probe all = *probeAt(source, 1, 1);
+    EXPECT_EQ(all.cameraFrameCounter, 4242u);
+    EXPECT_EQ(all.gain, 16u);
+    EXPECT_EQ(all.laserPowerMw, 150u);
+    EXPECT_EQ(cameraReadout(all), "camera frame 4242, gain 16, laser 150 mW");
+    EXPECT_EQ(frameReadout(all), "frame 42") << "the driver's line is unchanged";
+
+    f->timing.depthMetadata.frameCounter.reset();
+    f->timing.depthMetadata.laserPowerMw = 0u;
+    EXPECT_EQ(cameraReadout(*probeAt(source, 1, 1)), "gain 16, laser 0 mW") << "a laser that is off says 0";
+
+    f->timing.depthMetadata.gain.reset();
+    f->timing.depthMetadata.laserPowerMw.reset();
+    f->timing.depthMetadata.frameCounter = 7u;
+    EXPECT_EQ(cameraReadout(*probeAt(source, 1, 1)), "camera frame 7");
+
+    const ProbeSource noFrame{&*f->sceneDepth, {100.0, 100.0, 2.0, 1.0, 4, 2}, nullptr};
+    EXPECT_EQ(cameraReadout(*probeAt(noFrame, 1, 1)), "") << "nothing from a frame it was not given";
+}
+
 // Points the GPU coloured come with no seen mask: the probe asks the frame's rig about the one sample.
 TEST(Probe, WithoutAMaskTheRigDecidesForTheProbedSample) {
     devices::SyntheticDevice device(dc::test::smallRigConfig());
