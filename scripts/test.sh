@@ -55,10 +55,11 @@ stage_done "ASan + UBSan build"
 ASAN_OPTIONS=detect_leaks=1 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^unit$'
 ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^gl$'
 # The ui tier and the sanitized depthcloud itself, end to end (headless and in a window under Xvfb: source,
-# engine, presenter, GL, input and the files it writes). Two app tests are left to the tiers above: they
-# repeat what others here cover, at ten times the frames (a 300-frame run on the splat path, a benchmark).
+# engine, presenter, GL, input and the files it writes). Three app tests are left to the tiers above: they
+# repeat what others here cover, at ten times the frames (a 300-frame run on the splat path, two benchmarks;
+# SourcesPanelTest covers two cameras accumulating).
 ASAN_OPTIONS=detect_leaks=0 ctest --test-dir build-asan --output-on-failure -j"$jobs" -L '^(ui|app)$' \
-    -E '^(MonkeyTest\.|AppWindow\.SoftwareGlDrawsA640x480CameraOnTheSplatPath|Cli\.BenchReplayRunsOnSynthetic)'
+    -E '^(MonkeyTest\.|AppWindow\.SoftwareGlDrawsA640x480CameraOnTheSplatPath|Cli\.BenchReplayRunsOnSynthetic|BenchCamera\.ThePairAccumulating)'
 # The UI monkey: the seeds that found crashes, then a fresh seed for a minute (its seed is printed first).
 echo "test.sh: the UI monkey under ASan + UBSan"
 (cd build-asan && ASAN_OPTIONS=detect_leaks=0 DC_MONKEY_SECONDS=60 ./tests/ui/test_ui --gtest_filter='MonkeyTest.*')

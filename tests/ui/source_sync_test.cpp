@@ -79,14 +79,6 @@ std::optional<double> placeOf(const std::vector<std::int64_t>& stamps, std::int6
     return index / static_cast<double>(stamps.size() - 1);
 }
 
-std::size_t nearest(const std::vector<std::int64_t>& stamps, std::int64_t t) {
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < stamps.size(); ++i)
-        if (std::llabs(stamps[i] - t) < std::llabs(stamps[best] - t))
-            best = i;
-    return best;
-}
-
 TEST_F(SourceSyncTest, TheTimelinePlacesAFurtherReplaysFramesByTheCommonClockAndMarksTheOneItShows) {
     const std::string a = record("a.dcrec", 20);
     // Recorded after A: the two share no instant, so they follow each other from their first frames.

@@ -7,6 +7,7 @@
 #include "devices/recording/recording_reader.h"
 #include "ui_fixture.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -24,6 +25,15 @@ inline std::size_t pixelsOf(const render::RenderTarget& target, std::uint8_t r, 
     for (std::size_t i = 0; i + 3 < rgba.size(); i += 4)
         n += rgba[i] == r && rgba[i + 1] == g && rgba[i + 2] == b;
     return n;
+}
+
+// The index in `stamps` nearest `t`, worked out here from the recordings' own stamps.
+inline std::size_t nearest(const std::vector<std::int64_t>& stamps, std::int64_t t) {
+    std::size_t best = 0;
+    for (std::size_t i = 1; i < stamps.size(); ++i)
+        if (std::llabs(stamps[i] - t) < std::llabs(stamps[best] - t))
+            best = i;
+    return best;
 }
 
 class SourcesTest : public UiTest {

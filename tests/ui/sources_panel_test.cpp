@@ -36,15 +36,6 @@ protected:
     }
 };
 
-// The index in `stamps` nearest `t`, worked out here from the recordings' own stamps.
-std::size_t nearest(const std::vector<std::int64_t>& stamps, std::int64_t t) {
-    std::size_t best = 0;
-    for (std::size_t i = 1; i < stamps.size(); ++i)
-        if (std::llabs(stamps[i] - t) < std::llabs(stamps[best] - t))
-            best = i;
-    return best;
-}
-
 TEST_F(SourcesPanelTest, ReplaysWithOffsetClocksStepTogetherByStamp) {
     const std::string a = record("a.dcrec", 20);
     // Recorded after A: its clock is offset from A's by A's whole span and more, so the two share no instant

@@ -17,7 +17,7 @@
 #include <mutex>
 #include <unistd.h>
 
-namespace dc::devices {
+namespace dc::devices::metadata_stream_test {
 namespace {
 
 namespace fs = std::filesystem;
@@ -384,4 +384,4 @@ TEST(MetadataWindow, MatchesBySequenceAcrossTheWrapAndDropsWhatIsStale) {
 }
 
 } // namespace
-} // namespace dc::devices
+} // namespace dc::devices::metadata_stream_test
