@@ -80,14 +80,12 @@ std::optional<double> placeOf(const std::vector<std::int64_t>& stamps, std::int6
 }
 
 TEST_F(SourceSyncTest, TheTimelinePlacesAFurtherReplaysFramesByTheCommonClockAndMarksTheOneItShows) {
-    const std::string a = record("a.dcrec", 20);
-    // Recorded after A: the two share no instant, so they follow each other from their first frames.
-    const std::string b = record("b.dcrec", 30);
-    const auto stampsA = stampsOf(a);
-    const auto stampsB = stampsOf(b);
-    ASSERT_GE(stampsA.size(), 20u);
-    ASSERT_GE(stampsB.size(), 30u);
-    ASSERT_GT(stampsB.front(), stampsA.back());
+    const OffsetPair pair = recordOffsetPair();
+    ASSERT_FALSE(HasFailure());
+    const std::string& a = pair.a;
+    const std::string& b = pair.b;
+    const std::vector<std::int64_t>& stampsA = pair.stampsA;
+    const std::vector<std::int64_t>& stampsB = pair.stampsB;
     ASSERT_TRUE(viewer_->openSource("replay:" + a + ":paused").ok());
     const float alone = stripHeight();
     ASSERT_GT(alone, 0.0f) << "the timeline is shown";

@@ -71,6 +71,24 @@ protected:
         return stamps;
     }
 
+    // Two recordings of the running synthetic source, B made after A (20 and 30 frames): B's clock is offset
+    // from A's by A's whole span and more, so the two share no instant. With each one's stamps.
+    struct OffsetPair {
+        std::string a, b;
+        std::vector<std::int64_t> stampsA, stampsB;
+    };
+    OffsetPair recordOffsetPair() {
+        OffsetPair p;
+        p.a = record("a.dcrec", 20);
+        p.b = record("b.dcrec", 30);
+        p.stampsA = stampsOf(p.a);
+        p.stampsB = stampsOf(p.b);
+        EXPECT_GE(p.stampsA.size(), 20u);
+        EXPECT_GE(p.stampsB.size(), 30u);
+        EXPECT_TRUE(!p.stampsA.empty() && !p.stampsB.empty() && p.stampsB.front() > p.stampsA.back());
+        return p;
+    }
+
     // `main` ("synthetic:WxH...") opened, the same camera beside it added, tinted green, the view still;
     // null (with a failure) when either cannot open.
     Companion* openGreenPair(const std::string& main) {

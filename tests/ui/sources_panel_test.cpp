@@ -37,15 +37,12 @@ protected:
 };
 
 TEST_F(SourcesPanelTest, ReplaysWithOffsetClocksStepTogetherByStamp) {
-    const std::string a = record("a.dcrec", 20);
-    // Recorded after A: its clock is offset from A's by A's whole span and more, so the two share no instant
-    // and follow each other from their first frames.
-    const std::string b = record("b.dcrec", 30);
-    const auto stampsA = stampsOf(a);
-    const auto stampsB = stampsOf(b);
-    ASSERT_GE(stampsA.size(), 20u);
-    ASSERT_GE(stampsB.size(), 30u);
-    ASSERT_GT(stampsB.front(), stampsA.back());
+    const OffsetPair pair = recordOffsetPair();
+    ASSERT_FALSE(HasFailure());
+    const std::string& a = pair.a;
+    const std::string& b = pair.b;
+    const std::vector<std::int64_t>& stampsA = pair.stampsA;
+    const std::vector<std::int64_t>& stampsB = pair.stampsB;
     ASSERT_TRUE(viewer_->openSource("replay:" + a + ":paused").ok());
     ASSERT_TRUE(viewer_->addSource("replay:" + b + ":paused").ok());
     for (const std::size_t target : {std::size_t{13}, std::size_t{2}, std::size_t{19}, std::size_t{7}}) {

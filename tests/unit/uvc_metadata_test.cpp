@@ -2,6 +2,7 @@
 // lays them out: every field parses to its value, and a cut or inconsistent buffer is an error.
 
 #include "devices/uvc/v4l2/uvc_metadata.h"
+#include "tests/unit/metadata_bytes.h"
 
 #include <gtest/gtest.h>
 
@@ -12,27 +13,7 @@
 namespace dc::devices::v4l2 {
 namespace {
 
-// Little-endian fields appended one byte at a time, so the test does not share the parser's idea of the
-// layout.
-struct MetadataBytes {
-    std::vector<std::uint8_t> bytes;
-
-    MetadataBytes& u8(std::uint64_t v) { return little(v, 1); }
-    MetadataBytes& u16(std::uint64_t v) { return little(v, 2); }
-    MetadataBytes& u32(std::uint64_t v) { return little(v, 4); }
-    MetadataBytes& u64(std::uint64_t v) { return little(v, 8); }
-    MetadataBytes& append(const std::vector<std::uint8_t>& more) {
-        bytes.insert(bytes.end(), more.begin(), more.end());
-        return *this;
-    }
-
-private:
-    MetadataBytes& little(std::uint64_t v, int count) {
-        for (int i = 0; i < count; ++i)
-            bytes.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-        return *this;
-    }
-};
+using dc::test::MetadataBytes;
 
 constexpr std::uint64_t kArrivalNs = 0x0123'4567'89ab'cdefull;
 constexpr std::uint8_t kEndOfHeader = 0x80;

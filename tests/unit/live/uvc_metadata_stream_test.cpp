@@ -8,6 +8,7 @@
 #include "devices/uvc/metadata_stream.h"
 #include "devices/uvc/uvc_device.h"
 #include "tests/unit/live/fake_v4l2.h"
+#include "tests/unit/metadata_bytes.h"
 
 #include <gtest/gtest.h>
 #include <linux/videodev2.h>
@@ -36,26 +37,7 @@ constexpr std::uint32_t kPts = 123456;
 constexpr std::uint32_t kScr = 123999;
 constexpr std::uint16_t kSofToken = 0x0123;
 
-// Little-endian fields appended one byte at a time, as uvcvideo lays out a metadata buffer.
-struct MetadataBytes {
-    std::vector<std::uint8_t> bytes;
-
-    MetadataBytes& u8(std::uint64_t v) { return little(v, 1); }
-    MetadataBytes& u16(std::uint64_t v) { return little(v, 2); }
-    MetadataBytes& u32(std::uint64_t v) { return little(v, 4); }
-    MetadataBytes& u64(std::uint64_t v) { return little(v, 8); }
-    MetadataBytes& append(const std::vector<std::uint8_t>& more) {
-        bytes.insert(bytes.end(), more.begin(), more.end());
-        return *this;
-    }
-
-private:
-    MetadataBytes& little(std::uint64_t v, int count) {
-        for (int i = 0; i < count; ++i)
-            bytes.push_back(static_cast<std::uint8_t>(v >> (8 * i)));
-        return *this;
-    }
-};
+using dc::test::MetadataBytes;
 
 // One block: the driver's clock and USB frame number, then the camera's header with PTS and SCR (end of
 // header, PTS, SCR, end of frame) and `vendor` bytes after it.
